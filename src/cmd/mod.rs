@@ -1,0 +1,3 @@
+pub mod analyze;
+pub mod generate;
+pub mod planar;

@@ -1,0 +1,37 @@
+//! `rocking`: the command-line front of the library. Every subcommand is a thin shell over
+//! library functions; see `src/cmd/`.
+
+mod cmd;
+
+use clap::{Parser, Subcommand};
+
+/// Equilibria, flocks and rocking positions of pebbles and rocking stones.
+#[derive(Parser)]
+#[command(name = "rocking", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Micro-equilibria (and flocks) of one or more scans; the bundled pebble if none is given.
+    Analyze(cmd::analyze::Args),
+    /// Write a synthetic shape (Platonic solid, box, ellipsoid, pebble) to a mesh file.
+    Generate(cmd::generate::Args),
+    /// The planar case: discretised ellipses and their flocks (paper §1.1).
+    Planar(cmd::planar::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Analyze(a) => cmd::analyze::run(a),
+        Command::Generate(a) => cmd::generate::run(a),
+        Command::Planar(a) => cmd::planar::run(a),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}

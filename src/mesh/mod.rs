@@ -1,0 +1,287 @@
+//! Triangle meshes of scanned stones: reading and writing ([`io`]), welding, and the checks that
+//! make a triangle soup into the boundary of a solid (closed, manifold, consistently oriented).
+
+pub mod io;
+
+use crate::{Error, Point3, Result, Vec3};
+use std::collections::HashMap;
+
+/// An indexed triangle mesh in f64. Triangles are counter-clockwise seen from outside once
+/// [`TriMesh::into_solid_boundary`] has accepted them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    pub vertices: Vec<Point3>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// What [`TriMesh::into_solid_boundary`] changed to make the mesh usable, for the report.
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Repairs {
+    /// Vertices merged into an earlier vertex at exactly the same position.
+    pub welded_vertices: usize,
+    /// Vertices referenced by no triangle (dropped: they are not part of the stone).
+    pub unreferenced_vertices: usize,
+    /// Triangles with a repeated vertex after welding (zero area, dropped).
+    pub degenerate_triangles: usize,
+    /// The whole surface was oriented inwards (negative volume) and was flipped.
+    pub flipped: bool,
+}
+
+impl TriMesh {
+    /// A mesh from vertices and triangles, unchecked.
+    pub fn new(vertices: Vec<Point3>, triangles: Vec<[u32; 3]>) -> Self {
+        TriMesh { vertices, triangles }
+    }
+
+    /// Axis-aligned bounding box `(min, max)` of the vertices; `None` when empty.
+    pub fn bounding_box(&self) -> Option<(Point3, Point3)> {
+        let first = *self.vertices.first()?;
+        Some(self.vertices.iter().fold((first, first), |(lo, hi), p| {
+            (lo.inf(p), hi.sup(p))
+        }))
+    }
+
+    /// Length of the bounding-box diagonal: the length scale of every tolerance.
+    pub fn diameter(&self) -> f64 {
+        self.bounding_box().map_or(0.0, |(lo, hi)| (hi - lo).norm())
+    }
+
+    /// Signed volume by the divergence theorem (positive for outward orientation).
+    pub fn signed_volume(&self) -> f64 {
+        let o = self.vertices.first().map_or(Vec3::zeros(), |p| p.coords);
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.vertices[i as usize].coords - o);
+                a.dot(&b.cross(&c))
+            })
+            .sum::<f64>()
+            / 6.0
+    }
+
+    /// Surface area.
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+                (b - a).cross(&(c - a)).norm() / 2.0
+            })
+            .sum()
+    }
+
+    /// Rigid motion and uniform scaling `x ↦ s·R·x + t`, for invariance checks and generators.
+    pub fn transformed(&self, rotation: &nalgebra::Rotation3<f64>, scale: f64, t: &Vec3) -> Self {
+        TriMesh {
+            vertices: self.vertices.iter().map(|p| Point3::from(rotation * p.coords * scale + t)).collect(),
+            triangles: self.triangles.clone(),
+        }
+    }
+
+    /// Weld exactly coincident vertices (bitwise equal coordinates, −0 = +0) and drop vertices no
+    /// triangle uses. Returns (welded, unreferenced).
+    pub fn weld(&mut self) -> (usize, usize) {
+        let key = |p: &Point3| p.coords.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
+        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(self.vertices.len());
+        let mut remap = Vec::with_capacity(self.vertices.len());
+        let mut welded = 0;
+        for (i, p) in self.vertices.iter().enumerate() {
+            let k = key(p);
+            let j = *first.entry([k.x, k.y, k.z]).or_insert(i as u32);
+            welded += usize::from(j != i as u32);
+            remap.push(j);
+        }
+        for t in &mut self.triangles {
+            *t = t.map(|i| remap[i as usize]);
+        }
+        // Compact: keep referenced vertices only, in their original order.
+        let mut used = vec![false; self.vertices.len()];
+        self.triangles.iter().flatten().for_each(|&i| used[i as usize] = true);
+        let mut new_index = vec![u32::MAX; self.vertices.len()];
+        let mut kept = Vec::new();
+        for (i, p) in self.vertices.iter().enumerate() {
+            if used[i] {
+                new_index[i] = kept.len() as u32;
+                kept.push(*p);
+            }
+        }
+        let unreferenced = self.vertices.len() - kept.len() - welded;
+        self.vertices = kept;
+        for t in &mut self.triangles {
+            *t = t.map(|i| new_index[i as usize]);
+        }
+        (welded, unreferenced)
+    }
+
+    /// Make this mesh the boundary of a solid or say precisely why it is not one.
+    ///
+    /// Checks, in order: non-empty; finite coordinates; indices in range; after welding and
+    /// dropping zero-area (repeated-index) triangles: every edge shared by exactly two triangles
+    /// (closed, edge-manifold), traversed in opposite directions (consistently oriented), every
+    /// vertex a single fan (vertex-manifold), one connected shell, non-zero volume. A surface that
+    /// is consistently oriented *inwards* (negative volume) is flipped and reported in [`Repairs`].
+    pub fn into_solid_boundary(mut self) -> Result<(TriMesh, Repairs)> {
+        if self.vertices.is_empty() || self.triangles.is_empty() {
+            return Err(Error::invalid(format!(
+                "empty mesh ({} vertices, {} triangles)",
+                self.vertices.len(),
+                self.triangles.len()
+            )));
+        }
+        if let Some((i, p)) = self.vertices.iter().enumerate().find(|(_, p)| !p.coords.iter().all(|x| x.is_finite())) {
+            return Err(Error::invalid(format!("vertex {i} has a non-finite coordinate ({}, {}, {})", p.x, p.y, p.z)));
+        }
+        let n = self.vertices.len() as u32;
+        if let Some((k, t)) = self.triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i >= n)) {
+            return Err(Error::invalid(format!("triangle {k} refers to vertex {t:?} but there are only {n} vertices")));
+        }
+        let mut rep = Repairs::default();
+        (rep.welded_vertices, rep.unreferenced_vertices) = self.weld();
+        let before = self.triangles.len();
+        self.triangles.retain(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0]);
+        rep.degenerate_triangles = before - self.triangles.len();
+        if self.triangles.is_empty() {
+            return Err(Error::invalid("every triangle is degenerate (repeated vertices)"));
+        }
+        self.check_edges()?;
+        self.check_vertex_fans()?;
+        self.check_single_shell()?;
+        let v = self.signed_volume();
+        let d = self.diameter();
+        if !(v.abs() > 1e-12 * d * d * d) {
+            return Err(Error::degenerate(format!(
+                "the surface encloses no volume (|V| = {:.3e} for a size of {:.3e}): flat or collapsed",
+                v.abs(),
+                d
+            )));
+        }
+        if v < 0.0 {
+            rep.flipped = true;
+            self.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+        }
+        Ok((self, rep))
+    }
+
+    fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
+        // undirected edge (lo, hi) -> (uses as lo->hi, uses as hi->lo)
+        let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(self.triangles.len() * 3 / 2);
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let e = uses.entry((a.min(b), a.max(b))).or_default();
+                if a < b {
+                    e.0 += 1
+                } else {
+                    e.1 += 1
+                }
+            }
+        }
+        uses
+    }
+
+    fn check_edges(&self) -> Result<()> {
+        let uses = self.edge_uses();
+        let (mut open, mut nonmanifold, mut misoriented) = (vec![], vec![], vec![]);
+        for (&e, &(f, b)) in &uses {
+            match f + b {
+                1 => open.push(e),
+                2 if f != 1 => misoriented.push(e),
+                2 => {}
+                _ => nonmanifold.push(e),
+            }
+        }
+        let at = |list: &mut Vec<(u32, u32)>| {
+            list.sort_unstable();
+            let (a, b) = list[0];
+            let (pa, pb) = (self.vertices[a as usize], self.vertices[b as usize]);
+            format!("e.g. the edge from ({}, {}, {}) to ({}, {}, {})", pa.x, pa.y, pa.z, pb.x, pb.y, pb.z)
+        };
+        if !open.is_empty() {
+            return Err(Error::invalid(format!(
+                "the surface is open: {} edge(s) belong to only one triangle ({}); a stone must be a closed surface",
+                open.len(),
+                at(&mut open)
+            )));
+        }
+        if !nonmanifold.is_empty() {
+            return Err(Error::invalid(format!(
+                "non-manifold: {} edge(s) are shared by more than two triangles ({})",
+                nonmanifold.len(),
+                at(&mut nonmanifold)
+            )));
+        }
+        if !misoriented.is_empty() {
+            return Err(Error::invalid(format!(
+                "inconsistent orientation: {} edge(s) are traversed in the same direction by both of their triangles ({}); some triangles are flipped relative to their neighbours",
+                misoriented.len(),
+                at(&mut misoriented)
+            )));
+        }
+        Ok(())
+    }
+
+    /// Every vertex must be surrounded by a single cycle of triangles (no "bow-tie" vertices).
+    fn check_vertex_fans(&self) -> Result<()> {
+        // For vertex v, each triangle (v, a, b) gives a link edge a -> b; the link must be one cycle.
+        let nv = self.vertices.len();
+        let mut start = vec![0usize; nv + 1];
+        self.triangles.iter().flatten().for_each(|&i| start[i as usize + 1] += 1);
+        for i in 0..nv {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut link = vec![(0u32, 0u32); start[nv]];
+        for t in &self.triangles {
+            for k in 0..3 {
+                let v = t[k] as usize;
+                link[fill[v]] = (t[(k + 1) % 3], t[(k + 2) % 3]);
+                fill[v] += 1;
+            }
+        }
+        for v in 0..nv {
+            let edges = &link[start[v]..start[v + 1]];
+            let next: HashMap<u32, u32> = edges.iter().copied().collect();
+            let (first, _) = edges[0];
+            let (mut cur, mut steps) = (first, 0);
+            loop {
+                cur = next[&cur]; // closed & oriented: every link vertex has a successor
+                steps += 1;
+                if cur == first || steps > edges.len() {
+                    break;
+                }
+            }
+            if steps != edges.len() {
+                let p = self.vertices[v];
+                return Err(Error::invalid(format!(
+                    "non-manifold vertex at ({}, {}, {}): two or more separate fans of triangles meet there",
+                    p.x, p.y, p.z
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    fn check_single_shell(&self) -> Result<()> {
+        let mut parent: Vec<u32> = (0..self.vertices.len() as u32).collect();
+        fn find(p: &mut [u32], mut x: u32) -> u32 {
+            while p[x as usize] != x {
+                p[x as usize] = p[p[x as usize] as usize];
+                x = p[x as usize];
+            }
+            x
+        }
+        for t in &self.triangles {
+            for k in 0..2 {
+                let (a, b) = (find(&mut parent, t[k]), find(&mut parent, t[k + 1]));
+                parent[a as usize] = b;
+            }
+        }
+        let shells = (0..self.vertices.len() as u32).filter(|&i| find(&mut parent, i) == i).count();
+        if shells > 1 {
+            return Err(Error::invalid(format!(
+                "the mesh has {shells} separate closed shells; a stone must be a single closed surface"
+            )));
+        }
+        Ok(())
+    }
+}

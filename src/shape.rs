@@ -1,0 +1,1 @@
+//! Shape descriptors field users expect (axes, Zingg class, isoperimetric ratio).
