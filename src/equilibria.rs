@@ -145,7 +145,12 @@ impl Equilibria {
             if inside {
                 let h = f.offset - f.normal.dot(&g.coords);
                 at_facet[fi] = Some(points.len() as u32);
-                points.push(Equilibrium { kind: Kind::Stable, site: Site::Facet(fi as u32), point: g + f.normal * h, r: h });
+                points.push(Equilibrium {
+                    kind: Kind::Stable,
+                    site: Site::Facet(fi as u32),
+                    point: g + f.normal * h,
+                    r: h,
+                });
             }
         }
         let stable = points.len();
@@ -157,7 +162,12 @@ impl Equilibria {
                 let t = (b - a).normalize();
                 let foot = a + t * (g - a).dot(&t);
                 at_edge[ei] = Some(points.len() as u32);
-                points.push(Equilibrium { kind: Kind::Saddle, site: Site::Edge(ei as u32), point: foot, r: (foot - g).norm() });
+                points.push(Equilibrium {
+                    kind: Kind::Saddle,
+                    site: Site::Edge(ei as u32),
+                    point: foot,
+                    r: (foot - g).norm(),
+                });
             }
         }
         let saddle = points.len() - stable;
@@ -168,13 +178,29 @@ impl Equilibria {
             });
             if max {
                 at_vertex[vi] = Some(points.len() as u32);
-                points.push(Equilibrium { kind: Kind::Unstable, site: Site::Vertex(vi as u32), point: *p, r: (p - g).norm() });
+                points.push(Equilibrium {
+                    kind: Kind::Unstable,
+                    site: Site::Vertex(vi as u32),
+                    point: *p,
+                    r: (p - g).norm(),
+                });
             }
         }
         let unstable = points.len() - stable - saddle;
         let r_max = poly.vertices.iter().map(|p| (p - g).norm()).fold(0.0, f64::max);
         let r_min = points[..stable].iter().map(|e| e.r).fold(f64::INFINITY, f64::min);
-        let eq = Equilibria { points, stable, saddle, unstable, r_max, r_min, degenerate_decisions: signs.degenerate, at_facet, at_edge, at_vertex };
+        let eq = Equilibria {
+            points,
+            stable,
+            saddle,
+            unstable,
+            r_max,
+            r_min,
+            degenerate_decisions: signs.degenerate,
+            at_facet,
+            at_edge,
+            at_vertex,
+        };
         if stable as i64 + unstable as i64 - saddle as i64 != 2 {
             return Err(Error::check(format!(
                 "Poincaré–Hopf violated: S + U − H = {stable} + {unstable} − {saddle} ≠ 2 ({} degenerate decisions)",

@@ -194,7 +194,13 @@ fn new_face(points: &[Point3], v: [u32; 3]) -> Face {
     let [a, b, c] = v.map(|i| points[i as usize]);
     let normal = (b - a).cross(&(c - a));
     let len = normal.norm();
-    Face { v, n: [u32::MAX; 3], alive: true, normal: if len > 0.0 { normal / len } else { normal }, outside: Vec::new() }
+    Face {
+        v,
+        n: [u32::MAX; 3],
+        alive: true,
+        normal: if len > 0.0 { normal / len } else { normal },
+        outside: Vec::new(),
+    }
 }
 
 #[inline]
@@ -232,7 +238,9 @@ fn initial_simplex(points: &[Point3]) -> Result<[u32; 4]> {
         return Err(Error::degenerate("all points are collinear"));
     }
     let c = points[i2];
-    let i3 = (0..points.len()).max_by(|&i, &j| orient(&a, &b, &c, &points[i]).abs().total_cmp(&orient(&a, &b, &c, &points[j]).abs())).unwrap();
+    let i3 = (0..points.len())
+        .max_by(|&i, &j| orient(&a, &b, &c, &points[i]).abs().total_cmp(&orient(&a, &b, &c, &points[j]).abs()))
+        .unwrap();
     let o = orient(&a, &b, &c, &points[i3]);
     if o == 0.0 {
         return Err(Error::degenerate("all points are coplanar (a flat object has no interior)"));
@@ -415,21 +423,26 @@ impl Polyhedron {
                 }
             }
             if loop_pts.len() != boundary[f].len() {
-                return Err(Error::check("a merged facet has a hole or a pinched boundary (coplanar tolerance too large?)"));
+                return Err(Error::check(
+                    "a merged facet has a hole or a pinched boundary (coplanar tolerance too large?)",
+                ));
             }
-            let corners: Vec<u32> = loop_pts.iter().filter(|&&v| is_corner[v as usize]).map(|&v| corner_id[v as usize]).collect();
+            let corners: Vec<u32> =
+                loop_pts.iter().filter(|&&v| is_corner[v as usize]).map(|&v| corner_id[v as usize]).collect();
             if corners.len() < 3 {
                 return Err(Error::check("a facet has fewer than three corners"));
             }
             let n = facet_normal[f].normalize();
-            let offset = corners.iter().map(|&c| n.dot(&vertices[c as usize].coords)).sum::<f64>() / corners.len() as f64;
+            let offset =
+                corners.iter().map(|&c| n.dot(&vertices[c as usize].coords)).sum::<f64>() / corners.len() as f64;
             let area = facet_normal[f].norm() / 2.0;
             for k in 0..corners.len() {
                 half_edges.insert((corners[k], corners[(k + 1) % corners.len()]), (f as u32, k as u32));
             }
             // Triangles of the facet with non-corner points fanned away: keep them in point ids
             // remapped to corners where possible (non-corner points are dropped by re-fanning).
-            let tri_c: Vec<[u32; 3]> = (1..corners.len() - 1).map(|k| [corners[0], corners[k], corners[k + 1]]).collect();
+            let tri_c: Vec<[u32; 3]> =
+                (1..corners.len() - 1).map(|k| [corners[0], corners[k], corners[k + 1]]).collect();
             facets.push(Facet { vertices: corners, edges: Vec::new(), normal: n, offset, area, triangles: tri_c });
         }
         // Edges: pair each half-edge with its twin.
@@ -466,7 +479,16 @@ impl Polyhedron {
                 fe[k as usize] = id as u32;
             }
         }
-        let poly = Polyhedron { vertices, source, facets, edges, vertex_edges, coplanar_tol: delta, diameter, hull_triangles: nt };
+        let poly = Polyhedron {
+            vertices,
+            source,
+            facets,
+            edges,
+            vertex_edges,
+            coplanar_tol: delta,
+            diameter,
+            hull_triangles: nt,
+        };
         let chi = poly.vertices.len() as i64 - poly.edges.len() as i64 + poly.facets.len() as i64;
         if chi != 2 {
             return Err(Error::check(format!("hull Euler characteristic V − E + F = {chi}, not 2")));

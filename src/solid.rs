@@ -83,9 +83,30 @@ mod tests {
 
     fn cube(h: f64, c: Vec3) -> TriMesh {
         let v: Vec<Point3> = (0..8)
-            .map(|i| Point3::from(c + Vec3::new(if i & 1 > 0 { h } else { -h }, if i & 2 > 0 { h } else { -h }, if i & 4 > 0 { h } else { -h })))
+            .map(|i| {
+                Point3::from(
+                    c + Vec3::new(
+                        if i & 1 > 0 { h } else { -h },
+                        if i & 2 > 0 { h } else { -h },
+                        if i & 4 > 0 { h } else { -h },
+                    ),
+                )
+            })
             .collect();
-        let t = vec![[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [2, 6, 7], [2, 7, 3], [0, 4, 6], [0, 6, 2], [1, 3, 7], [1, 7, 5]];
+        let t = vec![
+            [0, 2, 3],
+            [0, 3, 1],
+            [4, 5, 7],
+            [4, 7, 6],
+            [0, 1, 5],
+            [0, 5, 4],
+            [2, 6, 7],
+            [2, 7, 3],
+            [0, 4, 6],
+            [0, 6, 2],
+            [1, 3, 7],
+            [1, 7, 5],
+        ];
         TriMesh::new(v, t)
     }
 

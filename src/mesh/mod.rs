@@ -36,9 +36,7 @@ impl TriMesh {
     /// Axis-aligned bounding box `(min, max)` of the vertices; `None` when empty.
     pub fn bounding_box(&self) -> Option<(Point3, Point3)> {
         let first = *self.vertices.first()?;
-        Some(self.vertices.iter().fold((first, first), |(lo, hi), p| {
-            (lo.inf(p), hi.sup(p))
-        }))
+        Some(self.vertices.iter().fold((first, first), |(lo, hi), p| (lo.inf(p), hi.sup(p))))
     }
 
     /// Length of the bounding-box diagonal: the length scale of every tolerance.
