@@ -167,11 +167,7 @@ pub fn convex_hull(points: &[Point3]) -> Result<HullTriangles> {
                 faces[nf].outside.push(q);
             }
         }
-        for nf in first_new..faces.len() {
-            if !faces[nf].outside.is_empty() {
-                pending.push(nf as u32);
-            }
-        }
+        pending.extend((first_new..faces.len()).filter(|&nf| !faces[nf].outside.is_empty()).map(|nf| nf as u32));
         mark.resize(faces.len(), 0);
     }
     // Compact the alive faces.
@@ -355,13 +351,13 @@ impl Polyhedron {
         let mut facet_of = vec![u32::MAX; nt];
         let mut nf = 0u32;
         let mut root_id = vec![u32::MAX; nt];
-        for t in 0..nt {
+        for (t, slot) in facet_of.iter_mut().enumerate() {
             let r = dsu.find(t as u32) as usize;
             if root_id[r] == u32::MAX {
                 root_id[r] = nf;
                 nf += 1;
             }
-            facet_of[t] = root_id[r];
+            *slot = root_id[r];
         }
         // Facets incident to each hull point: corners have ≥ 3 distinct ones.
         let np = points.len();

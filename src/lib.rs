@@ -17,13 +17,20 @@
 //! * [`generate`] — seeded shape generators (Platonic solids, boxes, ellipsoids, pebbles).
 //! * [`analysis`] — the whole static pipeline and its serialisable result.
 
+// `!(x > 0.0)` is used on purpose: it is true for NaN, which must be refused too.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod analysis;
 pub mod equilibria;
 pub mod error;
 pub mod generate;
+pub mod hierarchy;
 pub mod hull;
 pub mod mesh;
+pub mod morse_smale;
+pub mod planar;
 pub mod plot;
+pub mod report;
 pub mod shape;
 pub mod solid;
 
