@@ -245,6 +245,127 @@ fn initial_simplex(points: &[Point3]) -> Result<[u32; 4]> {
     Ok(if o > 0.0 { s } else { [s[1], s[0], s[2], s[3]] })
 }
 
+/// Group hull triangles into planar facets. Adjacent triangles are candidates when the
+/// opposite vertex of one lies within δ of the other's plane (either way round, so that a sliver
+/// — three nearly collinear hull points — joins its neighbour); candidates are merged
+/// most-coplanar first, and a merge is accepted only if every vertex of one group lies within δ
+/// of the plane of the other group's largest triangle (its anchor; the merged group keeps the
+/// larger anchor). So a facet is planar within δ as a whole, never a chain of slightly bent
+/// pairs. Returns the facet id of every triangle (ids in order of first triangle).
+fn merge_coplanar(points: &[Point3], hull: &HullTriangles, tri_n: &[Vec3], delta: f64) -> Vec<u32> {
+    let tris = &hull.triangles;
+    let nt = tris.len();
+    let height = |t: usize, d: u32| {
+        let [a, b, c] = tris[t].map(|i| &points[i as usize]);
+        let n = tri_n[t].norm();
+        if n > 0.0 {
+            orient(a, b, c, &points[d as usize]).abs() / n
+        } else {
+            f64::INFINITY
+        }
+    };
+    let mut candidates = Vec::new();
+    for t in 0..nt {
+        for e in 0..3 {
+            let u = hull.neighbours[t][e] as usize;
+            if u < t {
+                continue;
+            }
+            let opp_u = *tris[u].iter().find(|v| !tris[t].contains(v)).expect("distinct triangles");
+            let h = height(t, opp_u).min(height(u, tris[t][(e + 2) % 3]));
+            if h <= delta {
+                candidates.push((h, t as u32, u as u32));
+            }
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+    let mut dsu = Dsu((0..nt as u32).collect());
+    let mut members: Vec<Vec<u32>> = (0..nt as u32).map(|t| vec![t]).collect();
+    let mut anchor: Vec<u32> = (0..nt as u32).collect();
+    let area = |t: u32| tri_n[t as usize].norm();
+    for (_, t, u) in candidates {
+        let (rt, ru) = (dsu.find(t), dsu.find(u));
+        if rt == ru {
+            continue;
+        }
+        let (keep, other) = if area(anchor[rt as usize]) >= area(anchor[ru as usize]) { (rt, ru) } else { (ru, rt) };
+        let at = anchor[keep as usize] as usize;
+        let a = points[tris[at][0] as usize];
+        let n = tri_n[at].normalize();
+        let planar = members[other as usize]
+            .iter()
+            .all(|&m| tris[m as usize].iter().all(|&v| n.dot(&(points[v as usize] - a)).abs() <= delta));
+        if planar {
+            dsu.0[other as usize] = keep;
+            let moved = std::mem::take(&mut members[other as usize]);
+            members[keep as usize].extend(moved);
+        }
+    }
+    let mut facet_of = vec![u32::MAX; nt];
+    let mut root_id = vec![u32::MAX; nt];
+    let mut nf = 0u32;
+    for (t, slot) in facet_of.iter_mut().enumerate() {
+        let r = dsu.find(t as u32) as usize;
+        if root_id[r] == u32::MAX {
+            root_id[r] = nf;
+            nf += 1;
+        }
+        *slot = root_id[r];
+    }
+    facet_of
+}
+
+/// Chain a facet's boundary half-edges into its counter-clockwise loop of hull points.
+fn boundary_loop(boundary: &[(u32, u32)], next_of: &mut [u32]) -> Result<Vec<u32>> {
+    for &(a, b) in boundary {
+        next_of[a as usize] = b;
+    }
+    let start = boundary[0].0;
+    let mut loop_pts = vec![start];
+    let mut cur = next_of[start as usize];
+    while cur != start {
+        loop_pts.push(cur);
+        cur = next_of[cur as usize];
+        if loop_pts.len() > boundary.len() {
+            return Err(Error::check("a merged facet's boundary is not a simple loop"));
+        }
+    }
+    if loop_pts.len() != boundary.len() {
+        return Err(Error::check("a merged facet has a hole or a pinched boundary (coplanar tolerance too large?)"));
+    }
+    Ok(loop_pts)
+}
+
+/// Corners: hull points where three or more facets meet. A point with two facets lies on their
+/// common edge and one with a single facet inside it; both are dropped. Should a facet then have
+/// fewer than three corners (possible only when the tolerance merged nearly coplanar triangles,
+/// bending the facets' common boundary), its two-facet points are kept as corners too, so every
+/// facet stays a polygon.
+fn corners(np: usize, tris: &[[u32; 3]], facet_of: &[u32], loops: &[Vec<u32>]) -> Vec<bool> {
+    let mut first_facet = vec![u32::MAX; np];
+    let mut second_facet = vec![u32::MAX; np];
+    let mut is_corner = vec![false; np];
+    for (t, tri) in tris.iter().enumerate() {
+        let f = facet_of[t];
+        for &v in tri {
+            let v = v as usize;
+            if first_facet[v] == u32::MAX || first_facet[v] == f {
+                first_facet[v] = f;
+            } else if second_facet[v] == u32::MAX || second_facet[v] == f {
+                second_facet[v] = f;
+            } else {
+                is_corner[v] = true;
+            }
+        }
+    }
+    for l in loops {
+        if l.iter().filter(|&&v| is_corner[v as usize]).count() < 3 {
+            l.iter().for_each(|&v| is_corner[v as usize] = true);
+        }
+    }
+    is_corner
+}
+
 /// A polygonal facet of the hull: a convex polygon with outward unit normal.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Facet {
@@ -298,13 +419,6 @@ impl Dsu {
         }
         x
     }
-    fn union(&mut self, a: u32, b: u32) {
-        let (a, b) = (self.find(a), self.find(b));
-        if a != b {
-            let (lo, hi) = (a.min(b), a.max(b));
-            self.0[hi as usize] = lo;
-        }
-    }
 }
 
 impl Polyhedron {
@@ -328,55 +442,32 @@ impl Polyhedron {
                 (b - a).cross(&(c - a))
             })
             .collect();
-        // Height of `d` over the plane of triangle t (exact sign, f64 magnitude).
-        let height = |t: usize, d: u32| {
-            let [a, b, c] = tris[t].map(|i| &points[i as usize]);
-            orient(a, b, c, &points[d as usize]).abs() / tri_n[t].norm()
-        };
-        let mut dsu = Dsu((0..nt as u32).collect());
-        for t in 0..nt {
-            for e in 0..3 {
-                let u = hull.neighbours[t][e] as usize;
-                if u < t {
-                    continue;
-                }
-                let opp_u = *tris[u].iter().find(|v| !tris[t].contains(v)).unwrap();
-                let opp_t = tris[t][(e + 2) % 3];
-                if height(t, opp_u) <= delta && height(u, opp_t) <= delta {
-                    dsu.union(t as u32, u as u32);
-                }
-            }
+        let facet_of = merge_coplanar(points, hull, &tri_n, delta);
+        let nf = facet_of.iter().map(|&f| f + 1).max().unwrap_or(0);
+        if nf < 4 {
+            return Err(Error::degenerate(format!(
+                "all points lie within {delta:.3e} of one plane (coplanar tolerance): a flat object has no interior"
+            )));
         }
-        // Facet ids in order of first triangle.
-        let mut facet_of = vec![u32::MAX; nt];
-        let mut nf = 0u32;
-        let mut root_id = vec![u32::MAX; nt];
-        for (t, slot) in facet_of.iter_mut().enumerate() {
-            let r = dsu.find(t as u32) as usize;
-            if root_id[r] == u32::MAX {
-                root_id[r] = nf;
-                nf += 1;
-            }
-            *slot = root_id[r];
-        }
-        // Facets incident to each hull point: corners have ≥ 3 distinct ones.
         let np = points.len();
-        let mut first_facet = vec![u32::MAX; np];
-        let mut second_facet = vec![u32::MAX; np];
-        let mut is_corner = vec![false; np];
-        for (t, tri) in tris.iter().enumerate() {
-            let f = facet_of[t];
-            for &v in tri {
-                let v = v as usize;
-                if first_facet[v] == u32::MAX || first_facet[v] == f {
-                    first_facet[v] = f;
-                } else if second_facet[v] == u32::MAX || second_facet[v] == f {
-                    second_facet[v] = f;
-                } else {
-                    is_corner[v] = true;
+        // Boundary loop of every facet, from the triangles' edges whose neighbour is elsewhere.
+        let mut boundary: Vec<Vec<(u32, u32)>> = vec![Vec::new(); nf as usize];
+        let mut facet_normal = vec![Vec3::zeros(); nf as usize];
+        for t in 0..nt {
+            let f = facet_of[t] as usize;
+            facet_normal[f] += tri_n[t];
+            for e in 0..3 {
+                if facet_of[hull.neighbours[t][e] as usize] as usize != f {
+                    boundary[f].push((tris[t][e], tris[t][(e + 1) % 3]));
                 }
             }
         }
+        let mut loops = Vec::with_capacity(nf as usize);
+        let mut next_of = vec![u32::MAX; np];
+        for b in &boundary {
+            loops.push(boundary_loop(b, &mut next_of)?);
+        }
+        let is_corner = corners(np, tris, &facet_of, &loops);
         let mut corner_id = vec![u32::MAX; np];
         let mut vertices = Vec::new();
         let mut source = Vec::new();
@@ -387,47 +478,12 @@ impl Polyhedron {
                 source.push(v as u32);
             }
         }
-        // Boundary loop of every facet, from the triangles' edges whose neighbour is elsewhere.
-        let mut boundary: Vec<Vec<(u32, u32)>> = vec![Vec::new(); nf as usize];
-        let mut facet_tris: Vec<Vec<[u32; 3]>> = vec![Vec::new(); nf as usize];
-        let mut facet_normal = vec![Vec3::zeros(); nf as usize];
-        for t in 0..nt {
-            let f = facet_of[t] as usize;
-            facet_normal[f] += tri_n[t];
-            facet_tris[f].push(tris[t]);
-            for e in 0..3 {
-                if facet_of[hull.neighbours[t][e] as usize] as usize != f {
-                    boundary[f].push((tris[t][e], tris[t][(e + 1) % 3]));
-                }
-            }
-        }
         let mut facets = Vec::with_capacity(nf as usize);
-        let mut next_of = vec![u32::MAX; np];
         let mut half_edges: std::collections::HashMap<(u32, u32), (u32, u32)> = std::collections::HashMap::new(); // (a,b) -> (facet, slot in facet loop)
-        for f in 0..nf as usize {
-            for &(a, b) in &boundary[f] {
-                next_of[a as usize] = b;
-            }
-            let start = boundary[f][0].0;
-            let mut loop_pts = vec![start];
-            let mut cur = next_of[start as usize];
-            while cur != start {
-                loop_pts.push(cur);
-                cur = next_of[cur as usize];
-                if loop_pts.len() > boundary[f].len() {
-                    return Err(Error::check("a merged facet's boundary is not a simple loop"));
-                }
-            }
-            if loop_pts.len() != boundary[f].len() {
-                return Err(Error::check(
-                    "a merged facet has a hole or a pinched boundary (coplanar tolerance too large?)",
-                ));
-            }
+        for (f, loop_pts) in loops.iter().enumerate() {
             let corners: Vec<u32> =
                 loop_pts.iter().filter(|&&v| is_corner[v as usize]).map(|&v| corner_id[v as usize]).collect();
-            if corners.len() < 3 {
-                return Err(Error::check("a facet has fewer than three corners"));
-            }
+            debug_assert!(corners.len() >= 3, "corners() promotes until every facet has three");
             let n = facet_normal[f].normalize();
             let offset =
                 corners.iter().map(|&c| n.dot(&vertices[c as usize].coords)).sum::<f64>() / corners.len() as f64;

@@ -29,8 +29,11 @@ fn noisy_triaxial_ellipsoids_have_two_two_two_on_the_plateau() {
 
 #[test]
 fn noisy_box_has_six_eight_twelve_on_the_plateau() {
-    let a = analyse(generate::noisy_cuboid(2.0, 1.4, 1.0, 12, 0.002, 7));
-    assert!(a.equilibria.stable > 6, "the noisy faces must carry micro-equilibria");
+    // Radial noise on flat faces adds micro-equilibria mostly near the corners (the hull of a
+    // noisy plane is a few large facets, so each face keeps one stable point).
+    let a = analyse(generate::noisy_cuboid(2.0, 1.4, 1.0, 12, 0.005, 7));
+    let micro = a.equilibria.stable + a.equilibria.unstable + a.equilibria.saddle;
+    assert!(micro > 26, "the noise must add micro-equilibria, got {micro}");
     assert_eq!(plateau_counts(&a), (6, 8, 12, true));
 }
 
