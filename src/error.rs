@@ -9,12 +9,8 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The file could not be read or written.
-    #[error("{path}: {source}")]
-    Io {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
+    #[error("{path}: {error}")]
+    Io { path: PathBuf, error: std::io::Error },
     /// The file is not a mesh we can parse (format, truncation, bad numbers...).
     #[error("{path}: {what}")]
     Parse { path: PathBuf, what: String },
@@ -38,7 +34,7 @@ impl Error {
         let p = p.into();
         let fix = |old: PathBuf| if old.as_os_str() == MEMORY { p.clone() } else { old };
         match self {
-            Error::Io { path, source } => Error::Io { path: fix(path), source },
+            Error::Io { path, error } => Error::Io { path: fix(path), error },
             Error::Parse { path, what } => Error::Parse { path: fix(path), what },
             Error::InvalidMesh { path, what } => Error::InvalidMesh { path: fix(path), what },
             Error::Degenerate { path, what } => Error::Degenerate { path: fix(path), what },

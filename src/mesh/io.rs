@@ -22,7 +22,7 @@ use std::path::Path;
 
 /// Read a mesh file as it is (no welding or checks). Format by extension, else by content.
 pub fn read(path: &Path) -> Result<TriMesh> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io { path: path.into(), source })?;
+    let bytes = std::fs::read(path).map_err(|error| Error::Io { path: path.into(), error })?;
     read_bytes(&bytes, path)
 }
 
@@ -182,7 +182,7 @@ fn write_file(path: &Path, mesh: &TriMesh, bytes: Vec<u8>) -> Result<()> {
             path.display()
         )));
     }
-    std::fs::write(path, bytes).map_err(|source| Error::Io { path: path.into(), source })
+    std::fs::write(path, bytes).map_err(|error| Error::Io { path: path.into(), error })
 }
 
 /// Outward unit normal of a counter-clockwise triangle (zero for a degenerate one).
