@@ -1,6 +1,206 @@
-#[derive(clap::Args)]
-pub struct Args {}
+//! `rocking planar`: the planar case (paper §1.1): micro-equilibria, hierarchy and flocks of a
+//! discretised ellipse or a regular polygon.
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("not implemented yet")
+use anyhow::Result;
+use rocking_stones::hierarchy::Kind;
+use rocking_stones::planar::{
+    ellipse_polygon, sides_for_k, table1, PlanarAnalysis, PlanarReport, Polygon, Sampling, DEFAULT_DEGENERACY_TOL,
+};
+use serde::Serialize;
+
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(subcommand)]
+    pub shape: Shape,
+}
+
+#[derive(clap::Subcommand)]
+pub enum Shape {
+    /// The ellipse with semi-axes a (along x, the major axis) and 1 (along y), discretised into
+    /// N = 4k − 2 sides (vertex 0 at (a, 0)).
+    Ellipse(EllipseArgs),
+    /// The regular n-gon (S = U = n).
+    Regular(RegularArgs),
+}
+
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum SamplingArg {
+    /// Equal arc-length spacing (the paper's).
+    Arclength,
+    /// Equal steps of the parameter t of (a cos t, sin t).
+    Angle,
+    /// Independent uniform arc-length positions (use --seed).
+    Random,
+}
+
+#[derive(clap::Args)]
+pub struct EllipseArgs {
+    /// Semi-axis along x (a ≥ 1); the other semi-axis is 1.
+    #[arg(long)]
+    pub a: f64,
+    /// N = 4k − 2 sides.
+    #[arg(long, required_unless_present = "sides", conflicts_with = "sides")]
+    pub k: Option<usize>,
+    /// Number of sides N directly (instead of --k).
+    #[arg(long)]
+    pub sides: Option<usize>,
+    #[arg(long, value_enum, default_value_t = SamplingArg::Arclength)]
+    pub sampling: SamplingArg,
+    /// Seed of --sampling random.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    #[command(flatten)]
+    pub common: Common,
+}
+
+#[derive(clap::Args)]
+pub struct RegularArgs {
+    /// Number of sides.
+    #[arg(long)]
+    pub n: usize,
+    #[command(flatten)]
+    pub common: Common,
+}
+
+#[derive(clap::Args)]
+pub struct Common {
+    /// Fix ν of the macro scale (default: the automatic plateau).
+    #[arg(long)]
+    pub nu: Option<f64>,
+    /// Print one JSON object instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Relative tolerance of degenerate predicates (× bounding-box diagonal).
+    #[arg(long, default_value_t = DEFAULT_DEGENERACY_TOL)]
+    pub degeneracy_tol: f64,
+}
+
+#[derive(Serialize)]
+struct Output<'a> {
+    shape: ShapeInfo,
+    #[serde(flatten)]
+    report: &'a PlanarReport,
+    /// Table 1's k → ∞ limit (ellipse only).
+    table1: Option<rocking_stones::planar::Table1>,
+}
+
+#[derive(Serialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+enum ShapeInfo {
+    Ellipse { a: f64, k: Option<usize>, sides: usize, sampling: Sampling },
+    Regular { n: usize },
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let (polygon, info, common) = match &args.shape {
+        Shape::Ellipse(e) => {
+            let sides = match (e.k, e.sides) {
+                (Some(k), _) if k >= 1 => sides_for_k(k),
+                (Some(k), _) => anyhow::bail!("--k must be ≥ 1, got {k}"),
+                (None, Some(n)) => n,
+                (None, None) => anyhow::bail!("give --k or --sides"),
+            };
+            let sampling = match e.sampling {
+                SamplingArg::Arclength => Sampling::ArcLength,
+                SamplingArg::Angle => Sampling::Angle,
+                SamplingArg::Random => Sampling::Random { seed: e.seed },
+            };
+            let p = ellipse_polygon(e.a, sides, sampling)?;
+            (p, ShapeInfo::Ellipse { a: e.a, k: e.k, sides, sampling }, &e.common)
+        }
+        Shape::Regular(r) => (Polygon::regular(r.n, 1.0, 0.0)?, ShapeInfo::Regular { n: r.n }, &r.common),
+    };
+    if let Some(nu) = common.nu {
+        anyhow::ensure!(nu.is_finite() && nu >= 0.0, "--nu must be a non-negative number, got {nu}");
+    }
+    let analysis = PlanarAnalysis::new(polygon, common.degeneracy_tol)?;
+    let report = analysis.report(common.nu);
+    let limit = match info {
+        ShapeInfo::Ellipse { a, .. } => table1(a),
+        ShapeInfo::Regular { .. } => None,
+    };
+    if common.json {
+        println!("{}", serde_json::to_string_pretty(&Output { shape: info, report: &report, table1: limit })?);
+    } else {
+        print!("{}", summary(&info, &report, limit.as_ref()));
+    }
+    Ok(())
+}
+
+fn summary(info: &ShapeInfo, r: &PlanarReport, limit: Option<&rocking_stones::planar::Table1>) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    match info {
+        ShapeInfo::Ellipse { a, sides, sampling, .. } => {
+            let _ = writeln!(s, "ellipse 1 : {a} (major axis x), {sides} sides, sampling {sampling:?}");
+        }
+        ShapeInfo::Regular { n } => {
+            let _ = writeln!(s, "regular {n}-gon");
+        }
+    }
+    let _ = writeln!(
+        s,
+        "micro-equilibria: S = {}, U = {}   (R_min = {:.6}, R_max = {:.6}, v_max = {:.4e}, degenerate decisions: {})",
+        r.stable, r.unstable, r.r_min, r.r_max, r.v_max, r.degenerate_decisions
+    );
+    match &r.plateau {
+        Some(p) => {
+            let _ = writeln!(
+                s,
+                "plateau: ν ∈ [{:.3e}, {:.3e}], {} decades, clarity {}, {} → S = {}, U = {}",
+                p.nu_lo,
+                p.nu_hi,
+                fmt_inf(p.decades),
+                fmt_inf(p.clarity),
+                if p.clear { "clear" } else { "NOT clear" },
+                p.counts.stable,
+                p.counts.unstable
+            );
+        }
+        None => {
+            let _ = writeln!(s, "plateau: none (nothing to cancel)");
+        }
+    }
+    let _ = writeln!(
+        s,
+        "macro scale ν = {:.4e} ({:?}): S = {}, U = {}",
+        r.nu, r.nu_source, r.macro_counts.stable, r.macro_counts.unstable
+    );
+    for f in &r.flocks {
+        let kind = match f.kind {
+            Kind::Stable => "stable",
+            Kind::Unstable => "unstable",
+            Kind::Saddle => "saddle",
+        };
+        let _ = writeln!(
+            s,
+            "  flock {:>3} {:<8} root {:>5}: {} stable + {} unstable",
+            f.id, kind, f.root, f.stable, f.unstable
+        );
+    }
+    let _ = writeln!(s, "rocking equilibria (stable sides in unstable flocks): {}", r.rocking.len());
+    for x in r.rocking.iter().take(20) {
+        let _ = writeln!(s, "  side {:>5}  φ = {:+.4}  R = {:.6}  flock {}", x.side, x.phi, x.r, x.flock);
+    }
+    if let Some(t) = limit {
+        let _ = writeln!(
+            s,
+            "Table 1 (k → ∞): stable flocks {} + {}, unstable flocks {} + {}, total S = {}{}",
+            t.stable_flock.0,
+            t.stable_flock.1,
+            t.unstable_flock.0,
+            t.unstable_flock.1,
+            t.total_stable,
+            if t.on_jump { " (a²/(2(a²−1)) is an integer: the limit sits on a jump)" } else { "" }
+        );
+    }
+    s
+}
+
+fn fmt_inf(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.2}")
+    } else {
+        "∞".into()
+    }
 }
