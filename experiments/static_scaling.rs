@@ -122,7 +122,7 @@ fn main() -> anyhow::Result<()> {
 fn write_csv(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
     let mut w = csv::Writer::from_path(path)?;
     let mut header = vec!["input", "vertices", "hull_vertices", "micro_equilibria"];
-    header.extend(STAGES.iter().map(|s| *s));
+    header.extend(STAGES.iter().copied());
     header.push("parry_hull");
     w.write_record(&header)?;
     for r in rows {
@@ -178,7 +178,7 @@ fn write_summary(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
         )?;
     }
     let first = &rows[0];
-    let big = rows.iter().filter(|r| r.name.starts_with("pebble")).last().unwrap();
+    let big = rows.iter().rfind(|r| r.name.starts_with("pebble")).unwrap();
     writeln!(
         s,
         "\nPer-vertex cost at n = {} is {:.2}× that at n = {} (1.0 = linear).",

@@ -281,7 +281,7 @@ fn merge_coplanar(points: &[Point3], hull: &HullTriangles, tri_n: &[Vec3], delta
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then((a.1, a.2).cmp(&(b.1, b.2))));
     let mut dsu = Dsu((0..nt as u32).collect());
     let mut members: Vec<Vec<u32>> = (0..nt as u32).map(|t| vec![t]).collect();
-    let mut anchor: Vec<u32> = (0..nt as u32).collect();
+    let anchor: Vec<u32> = (0..nt as u32).collect();
     let area = |t: u32| tri_n[t as usize].norm();
     for (_, t, u) in candidates {
         let (rt, ru) = (dsu.find(t), dsu.find(u));

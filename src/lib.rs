@@ -21,12 +21,15 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod analysis;
+pub mod basins;
+pub mod dynamics;
 pub mod equilibria;
 pub mod error;
 pub mod generate;
 pub mod hierarchy;
 pub mod hull;
 pub mod mesh;
+pub mod montecarlo;
 pub mod morse_smale;
 pub mod planar;
 pub mod plot;

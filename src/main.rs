@@ -21,6 +21,10 @@ enum Command {
     Generate(cmd::generate::Args),
     /// The planar case: discretised ellipses and their flocks (paper §1.1).
     Planar(cmd::planar::Args),
+    /// Drop the scanned hull many times in rapier3d: resting statistics vs the static theory.
+    Drop(cmd::drop::Args),
+    /// Combine partial drop results (shards, checkpoints) into the report of one run.
+    Merge(cmd::drop::MergeArgs),
 }
 
 fn main() {
@@ -29,6 +33,8 @@ fn main() {
         Command::Analyze(a) => cmd::analyze::run(a),
         Command::Generate(a) => cmd::generate::run(a),
         Command::Planar(a) => cmd::planar::run(a),
+        Command::Drop(a) => cmd::drop::run_drop(a),
+        Command::Merge(a) => cmd::drop::run_merge(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

@@ -70,15 +70,26 @@ fn expand(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
-    let (analysis, name) = match path {
+/// Analyse a mesh file, or the bundled default stone when `path` is None; returns the analysis
+/// and the name to report.
+pub fn load_analysis(path: Option<&Path>, opts: &Options) -> Result<(Analysis, String)> {
+    Ok(match path {
         Some(p) => (Analysis::of_file(p, opts)?, p.display().to_string()),
         None => {
             let mesh = io::read_bytes(DEFAULT_PEBBLE, Path::new(DEFAULT_NAME))?;
             let (mesh, repairs) = mesh.into_solid_boundary().map_err(|e| e.with_path(DEFAULT_NAME))?;
             (Analysis::of_solid(mesh, repairs, opts).map_err(|e| e.with_path(DEFAULT_NAME))?, DEFAULT_NAME.to_string())
         }
-    };
+    })
+}
+
+/// Is this the report name of the bundled default stone?
+pub fn is_bundled(name: &str) -> bool {
+    name == DEFAULT_NAME
+}
+
+fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
+    let (analysis, name) = load_analysis(path.map(|p| p.as_path()), opts)?;
     let report = analysis.report(&name, opts);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

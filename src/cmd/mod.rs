@@ -1,3 +1,4 @@
 pub mod analyze;
+pub mod drop;
 pub mod generate;
 pub mod planar;
