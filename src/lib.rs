@@ -36,6 +36,7 @@ pub mod plot;
 pub mod report;
 pub mod shape;
 pub mod solid;
+pub mod study;
 
 pub use error::{Error, Result};
 

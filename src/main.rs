@@ -25,6 +25,12 @@ enum Command {
     Drop(cmd::drop::Args),
     /// Combine partial drop results (shards, checkpoints) into the report of one run.
     Merge(cmd::drop::MergeArgs),
+    /// Push a pebble resting on a stable micro-equilibrium: how robust is it, does it topple?
+    Perturb(cmd::perturb::Args),
+    /// Shake the ground under a resting pebble: fragility curves.
+    Shake(cmd::shake::Args),
+    /// Field study over a folder of scans, synthetic hand experiments, fitting ν.
+    Study(cmd::study::Args),
 }
 
 fn main() {
@@ -35,6 +41,9 @@ fn main() {
         Command::Planar(a) => cmd::planar::run(a),
         Command::Drop(a) => cmd::drop::run_drop(a),
         Command::Merge(a) => cmd::drop::run_merge(a),
+        Command::Perturb(a) => cmd::perturb::run(a),
+        Command::Shake(a) => cmd::shake::run(a),
+        Command::Study(a) => cmd::study::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

@@ -224,57 +224,143 @@ const GRAVITY: f64 = 9.81;
 /// Penetration the contact solver allows, in units of R_max.
 pub const ALLOWED_PENETRATION: f64 = 1e-3;
 
-/// Simulate one drop to rest (or to the certificate, or to the time cap).
-pub fn simulate(body: &DropBody, p: &DropParams, release: &Release, index: u64, cert: &dyn Certificate) -> DropOutcome {
-    let mut world = PhysicsWorld::new();
-    world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
-    world.integration_parameters.dt = p.dt as f32;
-    world.integration_parameters.length_unit = 1.0;
-    // Penetration the solver tolerates, in R_max (rapier's default is 0.005): a tenth of it keeps
-    // the contact within 10⁻³ R_max of the true support height, which the energy certificate's
-    // margin must cover.
-    world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
-    world.colliders.insert(
-        ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
+/// The state of the body that the rest criterion and the certificate read (scaled frame).
+#[derive(Clone, Copy, Debug)]
+pub struct BodyState {
+    /// Down direction in the body frame.
+    pub down: Vec3,
+    /// Height of G above the ground.
+    pub z: f64,
+    /// Linear and angular velocity (world frame).
+    pub linvel: Vec3,
+    pub angvel: Vec3,
+    /// Energy level L = E/(m g) = z_G + kinetic energy/(m g): a bound on h(down) for the rest of
+    /// a passive motion.
+    pub level: f64,
+}
+
+/// A rapier world with the ground (a half-space z ≤ 0 on a kinematic body, so that it can be
+/// shaken) and the pebble, in the scaled frame. Drops ([`simulate`]), pushes and ground shaking
+/// all run on it.
+pub struct Simulation<'a> {
+    pub world: PhysicsWorld,
+    pub body_handle: RigidBodyHandle,
+    pub ground_handle: RigidBodyHandle,
+    body: &'a DropBody,
+}
+
+impl<'a> Simulation<'a> {
+    /// The pebble with orientation `orientation` (body → world), G at height `z`, and the
+    /// given velocities, above a flat ground.
+    pub fn new(
+        body: &'a DropBody,
+        p: &DropParams,
+        orientation: &UnitQuaternion<f64>,
+        z: f64,
+        linvel: &Vec3,
+        angvel: &Vec3,
+    ) -> Self {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
+        world.integration_parameters.dt = p.dt as f32;
+        world.integration_parameters.length_unit = 1.0;
+        // Penetration the solver tolerates, in R_max (rapier's default is 0.005): a fifth of it
+        // keeps the contact within 10⁻³ R_max of the true support height, which the energy
+        // certificate's margin must cover.
+        world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
+        let ground_handle = world.bodies.insert(RigidBodyBuilder::kinematic_velocity_based().build());
+        let ground = ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
             .friction(p.friction as f32)
             .restitution(p.restitution as f32)
-            .build(),
-    );
-    let down_body = release.orientation.inverse() * -Vec3::z();
-    let z0 = p.height + body.support(&down_body);
-    let mass = MassProperties::with_inertia_matrix(Vector::ZERO, 1.0, convert::mat(&body.inertia));
-    let rb = RigidBodyBuilder::dynamic()
-        .pose(Pose::from_parts(Vector::new(0.0, 0.0, z0 as f32), convert::quat(&release.orientation)))
-        .angvel(convert::vec(&release.angvel))
-        .linear_damping(p.linear_damping as f32)
-        .angular_damping(p.angular_damping as f32)
-        .additional_mass_properties(mass)
-        .gyroscopic_forces_enabled(true)
-        .can_sleep(false)
-        .build();
-    let handle = world.bodies.insert(rb);
-    let collider = ColliderBuilder::new(body.shape.clone())
-        .density(0.0)
-        .friction(p.friction as f32)
-        .restitution(p.restitution as f32)
-        .build();
-    world.colliders.insert_with_parent(collider, handle, &mut world.bodies);
-    let steps_max = (p.max_time / p.dt).ceil() as u64;
-    let rest_steps = (p.rest_time / p.dt).ceil() as u64;
-    let mut calm = 0u64;
-    for step in 1..=steps_max {
-        world.step();
-        let rb = &world.bodies[handle];
+            .build();
+        world.colliders.insert_with_parent(ground, ground_handle, &mut world.bodies);
+        let mass = MassProperties::with_inertia_matrix(Vector::ZERO, 1.0, convert::mat(&body.inertia));
+        let rb = RigidBodyBuilder::dynamic()
+            .pose(Pose::from_parts(Vector::new(0.0, 0.0, z as f32), convert::quat(orientation)))
+            .linvel(convert::vec(linvel))
+            .angvel(convert::vec(angvel))
+            .linear_damping(p.linear_damping as f32)
+            .angular_damping(p.angular_damping as f32)
+            .additional_mass_properties(mass)
+            .gyroscopic_forces_enabled(true)
+            .can_sleep(false)
+            .build();
+        let body_handle = world.bodies.insert(rb);
+        let collider = ColliderBuilder::new(body.shape.clone())
+            .density(0.0)
+            .friction(p.friction as f32)
+            .restitution(p.restitution as f32)
+            .build();
+        world.colliders.insert_with_parent(collider, body_handle, &mut world.bodies);
+        Simulation { world, body_handle, ground_handle, body }
+    }
+
+    /// Advance one time step.
+    pub fn step(&mut self) {
+        self.world.step();
+    }
+
+    /// Set the ground's horizontal velocity (world frame) for the next steps.
+    pub fn set_ground_velocity(&mut self, v: &Vec3) {
+        self.world.bodies[self.ground_handle].set_linvel(convert::vec(v), true);
+    }
+
+    /// The pebble's current state.
+    pub fn state(&self) -> BodyState {
+        let rb = &self.world.bodies[self.body_handle];
         let q = convert::quat_back(rb.rotation());
         let down = q.inverse() * -Vec3::z();
-        let v = convert::vec_back(rb.linvel());
-        let w = convert::vec_back(rb.angvel());
+        let linvel = convert::vec_back(rb.linvel());
+        let angvel = convert::vec_back(rb.angvel());
+        let w_body = q.inverse() * angvel;
+        let kinetic = 0.5 * linvel.norm_squared() + 0.5 * w_body.dot(&(self.body.inertia * w_body));
+        let z = rb.translation().z as f64;
+        BodyState { down, z, linvel, angvel, level: z + kinetic / GRAVITY }
+    }
+}
+
+/// Counts consecutive calm steps (speeds under the rest thresholds) until `rest_time`.
+pub struct RestDetector {
+    calm: u64,
+    needed: u64,
+    linear: f64,
+    angular: f64,
+}
+
+impl RestDetector {
+    pub fn new(p: &DropParams) -> Self {
+        RestDetector {
+            calm: 0,
+            needed: (p.rest_time / p.dt).ceil() as u64,
+            linear: p.rest_linear_speed,
+            angular: p.rest_angular_speed,
+        }
+    }
+
+    /// Feed the velocities relative to the ground; true once the body has been calm long enough.
+    pub fn at_rest(&mut self, linvel: &Vec3, angvel: &Vec3) -> bool {
+        if linvel.norm() < self.linear && angvel.norm() < self.angular {
+            self.calm += 1;
+        } else {
+            self.calm = 0;
+        }
+        self.calm >= self.needed
+    }
+}
+
+/// Simulate one drop to rest (or to the certificate, or to the time cap).
+pub fn simulate(body: &DropBody, p: &DropParams, release: &Release, index: u64, cert: &dyn Certificate) -> DropOutcome {
+    let down_body = release.orientation.inverse() * -Vec3::z();
+    let z0 = p.height + body.support(&down_body);
+    let mut sim = Simulation::new(body, p, &release.orientation, z0, &Vec3::zeros(), &release.angvel);
+    let mut rest = RestDetector::new(p);
+    let steps_max = (p.max_time / p.dt).ceil() as u64;
+    for step in 1..=steps_max {
+        sim.step();
+        let s = sim.state();
         let t = step as f64 * p.dt;
         if step % 4 == 0 {
-            let w_body = q.inverse() * w;
-            let kinetic = 0.5 * v.norm_squared() + 0.5 * w_body.dot(&(body.inertia * w_body));
-            let level = rb.translation().z as f64 + kinetic / GRAVITY;
-            match cert.decided(&down, level) {
+            match cert.decided(&s.down, s.level) {
                 Some(Decided::Facet(f)) => {
                     return DropOutcome { index, settled: true, facet: Some(f), flock: None, time: t, certified: true }
                 }
@@ -284,24 +370,11 @@ pub fn simulate(body: &DropBody, p: &DropParams, release: &Release, index: u64, 
                 None => {}
             }
         }
-        if v.norm() < p.rest_linear_speed && w.norm() < p.rest_angular_speed {
-            calm += 1;
-            if calm >= rest_steps {
-                let facet = Some(body.facet_towards(&down));
-                return DropOutcome { index, settled: true, facet, flock: None, time: t, certified: false };
-            }
-        } else {
-            calm = 0;
+        if rest.at_rest(&s.linvel, &s.angvel) {
+            let facet = Some(body.facet_towards(&s.down));
+            return DropOutcome { index, settled: true, facet, flock: None, time: t, certified: false };
         }
     }
-    let rb = &world.bodies[handle];
-    let down = convert::quat_back(rb.rotation()).inverse() * -Vec3::z();
-    DropOutcome {
-        index,
-        settled: false,
-        facet: Some(body.facet_towards(&down)),
-        flock: None,
-        time: p.max_time,
-        certified: false,
-    }
+    let facet = Some(body.facet_towards(&sim.state().down));
+    DropOutcome { index, settled: false, facet, flock: None, time: p.max_time, certified: false }
 }

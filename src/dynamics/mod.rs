@@ -5,3 +5,5 @@
 
 pub mod drop;
 pub mod hull_shape;
+pub mod perturb;
+pub mod shake;

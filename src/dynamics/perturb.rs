@@ -1,0 +1,1 @@
+//! Perturbation robustness of stable micro-equilibria (being written).

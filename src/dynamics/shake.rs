@@ -1,0 +1,1 @@
+//! Toppling under ground shaking (being written).

@@ -1,0 +1,1 @@
+//! Field studies and synthetic hand experiments (being written).
