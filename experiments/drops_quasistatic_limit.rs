@@ -66,11 +66,48 @@ fn main() -> anyhow::Result<()> {
             }
         }
     }
+    let damping = damping_sweep()?;
     write_csv(&out.join("kl_vs_height.csv"), &rows)?;
     plot(&out.join("kl_vs_height.png"), &rows)?;
     write_box_faces(&out.join("box_faces.csv"), &rows)?;
-    summary(&out.join("README.md"), &rows)?;
+    summary(&out.join("README.md"), &rows, &damping)?;
     Ok(())
+}
+
+/// The pebble at the lowest height and no restitution, for increasing damping (towards the
+/// overdamped, quasi-static rolling): (damping, report).
+fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
+    let (mesh, rep) = generate::pebble([1.0, 0.72, 0.5], 0.02, 1500, 3).into_solid_boundary()?;
+    let a = Analysis::of_solid(mesh, rep, &Options::default())?;
+    let (nu, _) = a.macro_nu(&Options::default());
+    let setup = DropSetup::new(&a, nu)?;
+    let mut out = Vec::new();
+    for d in [0.3, 1.0, 3.0, 10.0, 30.0] {
+        let params = DropParams {
+            height: 0.002,
+            restitution: 0.0,
+            linear_damping: d,
+            angular_damping: d,
+            max_time: 60.0,
+            ..DropParams::default()
+        };
+        let header = RunHeader {
+            format: FORMAT.into(),
+            mesh: "pebble".into(),
+            mesh_fingerprint: String::new(),
+            seed: 2025,
+            drops: 1000,
+            params,
+            certificate: CertificateMode::Facet,
+        };
+        let (report, _) = run_report(&setup, &header);
+        eprintln!(
+            "  damping {d}: KL flocks {:.4}, non-stable {}",
+            report.fit_flocks.kl_divergence, report.on_non_stable_facet
+        );
+        out.push((d, report));
+    }
+    Ok(out)
 }
 
 fn write_csv(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
@@ -186,7 +223,7 @@ fn plot(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn summary(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
+fn summary(path: &Path, rows: &[Row], damping: &[(f64, DropReport)]) -> anyhow::Result<()> {
     let mut s = String::new();
     writeln!(s, "# Drops at vanishing energy vs the quasi-static basins\n")?;
     writeln!(

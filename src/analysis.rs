@@ -58,8 +58,8 @@ impl Analysis {
     pub fn with_center_of_mass(mesh: TriMesh, repairs: Repairs, mass: MassProperties, opts: &Options) -> Result<Self> {
         let hull = Polyhedron::new(&mesh.vertices, opts.coplanar_tol)?;
         let g = mass.center_of_mass;
-        let equilibria = Equilibria::new(&hull, &g, opts.degeneracy_tol)?;
         let signs = Signs::new(&hull, &g, opts.degeneracy_tol);
+        let equilibria = Equilibria::from_signs(&hull, &g, &signs)?;
         let graph = MorseSmaleGraph::trace(&hull, &equilibria, &g, &signs)?;
         let hierarchy = cancellation_hierarchy(&equilibria, &graph)?;
         let shape = describe(&mesh, &mass);

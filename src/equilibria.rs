@@ -131,7 +131,11 @@ impl Signs {
 impl Equilibria {
     /// Classify every facet, edge and vertex of `poly` for centre of mass `g`.
     pub fn new(poly: &Polyhedron, g: &Point3, tol_rel: f64) -> Result<Self> {
-        let signs = Signs::new(poly, g, tol_rel);
+        Self::from_signs(poly, g, &Signs::new(poly, g, tol_rel))
+    }
+
+    /// Classify from signs already evaluated (shared with the Morse–Smale tracer).
+    pub fn from_signs(poly: &Polyhedron, g: &Point3, signs: &Signs) -> Result<Self> {
         let mut points = Vec::new();
         let mut at_facet = vec![None; poly.facets.len()];
         let mut at_edge = vec![None; poly.edges.len()];

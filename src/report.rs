@@ -582,14 +582,21 @@ where
         .margin(12)
         .x_label_area_size(50)
         .y_label_area_size(60)
-        .build_cartesian_2d(0f64..n as f64, 0f64..top)
+        .build_cartesian_2d(-0.5f64..n as f64 - 0.5, 0f64..top)
         .map_err(e)?;
     let labels: Vec<String> = bars.iter().map(|b| b.label.clone()).collect();
     chart
         .configure_mesh()
         .disable_x_mesh()
         .x_labels(n.min(30))
-        .x_label_formatter(&|x| labels.get(x.floor() as usize).cloned().unwrap_or_default())
+        .x_label_formatter(&|x| {
+            let i = x.round();
+            if (x - i).abs() < 1e-6 && i >= 0.0 {
+                labels.get(i as usize).cloned().unwrap_or_default()
+            } else {
+                String::new()
+            }
+        })
         .y_desc("probability")
         .label_style((FONT_FAMILY, 12))
         .draw()
@@ -600,21 +607,21 @@ where
         .draw_series(
             bars.iter()
                 .enumerate()
-                .map(|(i, b)| Rectangle::new([(i as f64 + 0.12, 0.0), (i as f64 + 0.48, b.fraction)], drops.filled())),
+                .map(|(i, b)| Rectangle::new([(i as f64 - 0.38, 0.0), (i as f64 - 0.02, b.fraction)], drops.filled())),
         )
         .map_err(e)?
         .label("drops (95% Wilson interval)")
         .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], drops.filled()));
     chart
         .draw_series(bars.iter().enumerate().map(|(i, b)| {
-            PathElement::new(vec![(i as f64 + 0.3, b.ci.0), (i as f64 + 0.3, b.ci.1)], BLACK.stroke_width(2))
+            PathElement::new(vec![(i as f64 - 0.2, b.ci.0), (i as f64 - 0.2, b.ci.1)], BLACK.stroke_width(2))
         }))
         .map_err(e)?;
     chart
         .draw_series(
             bars.iter()
                 .enumerate()
-                .map(|(i, b)| Rectangle::new([(i as f64 + 0.52, 0.0), (i as f64 + 0.88, b.reference)], stat.filled())),
+                .map(|(i, b)| Rectangle::new([(i as f64 + 0.02, 0.0), (i as f64 + 0.38, b.reference)], stat.filled())),
         )
         .map_err(e)?
         .label("quasi-static (basin area / 4π)")
