@@ -35,8 +35,8 @@ fn main() -> anyhow::Result<()> {
     writeln!(s, "default drop parameters (height 0.5 R_max, friction 0.6, restitution 0.2, damping 0.1/1.0 1/s, dt 1/240 s, cap 20 s),")?;
     writeln!(s, "2 threads. The same drops (same seed and index) in every mode.\n")?;
     let bodies: Vec<(String, Analysis)> = vec![
-        ("synthetic pebble 1:0.72:0.5 (n = 900)".into(), {
-            let (m, r) = generate::pebble([1.0, 0.72, 0.5], 0.02, 900, 3).into_solid_boundary()?;
+        ("synthetic pebble 1:0.72:0.5 (n = 500)".into(), {
+            let (m, r) = generate::pebble([1.0, 0.72, 0.5], 0.02, 500, 3).into_solid_boundary()?;
             Analysis::of_solid(m, r, &Options::default())?
         }),
         (

@@ -259,6 +259,43 @@ fn summary(path: &Path, rows: &[Row], damping: &[(f64, DropReport)]) -> anyhow::
         s,
         "\n`box_faces.csv`: per face of the box, drop share vs static share (large faces gain as the energy grows)."
     )?;
+    writeln!(s, "\n## Towards overdamped rolling (pebble, height 0.002 R_max, restitution 0, 1000 drops, seed 2025)\n")?;
+    writeln!(s, "| damping (1/s, linear = angular) | settled | on a non-stable facet | still moving at 60 s | KL flocks | KL facets |")?;
+    writeln!(s, "|---|---|---|---|---|---|")?;
+    for (d, r) in damping {
+        writeln!(
+            s,
+            "| {d} | {} | {} | {} | {:.4} | {} |",
+            r.settled,
+            r.on_non_stable_facet,
+            r.unsettled,
+            r.fit_flocks.kl_divergence,
+            r.fit_facets.as_ref().map_or("—".into(), |f| format!("{:.4}", f.kl_divergence))
+        )?;
+    }
+    s.push_str(READING);
     std::fs::write(path, s)?;
     Ok(())
 }
+
+const READING: &str = "
+## Reading
+
+* **Box** (each stable flock is one facet): at every height up to 0.3 R_max and every restitution
+  the drop shares agree with the quasi-static basin probabilities within sampling noise
+  (KL ≈ (k − 1)/(2N) = 0.00125 for N = 2000, k = 6). At 1 R_max with restitution 0.6 the drops
+  bounce and tumble and the large faces gain: 0.655 of the drops end on the two 2 × 1.4 faces
+  against 0.519 static (`box_faces.csv`).
+* **Pebble, flocks**: close to the static flock probabilities at every height (KL 0.006–0.008
+  against a noise level of ≈ 0.0008: a small but significant bias), and closer with more damping
+  (0.0035 at 1–10 1/s, the table above).
+* **Pebble, micro-facets**: the drops do **not** converge to the micro-level basins as the drop
+  height goes to 0 (KL ≈ 0.2 over the stable facets). A vanishing drop height does not make the
+  motion quasi-static: the potential energy released while the pebble rolls from its release
+  orientation to rest is of the order of the macro barriers, far above the micro barriers inside a
+  flock, so the pebble rocks across them and ends on the deeper micro-facets. Quasi-static rolling
+  is the overdamped limit; with very strong damping the rest criterion (speed thresholds) stops
+  bodies creeping across non-stable facets (30 1/s above), so that limit is out of reach of the
+  rest criterion here. Within a flock, which micro-equilibrium a stone ends on is decided by its
+  dynamics: the micro-scale rocking of the paper.
+";
