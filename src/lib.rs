@@ -15,7 +15,24 @@
 //! * [`equilibria`] — micro-equilibria (critical points of R = |x − G| on the hull), SPEC §2.
 //! * [`shape`] — axes a ≥ b ≥ c, Zingg class, isoperimetric ratio.
 //! * [`generate`] — seeded shape generators (Platonic solids, boxes, ellipsoids, pebbles).
-//! * [`analysis`] — the whole static pipeline and its serialisable result.
+//! * [`morse_smale`] — the Morse–Smale graph of R on the hull and its cancellation hierarchy.
+//! * [`hierarchy`] — N(ν), the plateau (macro scale), flocks and rocking equilibria (2D and 3D).
+//! * [`planar`] — the planar case: polygons and discretised ellipses.
+//! * [`analysis`] — the whole static pipeline and its serialisable result; [`report`], [`plot`].
+//! * [`basins`] — quasi-static resting probabilities and the energy merge tree.
+//! * [`dynamics`] — rapier3d: the hull collider, drops, pushes, ground shaking.
+//! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
+//! * [`study`] — field studies and synthetic hand experiments.
+//!
+//! ```
+//! use rocking_stones::analysis::{Analysis, Options};
+//! use rocking_stones::generate;
+//!
+//! // A 2 × 1.5 × 1 box: every face is stable, every vertex unstable, every edge a saddle.
+//! let (mesh, repairs) = generate::cuboid(2.0, 1.5, 1.0).into_solid_boundary().unwrap();
+//! let a = Analysis::of_solid(mesh, repairs, &Options::default()).unwrap();
+//! assert_eq!((a.equilibria.stable, a.equilibria.unstable, a.equilibria.saddle), (6, 8, 12));
+//! ```
 
 // `!(x > 0.0)` is used on purpose: it is true for NaN, which must be refused too.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
