@@ -1,6 +1,221 @@
-#[derive(clap::Args)]
-pub struct Args {}
+//! `rocking perturb`: push or spin a stone resting on its stable micro-equilibria; robustness
+//! curves, thresholds against the static barriers, rocking vs regular.
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("not implemented yet")
+use super::analyze::load_analysis;
+use anyhow::{bail, Result};
+use rocking_stones::analysis::{check_nu, Analysis, Options};
+use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, Stone};
+use std::path::{Path, PathBuf};
+
+/// Simulation parameters shared by `rocking perturb` and `rocking shake`.
+#[derive(clap::Args, Clone)]
+pub struct SimArgs {
+    /// Coulomb friction coefficient of stone and ground.
+    #[arg(long, default_value_t = DropParams::default().friction)]
+    pub friction: f64,
+    /// Restitution coefficient.
+    #[arg(long, default_value_t = DropParams::default().restitution)]
+    pub restitution: f64,
+    /// Angular velocity damping (1/s): stands in for rolling resistance.
+    #[arg(long, default_value_t = DropParams::default().angular_damping)]
+    pub angular_damping: f64,
+    /// Linear velocity damping (1/s).
+    #[arg(long, default_value_t = DropParams::default().linear_damping)]
+    pub linear_damping: f64,
+    /// Time step (s of the scaled 1 m body).
+    #[arg(long, default_value_t = DropParams::default().dt)]
+    pub dt: f64,
+    /// Time cap per trial after the perturbation / the motion (s, scaled).
+    #[arg(long, default_value_t = DropParams::default().max_time)]
+    pub max_time: f64,
+    /// Natural frequency (Hz) of the soft contact constraints.
+    #[arg(long, default_value_t = rocking_stones::dynamics::perturb::CONTACT_FREQUENCY)]
+    pub contact_frequency: f64,
+    /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
+    #[arg(long)]
+    pub nu: Option<f64>,
+}
+
+impl SimArgs {
+    pub fn params(&self) -> Result<PerturbParams> {
+        let p = PerturbParams {
+            sim: DropParams {
+                friction: self.friction,
+                restitution: self.restitution,
+                angular_damping: self.angular_damping,
+                linear_damping: self.linear_damping,
+                dt: self.dt,
+                max_time: self.max_time,
+                ..DropParams::default()
+            },
+            contact_frequency: self.contact_frequency,
+            ..PerturbParams::default()
+        };
+        p.check().map_err(anyhow::Error::msg)?;
+        Ok(p)
+    }
+
+    /// Load and analyse the mesh (or the bundled stone) and prepare it.
+    pub fn stone(&self, mesh: Option<&Path>) -> Result<(Analysis, Stone, String)> {
+        let opts = Options { nu: self.nu.map(check_nu).transpose()?, ..Options::default() };
+        let (analysis, name) = load_analysis(mesh, &opts)?;
+        let (nu, _) = analysis.macro_nu(&opts);
+        let stone = Stone::new(&analysis, nu)?;
+        Ok((analysis, stone, name))
+    }
+}
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Mesh file (STL, OBJ, PLY). None: the bundled default stone.
+    pub mesh: Option<PathBuf>,
+    /// Perturb only these stable micro-equilibria (index as in `rocking analyze --json`;
+    /// repeatable). Default: every stable micro-equilibrium.
+    #[arg(long = "equilibrium", value_name = "ID", conflicts_with = "flock")]
+    pub equilibria: Vec<usize>,
+    /// Perturb the stable micro-equilibria of this flock.
+    #[arg(long, value_name = "ID")]
+    pub flock: Option<usize>,
+    /// push: impulse at a random surface point in a random inward direction; spin: angular
+    /// velocity about a random axis through the contact point.
+    #[arg(long, value_enum, default_value_t = Family::Push)]
+    pub family: Family,
+    /// Trials per equilibrium and ε.
+    #[arg(short = 'n', long, default_value_t = 40)]
+    pub trials: u32,
+    /// Seed: trial k of equilibrium i uses its own stream (the same at every ε).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Smallest ε = kinetic energy / (m g R_max) of the log grid.
+    #[arg(long, default_value_t = 1e-5)]
+    pub eps_min: f64,
+    /// Largest ε of the grid.
+    #[arg(long, default_value_t = 1.0)]
+    pub eps_max: f64,
+    /// Number of ε values (log-spaced).
+    #[arg(long, default_value_t = 16)]
+    pub eps_steps: usize,
+    /// ε* of the dynamic rocking/regular classification (default: the macro-scale ν).
+    #[arg(long)]
+    pub epsilon_star: Option<f64>,
+    /// End trials as soon as the energy certificate decides their outcome (faster; the
+    /// static-barrier check then proves nothing).
+    #[arg(long)]
+    pub certificate: bool,
+    #[command(flatten)]
+    pub sim: SimArgs,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Write perturb.json, CSVs (curves, thresholds, trials) and plots into this folder.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// Positions in `stone.stable` of the requested equilibria (all if none requested).
+pub fn select(stone: &Stone, equilibria: &[usize], flock: Option<usize>) -> Result<Vec<usize>> {
+    let list =
+        || stone.stable.iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
+    if let Some(k) = flock {
+        if k >= stone.flock_kinds.len() {
+            bail!("there is no flock {k} (the stone has {} flocks at ν = {:.3e})", stone.flock_kinds.len(), stone.nu);
+        }
+        let v: Vec<usize> = (0..stone.stable.len()).filter(|&i| stone.stable[i].flock == k).collect();
+        if v.is_empty() {
+            bail!("flock {k} has no stable micro-equilibrium; stable ones: {}", list());
+        }
+        return Ok(v);
+    }
+    if equilibria.is_empty() {
+        return Ok((0..stone.stable.len()).collect());
+    }
+    equilibria
+        .iter()
+        .map(|&id| {
+            stone
+                .position(id)
+                .ok_or_else(|| anyhow::anyhow!("{id} is not a stable micro-equilibrium; stable ones: {}", list()))
+        })
+        .collect()
+}
+
+/// A progress bar over `n` trials.
+pub fn bar(n: u64) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(n);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} trials {elapsed_precise} (eta {eta})")
+            .expect("valid template"),
+    );
+    bar
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let params = PerturbParams { certificate: args.certificate, ..args.sim.params()? };
+    if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
+        bail!("need 0 < --eps-min ≤ --eps-max and --eps-steps ≥ 1");
+    }
+    let cfg = PerturbConfig {
+        params,
+        family: args.family,
+        epsilons: perturb::log_grid(args.eps_min, args.eps_max, args.eps_steps),
+        trials: args.trials,
+        seed: args.seed,
+        epsilon_star: args.epsilon_star,
+    };
+    cfg.check().map_err(anyhow::Error::msg)?;
+    let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let starts = select(&stone, &args.equilibria, args.flock)?;
+    let bar = bar(perturb::task_count(starts.len(), &cfg));
+    let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
+    bar.finish_and_clear();
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{}", perturb::summary(&report, &name));
+    }
+    if let Some(dir) = &args.output {
+        for w in write_outputs(&report, &name, dir)? {
+            if !args.json {
+                println!("wrote {}", w.display());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Write the JSON report, the CSVs and the plots of a perturbation run into `dir`.
+pub fn write_outputs(r: &perturb::PerturbReport, name: &str, dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
+    let mut written = Vec::new();
+    let p = dir.join("perturb.json");
+    std::fs::write(&p, serde_json::to_string_pretty(r)?)?;
+    written.push(p);
+    let p = dir.join("curves.csv");
+    perturb::write_curves_csv(&p, r)?;
+    written.push(p);
+    let p = dir.join("thresholds.csv");
+    perturb::write_thresholds_csv(&p, r)?;
+    written.push(p);
+    let p = dir.join("trials.csv");
+    perturb::write_trials_csv(&p, &r.trials)?;
+    written.push(p);
+    let panels = perturb::panels(r);
+    if !panels.is_empty() {
+        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
+        let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
+        for ext in ["png", "svg"] {
+            let p = dir.join(format!("robustness.{ext}"));
+            perturb::plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
+            written.push(p);
+        }
+        let p = dir.join("thresholds.png");
+        perturb::plot_thresholds(
+            &p,
+            &format!("{short}: dynamic thresholds vs static barriers"),
+            &perturb::threshold_points(r),
+        )?;
+        written.push(p);
+    }
+    Ok(written)
 }

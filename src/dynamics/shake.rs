@@ -1,1 +1,849 @@
-//! Toppling under ground shaking (being written).
+//! Toppling under ground shaking: fragility of a resting stone (precariously balanced rocks,
+//! SPEC §7), and the rigid-block checks of Housner (1963).
+//!
+//! The stone starts at rest on a stable micro-equilibrium exactly as in
+//! [`crate::dynamics::perturb`]. The ground — a kinematic body carrying the half-space — is then
+//! driven horizontally along an azimuth φ by a prescribed acceleration history a(t) (in units of
+//! g): a [`Pulse`] of sine cycles, or a [`Record`] read from a CSV of (time, acceleration in g).
+//! The acceleration is integrated to the ground velocity with the midpoint rule at every step
+//! and the ground is given the mean velocity of the step ([`Simulation::set_ground_velocity`]),
+//! so its displacement is exact for a linear a(t). When the motion ends the ground keeps its
+//! final velocity — a frame moving uniformly is inertial, so nothing changes for the stone — and
+//! the stone is simulated until it rests *relative to the ground* (time cap as for pushes). The
+//! outcome is classified as for pushes (same micro-equilibrium / another of the same flock /
+//! toppled out of the flock).
+//!
+//! A fragility curve is P(toppled out of the flock) against the peak ground acceleration (PGA):
+//! the motion is scaled to each PGA of a grid, and each trial shakes along a uniformly random
+//! azimuth relative to the stone (common random numbers across PGAs: trial k has the same
+//! azimuth at every PGA), with 95 % Wilson intervals and the PGA₅₀ interpolated linearly.
+//!
+//! # Units and the size of a real stone
+//!
+//! Simulations run in the scaled frame of [`crate::dynamics::drop`]: the stone has R_max = 1 m
+//! (R_max the largest distance from G to the hull) and g = 9.81 m/s². Accelerations are in units
+//! of g and need no conversion. Times and frequencies are those of this 1 m body; for a real
+//! stone of size R_max = L metres, dynamic similarity (Froude scaling: only a/g, t·√(g/L) and
+//! the friction and restitution coefficients enter) gives
+//!
+//! ```text
+//! t_real = t_scaled · √(L / 1 m),      f_real = f_scaled / √(L / 1 m).
+//! ```
+//!
+//! So a 2 Hz pulse on the scaled body is a 1 Hz pulse on a 4 m boulder and a 11.5 Hz pulse on a
+//! 3 cm pebble. [`TimeScale`] does this conversion; the CLI takes the real size with `--size`.
+//!
+//! # Housner's rigid block
+//!
+//! A block of half-width b and half-height h (tan α = b/h, R = √(b² + h²)) on a rigid ground with
+//! enough friction:
+//!
+//! * under a horizontal ground acceleration a it stays in full contact as long as a < g tan α
+//!   and starts to tip when a exceeds it ([`ramp_tipping`] measures it with a slowly rising a);
+//! * rocking freely, its angular velocity drops at every impact by the factor
+//!   r = 1 − (3/2) sin² α (conservation of angular momentum about the impacting corner, with a
+//!   perfectly plastic impact at that corner alone) — [`free_rocking`] measures the ratio of the
+//!   impact angular velocities of successive half-cycles (see there for how).
+
+use super::drop::{convert, RestDetector, Simulation};
+use super::perturb::{
+    check_rest, resting_orientation, resting_simulation, CurvePoint, Outcome, PerturbParams, SettleCheck,
+    StableEquilibrium, Stone, Threshold, GRAVITY,
+};
+use crate::montecarlo::drop_rng;
+use crate::{Error, Result, Vec3};
+use nalgebra::UnitQuaternion;
+use rand::RngExt;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::path::Path;
+
+/// Conversion between a real stone of size R_max = `r_max_m` metres and the scaled 1 m body.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TimeScale {
+    pub r_max_m: f64,
+}
+
+impl TimeScale {
+    /// The scaled body itself (R_max = 1 m).
+    pub const UNIT: TimeScale = TimeScale { r_max_m: 1.0 };
+
+    /// √(L / 1 m): real time per scaled time.
+    pub fn factor(&self) -> f64 {
+        self.r_max_m.sqrt()
+    }
+    pub fn to_scaled_time(&self, t_real: f64) -> f64 {
+        t_real / self.factor()
+    }
+    pub fn to_real_time(&self, t_scaled: f64) -> f64 {
+        t_scaled * self.factor()
+    }
+    pub fn to_scaled_frequency(&self, f_real: f64) -> f64 {
+        f_real * self.factor()
+    }
+    pub fn to_real_frequency(&self, f_scaled: f64) -> f64 {
+        f_scaled / self.factor()
+    }
+}
+
+/// `cycles` sine cycles a(t) = A sin(2π f t), 0 ≤ t ≤ cycles / f (A in g, f in Hz of the
+/// scaled body).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Pulse {
+    pub amplitude: f64,
+    pub frequency: f64,
+    pub cycles: f64,
+}
+
+/// A ground-acceleration history sampled at increasing times (s of the scaled body), in g,
+/// linearly interpolated, zero outside.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Record {
+    pub name: String,
+    pub times: Vec<f64>,
+    pub accel: Vec<f64>,
+}
+
+/// A horizontal ground-acceleration history.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum Motion {
+    Pulse(Pulse),
+    Record(Record),
+}
+
+impl Motion {
+    /// Ground acceleration (g) at time t (scaled s).
+    pub fn accel(&self, t: f64) -> f64 {
+        match self {
+            Motion::Pulse(p) => {
+                if t < 0.0 || t > p.cycles / p.frequency {
+                    0.0
+                } else {
+                    p.amplitude * (2.0 * std::f64::consts::PI * p.frequency * t).sin()
+                }
+            }
+            Motion::Record(r) => {
+                let (ts, a) = (&r.times, &r.accel);
+                if ts.is_empty() || t < ts[0] || t > ts[ts.len() - 1] {
+                    return 0.0;
+                }
+                let k = ts.partition_point(|&x| x <= t).clamp(1, ts.len() - 1);
+                let (t0, t1) = (ts[k - 1], ts[k]);
+                let s = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
+                a[k - 1] + s * (a[k] - a[k - 1])
+            }
+        }
+    }
+
+    /// When the motion ends (scaled s).
+    pub fn duration(&self) -> f64 {
+        match self {
+            Motion::Pulse(p) => p.cycles / p.frequency,
+            Motion::Record(r) => r.times.last().copied().unwrap_or(0.0),
+        }
+    }
+
+    /// Peak ground acceleration (g).
+    pub fn peak(&self) -> f64 {
+        match self {
+            Motion::Pulse(p) => p.amplitude.abs(),
+            Motion::Record(r) => r.accel.iter().fold(0.0, |m, a| m.max(a.abs())),
+        }
+    }
+
+    /// The same motion scaled to peak ground acceleration `pga` (g).
+    pub fn scaled_to(&self, pga: f64) -> Motion {
+        match self {
+            Motion::Pulse(p) => Motion::Pulse(Pulse { amplitude: pga, ..*p }),
+            Motion::Record(r) => {
+                let peak = self.peak();
+                let k = if peak > 0.0 { pga / peak } else { 0.0 };
+                Motion::Record(Record { accel: r.accel.iter().map(|a| a * k).collect(), ..r.clone() })
+            }
+        }
+    }
+
+    /// A short description.
+    pub fn describe(&self) -> String {
+        match self {
+            Motion::Pulse(p) => {
+                format!("{} sine cycle(s) of {:.3} Hz (scaled), amplitude {:.3} g", p.cycles, p.frequency, p.amplitude)
+            }
+            Motion::Record(r) => {
+                format!("record {} ({:.2} s scaled, PGA {:.3} g)", r.name, self.duration(), self.peak())
+            }
+        }
+    }
+
+    /// Refuse motions that cannot be simulated.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        match self {
+            Motion::Pulse(p) => {
+                if !(p.frequency > 0.0 && p.frequency.is_finite()) {
+                    return Err(format!("pulse frequency must be positive, got {}", p.frequency));
+                }
+                if !(p.cycles > 0.0 && p.cycles.is_finite()) {
+                    return Err(format!("pulse cycles must be positive, got {}", p.cycles));
+                }
+                if !p.amplitude.is_finite() {
+                    return Err("pulse amplitude must be finite".into());
+                }
+            }
+            Motion::Record(r) => {
+                if r.times.len() < 2 || r.times.len() != r.accel.len() {
+                    return Err(format!("{}: a record needs at least two samples", r.name));
+                }
+                if r.times.windows(2).any(|w| !(w[1] > w[0])) {
+                    return Err(format!("{}: times must increase", r.name));
+                }
+                if r.times.iter().chain(&r.accel).any(|x| !x.is_finite()) {
+                    return Err(format!("{}: every value must be finite", r.name));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Read a ground motion from CSV: two columns, time (s, real) and acceleration (g); an optional
+/// header line and lines starting with `#` are skipped; times are converted to the scaled body
+/// with `scale`.
+pub fn read_record(path: &Path, scale: TimeScale) -> Result<Record> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), error: e })?;
+    let parse = |what: String| Error::Parse { path: path.into(), what };
+    let (mut times, mut accel) = (Vec::new(), Vec::new());
+    for (k, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let cols: Vec<&str> = line.split([',', ';', '\t', ' ']).filter(|c| !c.is_empty()).collect();
+        if cols.len() < 2 {
+            return Err(parse(format!("line {}: expected two columns (time, acceleration in g)", k + 1)));
+        }
+        match (cols[0].parse::<f64>(), cols[1].parse::<f64>()) {
+            (Ok(t), Ok(a)) => {
+                times.push(scale.to_scaled_time(t));
+                accel.push(a);
+            }
+            _ if times.is_empty() && k == 0 => continue, // header
+            _ => return Err(parse(format!("line {}: not two numbers: {line:?}", k + 1))),
+        }
+    }
+    let name = path.file_name().map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned());
+    let r = Record { name, times, accel };
+    Motion::Record(r.clone()).check().map_err(parse)?;
+    Ok(r)
+}
+
+/// Write a record as CSV (time in real seconds for `scale`, acceleration in g).
+pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> anyhow::Result<()> {
+    let mut w = csv::Writer::from_path(path)?;
+    w.write_record(["time_s", "accel_g"])?;
+    for (t, a) in r.times.iter().zip(&r.accel) {
+        w.write_record([format!("{:.5}", scale.to_real_time(*t)), format!("{a:.6}")])?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// A synthetic "recorded-style" accelerogram: white noise through a Kanai–Tajimi ground filter
+/// (natural frequency `f_ground` Hz, damping 0.6, the classic model of soil-filtered bedrock
+/// motion), times a Saragoni–Hart-like envelope t² e^(−t/τ) normalised to peak 1 at t = 2τ,
+/// duration `duration` s, sampled at 100 Hz, baseline-corrected (the mean acceleration is removed
+/// so the ground ends near rest) and scaled to PGA `pga` (g). All in the scaled body's time.
+pub fn synthetic_record(name: &str, duration: f64, f_ground: f64, pga: f64, seed: u64) -> Record {
+    use rand_distr::{Distribution, StandardNormal};
+    let mut rng = drop_rng(seed, 0);
+    let dt = 0.01;
+    let n = (duration / dt).round() as usize + 1;
+    let (w, z) = (2.0 * std::f64::consts::PI * f_ground, 0.6);
+    let tau = duration / 8.0;
+    let (mut x, mut v) = (0.0f64, 0.0f64);
+    let mut times = Vec::with_capacity(n);
+    let mut accel = Vec::with_capacity(n);
+    let sub = 10;
+    let h = dt / sub as f64;
+    for k in 0..n {
+        let t = k as f64 * dt;
+        let mut a_out = 0.0;
+        for _ in 0..sub {
+            let noise: f64 = StandardNormal.sample(&mut rng);
+            let u = noise / h.sqrt();
+            // Kanai–Tajimi: ẍ + 2ζω ẋ + ω² x = −u; ground acceleration = −(2ζω ẋ + ω² x).
+            let acc = -u - 2.0 * z * w * v - w * w * x;
+            v += acc * h;
+            x += v * h;
+            a_out = -(2.0 * z * w * v + w * w * x);
+        }
+        let env = (t / (2.0 * tau)).powi(2) * (2.0 - t / tau).exp();
+        times.push(t);
+        accel.push(a_out * env);
+    }
+    let mean = accel.iter().sum::<f64>() / n as f64;
+    accel.iter_mut().for_each(|a| *a -= mean);
+    let r = Record { name: name.into(), times, accel };
+    match Motion::Record(r).scaled_to(pga) {
+        Motion::Record(r) => r,
+        Motion::Pulse(_) => unreachable!(),
+    }
+}
+
+/// One shaking trial.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ShakeTrial {
+    /// Position of the start in [`Stone::stable`], and its analysis index.
+    pub start: usize,
+    pub equilibrium: usize,
+    /// Peak ground acceleration (g) and azimuth of shaking (rad, world frame).
+    pub pga: f64,
+    pub azimuth: f64,
+    pub trial: u32,
+    pub outcome: Outcome,
+    pub final_facet: u32,
+    pub final_equilibrium: Option<usize>,
+    pub final_flock: usize,
+    pub settled: bool,
+    pub non_stable_facet: bool,
+    /// Largest tilt (rad) of the resting facet's normal away from straight down.
+    pub max_tilt: f64,
+    /// Simulated time from the start of the motion (s, scaled).
+    pub time: f64,
+}
+
+/// Advance `sim` by step number `step` with the ground driven along `dir` by `motion`: the ground
+/// velocity `v` (m/s, scaled) is advanced by the midpoint rule and the ground moves with the mean
+/// velocity of the step.
+fn drive(sim: &mut Simulation, motion: &Motion, dir: &Vec3, dt: f64, step: u64, v: &mut f64) {
+    let t = step as f64 * dt;
+    let a = motion.accel(t + 0.5 * dt) * GRAVITY;
+    let v_new = *v + a * dt;
+    sim.set_ground_velocity(&(dir * (0.5 * (*v + v_new))));
+    *v = v_new;
+    sim.step();
+}
+
+/// Shake the ground under a stone resting on `start` with `motion` along azimuth `azimuth`,
+/// then let it come to rest relative to the ground.
+pub fn shake_trial(
+    stone: &Stone,
+    start: usize,
+    p: &PerturbParams,
+    motion: &Motion,
+    azimuth: f64,
+    k: u32,
+) -> ShakeTrial {
+    let s = &stone.stable[start];
+    let dt = p.sim.dt;
+    let mut sim = resting_simulation(stone, start, p, p.settle_time);
+    let dir = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let n = stone.body.facet_normals[s.facet as usize];
+    let motion_steps = (motion.duration() / dt).ceil() as u64;
+    let steps_max = motion_steps + (p.sim.max_time / dt).ceil() as u64;
+    let mut v = 0.0;
+    let mut rest = RestDetector::new(&p.sim);
+    let mut max_tilt: f64 = 0.0;
+    let flock_of = |f: u32| stone.facet_flock[f as usize].unwrap_or(usize::MAX);
+    let finish = |down: &Vec3, step: u64, settled: bool, max_tilt: f64| {
+        let (f, nsf) = stone.final_facet(down);
+        let flock = flock_of(f);
+        ShakeTrial {
+            start,
+            equilibrium: s.index,
+            pga: motion.peak(),
+            azimuth,
+            trial: k,
+            outcome: if f == s.facet {
+                Outcome::Same
+            } else if flock == s.flock {
+                Outcome::SameFlock
+            } else {
+                Outcome::Toppled
+            },
+            final_facet: f,
+            final_equilibrium: stone.facet_equilibrium[f as usize],
+            final_flock: flock,
+            settled,
+            non_stable_facet: nsf,
+            max_tilt,
+            time: step as f64 * dt,
+        }
+    };
+    for step in 0..steps_max {
+        drive(&mut sim, motion, &dir, dt, step, &mut v);
+        let st = sim.state();
+        max_tilt = max_tilt.max(n.dot(&st.down).clamp(-1.0, 1.0).acos());
+        let rel = st.linvel - dir * v;
+        if rest.at_rest(&rel, &st.angvel) && step >= motion_steps {
+            return finish(&st.down, step + 1, true, max_tilt);
+        }
+    }
+    finish(&sim.state().down, steps_max, false, max_tilt)
+}
+
+/// The random stream of shaking trial `trial` on `start` (bit 62 set: never a push stream).
+pub fn shake_stream(start: usize, trial: u32) -> u64 {
+    (1u64 << 62) | ((start as u64) << 32) | trial as u64
+}
+
+/// What a fragility run is.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShakeConfig {
+    pub params: PerturbParams,
+    /// The motion's shape (its amplitude is replaced by each PGA of the grid).
+    pub motion: Motion,
+    /// Increasing grid of peak ground accelerations (g).
+    pub pgas: Vec<f64>,
+    pub trials: u32,
+    pub seed: u64,
+    /// Shake along this azimuth (rad) instead of a random one per trial.
+    pub azimuth: Option<f64>,
+    /// Real size of the stone, for reporting times and frequencies.
+    pub scale: TimeScale,
+}
+
+impl ShakeConfig {
+    pub fn check(&self) -> std::result::Result<(), String> {
+        self.params.check()?;
+        self.motion.check()?;
+        if self.pgas.is_empty() || self.pgas.iter().any(|a| !(*a >= 0.0 && a.is_finite())) {
+            return Err("the PGA grid must hold values ≥ 0".into());
+        }
+        if self.pgas.windows(2).any(|w| w[1] <= w[0]) {
+            return Err("the PGA grid must be increasing".into());
+        }
+        if self.trials == 0 {
+            return Err("at least one trial per PGA".into());
+        }
+        if !(self.scale.r_max_m > 0.0 && self.scale.r_max_m.is_finite()) {
+            return Err(format!("the size must be positive, got {}", self.scale.r_max_m));
+        }
+        Ok(())
+    }
+}
+
+/// The fragility of one stable micro-equilibrium.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fragility {
+    pub equilibrium: StableEquilibrium,
+    pub rest: SettleCheck,
+    /// One point per PGA (x = PGA in g).
+    pub curve: Vec<CurvePoint>,
+    /// PGA₅₀ to leave the micro-equilibrium and to topple out of the flock.
+    pub pga50_micro: Option<Threshold>,
+    pub pga50_flock: Option<Threshold>,
+    /// Smallest PGA at which any trial toppled.
+    pub first_topple: Option<f64>,
+}
+
+/// The numbers of a shaking run.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShakeReport {
+    pub motion: Motion,
+    pub seed: u64,
+    pub trials_per_point: u32,
+    pub pgas: Vec<f64>,
+    pub nu: f64,
+    pub params: PerturbParams,
+    pub scale: TimeScale,
+    pub fragility: Vec<Fragility>,
+    #[serde(skip)]
+    pub trials: Vec<ShakeTrial>,
+}
+
+/// Run a fragility study on the stable micro-equilibria `starts`, in parallel (independent of
+/// the number of threads).
+pub fn run(stone: &Stone, starts: &[usize], cfg: &ShakeConfig) -> ShakeReport {
+    run_with(stone, starts, cfg, &|| {})
+}
+
+/// [`run`], calling `progress` after every trial (from any thread).
+pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, progress: &(dyn Fn() + Sync)) -> ShakeReport {
+    let checks: Vec<SettleCheck> = starts.par_iter().map(|&s| check_rest(stone, s, &cfg.params)).collect();
+    let tasks: Vec<(usize, usize, u32)> = starts
+        .iter()
+        .zip(&checks)
+        .filter(|(_, c)| c.stays)
+        .flat_map(|(&s, _)| (0..cfg.pgas.len()).flat_map(move |i| (0..cfg.trials).map(move |k| (s, i, k))))
+        .collect();
+    let trials: Vec<ShakeTrial> = tasks
+        .par_iter()
+        .map(|&(s, i, k)| {
+            let azimuth = cfg.azimuth.unwrap_or_else(|| {
+                let mut rng = drop_rng(cfg.seed, shake_stream(s, k));
+                rng.random_range(0.0..2.0 * std::f64::consts::PI)
+            });
+            let motion = cfg.motion.scaled_to(cfg.pgas[i]);
+            let mut t = shake_trial(stone, s, &cfg.params, &motion, azimuth, k);
+            t.pga = cfg.pgas[i];
+            progress();
+            t
+        })
+        .collect();
+    let fragility = starts
+        .iter()
+        .zip(checks)
+        .map(|(&s, rest)| {
+            let mine: Vec<&ShakeTrial> = trials.iter().filter(|t| t.start == s).collect();
+            let curve: Vec<CurvePoint> = if rest.stays {
+                cfg.pgas
+                    .iter()
+                    .map(|&a| CurvePoint::count(a, mine.iter().filter(|t| t.pga == a).map(|t| (t.outcome, t.settled))))
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            let x: Vec<f64> = curve.iter().map(|c| c.x).collect();
+            let leave: Vec<f64> = curve.iter().map(|c| 1.0 - c.p_same).collect();
+            let topple: Vec<f64> = curve.iter().map(|c| c.p_toppled).collect();
+            Fragility {
+                equilibrium: stone.stable[s].clone(),
+                rest,
+                pga50_micro: Threshold::of(&x, &leave, false),
+                pga50_flock: Threshold::of(&x, &topple, false),
+                first_topple: mine
+                    .iter()
+                    .filter(|t| t.outcome == Outcome::Toppled)
+                    .map(|t| t.pga)
+                    .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |y| y.min(x)))),
+                curve,
+            }
+        })
+        .collect();
+    ShakeReport {
+        motion: cfg.motion.clone(),
+        seed: cfg.seed,
+        trials_per_point: cfg.trials,
+        pgas: cfg.pgas.clone(),
+        nu: stone.nu,
+        params: cfg.params.clone(),
+        scale: cfg.scale,
+        fragility,
+        trials,
+    }
+}
+
+/// A readable summary of a shaking run.
+pub fn summary(r: &ShakeReport, mesh: &str) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(s, "{mesh}: ground shaking, {}", r.motion.describe());
+    if r.scale.r_max_m != 1.0 {
+        if let Motion::Pulse(p) = &r.motion {
+            let _ = writeln!(
+                s,
+                "  for a stone of R_max = {} m: {:.3} Hz real ({:.3} Hz on the scaled 1 m body)",
+                r.scale.r_max_m,
+                r.scale.to_real_frequency(p.frequency),
+                p.frequency
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "{} trials per PGA on {} PGAs from {:.3} g to {:.3} g, seed {}; flocks at ν = {:.3e}",
+        r.trials_per_point,
+        r.pgas.len(),
+        r.pgas.first().copied().unwrap_or(f64::NAN),
+        r.pgas.last().copied().unwrap_or(f64::NAN),
+        r.seed,
+        r.nu
+    );
+    let th = |t: &Option<Threshold>| match t {
+        None => "-".to_string(),
+        Some(Threshold::Below(x)) => format!("≤{x:.3}"),
+        Some(Threshold::At(x)) => format!("{x:.3}"),
+        Some(Threshold::Above(x)) => format!(">{x:.3}"),
+    };
+    let class = |q: &StableEquilibrium| format!("{:?}", q.class).to_lowercase();
+    if r.pgas.len() == 1 {
+        let _ = writeln!(
+            s,
+            "{:>5} {:>6} {:>8} {:>10} {:>21} {:>21} {:>21}",
+            "eq", "facet", "class", "uplift (g)", "P(same micro)", "P(still in flock)", "P(toppled)"
+        );
+        let p = |x: f64, ci: (f64, f64)| format!("{x:.2} [{:.2}, {:.2}]", ci.0, ci.1);
+        for f in &r.fragility {
+            let q = &f.equilibrium;
+            match f.curve.first() {
+                Some(c) => {
+                    let _ = writeln!(
+                        s,
+                        "{:>5} {:>6} {:>8} {:>10.4} {:>21} {:>21} {:>21}",
+                        q.index,
+                        q.facet,
+                        class(q),
+                        q.uplift_acceleration,
+                        p(c.p_same, c.ci_same),
+                        p(c.p_in_flock, c.ci_in_flock),
+                        p(c.p_toppled, c.ci_toppled)
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        s,
+                        "{:>5} {:>6} {:>8} {:>10.4}   does not stay at rest",
+                        q.index,
+                        q.facet,
+                        class(q),
+                        q.uplift_acceleration
+                    );
+                }
+            }
+        }
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "{:>5} {:>6} {:>8} {:>10} {:>11} {:>11} {:>12}",
+        "eq", "facet", "class", "uplift (g)", "PGA50 micro", "PGA50 flock", "first topple"
+    );
+    for f in &r.fragility {
+        let q = &f.equilibrium;
+        let _ = writeln!(
+            s,
+            "{:>5} {:>6} {:>8} {:>10.4} {:>11} {:>11} {:>12}",
+            q.index,
+            q.facet,
+            class(q),
+            q.uplift_acceleration,
+            if f.rest.stays { th(&f.pga50_micro) } else { "no rest".into() },
+            th(&f.pga50_flock),
+            f.first_topple.map_or("-".into(), |x| format!("{x:.3}")),
+        );
+    }
+    s
+}
+
+/// Write the fragility curves as CSV.
+pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> anyhow::Result<()> {
+    let mut w = csv::Writer::from_path(path)?;
+    w.write_record([
+        "equilibrium",
+        "facet",
+        "static_class",
+        "pga_g",
+        "n",
+        "same",
+        "same_flock",
+        "toppled",
+        "unsettled",
+        "p_same",
+        "p_toppled",
+        "p_toppled_lo",
+        "p_toppled_hi",
+        "uplift_acceleration_g",
+    ])?;
+    for f in &r.fragility {
+        let q = &f.equilibrium;
+        for c in &f.curve {
+            w.write_record([
+                q.index.to_string(),
+                q.facet.to_string(),
+                format!("{:?}", q.class).to_lowercase(),
+                format!("{:.4}", c.x),
+                c.n.to_string(),
+                c.same.to_string(),
+                c.same_flock.to_string(),
+                c.toppled.to_string(),
+                c.unsettled.to_string(),
+                format!("{:.4}", c.p_same),
+                format!("{:.4}", c.p_toppled),
+                format!("{:.4}", c.ci_toppled.0),
+                format!("{:.4}", c.ci_toppled.1),
+                format!("{:.5}", q.uplift_acceleration),
+            ])?;
+        }
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// Fragility curves P(toppled) against PGA, one line (with 95 % intervals) per
+/// `(label, curve, colour)`, and vertical markers.
+pub fn plot_fragility(
+    path: &Path,
+    caption: &str,
+    lines: &[(String, &[CurvePoint], plotters::style::RGBColor)],
+    markers: &[(f64, String, plotters::style::RGBColor)],
+) -> anyhow::Result<()> {
+    use plotters::prelude::*;
+    crate::plot::init_fonts();
+    let font = crate::plot::FONT_FAMILY;
+    let err = |x: DrawingAreaErrorKind<_>| anyhow::anyhow!("{x:?}");
+    let hi = lines.iter().flat_map(|l| l.1.iter().map(|c| c.x)).fold(0.0, f64::max).max(1e-3) * 1.05;
+    let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE).map_err(err)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(caption, (font, 20))
+        .margin(14)
+        .x_label_area_size(45)
+        .y_label_area_size(55)
+        .build_cartesian_2d(0.0..hi, -0.02f64..1.02)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("peak ground acceleration (g)")
+        .y_desc("P(toppled out of the flock)")
+        .label_style((font, 13))
+        .draw()
+        .map_err(err)?;
+    for (x, label, color) in markers {
+        let c = *color;
+        chart
+            .draw_series(DashedLineSeries::new(vec![(*x, 0.0), (*x, 1.02)], 6, 4, c.stroke_width(2)))
+            .map_err(err)?
+            .label(label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)));
+    }
+    for (label, curve, color) in lines {
+        let c = *color;
+        let pts: Vec<(f64, f64)> = curve.iter().map(|p| (p.x, p.p_toppled)).collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+            .map_err(err)?
+            .label(label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)));
+        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled()))).map_err(err)?;
+        chart
+            .draw_series(
+                curve
+                    .iter()
+                    .map(|p| PathElement::new(vec![(p.x, p.ci_toppled.0), (p.x, p.ci_toppled.1)], c.stroke_width(1))),
+            )
+            .map_err(err)?;
+    }
+    chart
+        .configure_series_labels()
+        .label_font((font, 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()
+        .map_err(err)?;
+    root.present().map_err(err)?;
+    Ok(())
+}
+
+/// Housner's ramp: the stone at rest on `start`, the ground accelerating along `azimuth` with
+/// a(t) = `rate`·t (g per scaled second) up to `a_max` (g). Returns the ground acceleration
+/// (g) at which the resting facet's tilt first exceeds `tilt` (rad), or None.
+///
+/// The detection lags the true onset: past the threshold a_c the overturning moment grows
+/// like m h (a − a_c), so the tilt grows like (t − t_c)³ and the reading is late by about
+/// (6 I_O tilt / (m h g rate))^(1/3)·rate (in g); keep `rate` and `tilt` small.
+pub fn ramp_tipping(
+    stone: &Stone,
+    start: usize,
+    p: &PerturbParams,
+    azimuth: f64,
+    rate: f64,
+    tilt: f64,
+    a_max: f64,
+) -> Option<f64> {
+    let s = &stone.stable[start];
+    let dt = p.sim.dt;
+    let mut sim = resting_simulation(stone, start, p, p.settle_time);
+    let dir = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let n = stone.body.facet_normals[s.facet as usize];
+    // The tilt of the settled, unloaded stone is the reference.
+    let tilt0 = n.dot(&sim.state().down).clamp(-1.0, 1.0).acos();
+    let ramp = Motion::Record(Record { name: "ramp".into(), times: vec![0.0, a_max / rate], accel: vec![0.0, a_max] });
+    let steps = (a_max / rate / dt).ceil() as u64;
+    let mut v = 0.0;
+    for step in 0..steps {
+        drive(&mut sim, &ramp, &dir, dt, step, &mut v);
+        let st = sim.state();
+        if n.dot(&st.down).clamp(-1.0, 1.0).acos() - tilt0 > tilt {
+            return Some(ramp.accel((step + 1) as f64 * dt));
+        }
+    }
+    None
+}
+
+/// One free-rocking half-cycle of a block (between two impacts).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct HalfCycle {
+    /// Start and end time (s, scaled).
+    pub t0: f64,
+    pub t1: f64,
+    /// Largest |θ| in the half-cycle (rad).
+    pub amplitude: f64,
+    /// Angular velocity the block has at θ = 0 on the corner it rocks on in this half-cycle:
+    /// the median over the half-cycle's samples (|θ| ≥ 0.2 amplitude) of
+    /// √(ω² + (2 m g R / I_O)(cos(α − |θ|) − cos α)), which is constant for a rigid rotation about
+    /// the corner (energy conservation), so it measures the impact velocities without reading
+    /// the few steps the soft contact takes to turn the block over.
+    pub omega0: f64,
+}
+
+/// Free rocking of a box resting on its face with normal −z (a [`crate::generate::cuboid`] of
+/// full lengths 2b × 2d × 2h along x, y, z, in input units), released from rest tilted by
+/// `theta0` (rad) about its +x bottom edge (rotation about y), simulated for `duration` scaled
+/// seconds. Returns the half-cycles between zero crossings of θ, the rotation about y.
+pub fn free_rocking(
+    stone: &Stone,
+    start: usize,
+    p: &PerturbParams,
+    b: f64,
+    h: f64,
+    theta0: f64,
+    duration: f64,
+) -> Vec<HalfCycle> {
+    let s = &stone.stable[start];
+    let q0 = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
+    let q = UnitQuaternion::from_axis_angle(&Vec3::y_axis(), theta0) * q0;
+    let down = q.inverse() * -Vec3::z();
+    let z = stone.body.support(&down);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
+    super::perturb::configure(&mut sim, p);
+    let dt = p.sim.dt;
+    let r_max = stone.body.r_max;
+    let (b, h) = (b / r_max, h / r_max);
+    let big_r = (b * b + h * h).sqrt();
+    let alpha = b.atan2(h);
+    // I_O = I_G + m R² for rotation about the bottom edge (unit mass, scaled); I_G from the body.
+    let i_o = stone.body.inertia[(1, 1)] + big_r * big_r;
+    let k = 2.0 * GRAVITY * big_r / i_o;
+    let steps = (duration / dt).ceil() as u64;
+    let mut samples: Vec<(f64, f64, f64)> = Vec::with_capacity(steps as usize);
+    for step in 1..=steps {
+        sim.step();
+        let rb = &sim.world.bodies[sim.body_handle];
+        let rot = convert::quat_back(rb.rotation()) * q0.inverse();
+        let x = rot * Vec3::x();
+        let theta = (-x.z).atan2(x.x);
+        let omega = convert::vec_back(rb.angvel()).y;
+        samples.push((step as f64 * dt, theta, omega));
+    }
+    let mut cycles = Vec::new();
+    let mut begin = 0;
+    for i in 1..=samples.len() {
+        let end = i == samples.len() || samples[i].1.signum() != samples[i - 1].1.signum();
+        if !end {
+            continue;
+        }
+        let part = &samples[begin..i];
+        begin = i;
+        let amplitude = part.iter().fold(0.0f64, |m, s| m.max(s.1.abs()));
+        let mut inv: Vec<f64> = part
+            .iter()
+            .filter(|s| s.1.abs() >= 0.2 * amplitude)
+            .map(|s| (s.2 * s.2 + k * ((alpha - s.1.abs()).cos() - alpha.cos())).max(0.0).sqrt())
+            .collect();
+        if inv.is_empty() {
+            continue;
+        }
+        inv.sort_by(f64::total_cmp);
+        cycles.push(HalfCycle { t0: part[0].0, t1: part[part.len() - 1].0, amplitude, omega0: inv[inv.len() / 2] });
+    }
+    cycles
+}
+
+/// Housner's ratio of angular velocities after / before an impact of a rocking block,
+/// 1 − (3/2) sin² α, tan α = b/h.
+pub fn housner_ratio(b: f64, h: f64) -> f64 {
+    let a = b.atan2(h);
+    1.0 - 1.5 * a.sin().powi(2)
+}
