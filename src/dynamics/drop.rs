@@ -264,9 +264,9 @@ impl<'a> Simulation<'a> {
         world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
         world.integration_parameters.dt = p.dt as f32;
         world.integration_parameters.length_unit = 1.0;
-        // Penetration the solver tolerates, in R_max (rapier's default is 0.005): a fifth of it
-        // keeps the contact within 10⁻³ R_max of the true support height, which the energy
-        // certificate's margin must cover.
+        // Rapier's allowed linear error, in R_max (default 0.005). Note: in rapier 0.36.1 it is
+        // read only by continuous collision detection; the penetration the certificate's margin
+        // must cover is bounded by measurement instead (≤ 8·10⁻⁴ R_max, see CERTIFICATE_MARGIN).
         world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
         let ground_handle = world.bodies.insert(RigidBodyBuilder::kinematic_velocity_based().build());
         let ground = ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
