@@ -178,17 +178,11 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
 }
 
 fn emit(report: &DropReport, json: bool, output: Option<&std::path::Path>) -> Result<()> {
-    if json {
-        println!("{}", serde_json::to_string_pretty(report)?);
-    } else {
-        print!("{}", rocking_stones::report::drop_summary(report));
-    }
-    if let Some(dir) = output {
-        for w in rocking_stones::report::write_drop_outputs(report, dir)? {
-            if !json {
-                println!("wrote {}", w.display());
-            }
-        }
-    }
-    Ok(())
+    super::emit(
+        report,
+        json,
+        || rocking_stones::report::drop_summary(report),
+        output,
+        |dir| rocking_stones::report::write_drop_outputs(report, dir),
+    )
 }

@@ -169,19 +169,13 @@ pub fn run(args: Args) -> Result<()> {
     let bar = bar(perturb::task_count(starts.len(), &cfg));
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-    } else {
-        print!("{}", perturb::summary(&report, &name));
-    }
-    if let Some(dir) = &args.output {
-        for w in write_outputs(&report, &name, dir)? {
-            if !args.json {
-                println!("wrote {}", w.display());
-            }
-        }
-    }
-    Ok(())
+    super::emit(
+        &report,
+        args.json,
+        || perturb::summary(&report, &name),
+        args.output.as_deref(),
+        |dir| write_outputs(&report, &name, dir),
+    )
 }
 
 /// Write the JSON report, the CSVs and the plots of a perturbation run into `dir`.

@@ -110,19 +110,13 @@ pub fn run(args: Args) -> Result<()> {
     let bar = bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64);
     let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
-    } else {
-        print!("{}", shake::summary(&report, &name));
-    }
-    if let Some(dir) = &args.output {
-        for w in write_outputs(&report, &name, dir)? {
-            if !args.json {
-                println!("wrote {}", w.display());
-            }
-        }
-    }
-    Ok(())
+    super::emit(
+        &report,
+        args.json,
+        || shake::summary(&report, &name),
+        args.output.as_deref(),
+        |dir| write_outputs(&report, &name, dir),
+    )
 }
 
 /// Write the JSON report, the CSVs and the fragility plot into `dir`.
