@@ -13,11 +13,12 @@
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::perturb::{
-    self, default_pair, log_grid, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport,
-    Stone, Threshold,
+    self, default_pair, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
+    Threshold,
 };
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::Vec3;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -55,7 +56,7 @@ fn main() -> anyhow::Result<()> {
         let cfg = PerturbConfig {
             params: params.clone(),
             family,
-            epsilons: log_grid(1e-6, 1.0, 19),
+            epsilons: log_grid(1e-6, 1.0, GridSize::Points(19)),
             trials: TRIALS,
             seed: SEED,
             epsilon_star: None,

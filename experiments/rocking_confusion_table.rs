@@ -16,10 +16,10 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::perturb::{
-    self, dynamic_class, log_grid, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
-    Threshold,
+    self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
 };
 use rocking_stones::generate;
+use rocking_stones::stats::{log_grid, GridSize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -80,7 +80,7 @@ fn main() -> anyhow::Result<()> {
             let cfg = PerturbConfig {
                 params: params.clone(),
                 family,
-                epsilons: log_grid(1e-6, 1.0, 13),
+                epsilons: log_grid(1e-6, 1.0, GridSize::Points(13)),
                 trials: TRIALS,
                 seed: SEED,
                 epsilon_star: None,

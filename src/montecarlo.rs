@@ -2,7 +2,7 @@
 //! checkpointed, merged, and summarised against the static theory.
 //!
 //! * **Reproducibility.** Drop i of a run with seed s draws everything from its own generator,
-//!   Xoshiro256++ seeded with SplitMix64(s, i) ([`drop_rng`]); rapier is deterministic for a
+//!   Xoshiro256++ seeded with SplitMix64(s, i) ([`item_rng`]); rapier is deterministic for a
 //!   given binary and input. So the outcome of drop i does not depend on the thread count, the
 //!   order of execution, or how the run is sharded: counts from any sharding merged with
 //!   [`merge`] equal those of one big run.
@@ -14,11 +14,9 @@
 
 use crate::dynamics::drop::{simulate, Certificate, DropBody, DropOutcome, DropParams, Release};
 use crate::equilibria::Kind;
+use crate::rng::{item_rng, random_rotation, random_unit, Stream};
+use crate::stats::{chi_square, kl_divergence, wilson};
 use crate::{Error, Result, Vec3};
-use nalgebra::{Quaternion, UnitQuaternion};
-use rand::SeedableRng;
-use rand_distr::{Distribution, StandardNormal};
-use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -26,27 +24,11 @@ use std::io::{BufRead, Write};
 use std::path::Path;
 use std::sync::Mutex;
 
-/// SplitMix64 finaliser: a bijective mix of 64 bits.
-fn splitmix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// The random stream of drop `index` of a run seeded with `seed`.
-pub fn drop_rng(seed: u64, index: u64) -> Xoshiro256PlusPlus {
-    Xoshiro256PlusPlus::seed_from_u64(splitmix(splitmix(seed) ^ index))
-}
-
 /// A uniformly random orientation (a normalised 4-D Gaussian is uniform on S³, i.e. Haar on
 /// SO(3)) and an angular velocity of magnitude `spin` about a uniformly random axis.
-pub fn random_release(rng: &mut Xoshiro256PlusPlus, spin: f64) -> Release {
-    let mut g = || -> f64 { StandardNormal.sample(rng) };
-    let q = Quaternion::new(g(), g(), g(), g());
-    let axis = Vec3::new(g(), g(), g());
-    let axis = if axis.norm() > 0.0 { axis.normalize() } else { Vec3::z() };
-    Release { orientation: UnitQuaternion::from_quaternion(q), angvel: axis * spin }
+pub fn random_release(rng: &mut Stream, spin: f64) -> Release {
+    let orientation = random_rotation(rng);
+    Release { orientation, angvel: random_unit(rng) * spin }
 }
 
 /// Which drops a process runs: indices `index`, `index + count`, `index + 2 count`, …
@@ -134,7 +116,7 @@ pub fn run(
     let mut out: Vec<DropOutcome> = todo
         .par_iter()
         .map(|&i| {
-            let mut rng = drop_rng(header.seed, i);
+            let mut rng = item_rng(header.seed, i);
             let release = random_release(&mut rng, header.params.spin);
             let o = simulate(body, &header.params, &release, i, cert);
             (on_done.lock().expect("no panic while holding the lock"))(&o);
@@ -250,68 +232,6 @@ pub fn merge(parts: &[(RunHeader, BTreeMap<u64, DropOutcome>)]) -> Result<(RunHe
         }
     }
     Ok((first.clone(), all))
-}
-
-/// Wilson score interval for k successes in n trials at z (1.96 for 95 %).
-pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
-    if n == 0 {
-        return (0.0, 1.0);
-    }
-    let (k, n) = (k as f64, n as f64);
-    let p = k / n;
-    let denom = 1.0 + z * z / n;
-    let centre = (p + z * z / (2.0 * n)) / denom;
-    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / denom;
-    ((centre - half).max(0.0), (centre + half).min(1.0))
-}
-
-/// Pearson's χ² of counts against probabilities (categories with expected count < 5 are pooled
-/// into one), its degrees of freedom and p-value.
-pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
-    let n: u64 = counts.iter().sum();
-    let (mut chi2, mut cats) = (0.0, 0usize);
-    let (mut pooled_o, mut pooled_e) = (0.0, 0.0);
-    for (&o, &p) in counts.iter().zip(probabilities) {
-        let e = p * n as f64;
-        if e < 5.0 {
-            pooled_o += o as f64;
-            pooled_e += e;
-        } else {
-            chi2 += (o as f64 - e).powi(2) / e;
-            cats += 1;
-        }
-    }
-    if pooled_e > 0.0 {
-        chi2 += (pooled_o - pooled_e).powi(2) / pooled_e;
-        cats += 1;
-    }
-    let dof = cats.saturating_sub(1);
-    let p = if dof == 0 {
-        1.0
-    } else {
-        use statrs::distribution::{ChiSquared, ContinuousCDF};
-        ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
-    };
-    (chi2, dof, p)
-}
-
-/// Kullback–Leibler divergence D(empirical ‖ static) in nats (categories with zero counts
-/// contribute 0; a count where the static probability is 0 gives ∞).
-pub fn kl_divergence(counts: &[u64], probabilities: &[f64]) -> f64 {
-    let n: u64 = counts.iter().sum();
-    counts
-        .iter()
-        .zip(probabilities)
-        .filter(|(&o, _)| o > 0)
-        .map(|(&o, &p)| {
-            let q = o as f64 / n as f64;
-            if p > 0.0 {
-                q * (q / p).ln()
-            } else {
-                f64::INFINITY
-            }
-        })
-        .sum()
 }
 
 /// Per-facet row of a drop report.
@@ -561,36 +481,6 @@ pub fn run_report(setup: &DropSetup, header: &RunHeader) -> (DropReport, BTreeMa
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn wilson_interval_matches_a_hand_computation() {
-        // k = 10, n = 100, z = 1.96: centre (0.1 + 0.019208)/1.038416 = 0.114798,
-        // half-width 1.96·√(0.0009 + 0.00009604)/1.038416 = 0.059570 → (0.0552, 0.1744), the
-        // textbook Wilson interval for 10/100.
-        let (lo, hi) = wilson(10, 100, 1.96);
-        assert!((lo - 0.055228).abs() < 1e-5, "{lo}");
-        assert!((hi - 0.174368).abs() < 1e-5, "{hi}");
-    }
-
-    #[test]
-    fn chi_square_of_a_perfect_fit_is_zero_and_p_is_one() {
-        let (c, dof, p) = chi_square(&[100, 200, 300], &[1.0 / 6.0, 2.0 / 6.0, 3.0 / 6.0]);
-        assert!(c.abs() < 1e-12 && dof == 2 && (p - 1.0).abs() < 1e-12);
-        // 2 categories, O = (60, 40) vs E = (50, 50): χ² = 4, p = 0.0455.
-        let (c, dof, p) = chi_square(&[60, 40], &[0.5, 0.5]);
-        assert!((c - 4.0).abs() < 1e-12 && dof == 1 && (p - 0.0455).abs() < 1e-4, "{p}");
-    }
-
-    #[test]
-    fn drop_streams_depend_only_on_seed_and_index() {
-        use rand::Rng;
-        let a: Vec<u64> = (0..5).map(|i| drop_rng(7, i).next_u64()).collect();
-        let b: Vec<u64> =
-            (0..5).rev().map(|i| drop_rng(7, i).next_u64()).collect::<Vec<_>>().into_iter().rev().collect();
-        assert_eq!(a, b);
-        assert_ne!(drop_rng(7, 0).next_u64(), drop_rng(8, 0).next_u64());
-        assert_ne!(a[0], a[1]);
-    }
 
     #[test]
     fn shards_partition_the_indices() {

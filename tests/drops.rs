@@ -6,9 +6,11 @@ use rocking_stones::dynamics::drop::{simulate, DropOutcome, DropParams};
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::montecarlo::{
-    drop_rng, merge, random_release, read_partial, run, summarize, wilson, CertificateMode, Checkpoint, DropSetup,
-    RunHeader, Shard, FORMAT,
+    merge, random_release, read_partial, run, summarize, CertificateMode, Checkpoint, DropSetup, RunHeader, Shard,
+    FORMAT,
 };
+use rocking_stones::rng::item_rng;
+use rocking_stones::stats::wilson;
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
@@ -135,7 +137,7 @@ fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
     let p = DropParams { height: 0.05, ..DropParams::default() };
     let g = a.mass.center_of_mass;
     for i in 0..40 {
-        let mut rng = drop_rng(21, i);
+        let mut rng = item_rng(21, i);
         let release = random_release(&mut rng, 0.0);
         let down = release.orientation.inverse() * -rocking_stones::Vec3::z();
         // Initial energy level (input units): the lowest point p.height·R_max above the ground.

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drop::DropParams;
 use rocking_stones::dynamics::perturb::{
-    self, check_rest, default_pair, kick, log_grid, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone,
+    self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone,
     Threshold, GRAVITY,
 };
 use rocking_stones::dynamics::shake::{
@@ -14,6 +14,7 @@ use rocking_stones::dynamics::shake::{
 };
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
+use rocking_stones::stats::{log_grid, GridSize};
 
 fn stone(mesh: TriMesh) -> Stone {
     let (mesh, rep) = mesh.into_solid_boundary().unwrap();
@@ -123,7 +124,7 @@ fn a_pulse_below_g_tan_alpha_does_not_rock_a_block() {
 #[test]
 fn kicks_carry_the_requested_energy() {
     let s = pebble();
-    let mut rng = rocking_stones::montecarlo::drop_rng(3, 0);
+    let mut rng = rocking_stones::rng::item_rng(3, 0);
     for family in [Family::Push, Family::Spin] {
         for (i, e) in s.stable.iter().enumerate().take(4) {
             let q = perturb::resting_orientation(&s.body.facet_normals[e.facet as usize]);
@@ -207,7 +208,7 @@ fn runs_are_reproducible_and_independent_of_threads() {
     let cfg = PerturbConfig {
         params: PerturbParams::default(),
         family: Family::Push,
-        epsilons: log_grid(1e-4, 1e-1, 3),
+        epsilons: log_grid(1e-4, 1e-1, GridSize::Points(3)),
         trials: 4,
         seed: 9,
         epsilon_star: None,

@@ -6,6 +6,7 @@ use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
 use rocking_stones::dynamics::drop::DropParams;
 use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, Stone};
+use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
 
 /// Simulation parameters shared by `rocking perturb` and `rocking shake`.
@@ -158,7 +159,7 @@ pub fn run(args: Args) -> Result<()> {
     let cfg = PerturbConfig {
         params,
         family: args.family,
-        epsilons: perturb::log_grid(args.eps_min, args.eps_max, args.eps_steps),
+        epsilons: log_grid(args.eps_min, args.eps_max, GridSize::Points(args.eps_steps)),
         trials: args.trials,
         seed: args.seed,
         epsilon_star: args.epsilon_star,

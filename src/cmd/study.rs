@@ -8,6 +8,7 @@
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
 use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::study::{
     self, Experimenter, FitOptions, Metadata, PopulationParams, SampleTarget, Study, StudyOptions,
 };
@@ -328,7 +329,7 @@ fn fit(args: FitArgs) -> Result<()> {
         anyhow::bail!("{}: no sample to fit", args.table.display());
     }
     let opts = FitOptions {
-        grid: study::log_grid(args.nu_min, args.nu_max, args.per_decade),
+        grid: log_grid(args.nu_min, args.nu_max, GridSize::PerDecade(args.per_decade)),
         bootstrap: args.bootstrap,
         seed: args.seed,
         statistics: if args.s_only { [true, false, true, false] } else { [true; 4] },

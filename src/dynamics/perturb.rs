@@ -39,7 +39,7 @@
 //!   P (the stable point, below G), v_G = ω × (G − P): the stone starts to rock about its contact,
 //!   with energy ½ ω·I_P ω (I_P the inertia about P).
 //!
-//! Trial k of equilibrium i uses the random stream [`drop_rng`]`(seed, stream)` with
+//! Trial k of equilibrium i uses the random stream [`item_rng`]`(seed, stream)` with
 //! stream = (family bit, i, k) (see [`stream_index`]), and the same stream at every ε (common
 //! random numbers: trial k pushes at the same point in the same direction at every ε, only
 //! harder), so the curves are smooth in ε, and results are independent of threads.
@@ -76,12 +76,14 @@ use crate::analysis::Analysis;
 use crate::basins::MergeTree;
 use crate::dynamics::drop::{DropBody, DropParams, RestDetector, Simulation};
 use crate::equilibria::{Kind, Site};
-use crate::montecarlo::{drop_rng, wilson, CERTIFICATE_MARGIN};
+use crate::montecarlo::CERTIFICATE_MARGIN;
 use crate::plot::{init_fonts, FONT_FAMILY};
+use crate::rng::{item_rng, random_unit};
+use crate::stats::wilson;
 use crate::{Error, Result, Vec3};
 use nalgebra::{Matrix3, UnitQuaternion};
 use rand::RngExt;
-use rand_distr::{Distribution, StandardNormal};
+
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -457,17 +459,6 @@ fn world_inertia(body: &DropBody, q: &UnitQuaternion<f64>) -> Matrix3<f64> {
     r.matrix() * body.inertia * r.matrix().transpose()
 }
 
-/// A uniformly random unit vector.
-fn random_unit(rng: &mut Xoshiro256PlusPlus) -> Vec3 {
-    loop {
-        let v = Vec3::new(StandardNormal.sample(rng), StandardNormal.sample(rng), StandardNormal.sample(rng));
-        let n = v.norm();
-        if n > 1e-9 {
-            return v / n;
-        }
-    }
-}
-
 /// The velocities (world frame) of a perturbation of energy ε·m g R_max (scaled frame: m = 1,
 /// R_max = 1) of `family`, for a stone resting on facet `facet` with orientation `q` and G at
 /// height `z`; also the point of application of a push (body frame, relative to G).
@@ -559,7 +550,7 @@ fn classify(stone: &Stone, start: usize, facet: Option<u32>, flock: usize) -> Ou
 /// Run one trial: rest on `start`, kick, simulate to rest.
 pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, epsilon: f64, seed: u64, k: u32) -> Trial {
     let s = &stone.stable[start];
-    let mut rng = drop_rng(seed, stream_index(family, start, k));
+    let mut rng = item_rng(seed, stream_index(family, start, k));
     let mut sim = resting_simulation(stone, start, p, p.settle_time);
     let (q, z) = {
         let rb = &sim.world.bodies[sim.body_handle];
@@ -617,15 +608,6 @@ pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, eps
     }
     let (f, nsf) = stone.final_facet(&sim.state().down);
     done(Some(f), flock_of(f), steps_max, false, false, nsf, max_rise)
-}
-
-/// A log-spaced grid of `n` values from `lo` to `hi` (both included).
-pub fn log_grid(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    match n {
-        0 => vec![],
-        1 => vec![lo],
-        _ => (0..n).map(|i| if i + 1 == n { hi } else { lo * (hi / lo).powf(i as f64 / (n - 1) as f64) }).collect(),
-    }
 }
 
 /// The ε (or acceleration) at which a probability first reaches ½ on a grid.

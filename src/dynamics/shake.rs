@@ -50,7 +50,7 @@ use super::perturb::{
     check_rest, resting_orientation, resting_simulation, CurvePoint, Outcome, PerturbParams, SettleCheck,
     StableEquilibrium, Stone, Threshold, GRAVITY,
 };
-use crate::montecarlo::drop_rng;
+use crate::rng::item_rng;
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
 use rand::RngExt;
@@ -255,7 +255,7 @@ pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> anyhow::Result
 /// so the ground ends near rest) and scaled to PGA `pga` (g). All in the scaled body's time.
 pub fn synthetic_record(name: &str, duration: f64, f_ground: f64, pga: f64, seed: u64) -> Record {
     use rand_distr::{Distribution, StandardNormal};
-    let mut rng = drop_rng(seed, 0);
+    let mut rng = item_rng(seed, 0);
     let dt = 0.01;
     let n = (duration / dt).round() as usize + 1;
     let (w, z) = (2.0 * std::f64::consts::PI * f_ground, 0.6);
@@ -471,7 +471,7 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, progress: &(
         .par_iter()
         .map(|&(s, i, k)| {
             let azimuth = cfg.azimuth.unwrap_or_else(|| {
-                let mut rng = drop_rng(cfg.seed, shake_stream(s, k));
+                let mut rng = item_rng(cfg.seed, shake_stream(s, k));
                 rng.random_range(0.0..2.0 * std::f64::consts::PI)
             });
             let motion = cfg.motion.scaled_to(cfg.pgas[i]);
