@@ -6,9 +6,9 @@
 //! Run: `cargo run --release --example drops_certificate_speed` → `results/drops_certificate/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
-use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, DropSetup, RunHeader, FORMAT};
+use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
 use rocking_stones::report::write_drop_outputs;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -49,7 +49,7 @@ fn main() -> anyhow::Result<()> {
     ];
     for (name, a) in &bodies {
         let (nu, _) = a.macro_nu(&Options::default());
-        let setup = DropSetup::new(a, nu)?;
+        let setup = Stone::new(a, nu)?;
         let mut runs = Vec::new();
         for mode in [CertificateMode::None, CertificateMode::Facet, CertificateMode::Flock] {
             let header = RunHeader {
@@ -58,8 +58,9 @@ fn main() -> anyhow::Result<()> {
                 mesh_fingerprint: String::new(),
                 seed: 7,
                 drops: DROPS,
-                params: DropParams::default(),
+                params: rocking_stones::dynamics::perturb::legacy_contact(),
                 certificate: mode,
+                preset: None,
             };
             let t = std::time::Instant::now();
             let (report, outcomes) = run_report(&setup, &header);
@@ -95,7 +96,7 @@ fn main() -> anyhow::Result<()> {
                 both += 1;
                 same_facet += usize::from(o.facet.is_some() && o.facet == p.facet);
                 let flock_of = |x: &rocking_stones::dynamics::drop::DropOutcome| {
-                    x.flock.map(|k| k as usize).or_else(|| x.facet.and_then(|f| setup.model.facet_flock[f as usize]))
+                    x.flock.map(|k| k as usize).or_else(|| x.facet.and_then(|f| setup.facet_flock[f as usize]))
                 };
                 same_flock += usize::from(flock_of(o) == flock_of(p));
             }

@@ -74,7 +74,7 @@ fn main() -> anyhow::Result<()> {
     for (name, kind, a) in inputs {
         let (nu, _) = a.macro_nu(&Options::default());
         let stone = Stone::new(&a, nu)?;
-        let all: Vec<usize> = (0..stone.stable.len()).collect();
+        let all: Vec<usize> = (0..stone.stable().len()).collect();
         let mut reports = Vec::new();
         for family in [Family::Push, Family::Spin] {
             let cfg = PerturbConfig {
@@ -354,9 +354,9 @@ fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
             "| {} | {:.2e} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {}; {} / {} |",
             r.name,
             r.stone.nu,
-            r.stone.stable.len(),
-            r.stone.stable.iter().filter(|e| e.class == Class::Regular).count(),
-            r.stone.stable.iter().filter(|e| e.class == Class::Rocking).count(),
+            r.stone.stable().len(),
+            r.stone.stable().iter().filter(|e| e.class == Class::Regular).count(),
+            r.stone.stable().iter().filter(|e| e.class == Class::Rocking).count(),
             p.equilibria.iter().filter(|e| !e.rest.stays).count(),
             c.regular_as_regular,
             c.regular_as_rocking,

@@ -33,10 +33,11 @@
 //! divisor better: 5 of the 6 decisive pairs.)
 
 use crate::analysis::{Analysis, Options, Report, PAPER_NU};
-use crate::dynamics::drop::DropParams;
+use crate::dynamics::params::{DropParams, Preset, Surface};
+use crate::dynamics::stone::Stone;
 use crate::equilibria::Kind;
 use crate::hierarchy::{Counts, Hierarchy};
-use crate::montecarlo::{run_report, CertificateMode, DropSetup, RunHeader, FORMAT};
+use crate::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
 use crate::plot::{init_fonts, FONT_FAMILY};
 use crate::rng::{fnv1a_str, item_rng};
 use crate::shape::{describe, Zingg};
@@ -297,11 +298,17 @@ pub const DEFAULT_TRIALS: u64 = 20;
 /// Default release height of the simulated experimenter, in R_max: a pebble put down by hand.
 pub const DEFAULT_SET_DOWN_HEIGHT: f64 = 0.05;
 
+/// The contact and launch of a pebble set down by hand: the [`Preset::Drop`] protocol (from rest,
+/// no spin) on [`Surface::StoneOnStone`], released [`DEFAULT_SET_DOWN_HEIGHT`] above the ground.
+pub fn set_down_params() -> DropParams {
+    DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..Preset::Drop.params(Surface::StoneOnStone) }
+}
+
 impl Default for Experimenter {
     fn default() -> Self {
         Experimenter {
             trials: DEFAULT_TRIALS,
-            params: DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..DropParams::default() },
+            params: DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..set_down_params() },
             seed: 1,
         }
     }
@@ -326,7 +333,7 @@ pub struct DynamicCounts {
 /// uses [`item_rng`]`(seed, i)`. A trial settling on a facet that is not stable counts for the
 /// flock its steepest descent drains to; a trial still moving at the time cap counts for nothing.
 pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> Result<DynamicCounts> {
-    let setup = DropSetup::new(a, nu)?;
+    let stone = Stone::new(a, nu)?;
     let header = RunHeader {
         format: FORMAT.into(),
         mesh: String::new(),
@@ -335,23 +342,20 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         drops: exp.trials,
         params: exp.params.clone(),
         certificate: CertificateMode::Flock,
+        preset: None,
     };
-    let (_, outcomes) = run_report(&setup, &header);
-    let basins = a.basins();
-    let membership = a.hierarchy.flocks_at(nu).membership;
+    let (_, outcomes) = run_report(&stone, &header);
     let mut found = BTreeSet::new();
     let mut settled = 0;
     for o in outcomes.values().filter(|o| o.settled) {
         settled += 1;
-        let flock = o.flock.map(|k| k as usize).or_else(|| {
-            o.facet
-                .and_then(|f| setup.model.facet_flock[f as usize].or_else(|| basins[f as usize].map(|s| membership[s])))
-        });
+        // Facets of outcomes are stable facets (the rule of `Stone::rest`).
+        let flock = o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]));
         if let Some(k) = flock {
             found.insert(k);
         }
     }
-    let kinds = &setup.model.flock_kinds;
+    let kinds = &stone.flock_kinds;
     let stable = found.iter().filter(|&&k| kinds[k] == Kind::Stable).count();
     Ok(DynamicCounts {
         trials: exp.trials,

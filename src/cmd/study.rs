@@ -7,7 +7,7 @@
 
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
-use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::params::DropParams;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::study::{
     self, Experimenter, FitOptions, Metadata, PopulationParams, SampleTarget, Study, StudyOptions,
@@ -56,8 +56,8 @@ impl DynamicArgs {
         if !self.dynamic {
             return Ok(None);
         }
-        let params = DropParams { height: self.height, ..DropParams::default() };
-        params.check().map_err(anyhow::Error::msg)?;
+        let params = DropParams { height: self.height, ..rocking_stones::study::set_down_params() };
+        params.check()?;
         if self.trials == 0 {
             anyhow::bail!("--trials must be at least 1");
         }
