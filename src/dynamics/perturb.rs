@@ -176,6 +176,7 @@ pub fn legacy_contact() -> DropParams {
         torsional_friction: 0.0,
         linear_damping: 0.1,
         angular_damping: 1.0,
+        max_time: 20.0,
         ..DropParams::default()
     }
 }
