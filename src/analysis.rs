@@ -125,6 +125,23 @@ impl Analysis {
                 flock: flocks.membership[i],
             })
             .collect();
+        let quasi_static = crate::basins::basin_probabilities(&self.hull, &self.mass.center_of_mass, eq);
+        let stable_facets = eq
+            .at_facet
+            .iter()
+            .enumerate()
+            .filter_map(|(f, s)| {
+                let s = (*s)? as usize;
+                Some(StableFacet {
+                    facet: f as u32,
+                    equilibrium: s,
+                    normal: self.hull.facets[f].normal,
+                    r: eq.points[s].r,
+                    basin_probability: quasi_static.facet_probability[f],
+                    flock: flocks.membership[s],
+                })
+            })
+            .collect();
         let macro_counts = self.hierarchy.counts_at(nu);
         Report {
             file: file.to_string(),
@@ -166,6 +183,7 @@ impl Analysis {
             rocking,
             staircase: self.hierarchy.staircase(),
             equilibria: micro_list,
+            stable_facets,
         }
     }
 }
@@ -253,6 +271,25 @@ pub struct MicroEquilibrium {
     pub flock: usize,
 }
 
+/// A stable facet as another engine or an experiment needs it: which way it faces and how often
+/// the quasi-static theory rests on it, so that their outcomes can be mapped onto it.
+#[derive(Clone, Debug, Serialize)]
+pub struct StableFacet {
+    /// Hull facet index.
+    pub facet: u32,
+    /// Its stable micro-equilibrium (index into `equilibria`).
+    pub equilibrium: usize,
+    /// Outward unit normal (mesh frame): the stone rests on the facet when this points down.
+    pub normal: crate::Vec3,
+    /// Distance from G to the facet's plane (input units).
+    pub r: f64,
+    /// Quasi-static resting probability: the facet's basin area on the sphere of down
+    /// directions / 4π ([`crate::basins::basin_probabilities`]).
+    pub basin_probability: f64,
+    /// Flock at the macro ν.
+    pub flock: usize,
+}
+
 /// Everything a run of `rocking analyze` says about one stone.
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
@@ -269,6 +306,8 @@ pub struct Report {
     pub rocking: Vec<RockingEquilibrium>,
     pub staircase: Vec<Step>,
     pub equilibria: Vec<MicroEquilibrium>,
+    /// Every stable facet with its outward normal and quasi-static basin probability.
+    pub stable_facets: Vec<StableFacet>,
 }
 
 impl Report {

@@ -117,3 +117,31 @@ fn throws_do_not_depend_on_the_thread_count() {
     let two = pool(2).install(|| run_report(&s, &h).1);
     assert_eq!(one, two);
 }
+
+#[test]
+fn the_analysis_report_lists_stable_facets_with_normals_and_basin_probabilities() {
+    // What another engine or an experiment needs to map its outcomes onto the hull.
+    let a = analyse(generate::cuboid(2.0, 1.5, 1.0));
+    let r = a.report("box", &Options::default());
+    assert_eq!(r.stable_facets.len(), 6);
+    let total: f64 = r.stable_facets.iter().map(|f| f.basin_probability).sum();
+    assert!((total - 1.0).abs() < 1e-9, "{total}");
+    for f in &r.stable_facets {
+        // Opposite faces of a centred box have equal basins; the largest faces (⊥ z, R = 0.5)
+        // the largest.
+        let twin = r.stable_facets.iter().find(|g| (g.normal + f.normal).norm() < 1e-12).unwrap();
+        assert!((twin.basin_probability - f.basin_probability).abs() < 1e-9);
+        assert!((f.normal.norm() - 1.0).abs() < 1e-12);
+        assert!(
+            (f.r - a.hull.facets[f.facet as usize]
+                .normal
+                .dot(&(a.hull.vertices[a.hull.facets[f.facet as usize].vertices[0] as usize] - a.mass.center_of_mass)))
+            .abs()
+                < 1e-12
+        );
+    }
+    let z = r.stable_facets.iter().find(|f| f.normal.z > 0.9).unwrap();
+    assert!(r.stable_facets.iter().all(|f| f.basin_probability <= z.basin_probability + 1e-12));
+    let json = serde_json::to_value(&r).unwrap();
+    assert_eq!(json["stable_facets"].as_array().unwrap().len(), 6);
+}
