@@ -18,6 +18,7 @@ use rocking_stones::dynamics::perturb::{
 };
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::Vec3;
 use std::fmt::Write as _;
@@ -64,7 +65,7 @@ fn main() -> anyhow::Result<()> {
         let t = std::time::Instant::now();
         let r = perturb::run(&stone, &[regular, rocking], &cfg);
         eprintln!("{family:?}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
-        eprint!("{}", perturb::summary(&r, "pebble"));
+        eprint!("{}", report::perturb::summary(&r, "pebble"));
         reports.push(r);
     }
     // Outputs.
@@ -72,7 +73,7 @@ fn main() -> anyhow::Result<()> {
     for r in &reports {
         for e in &r.equilibria {
             let q = &e.equilibrium;
-            panels.push(perturb::Panel {
+            panels.push(report::perturb::Panel {
                 title: format!(
                     "{}: eq {} ({}, {:?} flock), {}",
                     match q.class {
@@ -96,7 +97,7 @@ fn main() -> anyhow::Result<()> {
         }
     }
     for ext in ["png", "svg"] {
-        perturb::plot_curves(
+        report::perturb::plot_curves(
             &out.join(format!("fig11_robustness.{ext}")),
             "Regular (left) vs rocking (right) stable micro-equilibrium: outcome against ε = KE/(m g R_max)",
             "ε (log scale)",
@@ -105,7 +106,7 @@ fn main() -> anyhow::Result<()> {
         )?;
     }
     // Both families in one figure: 2 × 2.
-    perturb::plot_curves(
+    report::perturb::plot_curves(
         &out.join("fig11_robustness_push_and_spin.png"),
         "Regular vs rocking: pushes (top) and spins about the contact (bottom)",
         "ε (log scale)",
@@ -116,16 +117,16 @@ fn main() -> anyhow::Result<()> {
     let report = analysis.report("pebble", &Options::default());
     rocking_stones::report::plot_hull(&analysis, &report, &out.join("hull_flocks.png"))?;
     for r in &reports {
-        perturb::write_curves_csv(&out.join(format!("curves_{}.csv", r.family.name())), r)?;
-        perturb::write_thresholds_csv(&out.join(format!("thresholds_{}.csv", r.family.name())), r)?;
+        report::perturb::write_curves_csv(&out.join(format!("curves_{}.csv", r.family.name())), r)?;
+        report::perturb::write_thresholds_csv(&out.join(format!("thresholds_{}.csv", r.family.name())), r)?;
     }
     readme(&out.join("README.md"), seed, &stone, &reports, &search)?;
     Ok(())
 }
 
 /// A panel is not Clone (it borrows); rebuild one with the same content.
-fn rebuild<'a>(p: &perturb::Panel<'a>) -> perturb::Panel<'a> {
-    perturb::Panel { title: p.title.clone(), curve: p.curve, markers: p.markers.clone() }
+fn rebuild<'a>(p: &report::perturb::Panel<'a>) -> report::perturb::Panel<'a> {
+    report::perturb::Panel { title: p.title.clone(), curve: p.curve, markers: p.markers.clone() }
 }
 
 /// Side views of the stone resting on each equilibrium (the photos of the paper's Figure 11):

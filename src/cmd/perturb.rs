@@ -6,6 +6,7 @@ use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
 use rocking_stones::dynamics::drop::DropParams;
 use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, Stone};
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
 
@@ -173,7 +174,7 @@ pub fn run(args: Args) -> Result<()> {
     super::emit(
         &report,
         args.json,
-        || perturb::summary(&report, &name),
+        || report::perturb::summary(&report, &name),
         args.output.as_deref(),
         |dir| write_outputs(&report, &name, dir),
     )
@@ -187,28 +188,28 @@ pub fn write_outputs(r: &perturb::PerturbReport, name: &str, dir: &Path) -> Resu
     std::fs::write(&p, serde_json::to_string_pretty(r)?)?;
     written.push(p);
     let p = dir.join("curves.csv");
-    perturb::write_curves_csv(&p, r)?;
+    report::perturb::write_curves_csv(&p, r)?;
     written.push(p);
     let p = dir.join("thresholds.csv");
-    perturb::write_thresholds_csv(&p, r)?;
+    report::perturb::write_thresholds_csv(&p, r)?;
     written.push(p);
     let p = dir.join("trials.csv");
-    perturb::write_trials_csv(&p, &r.trials)?;
+    report::perturb::write_trials_csv(&p, &r.trials)?;
     written.push(p);
-    let panels = perturb::panels(r);
+    let panels = report::perturb::panels(r);
     if !panels.is_empty() {
         let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
         let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
         for ext in ["png", "svg"] {
             let p = dir.join(format!("robustness.{ext}"));
-            perturb::plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
+            report::perturb::plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
             written.push(p);
         }
         let p = dir.join("thresholds.png");
-        perturb::plot_thresholds(
+        report::perturb::plot_thresholds(
             &p,
             &format!("{short}: dynamic thresholds vs static barriers"),
-            &perturb::threshold_points(r),
+            &report::perturb::threshold_points(r),
         )?;
         written.push(p);
     }

@@ -7,6 +7,7 @@ use anyhow::{bail, Result};
 use plotters::style::RGBColor;
 use rocking_stones::dynamics::perturb::{default_pair, Class};
 use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScale};
+use rocking_stones::report;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -113,7 +114,7 @@ pub fn run(args: Args) -> Result<()> {
     super::emit(
         &report,
         args.json,
-        || shake::summary(&report, &name),
+        || report::shake::summary(&report, &name),
         args.output.as_deref(),
         |dir| write_outputs(&report, &name, dir),
     )
@@ -127,7 +128,7 @@ pub fn write_outputs(r: &shake::ShakeReport, name: &str, dir: &Path) -> Result<V
     std::fs::write(&p, serde_json::to_string_pretty(r)?)?;
     written.push(p);
     let p = dir.join("fragility.csv");
-    shake::write_fragility_csv(&p, r)?;
+    report::shake::write_fragility_csv(&p, r)?;
     written.push(p);
     let p = dir.join("trials.csv");
     let mut w = csv::Writer::from_path(&p)?;
@@ -175,7 +176,7 @@ pub fn write_outputs(r: &shake::ShakeReport, name: &str, dir: &Path) -> Result<V
     if !lines.is_empty() {
         let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
         let p = dir.join("fragility.png");
-        shake::plot_fragility(&p, &format!("{short}: fragility, {}", r.motion.describe()), &lines, &[])?;
+        report::shake::plot_fragility(&p, &format!("{short}: fragility, {}", r.motion.describe()), &lines, &[])?;
         written.push(p);
     }
     Ok(written)

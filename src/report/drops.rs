@@ -1,0 +1,203 @@
+//! What a person reads of a drop run ([`crate::montecarlo`]): the summary, `drops.json` and the
+//! bar plots of resting flocks and facets against the quasi-static probabilities.
+
+use crate::plot::{init_fonts, FONT_FAMILY};
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A readable summary of a drop run.
+pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
+    let mut s = String::new();
+    let p = &r.params;
+    let _ = writeln!(
+        s,
+        "{}: {} of {} drops (seed {}), {} settled, {} still moving after {} s, {} on a non-stable facet, {} ended by the certificate ({:?})",
+        r.mesh, r.drops, r.drops_requested, r.seed, r.settled, r.unsettled, p.max_time, r.on_non_stable_facet, r.certified, r.certificate
+    );
+    let _ = writeln!(
+        s,
+        "  drop: height {} R_max, spin {} rad/s, friction {}, restitution {}, damping {}/{} 1/s, dt {:.5} s; mean simulated time {:.2} s",
+        p.height, p.spin, p.friction, p.restitution, p.linear_damping, p.angular_damping, p.dt, r.mean_time
+    );
+    let _ = writeln!(s, "  flocks at ν = {:.4e}:", r.nu);
+    let _ = writeln!(
+        s,
+        "    {:>5} {:<9} {:>7} {:>9} {:>18} {:>9}",
+        "flock", "type", "drops", "fraction", "95% interval", "static"
+    );
+    for f in &r.flocks {
+        let _ = writeln!(
+            s,
+            "    {:>5} {:<9} {:>7} {:>9.4} {:>18} {:>9.4}",
+            f.id,
+            format!("{:?}", f.kind).to_lowercase(),
+            f.count,
+            f.fraction,
+            format!("[{:.4}, {:.4}]", f.ci95.0, f.ci95.1),
+            f.static_probability
+        );
+    }
+    let mut facets: Vec<_> = r.facets.iter().collect();
+    facets.sort_by(|a, b| b.count.cmp(&a.count).then(b.static_probability.total_cmp(&a.static_probability)));
+    let _ = writeln!(s, "  facets (the {} most frequent of {}):", facets.len().min(12), facets.len());
+    let _ = writeln!(
+        s,
+        "    {:>6} {:>5} {:>7} {:>9} {:>18} {:>9}",
+        "facet", "flock", "drops", "fraction", "95% interval", "static"
+    );
+    for f in facets.iter().take(12) {
+        let _ = writeln!(
+            s,
+            "    {:>6} {:>5} {:>7} {:>9.4} {:>18} {:>9.4}{}",
+            f.facet,
+            f.flock.map_or("-".into(), |k| k.to_string()),
+            f.count,
+            f.fraction,
+            format!("[{:.4}, {:.4}]", f.ci95.0, f.ci95.1),
+            f.static_probability,
+            if f.equilibrium.is_none() { "  (not a stable facet)" } else { "" }
+        );
+    }
+    let fit = |name: &str, f: &crate::montecarlo::Fit| {
+        format!(
+            "{name}: χ² = {:.2} ({} dof, p = {:.3}), KL = {:.4} nats",
+            f.chi_square, f.dof, f.p_value, f.kl_divergence
+        )
+    };
+    let _ = writeln!(s, "  vs quasi-static: {}", fit("flocks", &r.fit_flocks));
+    if let Some(f) = &r.fit_facets {
+        let _ = writeln!(s, "                   {}", fit("facets", f));
+    }
+    s
+}
+
+/// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png` into `dir`.
+pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
+    let json = dir.join("drops.json");
+    std::fs::write(&json, serde_json::to_string_pretty(r)?)?;
+    let mut written = vec![json];
+    let flocks: Vec<Bar> = r
+        .flocks
+        .iter()
+        .map(|f| Bar {
+            label: format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()),
+            fraction: f.fraction,
+            ci: f.ci95,
+            reference: f.static_probability,
+        })
+        .collect();
+    for ext in ["png", "svg"] {
+        let p = dir.join(format!("drops_flocks.{ext}"));
+        bar_plot(&p, &format!("Resting flock: drops (n = {}) vs quasi-static", r.settled), &flocks)?;
+        written.push(p);
+    }
+    let mut facets: Vec<_> = r.facets.iter().collect();
+    facets.sort_by(|a, b| b.static_probability.total_cmp(&a.static_probability).then(b.count.cmp(&a.count)));
+    let bars: Vec<Bar> = facets
+        .iter()
+        .take(30)
+        .map(|f| Bar { label: f.facet.to_string(), fraction: f.fraction, ci: f.ci95, reference: f.static_probability })
+        .collect();
+    let p = dir.join("drops_facets.png");
+    bar_plot(&p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars)?;
+    written.push(p);
+    Ok(written)
+}
+
+/// One category of a bar plot: empirical fraction with its interval, and a reference value.
+pub struct Bar {
+    pub label: String,
+    pub fraction: f64,
+    pub ci: (f64, f64),
+    pub reference: f64,
+}
+
+/// Bars of empirical fractions with 95 % intervals beside reference (static) probabilities.
+pub fn bar_plot(path: &Path, title: &str, bars: &[Bar]) -> anyhow::Result<()> {
+    init_fonts();
+    let (w, h) = (1000u32, 560u32);
+    if path.extension().is_some_and(|e| e == "svg") {
+        let root = SVGBackend::new(path, (w, h)).into_drawing_area();
+        draw_bars(&root, title, bars)?;
+        root.present()?;
+    } else {
+        let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
+        draw_bars(&root, title, bars)?;
+        root.present()?;
+    }
+    Ok(())
+}
+
+fn draw_bars<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    bars: &[Bar],
+) -> anyhow::Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| anyhow::anyhow!("{x:?}");
+    root.fill(&WHITE).map_err(e)?;
+    let top = bars.iter().map(|b| b.ci.1.max(b.reference)).fold(0.0, f64::max).max(0.05) * 1.15;
+    let n = bars.len().max(1);
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, (FONT_FAMILY, 20))
+        .margin(12)
+        .x_label_area_size(50)
+        .y_label_area_size(60)
+        .build_cartesian_2d(-0.5f64..n as f64 - 0.5, 0f64..top)
+        .map_err(e)?;
+    let labels: Vec<String> = bars.iter().map(|b| b.label.clone()).collect();
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(n.min(30))
+        .x_label_formatter(&|x| {
+            let i = x.round();
+            if (x - i).abs() < 1e-6 && i >= 0.0 {
+                labels.get(i as usize).cloned().unwrap_or_default()
+            } else {
+                String::new()
+            }
+        })
+        .y_desc("probability")
+        .label_style((FONT_FAMILY, 12))
+        .draw()
+        .map_err(e)?;
+    let drops = RGBColor(70, 110, 200);
+    let stat = RGBColor(230, 140, 40);
+    chart
+        .draw_series(
+            bars.iter()
+                .enumerate()
+                .map(|(i, b)| Rectangle::new([(i as f64 - 0.38, 0.0), (i as f64 - 0.02, b.fraction)], drops.filled())),
+        )
+        .map_err(e)?
+        .label("drops (95% Wilson interval)")
+        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], drops.filled()));
+    chart
+        .draw_series(bars.iter().enumerate().map(|(i, b)| {
+            PathElement::new(vec![(i as f64 - 0.2, b.ci.0), (i as f64 - 0.2, b.ci.1)], BLACK.stroke_width(2))
+        }))
+        .map_err(e)?;
+    chart
+        .draw_series(
+            bars.iter()
+                .enumerate()
+                .map(|(i, b)| Rectangle::new([(i as f64 + 0.02, 0.0), (i as f64 + 0.38, b.reference)], stat.filled())),
+        )
+        .map_err(e)?
+        .label("quasi-static (basin area / 4π)")
+        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], stat.filled()));
+    chart
+        .configure_series_labels()
+        .label_font((FONT_FAMILY, 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}

@@ -1,0 +1,17 @@
+//! What a person reads: summaries, CSV files, plots and other files written from the results of
+//! the computation modules. Nothing here computes; every function reads a finished result.
+//!
+//! * [`analysis`] — one static analysis: summary, batch CSV, N(ν) plot, hull pictures.
+//! * [`drops`] — drop runs: summary, `drops.json`, bar plots.
+//! * [`perturb`] — perturbation runs: summary, curves/thresholds/trials CSV, plots.
+//! * [`shake`] — shaking runs: summary, fragility CSV and plot, ground-motion records.
+
+pub mod analysis;
+pub mod drops;
+pub mod perturb;
+pub mod shake;
+
+pub use analysis::{
+    flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, write_batch_csv, write_outputs, CSV_HEADER,
+};
+pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
