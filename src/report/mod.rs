@@ -10,6 +10,7 @@ pub mod analysis;
 pub mod drops;
 pub mod perturb;
 pub mod shake;
+pub mod study;
 
 pub use analysis::{
     flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, write_batch_csv, write_outputs, CSV_HEADER,
