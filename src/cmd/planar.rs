@@ -64,7 +64,7 @@ pub struct RegularArgs {
 
 #[derive(clap::Args)]
 pub struct Common {
-    /// Fix ν of the macro scale (default: the automatic plateau).
+    /// Fix ν of the macro scale (default: the automatic plateau if it is clear, else 0.0035).
     #[arg(long)]
     pub nu: Option<f64>,
     /// Print one JSON object instead of the summary.
