@@ -4,11 +4,14 @@
 //! * [`analysis`] — one static analysis: summary, batch CSV, N(ν) plot, hull pictures.
 //! * [`drops`] — drop runs: summary, `drops.json`, bar plots.
 //! * [`perturb`] — perturbation runs: summary, curves/thresholds/trials CSV, plots.
+//! * [`planar`] — the planar case: the summary of `rocking planar`.
 //! * [`shake`] — shaking runs: summary, fragility CSV and plot, ground-motion records.
+//! * [`study`] — field studies: pebble/sample/comparison CSVs, tables, Zingg and Figure 12 plots.
 
 pub mod analysis;
 pub mod drops;
 pub mod perturb;
+pub mod planar;
 pub mod shake;
 pub mod study;
 
