@@ -183,6 +183,6 @@ fn emit(report: &DropReport, json: bool, output: Option<&std::path::Path>) -> Re
         json,
         || rocking_stones::report::drop_summary(report),
         output,
-        |dir| rocking_stones::report::write_drop_outputs(report, dir),
+        |dir| Ok(rocking_stones::report::write_drop_outputs(report, dir)?),
     )
 }

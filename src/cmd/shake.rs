@@ -4,9 +4,9 @@
 
 use super::perturb::{bar, select, SimArgs};
 use anyhow::{bail, Result};
-use plotters::style::RGBColor;
 use rocking_stones::dynamics::perturb::{default_pair, Class};
 use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScale};
+use rocking_stones::plot::RGBColor;
 use rocking_stones::report;
 use std::path::{Path, PathBuf};
 

@@ -227,13 +227,15 @@ fn write_study(study: &Study, dir: &Path, title: &str) -> Result<()> {
     report::study::write_pebbles_csv(
         study,
         std::fs::File::create(&p).with_context(|| format!("{}: cannot create", p.display()))?,
-    )?;
+    )
+    .map_err(|e| e.with_path(&p))?;
     let s = dir.join("samples.csv");
     report::study::write_samples_csv(
         study,
         &summaries,
         std::fs::File::create(&s).with_context(|| format!("{}: cannot create", s.display()))?,
-    )?;
+    )
+    .map_err(|e| e.with_path(&s))?;
     for ext in ["png", "svg"] {
         report::study::plot_zingg(study, title, &dir.join(format!("zingg.{ext}")))?;
     }
@@ -299,7 +301,7 @@ fn synthetic(args: SyntheticArgs) -> Result<()> {
     if let Some(h) = &hand {
         let rows = study::compare(h, &study, args.nu);
         let p = args.output.join("comparison.csv");
-        report::study::write_comparison_csv(&rows, args.nu, std::fs::File::create(&p)?)?;
+        report::study::write_comparison_csv(&rows, args.nu, std::fs::File::create(&p)?).map_err(|e| e.with_path(&p))?;
         report::study::plot_fig12(&rows, args.nu, "synthetic", &args.output)?;
         println!("wrote {} and the Figure 12 plots", p.display());
     }
@@ -369,11 +371,8 @@ fn fit(args: FitArgs) -> Result<()> {
     }
     for (nu, name) in [(fit.nu, "fitted"), (PAPER_NU, "paper_nu")] {
         let rows = study::compare(&hand, &synthetic, nu);
-        report::study::write_comparison_csv(
-            &rows,
-            nu,
-            std::fs::File::create(dir.join(format!("comparison_{name}.csv")))?,
-        )?;
+        let p = dir.join(format!("comparison_{name}.csv"));
+        report::study::write_comparison_csv(&rows, nu, std::fs::File::create(&p)?).map_err(|e| e.with_path(&p))?;
         report::study::plot_fig12(&rows, nu, "synthetic", &dir.join(name))?;
     }
     println!(

@@ -1,11 +1,13 @@
 //! What a person reads: the human summary, the batch CSV, and the pictures and coloured mesh of
 //! one analysis. Everything here reads [`Report`] / [`Analysis`]; nothing is recomputed.
 
+use super::{create_dir, write_json};
 use crate::analysis::{Analysis, NuSource, Report};
 use crate::equilibria::Kind;
 use crate::mesh::TriMesh;
-use crate::plot::{init_fonts, FONT_FAMILY};
+use crate::plot::{render, DrawResult, FONT_FAMILY};
 use crate::Point3;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -166,21 +168,24 @@ pub const CSV_HEADER: [&str; 25] = [
 pub fn write_batch_csv<'a, W: std::io::Write>(
     w: W,
     rows: impl Iterator<Item = (&'a Path, Result<&'a Report, &'a str>)>,
-) -> anyhow::Result<()> {
-    let mut out = csv::Writer::from_writer(w);
-    out.write_record(CSV_HEADER)?;
-    for (file, r) in rows {
-        match r {
-            Ok(r) => out.write_record(csv_row(r))?,
-            Err(e) => {
-                let mut row = vec![file.display().to_string(), e.to_string()];
-                row.resize(CSV_HEADER.len(), String::new());
-                out.write_record(row)?
+) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut out = csv::Writer::from_writer(w);
+        out.write_record(CSV_HEADER)?;
+        for (file, r) in rows {
+            match r {
+                Ok(r) => out.write_record(csv_row(r))?,
+                Err(e) => {
+                    let mut row = vec![file.display().to_string(), e.to_string()];
+                    row.resize(CSV_HEADER.len(), String::new());
+                    out.write_record(row)?
+                }
             }
         }
-    }
-    out.flush()?;
-    Ok(())
+        out.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(crate::error::MEMORY, e))
 }
 
 fn csv_row(r: &Report) -> Vec<String> {
@@ -216,11 +221,11 @@ fn csv_row(r: &Report) -> Vec<String> {
 }
 
 /// Write `report.json`, `n_nu.png/.svg`, `hull.png` and `hull_flocks.ply` into `dir`.
-pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
+pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let mut written = Vec::new();
     let json = dir.join("report.json");
-    std::fs::write(&json, serde_json::to_string_pretty(r)?)?;
+    write_json(&json, r)?;
     written.push(json);
     for ext in ["png", "svg"] {
         let p = dir.join(format!("n_nu.{ext}"));
@@ -238,26 +243,15 @@ pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> anyhow::Result<Vec
 }
 
 /// The log ν – n(ν) staircase (paper Figure 10B) with the plateau and the chosen ν marked.
-pub fn plot_n_nu(r: &Report, path: &Path) -> anyhow::Result<()> {
-    init_fonts();
-    let is_svg = path.extension().is_some_and(|e| e == "svg");
-    if is_svg {
-        let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
-        draw_n_nu(&root, r)?;
-        root.present()?;
-    } else {
-        let root = BitMapBackend::new(path, (900, 560)).into_drawing_area();
-        draw_n_nu(&root, r)?;
-        root.present()?;
-    }
-    Ok(())
+pub fn plot_n_nu(r: &Report, path: &Path) -> crate::Result<()> {
+    render!(path, (900, 560), |root| draw_n_nu(&root, r))
 }
 
-fn draw_n_nu<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, r: &Report) -> anyhow::Result<()>
+fn draw_n_nu<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, r: &Report) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
-    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+    root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
     let steps = &r.staircase;
     let positive: Vec<f64> =
         steps.iter().flat_map(|s| [s.nu_lo, s.nu_hi]).filter(|v| *v > 0.0 && v.is_finite()).collect();
@@ -270,14 +264,14 @@ where
         .x_label_area_size(45)
         .y_label_area_size(55)
         .build_cartesian_2d((lo..hi).log_scale(), 0f64..1.05)
-        .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        .map_err(|e| format!("{e:?}"))?;
     chart
         .configure_mesh()
         .x_desc("ν (log scale)")
         .y_desc("n(ν)")
         .label_style((FONT_FAMILY, 14))
         .draw()
-        .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        .map_err(|e| format!("{e:?}"))?;
     if let Some(p) = &r.plateau {
         let color = if p.clear { RGBColor(200, 235, 200) } else { RGBColor(240, 220, 200) };
         chart
@@ -285,7 +279,7 @@ where
                 [(p.nu_lo.max(lo), 0.0), (p.nu_hi.min(hi), 1.05)],
                 color.filled(),
             )))
-            .map_err(|e| anyhow::anyhow!("{e:?}"))?
+            .map_err(|e| format!("{e:?}"))?
             .label(format!("plateau S={} U={} H={}", p.counts.stable, p.counts.unstable, p.counts.saddle))
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], color.filled()));
     }
@@ -298,13 +292,13 @@ where
     }
     chart
         .draw_series(LineSeries::new(pts, BLUE.stroke_width(2)))
-        .map_err(|e| anyhow::anyhow!("{e:?}"))?
+        .map_err(|e| format!("{e:?}"))?
         .label("n(ν)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLUE.stroke_width(2)));
     let nu = r.r#macro.nu;
     chart
         .draw_series(LineSeries::new(vec![(nu, 0.0), (nu, 1.05)], RED.stroke_width(1)))
-        .map_err(|e| anyhow::anyhow!("{e:?}"))?
+        .map_err(|e| format!("{e:?}"))?
         .label(format!("ν = {nu:.3e}: S={} U={} H={}", r.r#macro.stable, r.r#macro.unstable, r.r#macro.saddle))
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], RED));
     chart
@@ -314,7 +308,7 @@ where
         .border_style(BLACK)
         .position(SeriesLabelPosition::UpperRight)
         .draw()
-        .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        .map_err(|e| format!("{e:?}"))?;
     Ok(())
 }
 
@@ -363,11 +357,21 @@ pub fn flock_colored_hull(a: &Analysis, r: &Report) -> (TriMesh, Vec<[u8; 3]>) {
 /// shaded and tinted by their basin's flock, micro-equilibria as dots (● stable, ■ unstable,
 /// ◆ saddle) in their flock's colour, Morse–Smale arcs as thin lines (drawn on the visible
 /// side only, approximately: both ends facing the viewer as seen from G).
-pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> anyhow::Result<()> {
-    init_fonts();
+pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> crate::Result<()> {
     let (w, h) = (1400u32, 720u32);
-    let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+    render!(path, (w, h), |root| draw_hull(&root, a, r, (w, h)))
+}
+
+fn draw_hull<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    a: &Analysis,
+    r: &Report,
+    (w, h): (u32, u32),
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
     let panels = root.split_evenly((1, 2));
     let axes = a.mass.principal_axes;
     // principal moments ascending: axis 0 = long axis a, axis 2 = short axis c
@@ -397,7 +401,7 @@ pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> anyhow::Result<()> {
             let poly: Vec<(i32, i32)> = facet.vertices.iter().map(|&v| project(&a.hull.vertices[v as usize])).collect();
             panel
                 .draw(&Polygon::new(poly, RGBColor(tint(base.0), tint(base.1), tint(base.2)).filled()))
-                .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+                .map_err(|e| format!("{e:?}"))?;
         }
         let visible = |p: &Point3| (p - g).dot(&view) > 0.0;
         for arc in &a.graph.arcs {
@@ -405,7 +409,7 @@ pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> anyhow::Result<()> {
                 if visible(&seg[0]) && visible(&seg[1]) {
                     panel
                         .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.55)))
-                        .map_err(|e| anyhow::anyhow!("{e:?}"))?;
+                        .map_err(|e| format!("{e:?}"))?;
                 }
             }
         }
@@ -422,7 +426,7 @@ pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> anyhow::Result<()> {
                     Polygon::new(vec![(x, y - 5), (x + 5, y), (x, y + 5), (x - 5, y)], c.filled()).into_dyn()
                 }
             };
-            panel.draw(&el).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+            panel.draw(&el).map_err(|e| format!("{e:?}"))?;
         }
         let title = format!(
             "{} side (view along {}c): micro S={} U={} H={}, macro S={} U={} H={}",
@@ -435,8 +439,7 @@ pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> anyhow::Result<()> {
             r.r#macro.unstable,
             r.r#macro.saddle
         );
-        panel.draw(&Text::new(title, (10, 10), (FONT_FAMILY, 16))).map_err(|e| anyhow::anyhow!("{e:?}"))?;
+        panel.draw(&Text::new(title, (10, 10), (FONT_FAMILY, 16))).map_err(|e| format!("{e:?}"))?;
     }
-    root.present()?;
     Ok(())
 }

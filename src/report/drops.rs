@@ -1,7 +1,8 @@
 //! What a person reads of a drop run ([`crate::montecarlo`]): the summary, `drops.json` and the
 //! bar plots of resting flocks and facets against the quasi-static probabilities.
 
-use crate::plot::{init_fonts, FONT_FAMILY};
+use super::{create_dir, write_json};
+use crate::plot::{render, DrawResult, FONT_FAMILY};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -73,10 +74,10 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
 }
 
 /// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png` into `dir`.
-pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
+pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let json = dir.join("drops.json");
-    std::fs::write(&json, serde_json::to_string_pretty(r)?)?;
+    write_json(&json, r)?;
     let mut written = vec![json];
     let flocks: Vec<Bar> = r
         .flocks
@@ -115,30 +116,20 @@ pub struct Bar {
 }
 
 /// Bars of empirical fractions with 95 % intervals beside reference (static) probabilities.
-pub fn bar_plot(path: &Path, title: &str, bars: &[Bar]) -> anyhow::Result<()> {
-    init_fonts();
+pub fn bar_plot(path: &Path, title: &str, bars: &[Bar]) -> crate::Result<()> {
     let (w, h) = (1000u32, 560u32);
-    if path.extension().is_some_and(|e| e == "svg") {
-        let root = SVGBackend::new(path, (w, h)).into_drawing_area();
-        draw_bars(&root, title, bars)?;
-        root.present()?;
-    } else {
-        let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
-        draw_bars(&root, title, bars)?;
-        root.present()?;
-    }
-    Ok(())
+    render!(path, (w, h), |root| draw_bars(&root, title, bars))
 }
 
 fn draw_bars<DB: DrawingBackend>(
     root: &DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
     bars: &[Bar],
-) -> anyhow::Result<()>
+) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
-    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| anyhow::anyhow!("{x:?}");
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
     root.fill(&WHITE).map_err(e)?;
     let top = bars.iter().map(|b| b.ci.1.max(b.reference)).fold(0.0, f64::max).max(0.05) * 1.15;
     let n = bars.len().max(1);

@@ -19,3 +19,17 @@ pub use analysis::{
     flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, write_batch_csv, write_outputs, CSV_HEADER,
 };
 pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
+
+use crate::{Error, Result};
+use std::path::Path;
+
+/// Create the output folder `dir` (and its parents).
+pub(crate) fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|error| Error::Io { path: dir.to_path_buf(), error })
+}
+
+/// Write `value` as pretty JSON to `path`.
+pub(crate) fn write_json<T: serde::Serialize + ?Sized>(path: &Path, value: &T) -> Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| Error::write(path, e))?;
+    std::fs::write(path, text).map_err(|error| Error::Io { path: path.to_path_buf(), error })
+}

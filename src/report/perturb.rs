@@ -3,7 +3,7 @@
 
 use crate::dynamics::perturb::{Class, CurvePoint, Outcome, PerturbReport, Threshold, Trial};
 use crate::equilibria::Kind;
-use crate::plot::{init_fonts, FONT_FAMILY};
+use crate::plot::{render, DrawResult, FONT_FAMILY};
 use std::path::Path;
 
 fn fmt_threshold(t: &Option<Threshold>) -> String {
@@ -101,180 +101,189 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
 }
 
 /// Write the curves of a run as CSV (one row per equilibrium and ε).
-pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> anyhow::Result<()> {
-    let mut w = csv::Writer::from_path(path)?;
-    w.write_record([
-        "equilibrium",
-        "facet",
-        "flock",
-        "flock_type",
-        "static_class",
-        "family",
-        "epsilon",
-        "n",
-        "same",
-        "same_flock",
-        "toppled",
-        "unsettled",
-        "p_same",
-        "p_same_lo",
-        "p_same_hi",
-        "p_in_flock",
-        "p_in_flock_lo",
-        "p_in_flock_hi",
-        "p_toppled",
-        "p_toppled_lo",
-        "p_toppled_hi",
-        "barrier_basin",
-        "barrier_flock",
-    ])?;
-    for e in &r.equilibria {
-        let q = &e.equilibrium;
-        for c in &e.curve {
-            w.write_record([
-                q.index.to_string(),
-                q.facet.to_string(),
-                q.flock.to_string(),
-                format!("{:?}", q.flock_kind).to_lowercase(),
-                format!("{:?}", q.class).to_lowercase(),
-                r.family.name().into(),
-                format!("{:.6e}", c.x),
-                c.n.to_string(),
-                c.same.to_string(),
-                c.same_flock.to_string(),
-                c.toppled.to_string(),
-                c.unsettled.to_string(),
-                format!("{:.4}", c.p_same),
-                format!("{:.4}", c.ci_same.0),
-                format!("{:.4}", c.ci_same.1),
-                format!("{:.4}", c.p_in_flock),
-                format!("{:.4}", c.ci_in_flock.0),
-                format!("{:.4}", c.ci_in_flock.1),
-                format!("{:.4}", c.p_toppled),
-                format!("{:.4}", c.ci_toppled.0),
-                format!("{:.4}", c.ci_toppled.1),
-                format!("{:.6e}", q.basin_exit.epsilon),
-                format!("{:.6e}", q.flock_exit.epsilon),
-            ])?;
+pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record([
+            "equilibrium",
+            "facet",
+            "flock",
+            "flock_type",
+            "static_class",
+            "family",
+            "epsilon",
+            "n",
+            "same",
+            "same_flock",
+            "toppled",
+            "unsettled",
+            "p_same",
+            "p_same_lo",
+            "p_same_hi",
+            "p_in_flock",
+            "p_in_flock_lo",
+            "p_in_flock_hi",
+            "p_toppled",
+            "p_toppled_lo",
+            "p_toppled_hi",
+            "barrier_basin",
+            "barrier_flock",
+        ])?;
+        for e in &r.equilibria {
+            let q = &e.equilibrium;
+            for c in &e.curve {
+                w.write_record([
+                    q.index.to_string(),
+                    q.facet.to_string(),
+                    q.flock.to_string(),
+                    format!("{:?}", q.flock_kind).to_lowercase(),
+                    format!("{:?}", q.class).to_lowercase(),
+                    r.family.name().into(),
+                    format!("{:.6e}", c.x),
+                    c.n.to_string(),
+                    c.same.to_string(),
+                    c.same_flock.to_string(),
+                    c.toppled.to_string(),
+                    c.unsettled.to_string(),
+                    format!("{:.4}", c.p_same),
+                    format!("{:.4}", c.ci_same.0),
+                    format!("{:.4}", c.ci_same.1),
+                    format!("{:.4}", c.p_in_flock),
+                    format!("{:.4}", c.ci_in_flock.0),
+                    format!("{:.4}", c.ci_in_flock.1),
+                    format!("{:.4}", c.p_toppled),
+                    format!("{:.4}", c.ci_toppled.0),
+                    format!("{:.4}", c.ci_toppled.1),
+                    format!("{:.6e}", q.basin_exit.epsilon),
+                    format!("{:.6e}", q.flock_exit.epsilon),
+                ])?;
+            }
         }
-    }
-    w.flush()?;
-    Ok(())
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
 }
 
 /// Write one row per equilibrium: static barriers, dynamic thresholds, classes.
-pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> anyhow::Result<()> {
-    let mut w = csv::Writer::from_path(path)?;
-    w.write_record([
-        "equilibrium",
-        "facet",
-        "r_normalised",
-        "flock",
-        "flock_type",
-        "static_class",
-        "stays_at_rest",
-        "barrier_basin",
-        "basin_exit_equilibrium",
-        "barrier_flock",
-        "flock_exit_flock",
-        "eps50_micro",
-        "eps50_micro_kind",
-        "eps50_flock",
-        "eps50_flock_kind",
-        "first_leave",
-        "first_topple",
-        "ratio_micro",
-        "ratio_flock",
-        "uplift_acceleration_g",
-        "dynamic_class",
-    ])?;
-    let th = |t: &Option<Threshold>| match t {
-        None => (String::new(), String::new()),
-        Some(t) => (
-            format!("{:.6e}", t.value()),
-            match t {
-                Threshold::Below(_) => "below",
-                Threshold::At(_) => "at",
-                Threshold::Above(_) => "above",
-            }
-            .into(),
-        ),
-    };
-    let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
-    for e in &r.equilibria {
-        let q = &e.equilibrium;
-        let (m, mk) = th(&e.eps50_micro);
-        let (f, fk) = th(&e.eps50_flock);
+pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
         w.write_record([
-            q.index.to_string(),
-            q.facet.to_string(),
-            format!("{:.6}", q.r_normalised),
-            q.flock.to_string(),
-            format!("{:?}", q.flock_kind).to_lowercase(),
-            format!("{:?}", q.class).to_lowercase(),
-            e.rest.stays.to_string(),
-            format!("{:.6e}", q.basin_exit.epsilon),
-            q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
-            format!("{:.6e}", q.flock_exit.epsilon),
-            q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
-            m,
-            mk,
-            f,
-            fk,
-            opt(e.first_leave),
-            opt(e.first_topple),
-            opt(e.ratio_micro),
-            opt(e.ratio_flock),
-            format!("{:.6e}", q.uplift_acceleration),
-            e.dynamic_class.map_or(String::new(), |c| format!("{c:?}").to_lowercase()),
+            "equilibrium",
+            "facet",
+            "r_normalised",
+            "flock",
+            "flock_type",
+            "static_class",
+            "stays_at_rest",
+            "barrier_basin",
+            "basin_exit_equilibrium",
+            "barrier_flock",
+            "flock_exit_flock",
+            "eps50_micro",
+            "eps50_micro_kind",
+            "eps50_flock",
+            "eps50_flock_kind",
+            "first_leave",
+            "first_topple",
+            "ratio_micro",
+            "ratio_flock",
+            "uplift_acceleration_g",
+            "dynamic_class",
         ])?;
-    }
-    w.flush()?;
-    Ok(())
+        let th = |t: &Option<Threshold>| match t {
+            None => (String::new(), String::new()),
+            Some(t) => (
+                format!("{:.6e}", t.value()),
+                match t {
+                    Threshold::Below(_) => "below",
+                    Threshold::At(_) => "at",
+                    Threshold::Above(_) => "above",
+                }
+                .into(),
+            ),
+        };
+        let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
+        for e in &r.equilibria {
+            let q = &e.equilibrium;
+            let (m, mk) = th(&e.eps50_micro);
+            let (f, fk) = th(&e.eps50_flock);
+            w.write_record([
+                q.index.to_string(),
+                q.facet.to_string(),
+                format!("{:.6}", q.r_normalised),
+                q.flock.to_string(),
+                format!("{:?}", q.flock_kind).to_lowercase(),
+                format!("{:?}", q.class).to_lowercase(),
+                e.rest.stays.to_string(),
+                format!("{:.6e}", q.basin_exit.epsilon),
+                q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
+                format!("{:.6e}", q.flock_exit.epsilon),
+                q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
+                m,
+                mk,
+                f,
+                fk,
+                opt(e.first_leave),
+                opt(e.first_topple),
+                opt(e.ratio_micro),
+                opt(e.ratio_flock),
+                format!("{:.6e}", q.uplift_acceleration),
+                e.dynamic_class.map_or(String::new(), |c| format!("{c:?}").to_lowercase()),
+            ])?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
 }
 
 /// Write every trial as CSV.
-pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> anyhow::Result<()> {
-    let mut w = csv::Writer::from_path(path)?;
-    w.write_record([
-        "equilibrium",
-        "family",
-        "epsilon",
-        "trial",
-        "outcome",
-        "final_facet",
-        "final_equilibrium",
-        "final_flock",
-        "settled",
-        "certified",
-        "non_stable_facet",
-        "time",
-        "max_level_rise",
-    ])?;
-    for t in trials {
+pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
         w.write_record([
-            t.equilibrium.to_string(),
-            t.family.name().into(),
-            format!("{:.6e}", t.epsilon),
-            t.trial.to_string(),
-            match t.outcome {
-                Outcome::Same => "same",
-                Outcome::SameFlock => "same-flock",
-                Outcome::Toppled => "toppled",
-            }
-            .into(),
-            t.final_facet.map_or(String::new(), |x| x.to_string()),
-            t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
-            t.final_flock.to_string(),
-            t.settled.to_string(),
-            t.certified.to_string(),
-            t.non_stable_facet.to_string(),
-            format!("{:.4}", t.time),
-            format!("{:.3e}", t.max_level_rise),
+            "equilibrium",
+            "family",
+            "epsilon",
+            "trial",
+            "outcome",
+            "final_facet",
+            "final_equilibrium",
+            "final_flock",
+            "settled",
+            "certified",
+            "non_stable_facet",
+            "time",
+            "max_level_rise",
         ])?;
-    }
-    w.flush()?;
-    Ok(())
+        for t in trials {
+            w.write_record([
+                t.equilibrium.to_string(),
+                t.family.name().into(),
+                format!("{:.6e}", t.epsilon),
+                t.trial.to_string(),
+                match t.outcome {
+                    Outcome::Same => "same",
+                    Outcome::SameFlock => "same-flock",
+                    Outcome::Toppled => "toppled",
+                }
+                .into(),
+                t.final_facet.map_or(String::new(), |x| x.to_string()),
+                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                t.final_flock.to_string(),
+                t.settled.to_string(),
+                t.certified.to_string(),
+                t.non_stable_facet.to_string(),
+                format!("{:.4}", t.time),
+                format!("{:.3e}", t.max_level_rise),
+            ])?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
 }
 
 /// A panel of [`plot_curves`]: a title, the curve, and vertical markers (x, label, colour).
@@ -291,21 +300,11 @@ const TOP: f64 = 1.55;
 
 /// Outcome probabilities against x (log ε, or PGA) with 95 % intervals, one panel per entry,
 /// side by side (up to three per row; four as 2 × 2). PNG or SVG by extension.
-pub fn plot_curves(path: &Path, caption: &str, x_label: &str, log_x: bool, panels: &[Panel]) -> anyhow::Result<()> {
-    init_fonts();
+pub fn plot_curves(path: &Path, caption: &str, x_label: &str, log_x: bool, panels: &[Panel]) -> crate::Result<()> {
     let cols = if panels.len() == 4 { 2 } else { panels.len().clamp(1, 3) };
     let rows = panels.len().div_ceil(cols).max(1);
     let (w, h) = (560 * cols as u32, 420 * rows as u32 + 40);
-    if path.extension().is_some_and(|e| e == "svg") {
-        let root = SVGBackend::new(path, (w, h)).into_drawing_area();
-        draw_curves(&root, caption, x_label, log_x, panels, rows, cols)?;
-        root.present()?;
-    } else {
-        let root = BitMapBackend::new(path, (w, h)).into_drawing_area();
-        draw_curves(&root, caption, x_label, log_x, panels, rows, cols)?;
-        root.present()?;
-    }
-    Ok(())
+    render!(path, (w, h), |root| draw_curves(&root, caption, x_label, log_x, panels, rows, cols))
 }
 
 type Area<DB> = DrawingArea<DB, plotters::coord::Shift>;
@@ -318,11 +317,11 @@ fn draw_curves<DB: DrawingBackend>(
     panels: &[Panel],
     rows: usize,
     cols: usize,
-) -> anyhow::Result<()>
+) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
-    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| anyhow::anyhow!("{x:?}");
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
     root.fill(&WHITE).map_err(e)?;
     let root = root.titled(caption, (FONT_FAMILY, 22)).map_err(e)?;
     for (panel, area) in panels.iter().zip(root.split_evenly((rows, cols))) {
@@ -447,21 +446,25 @@ pub fn panels(r: &PerturbReport) -> Vec<Panel<'_>> {
 /// Dynamic thresholds against static barriers (log–log), per equilibrium: ε₅₀ to leave the
 /// micro-equilibrium against the basin barrier, ε₅₀ to leave the flock against the flock barrier;
 /// regular and rocking equilibria in different colours; the diagonal y = x.
-pub fn plot_thresholds(path: &Path, caption: &str, points: &[(f64, f64, bool, Class)]) -> anyhow::Result<()> {
-    init_fonts();
+pub fn plot_thresholds(path: &Path, caption: &str, points: &[(f64, f64, bool, Class)]) -> crate::Result<()> {
+    render!(path, (820, 700), |root| draw_thresholds(&root, caption, points))
+}
+
+fn draw_thresholds<DB: DrawingBackend>(root: &Area<DB>, caption: &str, points: &[(f64, f64, bool, Class)]) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
     let finite: Vec<f64> = points.iter().flat_map(|p| [p.0, p.1]).filter(|x| x.is_finite() && *x > 0.0).collect();
     let lo = finite.iter().cloned().fold(f64::INFINITY, f64::min).min(1e-3) / 2.0;
     let hi = finite.iter().cloned().fold(0.0, f64::max).max(1e-2) * 2.0;
-    let root = BitMapBackend::new(path, (820, 700)).into_drawing_area();
-    let e = |x: DrawingAreaErrorKind<std::io::Error>| anyhow::anyhow!("{x:?}");
-    root.fill(&WHITE).map_err(|x| anyhow::anyhow!("{x:?}"))?;
-    let mut chart = ChartBuilder::on(&root)
+    root.fill(&WHITE).map_err(|x| format!("{x:?}"))?;
+    let mut chart = ChartBuilder::on(root)
         .caption(caption, (FONT_FAMILY, 20))
         .margin(14)
         .x_label_area_size(45)
         .y_label_area_size(60)
         .build_cartesian_2d((lo..hi).log_scale(), (lo..hi).log_scale())
-        .map_err(|x| anyhow::anyhow!("{x:?}"))?;
+        .map_err(|x| format!("{x:?}"))?;
     chart
         .configure_mesh()
         .x_desc("static barrier (m g ΔR / (m g R_max))")
@@ -470,11 +473,10 @@ pub fn plot_thresholds(path: &Path, caption: &str, points: &[(f64, f64, bool, Cl
         .y_label_formatter(&|y: &f64| format!("{y:.0e}"))
         .label_style((FONT_FAMILY, 13))
         .draw()
-        .map_err(|x| anyhow::anyhow!("{x:?}"))?;
-    let _ = e;
+        .map_err(|x| format!("{x:?}"))?;
     chart
         .draw_series(LineSeries::new(vec![(lo, lo), (hi, hi)], BLACK.stroke_width(1)))
-        .map_err(|x| anyhow::anyhow!("{x:?}"))?
+        .map_err(|x| format!("{x:?}"))?
         .label("ε₅₀ = barrier")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
     let styles = [
@@ -492,13 +494,13 @@ pub fn plot_thresholds(path: &Path, caption: &str, points: &[(f64, f64, bool, Cl
         if flock {
             chart
                 .draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 6, color.filled())))
-                .map_err(|x| anyhow::anyhow!("{x:?}"))?
+                .map_err(|x| format!("{x:?}"))?
                 .label(label)
                 .legend(move |(x, y)| TriangleMarker::new((x + 8, y), 6, color.filled()));
         } else {
             chart
                 .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.stroke_width(2))))
-                .map_err(|x| anyhow::anyhow!("{x:?}"))?
+                .map_err(|x| format!("{x:?}"))?
                 .label(label)
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.stroke_width(2)));
         }
@@ -510,8 +512,7 @@ pub fn plot_thresholds(path: &Path, caption: &str, points: &[(f64, f64, bool, Cl
         .border_style(BLACK)
         .position(SeriesLabelPosition::UpperLeft)
         .draw()
-        .map_err(|x| anyhow::anyhow!("{x:?}"))?;
-    root.present().map_err(|x| anyhow::anyhow!("{x:?}"))?;
+        .map_err(|x| format!("{x:?}"))?;
     Ok(())
 }
 

@@ -3,17 +3,22 @@
 
 use crate::dynamics::perturb::{CurvePoint, StableEquilibrium, Threshold};
 use crate::dynamics::shake::{Motion, Record, ShakeReport, TimeScale};
+use crate::plot::{render, DrawResult};
+use plotters::prelude::*;
 use std::path::Path;
 
 /// Write a record as CSV (time in real seconds for `scale`, acceleration in g).
-pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> anyhow::Result<()> {
-    let mut w = csv::Writer::from_path(path)?;
-    w.write_record(["time_s", "accel_g"])?;
-    for (t, a) in r.times.iter().zip(&r.accel) {
-        w.write_record([format!("{:.5}", scale.to_real_time(*t)), format!("{a:.6}")])?;
-    }
-    w.flush()?;
-    Ok(())
+pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record(["time_s", "accel_g"])?;
+        for (t, a) in r.times.iter().zip(&r.accel) {
+            w.write_record([format!("{:.5}", scale.to_real_time(*t)), format!("{a:.6}")])?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
 }
 
 /// A readable summary of a shaking run.
@@ -109,47 +114,50 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
 }
 
 /// Write the fragility curves as CSV.
-pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> anyhow::Result<()> {
-    let mut w = csv::Writer::from_path(path)?;
-    w.write_record([
-        "equilibrium",
-        "facet",
-        "static_class",
-        "pga_g",
-        "n",
-        "same",
-        "same_flock",
-        "toppled",
-        "unsettled",
-        "p_same",
-        "p_toppled",
-        "p_toppled_lo",
-        "p_toppled_hi",
-        "uplift_acceleration_g",
-    ])?;
-    for f in &r.fragility {
-        let q = &f.equilibrium;
-        for c in &f.curve {
-            w.write_record([
-                q.index.to_string(),
-                q.facet.to_string(),
-                format!("{:?}", q.class).to_lowercase(),
-                format!("{:.4}", c.x),
-                c.n.to_string(),
-                c.same.to_string(),
-                c.same_flock.to_string(),
-                c.toppled.to_string(),
-                c.unsettled.to_string(),
-                format!("{:.4}", c.p_same),
-                format!("{:.4}", c.p_toppled),
-                format!("{:.4}", c.ci_toppled.0),
-                format!("{:.4}", c.ci_toppled.1),
-                format!("{:.5}", q.uplift_acceleration),
-            ])?;
+pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record([
+            "equilibrium",
+            "facet",
+            "static_class",
+            "pga_g",
+            "n",
+            "same",
+            "same_flock",
+            "toppled",
+            "unsettled",
+            "p_same",
+            "p_toppled",
+            "p_toppled_lo",
+            "p_toppled_hi",
+            "uplift_acceleration_g",
+        ])?;
+        for f in &r.fragility {
+            let q = &f.equilibrium;
+            for c in &f.curve {
+                w.write_record([
+                    q.index.to_string(),
+                    q.facet.to_string(),
+                    format!("{:?}", q.class).to_lowercase(),
+                    format!("{:.4}", c.x),
+                    c.n.to_string(),
+                    c.same.to_string(),
+                    c.same_flock.to_string(),
+                    c.toppled.to_string(),
+                    c.unsettled.to_string(),
+                    format!("{:.4}", c.p_same),
+                    format!("{:.4}", c.p_toppled),
+                    format!("{:.4}", c.ci_toppled.0),
+                    format!("{:.4}", c.ci_toppled.1),
+                    format!("{:.5}", q.uplift_acceleration),
+                ])?;
+            }
         }
-    }
-    w.flush()?;
-    Ok(())
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
 }
 
 /// Fragility curves P(toppled) against PGA, one line (with 95 % intervals) per
@@ -159,15 +167,25 @@ pub fn plot_fragility(
     caption: &str,
     lines: &[(String, &[CurvePoint], plotters::style::RGBColor)],
     markers: &[(f64, String, plotters::style::RGBColor)],
-) -> anyhow::Result<()> {
-    use plotters::prelude::*;
-    crate::plot::init_fonts();
+) -> crate::Result<()> {
+    render!(path, (900, 600), |root| draw_fragility(&root, caption, lines, markers))
+}
+
+#[allow(clippy::type_complexity)]
+fn draw_fragility<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    lines: &[(String, &[CurvePoint], plotters::style::RGBColor)],
+    markers: &[(f64, String, plotters::style::RGBColor)],
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
     let font = crate::plot::FONT_FAMILY;
-    let err = |x: DrawingAreaErrorKind<_>| anyhow::anyhow!("{x:?}");
+    let err = |x: DrawingAreaErrorKind<_>| format!("{x:?}");
     let hi = lines.iter().flat_map(|l| l.1.iter().map(|c| c.x)).fold(0.0, f64::max).max(1e-3) * 1.05;
-    let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(root)
         .caption(caption, (font, 20))
         .margin(14)
         .x_label_area_size(45)
@@ -214,6 +232,5 @@ pub fn plot_fragility(
         .position(SeriesLabelPosition::LowerRight)
         .draw()
         .map_err(err)?;
-    root.present().map_err(err)?;
     Ok(())
 }

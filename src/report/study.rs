@@ -2,9 +2,10 @@
 //! samples table, the Zingg diagram, scatter plots with trend lines, the χ²(ν) curves and the
 //! Figure 12 plots.
 
+use super::create_dir;
 use crate::analysis::PAPER_NU;
 use crate::hierarchy::Counts;
-use crate::plot::{init_fonts, FONT_FAMILY};
+use crate::plot::{render, DrawResult, FONT_FAMILY};
 use crate::shape::Zingg;
 use crate::stats::LogFit;
 use crate::study::{trends, Comparison, NuFit, SampleSummary, Study};
@@ -43,51 +44,54 @@ pub fn pebble_header(study: &Study) -> Vec<String> {
 
 /// One CSV row per pebble (see [`pebble_header`]). The `rocking analyze` columns are written by
 /// [`crate::report::write_batch_csv`] itself, so they are the same, character for character.
-pub fn write_pebbles_csv<W: std::io::Write>(study: &Study, w: W) -> anyhow::Result<()> {
-    let mut buf = Vec::new();
-    let rows = study
-        .pebbles
-        .iter()
-        .map(|p| (Path::new(p.file.as_str()), p.result.as_ref().map(|c| &c.report).map_err(|e| e.as_str())));
-    crate::report::write_batch_csv(&mut buf, rows)?;
-    let mut analyze = csv::Reader::from_reader(buf.as_slice());
-    let mut out = csv::Writer::from_writer(w);
-    out.write_record(pebble_header(study))?;
-    for (p, rec) in study.pebbles.iter().zip(analyze.records()) {
-        let rec = rec?;
-        let mut row = vec![p.id.clone(), p.sample.clone()];
-        row.extend(p.meta.iter().cloned());
-        row.extend(rec.iter().map(String::from));
-        match &p.result {
-            Ok(c) => {
-                let k = c.curve.at(study.nu);
-                row.extend([
-                    format!("{:e}", study.nu),
-                    k.stable.to_string(),
-                    k.unstable.to_string(),
-                    k.saddle.to_string(),
-                ]);
-                if study.dynamic {
-                    match &c.dynamic {
-                        Some(d) => row.extend([
-                            d.trials.to_string(),
-                            d.settled.to_string(),
-                            d.stable.to_string(),
-                            d.rocking.to_string(),
-                        ]),
-                        None => row.extend(std::iter::repeat_n(String::new(), DYNAMIC_COLUMNS.len())),
+pub fn write_pebbles_csv<W: std::io::Write>(study: &Study, w: W) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut buf = Vec::new();
+        let rows = study
+            .pebbles
+            .iter()
+            .map(|p| (Path::new(p.file.as_str()), p.result.as_ref().map(|c| &c.report).map_err(|e| e.as_str())));
+        crate::report::write_batch_csv(&mut buf, rows)?;
+        let mut analyze = csv::Reader::from_reader(buf.as_slice());
+        let mut out = csv::Writer::from_writer(w);
+        out.write_record(pebble_header(study))?;
+        for (p, rec) in study.pebbles.iter().zip(analyze.records()) {
+            let rec = rec?;
+            let mut row = vec![p.id.clone(), p.sample.clone()];
+            row.extend(p.meta.iter().cloned());
+            row.extend(rec.iter().map(String::from));
+            match &p.result {
+                Ok(c) => {
+                    let k = c.curve.at(study.nu);
+                    row.extend([
+                        format!("{:e}", study.nu),
+                        k.stable.to_string(),
+                        k.unstable.to_string(),
+                        k.saddle.to_string(),
+                    ]);
+                    if study.dynamic {
+                        match &c.dynamic {
+                            Some(d) => row.extend([
+                                d.trials.to_string(),
+                                d.settled.to_string(),
+                                d.stable.to_string(),
+                                d.rocking.to_string(),
+                            ]),
+                            None => row.extend(std::iter::repeat_n(String::new(), DYNAMIC_COLUMNS.len())),
+                        }
                     }
                 }
+                Err(_) => {
+                    let n = HAND_COLUMNS.len() + if study.dynamic { DYNAMIC_COLUMNS.len() } else { 0 };
+                    row.extend(std::iter::repeat_n(String::new(), n));
+                }
             }
-            Err(_) => {
-                let n = HAND_COLUMNS.len() + if study.dynamic { DYNAMIC_COLUMNS.len() } else { 0 };
-                row.extend(std::iter::repeat_n(String::new(), n));
-            }
+            out.write_record(row)?;
         }
-        out.write_record(row)?;
-    }
-    out.flush()?;
-    Ok(())
+        out.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(crate::error::MEMORY, e))
 }
 
 /// A number for a CSV cell: empty for NaN.
@@ -104,44 +108,49 @@ fn cell(x: f64) -> String {
 /// plateau (`plateau_`) and the fixed ν (`hand_`, with `hand_nu`), then the dynamic
 /// experimenter (`dyn_E_S, dyn_sd_S, dyn_rocking`) if it ran. σ is the sample standard deviation
 /// (n − 1), as in the paper's Table 2.
-pub fn write_samples_csv<W: std::io::Write>(study: &Study, summaries: &[SampleSummary], w: W) -> anyhow::Result<()> {
-    let mut out = csv::Writer::from_writer(w);
-    let mut header: Vec<String> =
-        ["sample", "pebbles", "failed", "mean_c_over_b", "mean_c_over_a", "mean_b_over_a"].map(String::from).to_vec();
-    for scale in ["micro", "plateau", "hand"] {
-        if scale == "hand" {
-            header.push("hand_nu".into());
-        }
-        for m in ["E_S", "E_U", "sd_S", "sd_U"] {
-            header.push(format!("{scale}_{m}"));
-        }
-    }
-    if study.dynamic {
-        header.extend(["dyn_E_S", "dyn_sd_S", "dyn_rocking"].map(String::from));
-    }
-    out.write_record(&header)?;
-    for s in summaries {
-        let mut row = vec![
-            s.sample.clone(),
-            s.pebbles.to_string(),
-            s.failed.to_string(),
-            cell(s.mean_c_over_b),
-            cell(s.mean_c_over_a),
-        ];
-        row.push(cell(s.mean_b_over_a));
-        for (scale, m) in [("micro", &s.micro), ("plateau", &s.plateau), ("hand", &s.hand)] {
+pub fn write_samples_csv<W: std::io::Write>(study: &Study, summaries: &[SampleSummary], w: W) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut out = csv::Writer::from_writer(w);
+        let mut header: Vec<String> =
+            ["sample", "pebbles", "failed", "mean_c_over_b", "mean_c_over_a", "mean_b_over_a"]
+                .map(String::from)
+                .to_vec();
+        for scale in ["micro", "plateau", "hand"] {
             if scale == "hand" {
-                row.push(format!("{:e}", study.nu));
+                header.push("hand_nu".into());
             }
-            row.extend(m.as_array().map(cell));
+            for m in ["E_S", "E_U", "sd_S", "sd_U"] {
+                header.push(format!("{scale}_{m}"));
+            }
         }
         if study.dynamic {
-            row.extend([s.dyn_es, s.dyn_sd_s, s.dyn_rocking].map(|x| x.map_or(String::new(), cell)));
+            header.extend(["dyn_E_S", "dyn_sd_S", "dyn_rocking"].map(String::from));
         }
-        out.write_record(row)?;
-    }
-    out.flush()?;
-    Ok(())
+        out.write_record(&header)?;
+        for s in summaries {
+            let mut row = vec![
+                s.sample.clone(),
+                s.pebbles.to_string(),
+                s.failed.to_string(),
+                cell(s.mean_c_over_b),
+                cell(s.mean_c_over_a),
+            ];
+            row.push(cell(s.mean_b_over_a));
+            for (scale, m) in [("micro", &s.micro), ("plateau", &s.plateau), ("hand", &s.hand)] {
+                if scale == "hand" {
+                    row.push(format!("{:e}", study.nu));
+                }
+                row.extend(m.as_array().map(cell));
+            }
+            if study.dynamic {
+                row.extend([s.dyn_es, s.dyn_sd_s, s.dyn_rocking].map(|x| x.map_or(String::new(), cell)));
+            }
+            out.write_record(row)?;
+        }
+        out.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(crate::error::MEMORY, e))
 }
 
 /// The plain-text table of the sample summaries printed by `rocking study`.
@@ -186,26 +195,8 @@ pub fn samples_table(study: &Study, summaries: &[SampleSummary]) -> String {
     s
 }
 
-/// Draw into a PNG or an SVG (by the extension of `path`) of the given size.
-macro_rules! render {
-    ($path:expr, $size:expr, |$root:ident| $body:expr) => {{
-        init_fonts();
-        let path: &Path = $path;
-        if path.extension().is_some_and(|e| e == "svg") {
-            let $root = SVGBackend::new(path, $size).into_drawing_area();
-            $body?;
-            $root.present().map_err(|e| anyhow::anyhow!("{}: {e:?}", path.display()))?;
-        } else {
-            let $root = BitMapBackend::new(path, $size).into_drawing_area();
-            $body?;
-            $root.present().map_err(|e| anyhow::anyhow!("{}: {e:?}", path.display()))?;
-        }
-        anyhow::Ok(())
-    }};
-}
-
-fn perr<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow::anyhow!("plot: {e:?}")
+fn perr<E: std::fmt::Debug>(e: E) -> String {
+    format!("plot: {e:?}")
 }
 
 /// The {S, U} class of a pebble at ν, as in the paper's classification (Domokos et al. 2010).
@@ -219,7 +210,7 @@ pub const ZINGG_CLASSES: usize = 9;
 /// Zingg diagram (x = b/a, y = c/b, class boundaries at 2/3) of the study, each pebble coloured
 /// by its macro class {S, U} at the study's ν (the [`ZINGG_CLASSES`] most frequent classes; the
 /// others grey).
-pub fn plot_zingg(study: &Study, title: &str, path: &Path) -> anyhow::Result<()> {
+pub fn plot_zingg(study: &Study, title: &str, path: &Path) -> crate::Result<()> {
     let mut classes: BTreeMap<(usize, usize), Vec<(f64, f64)>> = BTreeMap::new();
     for p in &study.pebbles {
         if let Ok(c) = &p.result {
@@ -235,7 +226,7 @@ fn draw_zingg<DB: DrawingBackend>(
     title: &str,
     nu: f64,
     classes: &BTreeMap<(usize, usize), Vec<(f64, f64)>>,
-) -> anyhow::Result<()>
+) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
@@ -320,7 +311,7 @@ pub fn scatter_plot(
     labels: (&str, &str),
     series: &[Series],
     diagonal: bool,
-) -> anyhow::Result<()> {
+) -> crate::Result<()> {
     render!(path, (980, 640), |root| draw_scatter(&root, title, labels, series, diagonal))
 }
 
@@ -330,7 +321,7 @@ fn draw_scatter<DB: DrawingBackend>(
     labels: (&str, &str),
     series: &[Series],
     diagonal: bool,
-) -> anyhow::Result<()>
+) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
@@ -396,15 +387,11 @@ where
 }
 
 /// χ²(ν) curves (log ν axis, log χ² axis) with the fitted ν of each and the paper's 0.0035.
-pub fn plot_loss(path: &Path, title: &str, fits: &[(String, &NuFit)]) -> anyhow::Result<()> {
+pub fn plot_loss(path: &Path, title: &str, fits: &[(String, &NuFit)]) -> crate::Result<()> {
     render!(path, (980, 620), |root| draw_loss(&root, title, fits))
 }
 
-fn draw_loss<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    title: &str,
-    fits: &[(String, &NuFit)],
-) -> anyhow::Result<()>
+fn draw_loss<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, title: &str, fits: &[(String, &NuFit)]) -> DrawResult
 where
     DB::ErrorType: 'static,
 {
@@ -460,48 +447,51 @@ pub const COMPUTED_S: RGBColor = RGBColor(210, 40, 40);
 pub const COMPUTED_U: RGBColor = RGBColor(40, 90, 210);
 
 /// Write a comparison as CSV.
-pub fn write_comparison_csv<W: std::io::Write>(rows: &[Comparison], nu: f64, w: W) -> anyhow::Result<()> {
-    let mut out = csv::Writer::from_writer(w);
-    out.write_record([
-        "id",
-        "nu",
-        "hand_c_over_b",
-        "hand_c_over_a",
-        "sim_c_over_b",
-        "sim_c_over_a",
-        "hand_E_S",
-        "hand_E_U",
-        "hand_sd_S",
-        "hand_sd_U",
-        "sim_E_S",
-        "sim_E_U",
-        "sim_sd_S",
-        "sim_sd_U",
-        "sim_n",
-        "paper_E_S",
-        "paper_E_U",
-        "paper_sd_S",
-        "paper_sd_U",
-    ])?;
-    for r in rows {
-        let mut row = vec![r.id.clone(), format!("{nu:e}")];
-        row.extend([r.hand_c_over_b, r.hand_c_over_a, r.sim_c_over_b, r.sim_c_over_a].map(cell));
-        row.extend(r.hand.map(cell));
-        row.extend(r.sim.as_array().map(cell));
-        row.push(r.sim.n.to_string());
-        row.extend(r.paper_computer.map_or([f64::NAN; 4], |p| p).map(cell));
-        out.write_record(row)?;
-    }
-    out.flush()?;
-    Ok(())
+pub fn write_comparison_csv<W: std::io::Write>(rows: &[Comparison], nu: f64, w: W) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut out = csv::Writer::from_writer(w);
+        out.write_record([
+            "id",
+            "nu",
+            "hand_c_over_b",
+            "hand_c_over_a",
+            "sim_c_over_b",
+            "sim_c_over_a",
+            "hand_E_S",
+            "hand_E_U",
+            "hand_sd_S",
+            "hand_sd_U",
+            "sim_E_S",
+            "sim_E_U",
+            "sim_sd_S",
+            "sim_sd_U",
+            "sim_n",
+            "paper_E_S",
+            "paper_E_U",
+            "paper_sd_S",
+            "paper_sd_U",
+        ])?;
+        for r in rows {
+            let mut row = vec![r.id.clone(), format!("{nu:e}")];
+            row.extend([r.hand_c_over_b, r.hand_c_over_a, r.sim_c_over_b, r.sim_c_over_a].map(cell));
+            row.extend(r.hand.map(cell));
+            row.extend(r.sim.as_array().map(cell));
+            row.push(r.sim.n.to_string());
+            row.extend(r.paper_computer.map_or([f64::NAN; 4], |p| p).map(cell));
+            out.write_record(row)?;
+        }
+        out.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(crate::error::MEMORY, e))
 }
 
 /// Write the Figure 12 plots of a comparison into `dir`: `fig12a_S.png/.svg` (E(S) against c/b
 /// and c/a), `fig12a_U.png/.svg` (E(U)), `fig12b.png/.svg` (σ against E) and
 /// `hand_vs_computed.png/.svg` (each statistic, computed against hand, with y = x). Returns the
 /// files written.
-pub fn plot_fig12(rows: &[Comparison], nu: f64, label: &str, dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
+pub fn plot_fig12(rows: &[Comparison], nu: f64, label: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    create_dir(dir)?;
     let t = trends(rows);
     let pts = |g: &dyn Fn(&Comparison) -> (f64, f64)| rows.iter().map(g).collect::<Vec<_>>();
     let ser = |label: &str, color: RGBColor, filled: bool, points: Vec<(f64, f64)>, trend: Option<LogFit>| Series {
