@@ -142,16 +142,6 @@ pub fn select(stone: &Stone, equilibria: &[usize], flock: Option<usize>) -> Resu
         .collect()
 }
 
-/// A progress bar over `n` trials.
-pub fn bar(n: u64) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(n);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} trials {elapsed_precise} (eta {eta})")
-            .expect("valid template"),
-    );
-    bar
-}
-
 pub fn run(args: Args) -> Result<()> {
     let params = PerturbParams { certificate: args.certificate, ..args.sim.params()? };
     if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
@@ -168,7 +158,7 @@ pub fn run(args: Args) -> Result<()> {
     cfg.check().map_err(anyhow::Error::msg)?;
     let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = select(&stone, &args.equilibria, args.flock)?;
-    let bar = bar(perturb::task_count(starts.len(), &cfg));
+    let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();
     super::emit(

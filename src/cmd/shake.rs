@@ -2,7 +2,7 @@
 //! motion from a CSV); fragility curves P(topple out of the flock) against peak ground
 //! acceleration.
 
-use super::perturb::{bar, select, SimArgs};
+use super::perturb::{select, SimArgs};
 use anyhow::{bail, Result};
 use rocking_stones::dynamics::perturb::{default_pair, Class};
 use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScale};
@@ -108,7 +108,7 @@ pub fn run(args: Args) -> Result<()> {
         scale,
     };
     cfg.check().map_err(anyhow::Error::msg)?;
-    let bar = bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64);
+    let bar = super::progress_bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64, "trials");
     let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();
     super::emit(

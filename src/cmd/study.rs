@@ -206,15 +206,6 @@ pub fn run(args: Args) -> Result<()> {
     }
 }
 
-fn progress(n: usize) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(n as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed_precise} eta {eta} {msg}")
-            .expect("valid template"),
-    );
-    bar
-}
-
 fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create folder", dir.display()))
 }
@@ -260,7 +251,7 @@ fn batch(args: BatchArgs) -> Result<()> {
         experimenter: args.dynamic.experimenter()?,
         allow_unmatched: args.allow_unmatched,
     };
-    let bar = progress(files.len());
+    let bar = super::progress_bar(files.len() as u64, "");
     let (study, unmatched) = study::run_files(&files, meta.as_ref(), &opts, &|| bar.inc(1))?;
     bar.finish_and_clear();
     for id in &unmatched {
