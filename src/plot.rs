@@ -55,6 +55,3 @@ macro_rules! render {
     }};
 }
 pub(crate) use render;
-
-/// The colour type of the plots, for callers that pick line colours (no direct plotters import).
-pub use plotters::style::RGBColor;

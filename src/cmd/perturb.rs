@@ -166,42 +166,6 @@ pub fn run(args: Args) -> Result<()> {
         args.json,
         || report::perturb::summary(&report, &name),
         args.output.as_deref(),
-        |dir| write_outputs(&report, &name, dir),
+        |dir| Ok(report::perturb::write_outputs(&report, &name, dir)?),
     )
-}
-
-/// Write the JSON report, the CSVs and the plots of a perturbation run into `dir`.
-pub fn write_outputs(r: &perturb::PerturbReport, name: &str, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
-    let mut written = Vec::new();
-    let p = dir.join("perturb.json");
-    std::fs::write(&p, serde_json::to_string_pretty(r)?)?;
-    written.push(p);
-    let p = dir.join("curves.csv");
-    report::perturb::write_curves_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("thresholds.csv");
-    report::perturb::write_thresholds_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("trials.csv");
-    report::perturb::write_trials_csv(&p, &r.trials)?;
-    written.push(p);
-    let panels = report::perturb::panels(r);
-    if !panels.is_empty() {
-        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
-        let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
-        for ext in ["png", "svg"] {
-            let p = dir.join(format!("robustness.{ext}"));
-            report::perturb::plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
-            written.push(p);
-        }
-        let p = dir.join("thresholds.png");
-        report::perturb::plot_thresholds(
-            &p,
-            &format!("{short}: dynamic thresholds vs static barriers"),
-            &report::perturb::threshold_points(r),
-        )?;
-        written.push(p);
-    }
-    Ok(written)
 }

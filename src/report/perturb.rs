@@ -1,10 +1,11 @@
 //! What a person reads of a perturbation run ([`crate::dynamics::perturb`]): the summary, the
 //! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
 
+use super::{create_dir, write_json};
 use crate::dynamics::perturb::{Class, CurvePoint, Outcome, PerturbReport, Threshold, Trial};
 use crate::equilibria::Kind;
 use crate::plot::{render, DrawResult, FONT_FAMILY};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 fn fmt_threshold(t: &Option<Threshold>) -> String {
     match t {
@@ -530,4 +531,37 @@ pub fn threshold_points(r: &PerturbReport) -> Vec<(f64, f64, bool, Class)> {
         }
     }
     pts
+}
+
+/// Write `perturb.json`, `curves.csv`, `thresholds.csv`, `trials.csv` and (if any curve)
+/// `robustness.png/.svg` and `thresholds.png` into `dir`; `name` is the mesh named in captions.
+pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    let mut written = Vec::new();
+    let p = dir.join("perturb.json");
+    write_json(&p, r)?;
+    written.push(p);
+    let p = dir.join("curves.csv");
+    write_curves_csv(&p, r)?;
+    written.push(p);
+    let p = dir.join("thresholds.csv");
+    write_thresholds_csv(&p, r)?;
+    written.push(p);
+    let p = dir.join("trials.csv");
+    write_trials_csv(&p, &r.trials)?;
+    written.push(p);
+    let panels = panels(r);
+    if !panels.is_empty() {
+        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
+        let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
+        for ext in ["png", "svg"] {
+            let p = dir.join(format!("robustness.{ext}"));
+            plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
+            written.push(p);
+        }
+        let p = dir.join("thresholds.png");
+        plot_thresholds(&p, &format!("{short}: dynamic thresholds vs static barriers"), &threshold_points(r))?;
+        written.push(p);
+    }
+    Ok(written)
 }

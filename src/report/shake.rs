@@ -1,11 +1,12 @@
 //! What a person reads of a shaking run ([`crate::dynamics::shake`]): the summary, the fragility
 //! CSV and plot, and ground-motion records written as CSV.
 
-use crate::dynamics::perturb::{CurvePoint, StableEquilibrium, Threshold};
-use crate::dynamics::shake::{Motion, Record, ShakeReport, TimeScale};
+use super::{create_dir, write_json};
+use crate::dynamics::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
+use crate::dynamics::shake::{Motion, Record, ShakeReport, ShakeTrial, TimeScale};
 use crate::plot::{render, DrawResult};
 use plotters::prelude::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Write a record as CSV (time in real seconds for `scale`, acceleration in g).
 pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> crate::Result<()> {
@@ -233,4 +234,76 @@ where
         .draw()
         .map_err(err)?;
     Ok(())
+}
+
+/// Write one CSV row per shaking trial.
+pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record([
+            "equilibrium",
+            "pga_g",
+            "azimuth_deg",
+            "trial",
+            "outcome",
+            "final_equilibrium",
+            "final_flock",
+            "settled",
+            "max_tilt_rad",
+        ])?;
+        for t in trials {
+            w.write_record([
+                t.equilibrium.to_string(),
+                format!("{:.4}", t.pga),
+                format!("{:.2}", t.azimuth.to_degrees()),
+                t.trial.to_string(),
+                format!("{:?}", t.outcome).to_lowercase(),
+                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                t.final_flock.to_string(),
+                t.settled.to_string(),
+                format!("{:.5}", t.max_tilt),
+            ])?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
+}
+
+/// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png` into
+/// `dir`; `name` is the mesh named in the caption.
+pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    create_dir(dir)?;
+    let mut written = Vec::new();
+    let p = dir.join("shake.json");
+    write_json(&p, r)?;
+    written.push(p);
+    let p = dir.join("fragility.csv");
+    write_fragility_csv(&p, r)?;
+    written.push(p);
+    let p = dir.join("trials.csv");
+    write_trials_csv(&p, &r.trials)?;
+    written.push(p);
+    let colors = [RGBColor(200, 60, 40), RGBColor(40, 90, 200), RGBColor(40, 150, 70), RGBColor(150, 60, 170)];
+    let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
+        .fragility
+        .iter()
+        .filter(|f| !f.curve.is_empty())
+        .enumerate()
+        .map(|(i, f)| {
+            let q = &f.equilibrium;
+            let class = match q.class {
+                Class::Regular => "regular",
+                Class::Rocking => "rocking",
+            };
+            (format!("eq {} ({class}, facet {})", q.index, q.facet), f.curve.as_slice(), colors[i % colors.len()])
+        })
+        .collect();
+    if !lines.is_empty() {
+        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
+        let p = dir.join("fragility.png");
+        plot_fragility(&p, &format!("{short}: fragility, {}", r.motion.describe()), &lines, &[])?;
+        written.push(p);
+    }
+    Ok(written)
 }
