@@ -1,7 +1,7 @@
 //! What a person reads: the human summary, the batch CSV, and the pictures and coloured mesh of
 //! one analysis. Everything here reads [`Report`] / [`Analysis`]; nothing is recomputed.
 
-use super::{create_dir, write_json};
+use super::{write_json, Folder};
 use crate::analysis::{Analysis, NuSource, Report};
 use crate::equilibria::Kind;
 use crate::mesh::TriMesh;
@@ -222,24 +222,15 @@ fn csv_row(r: &Report) -> Vec<String> {
 
 /// Write `report.json`, `n_nu.png/.svg`, `hull.png` and `hull_flocks.ply` into `dir`.
 pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<PathBuf>> {
-    create_dir(dir)?;
-    let mut written = Vec::new();
-    let json = dir.join("report.json");
-    write_json(&json, r)?;
-    written.push(json);
+    let mut out = Folder::create(dir)?;
+    out.file("report.json", |p| write_json(p, r))?;
     for ext in ["png", "svg"] {
-        let p = dir.join(format!("n_nu.{ext}"));
-        plot_n_nu(r, &p)?;
-        written.push(p);
+        out.file(&format!("n_nu.{ext}"), |p| plot_n_nu(r, p))?;
     }
-    let p = dir.join("hull.png");
-    plot_hull(a, r, &p)?;
-    written.push(p);
-    let p = dir.join("hull_flocks.ply");
+    out.file("hull.png", |p| plot_hull(a, r, p))?;
     let (mesh, colors) = flock_colored_hull(a, r);
-    crate::mesh::io::write_colored_ply(&p, &mesh, &colors)?;
-    written.push(p);
-    Ok(written)
+    out.file("hull_flocks.ply", |p| crate::mesh::io::write_colored_ply(p, &mesh, &colors))?;
+    Ok(out.written)
 }
 
 /// The log ν – n(ν) staircase (paper Figure 10B) with the plateau and the chosen ν marked.

@@ -1,7 +1,7 @@
 //! What a person reads of a drop run ([`crate::montecarlo`]): the summary, `drops.json` and the
 //! bar plots of resting flocks and facets against the quasi-static probabilities.
 
-use super::{create_dir, write_json};
+use super::{write_json, Folder};
 use crate::plot::{render, DrawResult, FONT_FAMILY};
 use plotters::prelude::*;
 use std::fmt::Write as _;
@@ -75,10 +75,8 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
 
 /// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png` into `dir`.
 pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crate::Result<Vec<PathBuf>> {
-    create_dir(dir)?;
-    let json = dir.join("drops.json");
-    write_json(&json, r)?;
-    let mut written = vec![json];
+    let mut out = Folder::create(dir)?;
+    out.file("drops.json", |p| write_json(p, r))?;
     let flocks: Vec<Bar> = r
         .flocks
         .iter()
@@ -89,10 +87,9 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
             reference: f.static_probability,
         })
         .collect();
+    let caption = format!("Resting flock: drops (n = {}) vs quasi-static", r.settled);
     for ext in ["png", "svg"] {
-        let p = dir.join(format!("drops_flocks.{ext}"));
-        bar_plot(&p, &format!("Resting flock: drops (n = {}) vs quasi-static", r.settled), &flocks)?;
-        written.push(p);
+        out.file(&format!("drops_flocks.{ext}"), |p| bar_plot(p, &caption, &flocks))?;
     }
     let mut facets: Vec<_> = r.facets.iter().collect();
     facets.sort_by(|a, b| b.static_probability.total_cmp(&a.static_probability).then(b.count.cmp(&a.count)));
@@ -101,10 +98,8 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
         .take(30)
         .map(|f| Bar { label: f.facet.to_string(), fraction: f.fraction, ci: f.ci95, reference: f.static_probability })
         .collect();
-    let p = dir.join("drops_facets.png");
-    bar_plot(&p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars)?;
-    written.push(p);
-    Ok(written)
+    out.file("drops_facets.png", |p| bar_plot(p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars))?;
+    Ok(out.written)
 }
 
 /// One category of a bar plot: empirical fraction with its interval, and a reference value.

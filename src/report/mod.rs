@@ -21,7 +21,34 @@ pub use analysis::{
 pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
 
 use crate::{Error, Result};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// The files of an output folder, written one by one and listed in the order written.
+pub(crate) struct Folder {
+    dir: PathBuf,
+    pub written: Vec<PathBuf>,
+}
+
+impl Folder {
+    /// Create the folder `dir` (and its parents).
+    pub fn create(dir: &Path) -> Result<Self> {
+        create_dir(dir)?;
+        Ok(Folder { dir: dir.to_path_buf(), written: Vec::new() })
+    }
+
+    /// Write the file `name` of the folder with `write` and list it.
+    pub fn file(&mut self, name: &str, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+        let p = self.dir.join(name);
+        write(&p)?;
+        self.written.push(p);
+        Ok(())
+    }
+}
+
+/// The file name of a mesh path for captions (the whole string if it has none).
+pub(crate) fn short_name(name: &str) -> String {
+    Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned())
+}
 
 /// Create the output folder `dir` (and its parents).
 pub(crate) fn create_dir(dir: &Path) -> Result<()> {

@@ -1,7 +1,7 @@
 //! What a person reads of a perturbation run ([`crate::dynamics::perturb`]): the summary, the
 //! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
 
-use super::{create_dir, write_json};
+use super::{short_name, write_json, Folder};
 use crate::dynamics::perturb::{Class, CurvePoint, Outcome, PerturbReport, Threshold, Trial};
 use crate::equilibria::Kind;
 use crate::plot::{render, DrawResult, FONT_FAMILY};
@@ -536,32 +536,20 @@ pub fn threshold_points(r: &PerturbReport) -> Vec<(f64, f64, bool, Class)> {
 /// Write `perturb.json`, `curves.csv`, `thresholds.csv`, `trials.csv` and (if any curve)
 /// `robustness.png/.svg` and `thresholds.png` into `dir`; `name` is the mesh named in captions.
 pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
-    create_dir(dir)?;
-    let mut written = Vec::new();
-    let p = dir.join("perturb.json");
-    write_json(&p, r)?;
-    written.push(p);
-    let p = dir.join("curves.csv");
-    write_curves_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("thresholds.csv");
-    write_thresholds_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("trials.csv");
-    write_trials_csv(&p, &r.trials)?;
-    written.push(p);
+    let mut out = Folder::create(dir)?;
+    out.file("perturb.json", |p| write_json(p, r))?;
+    out.file("curves.csv", |p| write_curves_csv(p, r))?;
+    out.file("thresholds.csv", |p| write_thresholds_csv(p, r))?;
+    out.file("trials.csv", |p| write_trials_csv(p, &r.trials))?;
     let panels = panels(r);
     if !panels.is_empty() {
-        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
+        let short = short_name(name);
         let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
         for ext in ["png", "svg"] {
-            let p = dir.join(format!("robustness.{ext}"));
-            plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
-            written.push(p);
+            out.file(&format!("robustness.{ext}"), |p| plot_curves(p, &caption, "ε (log scale)", true, &panels))?;
         }
-        let p = dir.join("thresholds.png");
-        plot_thresholds(&p, &format!("{short}: dynamic thresholds vs static barriers"), &threshold_points(r))?;
-        written.push(p);
+        let caption = format!("{short}: dynamic thresholds vs static barriers");
+        out.file("thresholds.png", |p| plot_thresholds(p, &caption, &threshold_points(r)))?;
     }
-    Ok(written)
+    Ok(out.written)
 }

@@ -1,7 +1,7 @@
 //! What a person reads of a shaking run ([`crate::dynamics::shake`]): the summary, the fragility
 //! CSV and plot, and ground-motion records written as CSV.
 
-use super::{create_dir, write_json};
+use super::{short_name, write_json, Folder};
 use crate::dynamics::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
 use crate::dynamics::shake::{Motion, Record, ShakeReport, ShakeTrial, TimeScale};
 use crate::plot::{render, DrawResult};
@@ -273,17 +273,10 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
 /// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png` into
 /// `dir`; `name` is the mesh named in the caption.
 pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
-    create_dir(dir)?;
-    let mut written = Vec::new();
-    let p = dir.join("shake.json");
-    write_json(&p, r)?;
-    written.push(p);
-    let p = dir.join("fragility.csv");
-    write_fragility_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("trials.csv");
-    write_trials_csv(&p, &r.trials)?;
-    written.push(p);
+    let mut out = Folder::create(dir)?;
+    out.file("shake.json", |p| write_json(p, r))?;
+    out.file("fragility.csv", |p| write_fragility_csv(p, r))?;
+    out.file("trials.csv", |p| write_trials_csv(p, &r.trials))?;
     let colors = [RGBColor(200, 60, 40), RGBColor(40, 90, 200), RGBColor(40, 150, 70), RGBColor(150, 60, 170)];
     let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
         .fragility
@@ -300,10 +293,8 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
         })
         .collect();
     if !lines.is_empty() {
-        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
-        let p = dir.join("fragility.png");
-        plot_fragility(&p, &format!("{short}: fragility, {}", r.motion.describe()), &lines, &[])?;
-        written.push(p);
+        let caption = format!("{}: fragility, {}", short_name(name), r.motion.describe());
+        out.file("fragility.png", |p| plot_fragility(p, &caption, &lines, &[]))?;
     }
-    Ok(written)
+    Ok(out.written)
 }
