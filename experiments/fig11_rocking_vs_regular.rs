@@ -17,6 +17,7 @@ use rocking_stones::dynamics::perturb::{
     Threshold,
 };
 use rocking_stones::generate;
+use rocking_stones::planar::{self, Point2};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
@@ -150,7 +151,12 @@ fn plot_poses(path: &Path, stone: &Stone, a: &Analysis, which: &[usize]) -> anyh
                 (w.x, w.z)
             })
             .collect();
-        let outline = hull2d(&pts);
+        let outline: Vec<(f64, f64)> =
+            planar::Polygon::convex_hull(&pts.iter().map(|&(x, y)| Point2::new(x, y)).collect::<Vec<_>>())?
+                .vertices
+                .iter()
+                .map(|p| (p.x, p.y))
+                .collect();
         let title = format!(
             "{} equilibrium {} (facet {}): {:?} flock {}",
             match s.class {
@@ -188,31 +194,6 @@ fn plot_poses(path: &Path, stone: &Stone, a: &Analysis, which: &[usize]) -> anyh
     }
     root.present()?;
     Ok(())
-}
-
-/// Convex hull of planar points (monotone chain), counter-clockwise.
-fn hull2d(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut p = pts.to_vec();
-    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
-    let mut lower: Vec<(f64, f64)> = Vec::new();
-    for &x in &p {
-        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], x) <= 0.0 {
-            lower.pop();
-        }
-        lower.push(x);
-    }
-    let mut upper: Vec<(f64, f64)> = Vec::new();
-    for &x in p.iter().rev() {
-        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], x) <= 0.0 {
-            upper.pop();
-        }
-        upper.push(x);
-    }
-    lower.pop();
-    upper.pop();
-    lower.extend(upper);
-    lower
 }
 
 fn th(t: &Option<Threshold>) -> String {
