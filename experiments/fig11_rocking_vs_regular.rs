@@ -17,7 +17,9 @@ use rocking_stones::dynamics::perturb::{
     Threshold,
 };
 use rocking_stones::generate;
+use rocking_stones::planar::{self, Point2};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::Vec3;
 use std::fmt::Write as _;
@@ -64,7 +66,7 @@ fn main() -> anyhow::Result<()> {
         let t = std::time::Instant::now();
         let r = perturb::run(&stone, &[regular, rocking], &cfg);
         eprintln!("{family:?}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
-        eprint!("{}", perturb::summary(&r, "pebble"));
+        eprint!("{}", report::perturb::summary(&r, "pebble"));
         reports.push(r);
     }
     // Outputs.
@@ -72,7 +74,7 @@ fn main() -> anyhow::Result<()> {
     for r in &reports {
         for e in &r.equilibria {
             let q = &e.equilibrium;
-            panels.push(perturb::Panel {
+            panels.push(report::perturb::Panel {
                 title: format!(
                     "{}: eq {} ({}, {:?} flock), {}",
                     match q.class {
@@ -96,7 +98,7 @@ fn main() -> anyhow::Result<()> {
         }
     }
     for ext in ["png", "svg"] {
-        perturb::plot_curves(
+        report::perturb::plot_curves(
             &out.join(format!("fig11_robustness.{ext}")),
             "Regular (left) vs rocking (right) stable micro-equilibrium: outcome against ε = KE/(m g R_max)",
             "ε (log scale)",
@@ -105,7 +107,7 @@ fn main() -> anyhow::Result<()> {
         )?;
     }
     // Both families in one figure: 2 × 2.
-    perturb::plot_curves(
+    report::perturb::plot_curves(
         &out.join("fig11_robustness_push_and_spin.png"),
         "Regular vs rocking: pushes (top) and spins about the contact (bottom)",
         "ε (log scale)",
@@ -116,16 +118,16 @@ fn main() -> anyhow::Result<()> {
     let report = analysis.report("pebble", &Options::default());
     rocking_stones::report::plot_hull(&analysis, &report, &out.join("hull_flocks.png"))?;
     for r in &reports {
-        perturb::write_curves_csv(&out.join(format!("curves_{}.csv", r.family.name())), r)?;
-        perturb::write_thresholds_csv(&out.join(format!("thresholds_{}.csv", r.family.name())), r)?;
+        report::perturb::write_curves_csv(&out.join(format!("curves_{}.csv", r.family.name())), r)?;
+        report::perturb::write_thresholds_csv(&out.join(format!("thresholds_{}.csv", r.family.name())), r)?;
     }
     readme(&out.join("README.md"), seed, &stone, &reports, &search)?;
     Ok(())
 }
 
 /// A panel is not Clone (it borrows); rebuild one with the same content.
-fn rebuild<'a>(p: &perturb::Panel<'a>) -> perturb::Panel<'a> {
-    perturb::Panel { title: p.title.clone(), curve: p.curve, markers: p.markers.clone() }
+fn rebuild<'a>(p: &report::perturb::Panel<'a>) -> report::perturb::Panel<'a> {
+    report::perturb::Panel { title: p.title.clone(), curve: p.curve, markers: p.markers.clone() }
 }
 
 /// Side views of the stone resting on each equilibrium (the photos of the paper's Figure 11):
@@ -149,7 +151,12 @@ fn plot_poses(path: &Path, stone: &Stone, a: &Analysis, which: &[usize]) -> anyh
                 (w.x, w.z)
             })
             .collect();
-        let outline = hull2d(&pts);
+        let outline: Vec<(f64, f64)> =
+            planar::Polygon::convex_hull(&pts.iter().map(|&(x, y)| Point2::new(x, y)).collect::<Vec<_>>())?
+                .vertices
+                .iter()
+                .map(|p| (p.x, p.y))
+                .collect();
         let title = format!(
             "{} equilibrium {} (facet {}): {:?} flock {}",
             match s.class {
@@ -187,31 +194,6 @@ fn plot_poses(path: &Path, stone: &Stone, a: &Analysis, which: &[usize]) -> anyh
     }
     root.present()?;
     Ok(())
-}
-
-/// Convex hull of planar points (monotone chain), counter-clockwise.
-fn hull2d(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut p = pts.to_vec();
-    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0);
-    let mut lower: Vec<(f64, f64)> = Vec::new();
-    for &x in &p {
-        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], x) <= 0.0 {
-            lower.pop();
-        }
-        lower.push(x);
-    }
-    let mut upper: Vec<(f64, f64)> = Vec::new();
-    for &x in p.iter().rev() {
-        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], x) <= 0.0 {
-            upper.pop();
-        }
-        upper.push(x);
-    }
-    lower.pop();
-    upper.pop();
-    lower.extend(upper);
-    lower
 }
 
 fn th(t: &Option<Threshold>) -> String {

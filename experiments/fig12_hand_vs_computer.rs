@@ -12,6 +12,7 @@
 //! Run: `cargo run --release --example fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`.
 
 use rocking_stones::analysis::{Options, PAPER_NU};
+use rocking_stones::report;
 use rocking_stones::stats::LogFit;
 use rocking_stones::study::{
     self, Comparison, Experimenter, FitOptions, HandSample, Metadata, PopulationParams, StudyOptions,
@@ -68,15 +69,23 @@ fn main() -> anyhow::Result<()> {
     )?;
     for (nu, name, what) in [(fit.nu, "fitted", "the fitted ν"), (PAPER_NU, "paper_nu", "the paper's ν = 0.0035")] {
         let rows = study::compare(&hand, &synthetic, nu);
-        study::write_comparison_csv(&rows, nu, std::fs::File::create(out.join(format!("comparison_{name}.csv")))?)?;
-        study::plot_fig12(&rows, nu, "synthetic", &out.join(name))?;
+        report::study::write_comparison_csv(
+            &rows,
+            nu,
+            std::fs::File::create(out.join(format!("comparison_{name}.csv")))?,
+        )?;
+        report::study::plot_fig12(&rows, nu, "synthetic", &out.join(name))?;
         comparison_section(&mut s, &rows, nu, name, what)?;
     }
     synthetic.nu = fit.nu;
     let summaries = study::summarize(&synthetic);
-    study::write_samples_csv(&synthetic, &summaries, std::fs::File::create(out.join("synthetic_samples.csv"))?)?;
+    report::study::write_samples_csv(
+        &synthetic,
+        &summaries,
+        std::fs::File::create(out.join("synthetic_samples.csv"))?,
+    )?;
     for ext in ["png", "svg"] {
-        study::plot_zingg(
+        report::study::plot_zingg(
             &synthetic,
             "Zingg diagram: synthetic Table 2 populations",
             &out.join(format!("synthetic_zingg.{ext}")),
@@ -272,10 +281,10 @@ fn field_study(s: &mut String, root: &Path, out: &Path) -> anyhow::Result<()> {
         }
     }
     let summaries = study::summarize(&study);
-    study::write_pebbles_csv(&study, std::fs::File::create(dir.join("pebbles.csv"))?)?;
-    study::write_samples_csv(&study, &summaries, std::fs::File::create(dir.join("samples.csv"))?)?;
+    report::study::write_pebbles_csv(&study, std::fs::File::create(dir.join("pebbles.csv"))?)?;
+    report::study::write_samples_csv(&study, &summaries, std::fs::File::create(dir.join("samples.csv"))?)?;
     for ext in ["png", "svg"] {
-        study::plot_zingg(&study, "Zingg diagram: IBOIS quarry stones", &dir.join(format!("zingg.{ext}")))?;
+        report::study::plot_zingg(&study, "Zingg diagram: IBOIS quarry stones", &dir.join(format!("zingg.{ext}")))?;
     }
     writeln!(s, "## A field study: the scanned quarry stones\n")?;
     writeln!(
@@ -286,6 +295,6 @@ fn field_study(s: &mut String, root: &Path, out: &Path) -> anyhow::Result<()> {
          `zingg.png` (Zingg diagram coloured by the {{S,U}} class at ν = 0.0035).\n",
         files.len()
     )?;
-    writeln!(s, "```\n{}```\n", study::samples_table(&study, &summaries))?;
+    writeln!(s, "```\n{}```\n", report::study::samples_table(&study, &summaries))?;
     Ok(())
 }

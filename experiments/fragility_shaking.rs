@@ -15,10 +15,10 @@ use plotters::style::RGBColor;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::perturb::{default_pair, Class, CurvePoint, PerturbParams, Stone, Threshold};
 use rocking_stones::dynamics::shake::{
-    self, plot_fragility, read_record, synthetic_record, write_record, Motion, Pulse, ShakeConfig, ShakeReport,
-    TimeScale,
+    self, read_record, synthetic_record, Motion, Pulse, ShakeConfig, ShakeReport, TimeScale,
 };
 use rocking_stones::generate;
+use rocking_stones::report;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -44,7 +44,7 @@ fn main() -> anyhow::Result<()> {
     eprintln!("pebble seed {seed}: regular {regular}, rocking {rocking}");
     let record = synthetic_record("synthetic Kanai–Tajimi, 2.5 Hz, 10 s", 10.0, 2.5, 1.0, SEED);
     let csv = out.join("motion.csv");
-    write_record(&csv, &record, TimeScale::UNIT)?;
+    report::shake::write_record(&csv, &record, TimeScale::UNIT)?;
     let mut motions: Vec<(String, Motion)> = FREQUENCIES
         .iter()
         .map(|&f| (format!("pulse_{f}Hz"), Motion::Pulse(Pulse { amplitude: 1.0, frequency: f, cycles: 2.0 })))
@@ -65,7 +65,7 @@ fn main() -> anyhow::Result<()> {
         let t = std::time::Instant::now();
         let r = shake::run(&stone, &[regular, rocking], &cfg);
         eprintln!("{name}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
-        eprint!("{}", shake::summary(&r, "pebble"));
+        eprint!("{}", report::shake::summary(&r, "pebble"));
         let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
             .fragility
             .iter()
@@ -90,13 +90,13 @@ fn main() -> anyhow::Result<()> {
                 (q.uplift_acceleration, format!("static uplift, eq {}: {:.3} g", q.index, q.uplift_acceleration), color)
             })
             .collect();
-        plot_fragility(
+        report::shake::plot_fragility(
             &out.join(format!("fragility_{name}.png")),
             &format!("Fragility: {}", r.motion.describe()),
             &lines,
             &markers,
         )?;
-        shake::write_fragility_csv(&out.join(format!("fragility_{name}.csv")), &r)?;
+        report::shake::write_fragility_csv(&out.join(format!("fragility_{name}.csv")), &r)?;
         runs.push((name, r));
     }
     readme(&out.join("README.md"), seed, &stone, &runs)?;

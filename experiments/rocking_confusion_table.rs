@@ -19,6 +19,7 @@ use rocking_stones::dynamics::perturb::{
     self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
 };
 use rocking_stones::generate;
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -99,14 +100,14 @@ fn main() -> anyhow::Result<()> {
         runs.push(StoneRun { name, kind, stone, reports });
     }
     write_csv(&out.join("equilibria.csv"), &runs)?;
-    let points: Vec<_> = runs.iter().flat_map(|r| perturb::threshold_points(&r.reports[0])).collect();
-    perturb::plot_thresholds(
+    let points: Vec<_> = runs.iter().flat_map(|r| report::perturb::threshold_points(&r.reports[0])).collect();
+    report::perturb::plot_thresholds(
         &out.join("thresholds_vs_barriers_push.png"),
         "All stones, pushes: ε₅₀ vs static barrier",
         &points,
     )?;
-    let points: Vec<_> = runs.iter().flat_map(|r| perturb::threshold_points(&r.reports[1])).collect();
-    perturb::plot_thresholds(
+    let points: Vec<_> = runs.iter().flat_map(|r| report::perturb::threshold_points(&r.reports[1])).collect();
+    report::perturb::plot_thresholds(
         &out.join("thresholds_vs_barriers_spin.png"),
         "All stones, spins: ε₅₀ vs static barrier",
         &points,

@@ -15,6 +15,7 @@ use rocking_stones::mesh::io;
 use rocking_stones::morse_smale::{cancellation_hierarchy, MorseSmaleGraph};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::solid::MassProperties;
+use rocking_stones::stats::log_fit;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -140,11 +141,9 @@ fn exponent(rows: &[Row], stage: usize) -> f64 {
     let pts: Vec<(f64, f64)> = rows
         .iter()
         .filter(|r| r.name.starts_with("pebble"))
-        .map(|r| ((r.vertices as f64).ln(), r.seconds[stage].ln()))
+        .map(|r| (r.vertices as f64, r.seconds[stage].ln()))
         .collect();
-    let n = pts.len() as f64;
-    let (mx, my) = (pts.iter().map(|p| p.0).sum::<f64>() / n, pts.iter().map(|p| p.1).sum::<f64>() / n);
-    pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>()
+    log_fit(&pts).map_or(f64::NAN, |f| f.slope)
 }
 
 fn write_summary(path: &Path, rows: &[Row]) -> anyhow::Result<()> {

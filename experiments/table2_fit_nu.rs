@@ -17,6 +17,7 @@
 use plotters::prelude::*;
 use rocking_stones::analysis::PAPER_NU;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::report;
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -107,7 +108,11 @@ fn main() -> anyhow::Result<()> {
             fits.insert(0, (format!("base ({} points, spread {})", b.params.points, b.params.spread), &b.fit));
         }
         for ext in ["png", "svg"] {
-            study::plot_loss(&out.join(format!("{file}.{ext}")), &format!("χ²(ν) of Table 2, by {group}"), &fits)?;
+            report::study::plot_loss(
+                &out.join(format!("{file}.{ext}")),
+                &format!("χ²(ν) of Table 2, by {group}"),
+                &fits,
+            )?;
         }
     }
     let rough: Vec<&Run> = runs.iter().filter(|r| r.group == "roughness").collect();

@@ -12,8 +12,7 @@ use crate::{Error, Point3, Result};
 use serde::Serialize;
 use std::path::Path;
 
-/// The hand experimenter's ν of the paper (§3).
-pub const PAPER_NU: f64 = 0.0035;
+pub use crate::hierarchy::{NuSource, PAPER_NU};
 
 /// Tolerances and choices of a static analysis.
 #[derive(Clone, Debug)]
@@ -79,11 +78,7 @@ impl Analysis {
 
     /// The ν of the macro scale: the user's, else the plateau's, else the paper's.
     pub fn macro_nu(&self, opts: &Options) -> (f64, NuSource) {
-        match (opts.nu, self.hierarchy.plateau()) {
-            (Some(nu), _) => (nu, NuSource::User),
-            (None, Some(p)) if p.clear => (p.nu(), NuSource::Plateau),
-            (None, _) => (PAPER_NU, NuSource::PaperDefault),
-        }
+        crate::hierarchy::macro_nu(opts.nu, self.hierarchy.plateau())
     }
 
     /// The serialisable summary of the analysis.
@@ -186,18 +181,6 @@ impl Analysis {
             stable_facets,
         }
     }
-}
-
-/// Where the macro-scale ν came from.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum NuSource {
-    /// `--nu` on the command line.
-    User,
-    /// The midpoint (in log ν) of a clear plateau of n(ν).
-    Plateau,
-    /// No clear plateau: the paper's hand-experiment value 0.0035.
-    PaperDefault,
 }
 
 #[derive(Clone, Debug, Serialize)]

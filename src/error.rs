@@ -23,10 +23,16 @@ pub enum Error {
     /// A theorem that must hold failed (e.g. Poincaré–Hopf); this is a bug or a degenerate input.
     #[error("{path}: internal check failed: {what}")]
     Check { path: PathBuf, what: String },
+    /// A plot could not be drawn into the file.
+    #[error("{path}: cannot draw the plot: {what}")]
+    Plot { path: PathBuf, what: String },
     /// Bad user input that is not a file (an option value, a generator parameter...).
     #[error("{0}")]
     Usage(String),
 }
+
+/// Any error of a writer's inner steps (CSV, JSON, I/O, plotters), before it is given its file.
+pub type BoxError = Box<dyn std::error::Error + Send + Sync>;
 
 impl Error {
     /// Attach a file name to an error that was produced without one (path `<memory>`).
@@ -39,8 +45,19 @@ impl Error {
             Error::InvalidMesh { path, what } => Error::InvalidMesh { path: fix(path), what },
             Error::Degenerate { path, what } => Error::Degenerate { path: fix(path), what },
             Error::Check { path, what } => Error::Check { path: fix(path), what },
+            Error::Plot { path, what } => Error::Plot { path: fix(path), what },
             e @ Error::Usage(_) => e,
         }
+    }
+
+    /// A failure while writing file `path` (CSV, JSON or I/O), as [`Error::Io`] naming the file;
+    /// `path` = [`MEMORY`] for a writer into a stream, to be named with [`Error::with_path`].
+    pub fn write(path: impl Into<PathBuf>, e: impl Into<BoxError>) -> Self {
+        let error = match e.into().downcast::<std::io::Error>() {
+            Ok(io) => *io,
+            Err(other) => std::io::Error::other(other),
+        };
+        Error::Io { path: path.into(), error }
     }
 
     /// Shorthand for an in-memory degenerate-geometry error.

@@ -170,6 +170,31 @@ pub const PLATEAU_MACRO_FRACTION: f64 = 0.01;
 /// A plateau less than this many times longer than the runner-up is not clear.
 pub const PLATEAU_MIN_CLARITY: f64 = 2.0;
 
+/// The hand experimenter's ν of the paper (§3): the macro scale when n(ν) has no clear plateau.
+pub const PAPER_NU: f64 = 0.0035;
+
+/// Where the macro-scale ν came from.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum NuSource {
+    /// Given by the user (`--nu`).
+    User,
+    /// The midpoint (in log ν) of a clear plateau of n(ν).
+    Plateau,
+    /// No clear plateau: the paper's hand-experiment value [`PAPER_NU`].
+    PaperDefault,
+}
+
+/// The macro-scale ν, one rule for the 3D and the planar case: the user's, else the midpoint of
+/// a clear `plateau`, else [`PAPER_NU`] (an unclear plateau's own ν is not a macro scale).
+pub fn macro_nu(user: Option<f64>, plateau: Option<Plateau>) -> (f64, NuSource) {
+    match (user, plateau) {
+        (Some(nu), _) => (nu, NuSource::User),
+        (None, Some(p)) if p.clear => (p.nu(), NuSource::Plateau),
+        (None, _) => (PAPER_NU, NuSource::PaperDefault),
+    }
+}
+
 fn finite_or_null<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
     if x.is_finite() {
         s.serialize_f64(*x)

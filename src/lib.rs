@@ -18,11 +18,13 @@
 //! * [`morse_smale`] — the Morse–Smale graph of R on the hull and its cancellation hierarchy.
 //! * [`hierarchy`] — N(ν), the plateau (macro scale), flocks and rocking equilibria (2D and 3D).
 //! * [`planar`] — the planar case: polygons and discretised ellipses.
-//! * [`analysis`] — the whole static pipeline and its serialisable result; [`report`], [`plot`].
+//! * [`analysis`] — the whole static pipeline and its serialisable result.
 //! * [`basins`] — quasi-static resting probabilities and the energy merge tree.
 //! * [`dynamics`] — rapier3d: the hull collider, drops, pushes, ground shaking.
 //! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
 //! * [`study`] — field studies and synthetic hand experiments.
+//! * [`report`] — everything a person reads: summaries, CSV and JSON files, plots (through
+//!   [`plot`], the one place that picks PNG or SVG); computation modules return data.
 //!
 //! ```
 //! use rocking_stones::analysis::{Analysis, Options};

@@ -617,19 +617,7 @@ pub fn table1(a: f64) -> Option<Table1> {
     })
 }
 
-/// Where the macro scale ν came from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum NuSource {
-    /// Given by the user.
-    User,
-    /// The geometric midpoint of a clear plateau.
-    Plateau,
-    /// The midpoint of the longest step although it is not a clear plateau (reported so).
-    UnclearPlateau,
-    /// No cancellation at all: ν = 0, the micro-equilibria are the macro-equilibria.
-    None,
-}
+pub use crate::hierarchy::NuSource;
 
 /// Polygon, micro-equilibria and hierarchy, in memory.
 #[derive(Clone, Debug)]
@@ -714,15 +702,10 @@ impl PlanarAnalysis {
         Ok(PlanarAnalysis { polygon, equilibria, hierarchy })
     }
 
-    /// The ν of the macro scale: the user's, else the plateau's midpoint (clear or not, said
-    /// so in [`NuSource`]), else 0 when nothing was cancelled.
+    /// The ν of the macro scale, by the rule of the 3D case ([`crate::hierarchy::macro_nu`]):
+    /// the user's, else the midpoint of a clear plateau, else the paper's ν = 0.0035.
     pub fn macro_nu(&self, user: Option<f64>) -> (f64, NuSource) {
-        match (user, self.hierarchy.plateau()) {
-            (Some(nu), _) => (nu, NuSource::User),
-            (None, Some(p)) if p.clear => (p.nu(), NuSource::Plateau),
-            (None, Some(p)) => (p.nu(), NuSource::UnclearPlateau),
-            (None, None) => (0.0, NuSource::None),
-        }
+        crate::hierarchy::macro_nu(user, self.hierarchy.plateau())
     }
 
     /// The flocks at ν.

@@ -3,6 +3,7 @@
 use rocking_stones::analysis::{Analysis, Options, PAPER_NU};
 use rocking_stones::generate;
 use rocking_stones::hierarchy::Counts;
+use rocking_stones::report::study::{DYNAMIC_COLUMNS, HAND_COLUMNS};
 use rocking_stones::report::CSV_HEADER;
 use rocking_stones::stats::{log_fit, log_grid, sample_sd, GridSize};
 use rocking_stones::study::*;

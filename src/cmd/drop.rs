@@ -186,11 +186,7 @@ pub fn run_drop(args: Args) -> Result<()> {
         None => (None, BTreeMap::new()),
     };
     let todo = shard.indices(header.drops).filter(|i| !done.contains_key(i)).count() as u64;
-    let bar = indicatif::ProgressBar::new(todo);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} drops {elapsed_precise} (eta {eta})")
-            .expect("valid template"),
-    );
+    let bar = super::progress_bar(todo, "drops");
     let mut write_error: Option<std::io::Error> = None;
     let new = {
         let sink = Mutex::new(|o: &DropOutcome| {
@@ -246,6 +242,6 @@ fn emit(report: &DropReport, json: bool, output: Option<&std::path::Path>) -> Re
         json,
         || rocking_stones::report::drop_summary(report),
         output,
-        |dir| rocking_stones::report::write_drop_outputs(report, dir),
+        |dir| Ok(rocking_stones::report::write_drop_outputs(report, dir)?),
     )
 }

@@ -8,6 +8,20 @@ pub mod study;
 
 use std::path::{Path, PathBuf};
 
+/// The progress bar of every long command: `n` steps, counted as `what` ("drops", "trials", or
+/// "" for files), elapsed time, estimated time left and an optional message.
+pub fn progress_bar(n: u64, what: &str) -> indicatif::ProgressBar {
+    let what = if what.is_empty() { String::new() } else { format!(" {what}") };
+    let bar = indicatif::ProgressBar::new(n);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(&format!(
+            "{{bar:40}} {{pos}}/{{len}}{what} {{elapsed_precise}} (eta {{eta}}) {{msg}}"
+        ))
+        .expect("valid template"),
+    );
+    bar
+}
+
 /// Print a report (JSON or its human summary) and, with `-o DIR`, write its files and list them.
 pub fn emit<R: serde::Serialize>(
     report: &R,

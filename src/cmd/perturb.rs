@@ -6,6 +6,7 @@ use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
 use rocking_stones::dynamics::params::DropParams;
 use rocking_stones::dynamics::perturb::{self, legacy_contact, Family, PerturbConfig, PerturbParams, Stone};
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
 
@@ -142,16 +143,6 @@ pub fn select(stone: &Stone, equilibria: &[usize], flock: Option<usize>) -> Resu
         .collect()
 }
 
-/// A progress bar over `n` trials.
-pub fn bar(n: u64) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(n);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} trials {elapsed_precise} (eta {eta})")
-            .expect("valid template"),
-    );
-    bar
-}
-
 pub fn run(args: Args) -> Result<()> {
     let params = PerturbParams { certificate: args.certificate, ..args.sim.params()? };
     if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
@@ -168,52 +159,16 @@ pub fn run(args: Args) -> Result<()> {
     cfg.check()?;
     let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = select(&stone, &args.equilibria, args.flock)?;
-    let bar = bar(perturb::task_count(starts.len(), &cfg));
+    let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();
     super::emit(
         &report,
         args.json,
-        || perturb::summary(&report, &name),
+        || report::perturb::summary(&report, &name),
         args.output.as_deref(),
-        |dir| write_outputs(&report, &name, dir),
+        |dir| Ok(report::perturb::write_outputs(&report, &name, dir)?),
     )
-}
-
-/// Write the JSON report, the CSVs and the plots of a perturbation run into `dir`.
-pub fn write_outputs(r: &perturb::PerturbReport, name: &str, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
-    let mut written = Vec::new();
-    let p = dir.join("perturb.json");
-    std::fs::write(&p, serde_json::to_string_pretty(r)?)?;
-    written.push(p);
-    let p = dir.join("curves.csv");
-    perturb::write_curves_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("thresholds.csv");
-    perturb::write_thresholds_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("trials.csv");
-    perturb::write_trials_csv(&p, &r.trials)?;
-    written.push(p);
-    let panels = perturb::panels(r);
-    if !panels.is_empty() {
-        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
-        let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
-        for ext in ["png", "svg"] {
-            let p = dir.join(format!("robustness.{ext}"));
-            perturb::plot_curves(&p, &caption, "ε (log scale)", true, &panels)?;
-            written.push(p);
-        }
-        let p = dir.join("thresholds.png");
-        perturb::plot_thresholds(
-            &p,
-            &format!("{short}: dynamic thresholds vs static barriers"),
-            &perturb::threshold_points(r),
-        )?;
-        written.push(p);
-    }
-    Ok(written)
 }
 
 fn parse_family(s: &str) -> std::result::Result<Family, String> {

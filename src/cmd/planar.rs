@@ -2,10 +2,11 @@
 //! discretised ellipse or a regular polygon.
 
 use anyhow::Result;
-use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, table1, PlanarAnalysis, PlanarReport, Polygon, Sampling, DEFAULT_DEGENERACY_TOL,
 };
+use rocking_stones::report;
+use rocking_stones::report::planar::ShapeInfo;
 use serde::Serialize;
 
 #[derive(clap::Args)]
@@ -64,7 +65,7 @@ pub struct RegularArgs {
 
 #[derive(clap::Args)]
 pub struct Common {
-    /// Fix ν of the macro scale (default: the automatic plateau).
+    /// Fix ν of the macro scale (default: the automatic plateau if it is clear, else 0.0035).
     #[arg(long)]
     pub nu: Option<f64>,
     /// Print one JSON object instead of the summary.
@@ -82,13 +83,6 @@ struct Output<'a> {
     report: &'a PlanarReport,
     /// Table 1's k → ∞ limit (ellipse only).
     table1: Option<rocking_stones::planar::Table1>,
-}
-
-#[derive(Serialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-enum ShapeInfo {
-    Ellipse { a: f64, k: Option<usize>, sides: usize, sampling: Sampling },
-    Regular { n: usize },
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -122,85 +116,7 @@ pub fn run(args: Args) -> Result<()> {
     if common.json {
         println!("{}", serde_json::to_string_pretty(&Output { shape: info, report: &report, table1: limit })?);
     } else {
-        print!("{}", summary(&info, &report, limit.as_ref()));
+        print!("{}", report::planar::summary(&info, &report, limit.as_ref()));
     }
     Ok(())
-}
-
-fn summary(info: &ShapeInfo, r: &PlanarReport, limit: Option<&rocking_stones::planar::Table1>) -> String {
-    use std::fmt::Write;
-    let mut s = String::new();
-    match info {
-        ShapeInfo::Ellipse { a, sides, sampling, .. } => {
-            let _ = writeln!(s, "ellipse 1 : {a} (major axis x), {sides} sides, sampling {sampling:?}");
-        }
-        ShapeInfo::Regular { n } => {
-            let _ = writeln!(s, "regular {n}-gon");
-        }
-    }
-    let _ = writeln!(
-        s,
-        "micro-equilibria: S = {}, U = {}   (R_min = {:.6}, R_max = {:.6}, v_max = {:.4e}, degenerate decisions: {})",
-        r.stable, r.unstable, r.r_min, r.r_max, r.v_max, r.degenerate_decisions
-    );
-    match &r.plateau {
-        Some(p) => {
-            let _ = writeln!(
-                s,
-                "plateau: ν ∈ [{:.3e}, {:.3e}], {} decades, clarity {}, {} → S = {}, U = {}",
-                p.nu_lo,
-                p.nu_hi,
-                fmt_inf(p.decades),
-                fmt_inf(p.clarity),
-                if p.clear { "clear" } else { "NOT clear" },
-                p.counts.stable,
-                p.counts.unstable
-            );
-        }
-        None => {
-            let _ = writeln!(s, "plateau: none (nothing to cancel)");
-        }
-    }
-    let _ = writeln!(
-        s,
-        "macro scale ν = {:.4e} ({:?}): S = {}, U = {}",
-        r.nu, r.nu_source, r.macro_counts.stable, r.macro_counts.unstable
-    );
-    for f in &r.flocks {
-        let kind = match f.kind {
-            Kind::Stable => "stable",
-            Kind::Unstable => "unstable",
-            Kind::Saddle => "saddle",
-        };
-        let _ = writeln!(
-            s,
-            "  flock {:>3} {:<8} root {:>5}: {} stable + {} unstable",
-            f.id, kind, f.root, f.stable, f.unstable
-        );
-    }
-    let _ = writeln!(s, "rocking equilibria (stable sides in unstable flocks): {}", r.rocking.len());
-    for x in r.rocking.iter().take(20) {
-        let _ = writeln!(s, "  side {:>5}  φ = {:+.4}  R = {:.6}  flock {}", x.side, x.phi, x.r, x.flock);
-    }
-    if let Some(t) = limit {
-        let _ = writeln!(
-            s,
-            "Table 1 (k → ∞): stable flocks {} + {}, unstable flocks {} + {}, total S = {}{}",
-            t.stable_flock.0,
-            t.stable_flock.1,
-            t.unstable_flock.0,
-            t.unstable_flock.1,
-            t.total_stable,
-            if t.on_jump { " (a²/(2(a²−1)) is an integer: the limit sits on a jump)" } else { "" }
-        );
-    }
-    s
-}
-
-fn fmt_inf(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x:.2}")
-    } else {
-        "∞".into()
-    }
 }

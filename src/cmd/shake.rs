@@ -2,12 +2,12 @@
 //! motion from a CSV); fragility curves P(topple out of the flock) against peak ground
 //! acceleration.
 
-use super::perturb::{bar, select, SimArgs};
+use super::perturb::{select, SimArgs};
 use anyhow::{bail, Result};
-use plotters::style::RGBColor;
-use rocking_stones::dynamics::perturb::{default_pair, Class};
+use rocking_stones::dynamics::perturb::default_pair;
 use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScale};
-use std::path::{Path, PathBuf};
+use rocking_stones::report;
+use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -107,76 +107,14 @@ pub fn run(args: Args) -> Result<()> {
         scale,
     };
     cfg.check()?;
-    let bar = bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64);
+    let bar = super::progress_bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64, "trials");
     let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();
     super::emit(
         &report,
         args.json,
-        || shake::summary(&report, &name),
+        || report::shake::summary(&report, &name),
         args.output.as_deref(),
-        |dir| write_outputs(&report, &name, dir),
+        |dir| Ok(report::shake::write_outputs(&report, &name, dir)?),
     )
-}
-
-/// Write the JSON report, the CSVs and the fragility plot into `dir`.
-pub fn write_outputs(r: &shake::ShakeReport, name: &str, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create folder: {e}", dir.display()))?;
-    let mut written = Vec::new();
-    let p = dir.join("shake.json");
-    std::fs::write(&p, serde_json::to_string_pretty(r)?)?;
-    written.push(p);
-    let p = dir.join("fragility.csv");
-    shake::write_fragility_csv(&p, r)?;
-    written.push(p);
-    let p = dir.join("trials.csv");
-    let mut w = csv::Writer::from_path(&p)?;
-    w.write_record([
-        "equilibrium",
-        "pga_g",
-        "azimuth_deg",
-        "trial",
-        "outcome",
-        "final_equilibrium",
-        "final_flock",
-        "settled",
-        "max_tilt_rad",
-    ])?;
-    for t in &r.trials {
-        w.write_record([
-            t.equilibrium.to_string(),
-            format!("{:.4}", t.pga),
-            format!("{:.2}", t.azimuth.to_degrees()),
-            t.trial.to_string(),
-            format!("{:?}", t.outcome).to_lowercase(),
-            t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
-            t.final_flock.to_string(),
-            t.settled.to_string(),
-            format!("{:.5}", t.max_tilt),
-        ])?;
-    }
-    w.flush()?;
-    written.push(p);
-    let colors = [RGBColor(200, 60, 40), RGBColor(40, 90, 200), RGBColor(40, 150, 70), RGBColor(150, 60, 170)];
-    let lines: Vec<(String, &[rocking_stones::dynamics::perturb::CurvePoint], RGBColor)> = r
-        .fragility
-        .iter()
-        .filter(|f| !f.curve.is_empty())
-        .enumerate()
-        .map(|(i, f)| {
-            let q = &f.equilibrium;
-            let class = match q.class {
-                Class::Regular => "regular",
-                Class::Rocking => "rocking",
-            };
-            (format!("eq {} ({class}, facet {})", q.index, q.facet), f.curve.as_slice(), colors[i % colors.len()])
-        })
-        .collect();
-    if !lines.is_empty() {
-        let short = Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned());
-        let p = dir.join("fragility.png");
-        shake::plot_fragility(&p, &format!("{short}: fragility, {}", r.motion.describe()), &lines, &[])?;
-        written.push(p);
-    }
-    Ok(written)
 }

@@ -8,6 +8,7 @@
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
 use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::study::{
     self, Experimenter, FitOptions, Metadata, PopulationParams, SampleTarget, Study, StudyOptions,
@@ -205,15 +206,6 @@ pub fn run(args: Args) -> Result<()> {
     }
 }
 
-fn progress(n: usize) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(n as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed_precise} eta {eta} {msg}")
-            .expect("valid template"),
-    );
-    bar
-}
-
 fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create folder", dir.display()))
 }
@@ -223,20 +215,22 @@ fn write_study(study: &Study, dir: &Path, title: &str) -> Result<()> {
     create_dir(dir)?;
     let summaries = study::summarize(study);
     let p = dir.join("pebbles.csv");
-    study::write_pebbles_csv(
+    report::study::write_pebbles_csv(
         study,
         std::fs::File::create(&p).with_context(|| format!("{}: cannot create", p.display()))?,
-    )?;
+    )
+    .map_err(|e| e.with_path(&p))?;
     let s = dir.join("samples.csv");
-    study::write_samples_csv(
+    report::study::write_samples_csv(
         study,
         &summaries,
         std::fs::File::create(&s).with_context(|| format!("{}: cannot create", s.display()))?,
-    )?;
+    )
+    .map_err(|e| e.with_path(&s))?;
     for ext in ["png", "svg"] {
-        study::plot_zingg(study, title, &dir.join(format!("zingg.{ext}")))?;
+        report::study::plot_zingg(study, title, &dir.join(format!("zingg.{ext}")))?;
     }
-    print!("{}", study::samples_table(study, &summaries));
+    print!("{}", report::study::samples_table(study, &summaries));
     println!("σ: sample standard deviation (n − 1), the convention of the paper's hand columns");
     println!("wrote {}, {}, zingg.png/.svg", p.display(), s.display());
     Ok(())
@@ -257,7 +251,7 @@ fn batch(args: BatchArgs) -> Result<()> {
         experimenter: args.dynamic.experimenter()?,
         allow_unmatched: args.allow_unmatched,
     };
-    let bar = progress(files.len());
+    let bar = super::progress_bar(files.len() as u64, "");
     let (study, unmatched) = study::run_files(&files, meta.as_ref(), &opts, &|| bar.inc(1))?;
     bar.finish_and_clear();
     for id in &unmatched {
@@ -298,8 +292,8 @@ fn synthetic(args: SyntheticArgs) -> Result<()> {
     if let Some(h) = &hand {
         let rows = study::compare(h, &study, args.nu);
         let p = args.output.join("comparison.csv");
-        study::write_comparison_csv(&rows, args.nu, std::fs::File::create(&p)?)?;
-        study::plot_fig12(&rows, args.nu, "synthetic", &args.output)?;
+        report::study::write_comparison_csv(&rows, args.nu, std::fs::File::create(&p)?).map_err(|e| e.with_path(&p))?;
+        report::study::plot_fig12(&rows, args.nu, "synthetic", &args.output)?;
         println!("wrote {} and the Figure 12 plots", p.display());
     }
     if args.save_meshes {
@@ -360,7 +354,7 @@ fn fit(args: FitArgs) -> Result<()> {
         serde_json::to_string_pretty(&serde_json::json!({ "population": params, "fit": fit }))?,
     )?;
     for ext in ["png", "svg"] {
-        study::plot_loss(
+        report::study::plot_loss(
             &dir.join(format!("loss.{ext}")),
             "χ²(ν): synthetic vs hand (Table 2)",
             &[("fit".into(), &fit)],
@@ -368,8 +362,9 @@ fn fit(args: FitArgs) -> Result<()> {
     }
     for (nu, name) in [(fit.nu, "fitted"), (PAPER_NU, "paper_nu")] {
         let rows = study::compare(&hand, &synthetic, nu);
-        study::write_comparison_csv(&rows, nu, std::fs::File::create(dir.join(format!("comparison_{name}.csv")))?)?;
-        study::plot_fig12(&rows, nu, "synthetic", &dir.join(name))?;
+        let p = dir.join(format!("comparison_{name}.csv"));
+        report::study::write_comparison_csv(&rows, nu, std::fs::File::create(&p)?).map_err(|e| e.with_path(&p))?;
+        report::study::plot_fig12(&rows, nu, "synthetic", &dir.join(name))?;
     }
     println!(
         "fitted ν = {:.3e}{} (Δχ² interval {:.2e} – {:.2e}; bootstrap 16–84 % {:.2e} – {:.2e}, σ(log10 ν) = {:.3}); paper 0.0035",

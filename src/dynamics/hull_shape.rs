@@ -1,5 +1,10 @@
 //! The hull as a parry3d collider shape: [`HullShape`].
 //!
+//! (Over 800 lines on purpose: one type and the five parry traits it must implement together —
+//! `Shape`, `SupportMap`, `PolygonalFeatureMap`, `RayCast`, `PointQuery` — with the proofs and
+//! measurements that justify each query, and its tests; split, the invariants shared by the
+//! precomputation and the queries would be spread over files.)
+//!
 //! parry's `ConvexPolyhedron` is unfit as the collider of a pebble for two reasons (SPEC §1, §9):
 //!
 //! 1. it merges neighbouring hull triangles within ~1.5°, destroying the micro-facets this

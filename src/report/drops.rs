@@ -1,0 +1,246 @@
+//! What a person reads of a drop run ([`crate::montecarlo`]): the summary, `drops.json` and the
+//! bar plots of resting flocks and facets against the quasi-static probabilities.
+
+use super::{write_json, Folder};
+use crate::plot::{render, DrawResult, FONT_FAMILY};
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A readable summary of a drop run.
+pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
+    let mut s = String::new();
+    let p = &r.params;
+    let plural = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    let _ = writeln!(
+        s,
+        "{}: {} of {} (seed {}), preset {}; {} settled, {} ended by the {} certificate",
+        r.mesh,
+        r.drops,
+        plural(r.drops_requested, "drop", "drops"),
+        r.seed,
+        r.preset.as_deref().unwrap_or("custom"),
+        r.settled,
+        r.certified,
+        r.certificate.name()
+    );
+    let _ = writeln!(
+        s,
+        "  launch: height {} R_max, horizontal speed {} m/s, spin {} rad/s ({}), scaled to R_max = 1 m",
+        p.height,
+        p.horizontal_speed,
+        p.spin,
+        match p.spin_distribution {
+            crate::dynamics::params::SpinDistribution::Fixed => "exact",
+            crate::dynamics::params::SpinDistribution::Gaussian => "rms, Gaussian",
+        }
+    );
+    let _ = writeln!(
+        s,
+        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max, damping {}/{} 1/s; dt {:.5} s",
+        p.friction, p.restitution, p.rolling_resistance, p.torsional_friction, p.linear_damping, p.angular_damping, p.dt
+    );
+    let mean = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.2} s"));
+    let _ = writeln!(
+        s,
+        "  simulated time per drop: {} to rest, {} to the certificate's decision",
+        mean(r.mean_time_to_rest),
+        mean(r.mean_time_to_decision)
+    );
+    if r.unsettled > 0 {
+        let _ = writeln!(
+            s,
+            "  WARNING: {} still moving at the {} s cap (counted where the quasi-static descent from their last \
+             position leads). Raise --max-time, lower --dt, or add --rolling-resistance.",
+            plural(r.unsettled, "drop", "drops"),
+            p.max_time
+        );
+    }
+    if r.off_equilibrium > 0 {
+        let _ = writeln!(
+            s,
+            "  note: {} stopped above their stable facet (held by friction or rolling resistance); counted \
+             where the quasi-static descent leads",
+            plural(r.off_equilibrium, "drop", "drops")
+        );
+    }
+    let _ = writeln!(s, "  flocks at ν = {:.4e}:", r.nu);
+    let _ = writeln!(
+        s,
+        "    {:>5} {:<9} {:>7} {:>9} {:>18} {:>9}",
+        "flock", "type", "drops", "fraction", "95% interval", "static"
+    );
+    for f in &r.flocks {
+        let _ = writeln!(
+            s,
+            "    {:>5} {:<9} {:>7} {:>9.4} {:>18} {:>9.4}",
+            f.id,
+            format!("{:?}", f.kind).to_lowercase(),
+            f.count,
+            f.fraction,
+            format!("[{:.4}, {:.4}]", f.ci95.0, f.ci95.1),
+            f.static_probability
+        );
+    }
+    let mut facets: Vec<_> = r.facets.iter().collect();
+    facets.sort_by(|a, b| b.count.cmp(&a.count).then(b.static_probability.total_cmp(&a.static_probability)));
+    if facets.is_empty() {
+        let _ = writeln!(
+            s,
+            "  facets: not determined (the flock certificate stops a drop once its flock is certain; \
+             use --certificate facet or none for per-facet counts)"
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "  stable facets (the {} most frequent of {}; fractions of the {} drops whose facet is determined):",
+            facets.len().min(12),
+            facets.len(),
+            r.facet_drops
+        );
+        let _ = writeln!(
+            s,
+            "    {:>6} {:>5} {:>7} {:>9} {:>18} {:>9}",
+            "facet", "flock", "drops", "fraction", "95% interval", "static"
+        );
+    }
+    for f in facets.iter().take(12) {
+        let _ = writeln!(
+            s,
+            "    {:>6} {:>5} {:>7} {:>9.4} {:>18} {:>9.4}{}",
+            f.facet,
+            f.flock.map_or("-".into(), |k| k.to_string()),
+            f.count,
+            f.fraction,
+            format!("[{:.4}, {:.4}]", f.ci95.0, f.ci95.1),
+            f.static_probability,
+            if f.equilibrium.is_none() { "  (not a stable facet)" } else { "" }
+        );
+    }
+    let fit = |name: &str, f: &crate::montecarlo::Fit| {
+        format!(
+            "{name}: χ² = {:.2} ({} dof, p = {:.3}), KL = {:.4} nats",
+            f.chi_square, f.dof, f.p_value, f.kl_divergence
+        )
+    };
+    let _ = writeln!(s, "  vs quasi-static: {}", fit("flocks", &r.fit_flocks));
+    if let Some(f) = &r.fit_facets {
+        let _ = writeln!(s, "                   {}", fit("facets", f));
+    }
+    s
+}
+
+/// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png` into `dir`.
+pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    let mut out = Folder::create(dir)?;
+    out.file("drops.json", |p| write_json(p, r))?;
+    let flocks: Vec<Bar> = r
+        .flocks
+        .iter()
+        .map(|f| Bar {
+            label: format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()),
+            fraction: f.fraction,
+            ci: f.ci95,
+            reference: f.static_probability,
+        })
+        .collect();
+    let caption = format!("Resting flock: drops (n = {}) vs quasi-static", r.settled);
+    for ext in ["png", "svg"] {
+        out.file(&format!("drops_flocks.{ext}"), |p| bar_plot(p, &caption, &flocks))?;
+    }
+    let mut facets: Vec<_> = r.facets.iter().collect();
+    facets.sort_by(|a, b| b.static_probability.total_cmp(&a.static_probability).then(b.count.cmp(&a.count)));
+    let bars: Vec<Bar> = facets
+        .iter()
+        .take(30)
+        .map(|f| Bar { label: f.facet.to_string(), fraction: f.fraction, ci: f.ci95, reference: f.static_probability })
+        .collect();
+    out.file("drops_facets.png", |p| bar_plot(p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars))?;
+    Ok(out.written)
+}
+
+/// One category of a bar plot: empirical fraction with its interval, and a reference value.
+pub struct Bar {
+    pub label: String,
+    pub fraction: f64,
+    pub ci: (f64, f64),
+    pub reference: f64,
+}
+
+/// Bars of empirical fractions with 95 % intervals beside reference (static) probabilities.
+pub fn bar_plot(path: &Path, title: &str, bars: &[Bar]) -> crate::Result<()> {
+    let (w, h) = (1000u32, 560u32);
+    render!(path, (w, h), |root| draw_bars(&root, title, bars))
+}
+
+fn draw_bars<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    bars: &[Bar],
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
+    root.fill(&WHITE).map_err(e)?;
+    let top = bars.iter().map(|b| b.ci.1.max(b.reference)).fold(0.0, f64::max).max(0.05) * 1.15;
+    let n = bars.len().max(1);
+    let mut chart = ChartBuilder::on(root)
+        .caption(title, (FONT_FAMILY, 20))
+        .margin(12)
+        .x_label_area_size(50)
+        .y_label_area_size(60)
+        .build_cartesian_2d(-0.5f64..n as f64 - 0.5, 0f64..top)
+        .map_err(e)?;
+    let labels: Vec<String> = bars.iter().map(|b| b.label.clone()).collect();
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(n.min(30))
+        .x_label_formatter(&|x| {
+            let i = x.round();
+            if (x - i).abs() < 1e-6 && i >= 0.0 {
+                labels.get(i as usize).cloned().unwrap_or_default()
+            } else {
+                String::new()
+            }
+        })
+        .y_desc("probability")
+        .label_style((FONT_FAMILY, 12))
+        .draw()
+        .map_err(e)?;
+    let drops = RGBColor(70, 110, 200);
+    let stat = RGBColor(230, 140, 40);
+    chart
+        .draw_series(
+            bars.iter()
+                .enumerate()
+                .map(|(i, b)| Rectangle::new([(i as f64 - 0.38, 0.0), (i as f64 - 0.02, b.fraction)], drops.filled())),
+        )
+        .map_err(e)?
+        .label("drops (95% Wilson interval)")
+        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], drops.filled()));
+    chart
+        .draw_series(bars.iter().enumerate().map(|(i, b)| {
+            PathElement::new(vec![(i as f64 - 0.2, b.ci.0), (i as f64 - 0.2, b.ci.1)], BLACK.stroke_width(2))
+        }))
+        .map_err(e)?;
+    chart
+        .draw_series(
+            bars.iter()
+                .enumerate()
+                .map(|(i, b)| Rectangle::new([(i as f64 + 0.02, 0.0), (i as f64 + 0.38, b.reference)], stat.filled())),
+        )
+        .map_err(e)?
+        .label("quasi-static (basin area / 4π)")
+        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], stat.filled()));
+    chart
+        .configure_series_labels()
+        .label_font((FONT_FAMILY, 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}

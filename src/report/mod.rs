@@ -1,0 +1,62 @@
+//! What a person reads: summaries, CSV files, plots and other files written from the results of
+//! the computation modules. Nothing here computes; every function reads a finished result.
+//!
+//! * [`analysis`] — one static analysis: summary, batch CSV, N(ν) plot, hull pictures.
+//! * [`drops`] — drop runs: summary, `drops.json`, bar plots.
+//! * [`perturb`] — perturbation runs: summary, curves/thresholds/trials CSV, plots.
+//! * [`planar`] — the planar case: the summary of `rocking planar`.
+//! * [`shake`] — shaking runs: summary, fragility CSV and plot, ground-motion records.
+//! * [`study`] — field studies: pebble/sample/comparison CSVs, tables, Zingg and Figure 12 plots.
+
+pub mod analysis;
+pub mod drops;
+pub mod perturb;
+pub mod planar;
+pub mod shake;
+pub mod study;
+
+pub use analysis::{
+    flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, write_batch_csv, write_outputs, CSV_HEADER,
+};
+pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
+
+use crate::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// The files of an output folder, written one by one and listed in the order written.
+pub(crate) struct Folder {
+    dir: PathBuf,
+    pub written: Vec<PathBuf>,
+}
+
+impl Folder {
+    /// Create the folder `dir` (and its parents).
+    pub fn create(dir: &Path) -> Result<Self> {
+        create_dir(dir)?;
+        Ok(Folder { dir: dir.to_path_buf(), written: Vec::new() })
+    }
+
+    /// Write the file `name` of the folder with `write` and list it.
+    pub fn file(&mut self, name: &str, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+        let p = self.dir.join(name);
+        write(&p)?;
+        self.written.push(p);
+        Ok(())
+    }
+}
+
+/// The file name of a mesh path for captions (the whole string if it has none).
+pub(crate) fn short_name(name: &str) -> String {
+    Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned())
+}
+
+/// Create the output folder `dir` (and its parents).
+pub(crate) fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|error| Error::Io { path: dir.to_path_buf(), error })
+}
+
+/// Write `value` as pretty JSON to `path`.
+pub(crate) fn write_json<T: serde::Serialize + ?Sized>(path: &Path, value: &T) -> Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| Error::write(path, e))?;
+    std::fs::write(path, text).map_err(|error| Error::Io { path: path.to_path_buf(), error })
+}

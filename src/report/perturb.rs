@@ -1,0 +1,555 @@
+//! What a person reads of a perturbation run ([`crate::dynamics::perturb`]): the summary, the
+//! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
+
+use super::{short_name, write_json, Folder};
+use crate::dynamics::perturb::{Class, CurvePoint, Outcome, PerturbReport, Threshold, Trial};
+use crate::equilibria::Kind;
+use crate::plot::{render, DrawResult, FONT_FAMILY};
+use std::path::{Path, PathBuf};
+
+fn fmt_threshold(t: &Option<Threshold>) -> String {
+    match t {
+        None => "-".into(),
+        Some(Threshold::Below(x)) => format!("≤{x:.2e}"),
+        Some(Threshold::At(x)) => format!("{x:.2e}"),
+        Some(Threshold::Above(x)) => format!(">{x:.2e}"),
+    }
+}
+
+fn fmt_eps(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.2e}")
+    } else {
+        "∞".into()
+    }
+}
+
+/// A readable summary of a run.
+pub fn summary(r: &PerturbReport, mesh: &str) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{mesh}: {} perturbations, {} trials per ε on {} ε from {:.1e} to {:.1e}, seed {}",
+        r.family.name(),
+        r.trials_per_point,
+        r.epsilons.len(),
+        r.epsilons.first().copied().unwrap_or(f64::NAN),
+        r.epsilons.last().copied().unwrap_or(f64::NAN),
+        r.seed
+    );
+    let _ = writeln!(
+        s,
+        "ε = kinetic energy / (m g R_max); flocks at ν = {:.3e}; dynamic class at ε* = {:.3e}",
+        r.nu, r.epsilon_star
+    );
+    let _ = writeln!(
+        s,
+        "{:>5} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "eq", "facet", "flock", "static", "barrier", "ε50 micro", "barrier", "ε50 flock", "×barrier", "dynamic"
+    );
+    let _ = writeln!(
+        s,
+        "{:>5} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+        "", "", "", "class", "basin", "", "flock", "", "flock", "class"
+    );
+    for e in &r.equilibria {
+        let q = &e.equilibrium;
+        let cls = |c: Class| match c {
+            Class::Regular => "regular",
+            Class::Rocking => "rocking",
+        };
+        let _ = writeln!(
+            s,
+            "{:>5} {:>6} {:>4}{} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",
+            q.index,
+            q.facet,
+            q.flock,
+            match q.flock_kind {
+                Kind::Stable => "S",
+                Kind::Unstable => "U",
+                Kind::Saddle => "H",
+            },
+            cls(q.class),
+            fmt_eps(q.basin_exit.epsilon),
+            if e.rest.stays { fmt_threshold(&e.eps50_micro) } else { "no rest".into() },
+            fmt_eps(q.flock_exit.epsilon),
+            fmt_threshold(&e.eps50_flock),
+            e.ratio_flock.map_or("-".into(), |x| format!("{x:.1}")),
+            e.dynamic_class.map_or("?", cls),
+        );
+    }
+    let b = &r.barrier_check;
+    let _ = writeln!(
+        s,
+        "barrier check: {} of {} trials below the basin barrier left it, {} of {} below the flock barrier toppled; \
+         smallest ε/barrier among exits {}, among topples {}; largest energy-level rise {:.1e} R_max",
+        b.basin_violations,
+        b.below_basin,
+        b.flock_violations,
+        b.below_flock,
+        b.smallest_exit_ratio.map_or("-".into(), |x| format!("{x:.2}")),
+        b.smallest_topple_ratio.map_or("-".into(), |x| format!("{x:.2}")),
+        b.max_level_rise
+    );
+    let c = &r.confusion;
+    let _ = writeln!(
+        s,
+        "static vs dynamic class: regular→regular {}, regular→rocking {}, rocking→regular {}, rocking→rocking {}, undecided {}",
+        c.regular_as_regular, c.regular_as_rocking, c.rocking_as_regular, c.rocking_as_rocking, c.undecided
+    );
+    s
+}
+
+/// Write the curves of a run as CSV (one row per equilibrium and ε).
+pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record([
+            "equilibrium",
+            "facet",
+            "flock",
+            "flock_type",
+            "static_class",
+            "family",
+            "epsilon",
+            "n",
+            "same",
+            "same_flock",
+            "toppled",
+            "unsettled",
+            "p_same",
+            "p_same_lo",
+            "p_same_hi",
+            "p_in_flock",
+            "p_in_flock_lo",
+            "p_in_flock_hi",
+            "p_toppled",
+            "p_toppled_lo",
+            "p_toppled_hi",
+            "barrier_basin",
+            "barrier_flock",
+        ])?;
+        for e in &r.equilibria {
+            let q = &e.equilibrium;
+            for c in &e.curve {
+                w.write_record([
+                    q.index.to_string(),
+                    q.facet.to_string(),
+                    q.flock.to_string(),
+                    format!("{:?}", q.flock_kind).to_lowercase(),
+                    format!("{:?}", q.class).to_lowercase(),
+                    r.family.name().into(),
+                    format!("{:.6e}", c.x),
+                    c.n.to_string(),
+                    c.same.to_string(),
+                    c.same_flock.to_string(),
+                    c.toppled.to_string(),
+                    c.unsettled.to_string(),
+                    format!("{:.4}", c.p_same),
+                    format!("{:.4}", c.ci_same.0),
+                    format!("{:.4}", c.ci_same.1),
+                    format!("{:.4}", c.p_in_flock),
+                    format!("{:.4}", c.ci_in_flock.0),
+                    format!("{:.4}", c.ci_in_flock.1),
+                    format!("{:.4}", c.p_toppled),
+                    format!("{:.4}", c.ci_toppled.0),
+                    format!("{:.4}", c.ci_toppled.1),
+                    format!("{:.6e}", q.basin_exit.epsilon),
+                    format!("{:.6e}", q.flock_exit.epsilon),
+                ])?;
+            }
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
+}
+
+/// Write one row per equilibrium: static barriers, dynamic thresholds, classes.
+pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record([
+            "equilibrium",
+            "facet",
+            "r_normalised",
+            "flock",
+            "flock_type",
+            "static_class",
+            "stays_at_rest",
+            "barrier_basin",
+            "basin_exit_equilibrium",
+            "barrier_flock",
+            "flock_exit_flock",
+            "eps50_micro",
+            "eps50_micro_kind",
+            "eps50_flock",
+            "eps50_flock_kind",
+            "first_leave",
+            "first_topple",
+            "ratio_micro",
+            "ratio_flock",
+            "uplift_acceleration_g",
+            "dynamic_class",
+        ])?;
+        let th = |t: &Option<Threshold>| match t {
+            None => (String::new(), String::new()),
+            Some(t) => (
+                format!("{:.6e}", t.value()),
+                match t {
+                    Threshold::Below(_) => "below",
+                    Threshold::At(_) => "at",
+                    Threshold::Above(_) => "above",
+                }
+                .into(),
+            ),
+        };
+        let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
+        for e in &r.equilibria {
+            let q = &e.equilibrium;
+            let (m, mk) = th(&e.eps50_micro);
+            let (f, fk) = th(&e.eps50_flock);
+            w.write_record([
+                q.index.to_string(),
+                q.facet.to_string(),
+                format!("{:.6}", q.r_normalised),
+                q.flock.to_string(),
+                format!("{:?}", q.flock_kind).to_lowercase(),
+                format!("{:?}", q.class).to_lowercase(),
+                e.rest.stays.to_string(),
+                format!("{:.6e}", q.basin_exit.epsilon),
+                q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
+                format!("{:.6e}", q.flock_exit.epsilon),
+                q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
+                m,
+                mk,
+                f,
+                fk,
+                opt(e.first_leave),
+                opt(e.first_topple),
+                opt(e.ratio_micro),
+                opt(e.ratio_flock),
+                format!("{:.6e}", q.uplift_acceleration),
+                e.dynamic_class.map_or(String::new(), |c| format!("{c:?}").to_lowercase()),
+            ])?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
+}
+
+/// Write every trial as CSV.
+pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record([
+            "equilibrium",
+            "family",
+            "epsilon",
+            "trial",
+            "outcome",
+            "final_facet",
+            "final_equilibrium",
+            "final_flock",
+            "settled",
+            "certified",
+            "non_stable_facet",
+            "time",
+            "max_level_rise",
+        ])?;
+        for t in trials {
+            w.write_record([
+                t.equilibrium.to_string(),
+                t.family.name().into(),
+                format!("{:.6e}", t.epsilon),
+                t.trial.to_string(),
+                match t.outcome {
+                    Outcome::Same => "same",
+                    Outcome::SameFlock => "same-flock",
+                    Outcome::Toppled => "toppled",
+                }
+                .into(),
+                t.final_facet.map_or(String::new(), |x| x.to_string()),
+                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                t.final_flock.to_string(),
+                t.settled.to_string(),
+                t.certified.to_string(),
+                t.non_stable_facet.to_string(),
+                format!("{:.4}", t.time),
+                format!("{:.3e}", t.max_level_rise),
+            ])?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
+}
+
+/// A panel of [`plot_curves`]: a title, the curve, and vertical markers (x, label, colour).
+pub struct Panel<'a> {
+    pub title: String,
+    pub curve: &'a [CurvePoint],
+    pub markers: Vec<(f64, String, RGBColor)>,
+}
+
+use plotters::prelude::*;
+
+/// Top of the probability axis: room above 1 for the legend.
+const TOP: f64 = 1.55;
+
+/// Outcome probabilities against x (log ε, or PGA) with 95 % intervals, one panel per entry,
+/// side by side (up to three per row; four as 2 × 2). PNG or SVG by extension.
+pub fn plot_curves(path: &Path, caption: &str, x_label: &str, log_x: bool, panels: &[Panel]) -> crate::Result<()> {
+    let cols = if panels.len() == 4 { 2 } else { panels.len().clamp(1, 3) };
+    let rows = panels.len().div_ceil(cols).max(1);
+    let (w, h) = (560 * cols as u32, 420 * rows as u32 + 40);
+    render!(path, (w, h), |root| draw_curves(&root, caption, x_label, log_x, panels, rows, cols))
+}
+
+type Area<DB> = DrawingArea<DB, plotters::coord::Shift>;
+
+fn draw_curves<DB: DrawingBackend>(
+    root: &Area<DB>,
+    caption: &str,
+    x_label: &str,
+    log_x: bool,
+    panels: &[Panel],
+    rows: usize,
+    cols: usize,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
+    root.fill(&WHITE).map_err(e)?;
+    let root = root.titled(caption, (FONT_FAMILY, 22)).map_err(e)?;
+    for (panel, area) in panels.iter().zip(root.split_evenly((rows, cols))) {
+        let xs: Vec<f64> = panel
+            .curve
+            .iter()
+            .map(|c| c.x)
+            .chain(panel.markers.iter().map(|m| m.0))
+            .filter(|x| x.is_finite() && (!log_x || *x > 0.0))
+            .collect();
+        let (mut lo, mut hi) =
+            (xs.iter().cloned().fold(f64::INFINITY, f64::min), xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max));
+        if !lo.is_finite() {
+            (lo, hi) = (1e-3, 1.0);
+        }
+        let series = [
+            ("P(same micro-equilibrium)", RGBColor(40, 90, 200), 0usize),
+            ("P(still in the flock)", RGBColor(40, 160, 80), 1),
+            ("P(toppled out of the flock)", RGBColor(210, 50, 40), 2),
+        ];
+        let pick = |c: &CurvePoint, k: usize| match k {
+            0 => (c.p_same, c.ci_same),
+            1 => (c.p_in_flock, c.ci_in_flock),
+            _ => (c.p_toppled, c.ci_toppled),
+        };
+        macro_rules! body {
+            ($chart:ident) => {{
+                $chart
+                    .configure_mesh()
+                    .x_desc(x_label)
+                    .y_desc("probability")
+                    .x_labels(8)
+                    .x_label_formatter(&|x: &f64| if log_x { format!("{x:.0e}") } else { format!("{x:.2}") })
+                    .y_label_formatter(&|y: &f64| if *y > 1.001 { String::new() } else { format!("{y:.1}") })
+                    .label_style((FONT_FAMILY, 13))
+                    .draw()
+                    .map_err(e)?;
+                for (x, label, color) in &panel.markers {
+                    if !x.is_finite() || (log_x && *x <= 0.0) {
+                        continue;
+                    }
+                    let c = *color;
+                    $chart
+                        .draw_series(DashedLineSeries::new(vec![(*x, 0.0), (*x, 1.02)], 6, 4, c.stroke_width(2)))
+                        .map_err(e)?
+                        .label(label.clone())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)));
+                }
+                for (name, color, k) in series {
+                    let pts: Vec<(f64, f64)> = panel.curve.iter().map(|c| (c.x, pick(c, k).0)).collect();
+                    $chart
+                        .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+                        .map_err(e)?
+                        .label(name)
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+                    $chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(e)?;
+                    $chart
+                        .draw_series(panel.curve.iter().map(|c| {
+                            let (_, ci) = pick(c, k);
+                            PathElement::new(vec![(c.x, ci.0), (c.x, ci.1)], color.stroke_width(1))
+                        }))
+                        .map_err(e)?;
+                }
+                $chart
+                    .configure_series_labels()
+                    .label_font((FONT_FAMILY, 12))
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(BLACK)
+                    .position(SeriesLabelPosition::UpperLeft)
+                    .draw()
+                    .map_err(e)?;
+            }};
+        }
+        if log_x {
+            let mut chart = ChartBuilder::on(&area)
+                .caption(&panel.title, (FONT_FAMILY, 16))
+                .margin(10)
+                .x_label_area_size(40)
+                .y_label_area_size(50)
+                .build_cartesian_2d((lo / 1.5..hi * 1.5).log_scale(), -0.02f64..TOP)
+                .map_err(e)?;
+            body!(chart);
+        } else {
+            let pad = 0.05 * (hi - lo).max(1e-9);
+            let mut chart = ChartBuilder::on(&area)
+                .caption(&panel.title, (FONT_FAMILY, 16))
+                .margin(10)
+                .x_label_area_size(40)
+                .y_label_area_size(50)
+                .build_cartesian_2d((lo - pad).max(0.0)..hi + pad, -0.02f64..TOP)
+                .map_err(e)?;
+            body!(chart);
+        }
+    }
+    Ok(())
+}
+
+/// The panels of a perturbation report: static barriers and ε* as markers.
+pub fn panels(r: &PerturbReport) -> Vec<Panel<'_>> {
+    r.equilibria
+        .iter()
+        .filter(|e| !e.curve.is_empty())
+        .map(|e| {
+            let q = &e.equilibrium;
+            Panel {
+                title: format!(
+                    "eq {} (facet {}), {:?} in {:?} flock {}",
+                    q.index, q.facet, q.class, q.flock_kind, q.flock
+                )
+                .to_lowercase(),
+                curve: &e.curve,
+                markers: vec![
+                    (q.basin_exit.epsilon, "static barrier: basin".into(), RGBColor(40, 90, 200)),
+                    (q.flock_exit.epsilon, "static barrier: flock".into(), RGBColor(210, 50, 40)),
+                    (r.epsilon_star, "ε* (macro ν)".into(), RGBColor(120, 120, 120)),
+                ],
+            }
+        })
+        .collect()
+}
+
+/// Dynamic thresholds against static barriers (log–log), per equilibrium: ε₅₀ to leave the
+/// micro-equilibrium against the basin barrier, ε₅₀ to leave the flock against the flock barrier;
+/// regular and rocking equilibria in different colours; the diagonal y = x.
+pub fn plot_thresholds(path: &Path, caption: &str, points: &[(f64, f64, bool, Class)]) -> crate::Result<()> {
+    render!(path, (820, 700), |root| draw_thresholds(&root, caption, points))
+}
+
+fn draw_thresholds<DB: DrawingBackend>(root: &Area<DB>, caption: &str, points: &[(f64, f64, bool, Class)]) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let finite: Vec<f64> = points.iter().flat_map(|p| [p.0, p.1]).filter(|x| x.is_finite() && *x > 0.0).collect();
+    let lo = finite.iter().cloned().fold(f64::INFINITY, f64::min).min(1e-3) / 2.0;
+    let hi = finite.iter().cloned().fold(0.0, f64::max).max(1e-2) * 2.0;
+    root.fill(&WHITE).map_err(|x| format!("{x:?}"))?;
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, (FONT_FAMILY, 20))
+        .margin(14)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d((lo..hi).log_scale(), (lo..hi).log_scale())
+        .map_err(|x| format!("{x:?}"))?;
+    chart
+        .configure_mesh()
+        .x_desc("static barrier (m g ΔR / (m g R_max))")
+        .y_desc("dynamic threshold ε₅₀")
+        .x_label_formatter(&|x: &f64| format!("{x:.0e}"))
+        .y_label_formatter(&|y: &f64| format!("{y:.0e}"))
+        .label_style((FONT_FAMILY, 13))
+        .draw()
+        .map_err(|x| format!("{x:?}"))?;
+    chart
+        .draw_series(LineSeries::new(vec![(lo, lo), (hi, hi)], BLACK.stroke_width(1)))
+        .map_err(|x| format!("{x:?}"))?
+        .label("ε₅₀ = barrier")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
+    let styles = [
+        (false, Class::Regular, "leave micro-eq., regular", RGBColor(200, 60, 40)),
+        (false, Class::Rocking, "leave micro-eq., rocking", RGBColor(40, 90, 200)),
+        (true, Class::Regular, "leave flock, regular", RGBColor(200, 60, 40)),
+        (true, Class::Rocking, "leave flock, rocking", RGBColor(40, 90, 200)),
+    ];
+    for (flock, class, label, color) in styles {
+        let pts: Vec<(f64, f64)> = points
+            .iter()
+            .filter(|p| p.2 == flock && p.3 == class && p.0.is_finite() && p.0 > 0.0 && p.1.is_finite() && p.1 > 0.0)
+            .map(|p| (p.0, p.1))
+            .collect();
+        if flock {
+            chart
+                .draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 6, color.filled())))
+                .map_err(|x| format!("{x:?}"))?
+                .label(label)
+                .legend(move |(x, y)| TriangleMarker::new((x + 8, y), 6, color.filled()));
+        } else {
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.stroke_width(2))))
+                .map_err(|x| format!("{x:?}"))?
+                .label(label)
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.stroke_width(2)));
+        }
+    }
+    chart
+        .configure_series_labels()
+        .label_font((FONT_FAMILY, 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(|x| format!("{x:?}"))?;
+    Ok(())
+}
+
+/// The (barrier, ε₅₀, is-flock, class) points of a report for [`plot_thresholds`] (only
+/// interpolated thresholds).
+pub fn threshold_points(r: &PerturbReport) -> Vec<(f64, f64, bool, Class)> {
+    let mut pts = Vec::new();
+    for e in &r.equilibria {
+        let q = &e.equilibrium;
+        if let Some(Threshold::At(v)) = e.eps50_micro {
+            pts.push((q.basin_exit.epsilon, v, false, q.class));
+        }
+        if let Some(Threshold::At(v)) = e.eps50_flock {
+            pts.push((q.flock_exit.epsilon, v, true, q.class));
+        }
+    }
+    pts
+}
+
+/// Write `perturb.json`, `curves.csv`, `thresholds.csv`, `trials.csv` and (if any curve)
+/// `robustness.png/.svg` and `thresholds.png` into `dir`; `name` is the mesh named in captions.
+pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    let mut out = Folder::create(dir)?;
+    out.file("perturb.json", |p| write_json(p, r))?;
+    out.file("curves.csv", |p| write_curves_csv(p, r))?;
+    out.file("thresholds.csv", |p| write_thresholds_csv(p, r))?;
+    out.file("trials.csv", |p| write_trials_csv(p, &r.trials))?;
+    let panels = panels(r);
+    if !panels.is_empty() {
+        let short = short_name(name);
+        let caption = format!("{short}: robustness to {} perturbations (ε = KE / m g R_max)", r.family.name());
+        for ext in ["png", "svg"] {
+            out.file(&format!("robustness.{ext}"), |p| plot_curves(p, &caption, "ε (log scale)", true, &panels))?;
+        }
+        let caption = format!("{short}: dynamic thresholds vs static barriers");
+        out.file("thresholds.png", |p| plot_thresholds(p, &caption, &threshold_points(r)))?;
+    }
+    Ok(out.written)
+}

@@ -1,0 +1,91 @@
+//! The dynamic synthetic hand experiment: a simulated person who sets the pebble down in random
+//! orientations and notes the distinct stable flocks it comes to rest in.
+
+use crate::analysis::Analysis;
+use crate::dynamics::params::{DropParams, Preset, Surface};
+use crate::dynamics::stone::Stone;
+use crate::equilibria::Kind;
+use crate::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use crate::Result;
+use serde::Serialize;
+use std::collections::BTreeSet;
+
+/// The simulated hand experimenter of [`hand_experiment`].
+#[derive(Clone, Debug, Serialize)]
+pub struct Experimenter {
+    /// Times the pebble is set down (a person's budget).
+    pub trials: u64,
+    /// Drop parameters; `height` (in R_max) is the small height it is let go from.
+    pub params: DropParams,
+    /// Seed of the experimenter's hands (mixed with each pebble's id).
+    pub seed: u64,
+}
+
+/// Default budget of the simulated experimenter.
+pub const DEFAULT_TRIALS: u64 = 20;
+/// Default release height of the simulated experimenter, in R_max: a pebble put down by hand.
+pub const DEFAULT_SET_DOWN_HEIGHT: f64 = 0.05;
+
+/// The contact and launch of a pebble set down by hand: the [`Preset::Drop`] protocol (from rest,
+/// no spin) on [`Surface::StoneOnStone`], released [`DEFAULT_SET_DOWN_HEIGHT`] above the ground.
+pub fn set_down_params() -> DropParams {
+    DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..Preset::Drop.params(Surface::StoneOnStone) }
+}
+
+impl Default for Experimenter {
+    fn default() -> Self {
+        Experimenter { trials: DEFAULT_TRIALS, params: set_down_params(), seed: 1 }
+    }
+}
+
+/// What the simulated experimenter found on one pebble.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DynamicCounts {
+    pub trials: u64,
+    /// Trials that came to rest (the others were still moving at the time cap).
+    pub settled: u64,
+    /// Distinct stable flocks found: the dynamic S.
+    pub stable: usize,
+    /// Distinct unstable or saddle flocks rested in (rocking equilibria found).
+    pub rocking: usize,
+    /// Ids of every flock found (flocks of G(ν)).
+    pub found: Vec<usize>,
+}
+
+/// Set the analysed pebble down `exp.trials` times in uniformly random orientations from
+/// `exp.params.height` (in R_max) and count the distinct flocks of G(ν) it rests in. Trial i
+/// uses [`item_rng`](crate::rng::item_rng)`(seed, i)`. A trial settling on a facet that is not stable counts for the
+/// flock its steepest descent drains to; a trial still moving at the time cap counts for nothing.
+pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> Result<DynamicCounts> {
+    let stone = Stone::new(a, nu)?;
+    let header = RunHeader {
+        format: FORMAT.into(),
+        mesh: String::new(),
+        mesh_fingerprint: String::new(),
+        seed,
+        drops: exp.trials,
+        params: exp.params.clone(),
+        certificate: CertificateMode::Flock,
+        preset: None,
+    };
+    let (_, outcomes) = run_report(&stone, &header);
+    let mut found = BTreeSet::new();
+    let mut settled = 0;
+    for o in outcomes.values().filter(|o| o.settled) {
+        settled += 1;
+        // Facets of outcomes are stable facets (the rule of `Stone::rest`).
+        let flock = o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]));
+        if let Some(k) = flock {
+            found.insert(k);
+        }
+    }
+    let kinds = &stone.flock_kinds;
+    let stable = found.iter().filter(|&&k| kinds[k] == Kind::Stable).count();
+    Ok(DynamicCounts {
+        trials: exp.trials,
+        settled,
+        stable,
+        rocking: found.len() - stable,
+        found: found.into_iter().collect(),
+    })
+}
