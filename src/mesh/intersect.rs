@@ -141,9 +141,15 @@ fn segment_triangle(p: &Point3, q: &Point3, t: &[Point3; 3], k: usize) -> Option
 
 /// Do triangles `i` and `j` (indices `ti`, `tj`, points `pi`, `pj`, drop axes `ki`, `kj`) cross?
 fn crossing(ti: &[u32; 3], tj: &[u32; 3], pi: &[Point3; 3], pj: &[Point3; 3], ki: usize, kj: usize) -> Option<Point3> {
-    let shared: Vec<(usize, usize)> =
-        (0..3).flat_map(|a| (0..3).filter(move |&b| ti[a] == tj[b]).map(move |b| (a, b))).collect();
-    match shared.as_slice() {
+    let mut shared = [(0usize, 0usize); 3];
+    let mut n_shared = 0;
+    for (a, va) in ti.iter().enumerate() {
+        if let Some(b) = tj.iter().position(|vb| vb == va) {
+            shared[n_shared] = (a, b);
+            n_shared += 1;
+        }
+    }
+    match &shared[..n_shared] {
         [] => {
             // Quick rejection: one triangle strictly on one side of the other's plane.
             let side = |t: &[Point3; 3], u: &[Point3; 3]| {
