@@ -4,7 +4,7 @@
 use crate::equilibria::{Equilibria, Kind, Signs, Site, DEFAULT_DEGENERACY_TOL};
 use crate::hierarchy::{Counts, Flock, Hierarchy, Plateau, Step};
 use crate::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
-use crate::mesh::{Repairs, TriMesh};
+use crate::mesh::{ldexp, scale_point, Repairs, TriMesh};
 use crate::morse_smale::{cancellation_hierarchy, MorseSmaleGraph};
 use crate::shape::{describe, ShapeDescriptors};
 use crate::solid::MassProperties;
@@ -47,21 +47,60 @@ pub struct Analysis {
 
 impl Analysis {
     /// Run the static pipeline on a closed, checked mesh (see [`TriMesh::into_solid_boundary`]).
+    ///
+    /// Everything is computed on the mesh scaled by the exact power of two 2^k that brings its
+    /// largest extent into [1, 2) ([`TriMesh::unit_exponent`]) and scaled back, so any finite
+    /// coordinates give the same counts, ν and hierarchy as the unscaled mesh (for ordinary sizes
+    /// bit for bit the numbers of computing in input units). Lengths, areas, volumes and moments
+    /// are reported in input units; one that does not fit in f64 there (the volume of a
+    /// 10³⁰⁰-unit stone) is reported as infinite, honestly, rather than refused.
     pub fn of_solid(mesh: TriMesh, repairs: Repairs, opts: &Options) -> Result<Self> {
-        let mass = MassProperties::of(&mesh)?;
-        Self::with_center_of_mass(mesh, repairs, mass, opts)
+        let k = mesh.unit_exponent();
+        let unit = mesh.scaled_pow2(k);
+        let unit_mass = MassProperties::of_unscaled(&unit)?;
+        let mass = unit_mass.scaled_pow2(-k);
+        Self::normalised(mesh, unit, k, repairs, mass, unit_mass, opts)
     }
 
     /// As [`Analysis::of_solid`] but with given mass properties (e.g. a G that is not the
-    /// homogeneous solid's, for a stone with a heavy inclusion).
+    /// homogeneous solid's, for a stone with a heavy inclusion), in input units.
     pub fn with_center_of_mass(mesh: TriMesh, repairs: Repairs, mass: MassProperties, opts: &Options) -> Result<Self> {
-        let hull = Polyhedron::new(&mesh.vertices, opts.coplanar_tol)?;
-        let g = mass.center_of_mass;
+        let k = mesh.unit_exponent();
+        let unit = mesh.scaled_pow2(k);
+        let unit_mass = mass.scaled_pow2(k);
+        Self::normalised(mesh, unit, k, repairs, mass, unit_mass, opts)
+    }
+
+    /// The pipeline on `unit` = `mesh` × 2^k, results scaled back by 2^−k.
+    fn normalised(
+        mesh: TriMesh,
+        unit: TriMesh,
+        k: i32,
+        repairs: Repairs,
+        mass: MassProperties,
+        unit_mass: MassProperties,
+        opts: &Options,
+    ) -> Result<Self> {
+        opts.check()?;
+        let hull = Polyhedron::new(&unit.vertices, opts.coplanar_tol)?;
+        let g = unit_mass.center_of_mass;
+        centre_inside(&hull, &g, opts.degeneracy_tol, &mass.center_of_mass)?;
         let signs = Signs::new(&hull, &g, opts.degeneracy_tol);
         let equilibria = Equilibria::from_signs(&hull, &g, &signs)?;
-        let graph = MorseSmaleGraph::trace(&hull, &equilibria, &g, &signs)?;
-        let hierarchy = cancellation_hierarchy(&equilibria, &graph)?;
-        let shape = describe(&mesh, &mass);
+        let mut graph = MorseSmaleGraph::trace(&hull, &equilibria, &g, &signs)?;
+        let mut hierarchy = cancellation_hierarchy(&equilibria, &graph)?;
+        let mut shape = describe(&unit, &unit_mass);
+        // Back to input units.
+        let hull = hull.scaled_pow2(-k);
+        let equilibria = equilibria.scaled_pow2(-k);
+        graph.arcs.iter_mut().flat_map(|a| a.path.iter_mut()).for_each(|p| *p = scale_point(p, -k));
+        hierarchy.nodes.iter_mut().for_each(|n| n.r = ldexp(n.r, -k));
+        hierarchy.r_max = ldexp(hierarchy.r_max, -k);
+        for x in [&mut shape.a, &mut shape.b, &mut shape.c] {
+            *x = ldexp(*x, -k);
+        }
+        shape.volume = ldexp(shape.volume, -3 * k);
+        shape.area = ldexp(shape.area, -2 * k);
         Ok(Analysis { mesh, repairs, mass, hull, equilibria, graph, hierarchy, shape, signs })
     }
 
@@ -297,6 +336,69 @@ impl Report {
     /// Macro counts as a [`Counts`].
     pub fn macro_counts(&self) -> Counts {
         Counts { stable: self.r#macro.stable, unstable: self.r#macro.unstable, saddle: self.r#macro.saddle }
+    }
+}
+
+/// Largest accepted relative coplanarity tolerance: beyond it merged facets bend visibly and
+/// the micro scale the analysis is about is erased.
+pub const MAX_COPLANAR_TOL: f64 = 1e-3;
+
+/// Largest accepted relative degeneracy tolerance of the equilibrium predicates.
+pub const MAX_DEGENERACY_TOL: f64 = 1e-3;
+
+impl Options {
+    /// Refuse tolerances that are not finite, not positive or too large (see [`check_coplanar_tol`])
+    /// and a ν outside (0, 1], each with its own message.
+    pub fn check(&self) -> Result<()> {
+        check_coplanar_tol(self.coplanar_tol)?;
+        check_tolerance("degeneracy tolerance", self.degeneracy_tol, MAX_DEGENERACY_TOL)?;
+        if let Some(nu) = self.nu {
+            check_nu(nu)?;
+        }
+        Ok(())
+    }
+}
+
+/// Refuse a relative coplanarity tolerance that is not in (0, [`MAX_COPLANAR_TOL`]].
+pub fn check_coplanar_tol(tol: f64) -> Result<f64> {
+    check_tolerance("coplanar tolerance (--coplanar-tol)", tol, MAX_COPLANAR_TOL)
+}
+
+fn check_tolerance(name: &str, tol: f64, max: f64) -> Result<f64> {
+    if tol.is_finite() && tol > 0.0 && tol <= max {
+        Ok(tol)
+    } else {
+        Err(Error::Usage(format!(
+            "the {name} is relative to the stone's size and must be a finite number in (0, {max:e}], got {tol}"
+        )))
+    }
+}
+
+/// G must lie inside the hull by more than the degeneracy tolerance τ = `tol_rel` × diameter of
+/// every facet plane; otherwise no micro-equilibrium set exists (the stone could not rest) and
+/// [`Error::CentreOutsideHull`] says by how much and at which facet. `g_input` is G in input
+/// units, for the message.
+fn centre_inside(hull: &Polyhedron, g: &Point3, tol_rel: f64, g_input: &Point3) -> Result<()> {
+    let tau = tol_rel * hull.diameter;
+    let worst = hull
+        .facets
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (i, f.offset - f.normal.dot(&g.coords)))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    match worst {
+        Some((f, depth)) if !(depth > tau) => {
+            let what = if depth < 0.0 {
+                format!(
+                    "{:.3e} of the stone's size beyond the plane of hull facet {f}; the surface does not bound a solid (it may intersect itself) or the given G is wrong",
+                    -depth / hull.diameter
+                )
+            } else {
+                format!("on the hull's surface, within {:.0e} of its size of hull facet {f}'s plane", tol_rel)
+            };
+            Err(Error::CentreOutsideHull { path: crate::error::MEMORY.into(), g: g_input.coords.into(), what })
+        }
+        _ => Ok(()),
     }
 }
 

@@ -25,6 +25,7 @@
 //! counted in [`Equilibria::degenerate_decisions`] and reported.
 
 use crate::hull::Polyhedron;
+use crate::mesh::{ldexp, scale_point};
 use crate::{Error, Point3, Result, Vec3};
 use serde::Serialize;
 
@@ -129,6 +130,18 @@ impl Signs {
 }
 
 impl Equilibria {
+    /// The same equilibria for the hull and G scaled by 2^k: points, R, R_min and R_max × 2^k
+    /// (exact in f64's normal range; the classification does not depend on scale).
+    pub fn scaled_pow2(mut self, k: i32) -> Self {
+        for p in &mut self.points {
+            p.point = scale_point(&p.point, k);
+            p.r = ldexp(p.r, k);
+        }
+        self.r_max = ldexp(self.r_max, k);
+        self.r_min = ldexp(self.r_min, k);
+        self
+    }
+
     /// Classify every facet, edge and vertex of `poly` for centre of mass `g`.
     pub fn new(poly: &Polyhedron, g: &Point3, tol_rel: f64) -> Result<Self> {
         Self::from_signs(poly, g, &Signs::new(poly, g, tol_rel))

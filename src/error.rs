@@ -20,6 +20,23 @@ pub enum Error {
     /// The geometry is degenerate (flat, empty, zero volume, all points coplanar...).
     #[error("{path}: degenerate geometry: {what}")]
     Degenerate { path: PathBuf, what: String },
+    /// The surface crosses itself: two triangles (numbered as in the file, from 0) that share no
+    /// edge intersect beyond their common vertices. Such a surface bounds no solid, and its G can
+    /// even fall outside the hull.
+    #[error("{path}: the surface intersects itself: triangles {first} and {second} cross{}, {depth:.3e} deep ({relative_depth:.1e} of the size; {pairs} crossing pair(s) in all); a stone must be a closed surface that does not pass through itself", near_text(.near))]
+    SelfIntersecting {
+        path: PathBuf,
+        first: usize,
+        second: usize,
+        pairs: usize,
+        depth: f64,
+        relative_depth: f64,
+        near: Option<[f64; 3]>,
+    },
+    /// The centre of mass lies outside (or on) the convex hull, so the stone cannot rest anywhere:
+    /// the mesh is not the boundary of a solid (e.g. it intersects itself) or a given G is wrong.
+    #[error("{path}: the centre of mass G = ({}, {}, {}) is not inside the convex hull: {what}", .g[0], .g[1], .g[2])]
+    CentreOutsideHull { path: PathBuf, g: [f64; 3], what: String },
     /// A theorem that must hold failed (e.g. Poincaré–Hopf); this is a bug or a degenerate input.
     #[error("{path}: internal check failed: {what}")]
     Check { path: PathBuf, what: String },
@@ -46,6 +63,10 @@ impl Error {
             Error::Degenerate { path, what } => Error::Degenerate { path: fix(path), what },
             Error::Check { path, what } => Error::Check { path: fix(path), what },
             Error::Plot { path, what } => Error::Plot { path: fix(path), what },
+            Error::SelfIntersecting { path, first, second, pairs, depth, relative_depth, near } => {
+                Error::SelfIntersecting { path: fix(path), first, second, pairs, depth, relative_depth, near }
+            }
+            Error::CentreOutsideHull { path, g, what } => Error::CentreOutsideHull { path: fix(path), g, what },
             e @ Error::Usage(_) => e,
         }
     }
@@ -70,10 +91,30 @@ impl Error {
         Error::InvalidMesh { path: MEMORY.into(), what: what.into() }
     }
 
+    /// A short stable name of the error's kind (`io`, `parse`, `invalid-mesh`, `degenerate`,
+    /// `self-intersecting`, `centre-outside-hull`, `internal-check`, `plot`, `usage`), for tallies.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Error::Io { .. } => "io",
+            Error::Parse { .. } => "parse",
+            Error::InvalidMesh { .. } => "invalid-mesh",
+            Error::Degenerate { .. } => "degenerate",
+            Error::SelfIntersecting { .. } => "self-intersecting",
+            Error::CentreOutsideHull { .. } => "centre-outside-hull",
+            Error::Check { .. } => "internal-check",
+            Error::Plot { .. } => "plot",
+            Error::Usage(_) => "usage",
+        }
+    }
+
     /// Shorthand for an in-memory failed internal check.
     pub fn check(what: impl Into<String>) -> Self {
         Error::Check { path: MEMORY.into(), what: what.into() }
     }
+}
+
+fn near_text(near: &Option<[f64; 3]>) -> String {
+    near.map_or(String::new(), |[x, y, z]| format!(" near ({x:.6e}, {y:.6e}, {z:.6e})"))
 }
 
 /// Placeholder path of meshes that live only in memory.

@@ -12,6 +12,7 @@
 //! f64 rigid motion (~1e-16 D) and far below any real micro-facet: it merges *exactly* planar
 //! faces (machined, synthetic) and nothing else. It is not parry's ~1.5° merge.
 
+use crate::mesh::{ldexp, scale_point};
 use crate::{Error, Point3, Result, Vec3};
 use robust::{orient3d, Coord3D};
 
@@ -327,11 +328,15 @@ fn boundary_loop(boundary: &[(u32, u32)], next_of: &mut [u32]) -> Result<Vec<u32
         loop_pts.push(cur);
         cur = next_of[cur as usize];
         if loop_pts.len() > boundary.len() {
-            return Err(Error::check("a merged facet's boundary is not a simple loop"));
+            return Err(Error::degenerate(
+                "merging nearly coplanar hull triangles gave a facet whose boundary is not a simple loop: the coplanar tolerance is too large for this shape (use a smaller --coplanar-tol)",
+            ));
         }
     }
     if loop_pts.len() != boundary.len() {
-        return Err(Error::check("a merged facet has a hole or a pinched boundary (coplanar tolerance too large?)"));
+        return Err(Error::degenerate(
+            "merging nearly coplanar hull triangles gave a facet with a hole or a pinched boundary: the coplanar tolerance is too large for this shape (use a smaller --coplanar-tol)",
+        ));
     }
     Ok(loop_pts)
 }
@@ -546,6 +551,19 @@ impl Polyhedron {
             return Err(Error::check(format!("hull Euler characteristic V − E + F = {chi}, not 2")));
         }
         Ok(poly)
+    }
+
+    /// The same polyhedron scaled by 2^k: corners, facet offsets, areas, δ and the diameter
+    /// (exact in f64's normal range; the combinatorics and normals do not change).
+    pub fn scaled_pow2(mut self, k: i32) -> Self {
+        self.vertices.iter_mut().for_each(|p| *p = scale_point(p, k));
+        for f in &mut self.facets {
+            f.offset = ldexp(f.offset, k);
+            f.area = ldexp(f.area, 2 * k);
+        }
+        self.coplanar_tol = ldexp(self.coplanar_tol, k);
+        self.diameter = ldexp(self.diameter, k);
+        self
     }
 
     /// The other end of edge `e` seen from corner `v`.

@@ -2,9 +2,10 @@
 
 use anyhow::{Context, Result};
 use rayon::prelude::*;
-use rocking_stones::analysis::{check_nu, Analysis, Options, Report};
+use rocking_stones::analysis::{check_coplanar_tol, check_nu, Analysis, Options, Report};
 use rocking_stones::mesh::io;
 use rocking_stones::report;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The bundled default pebble (see `data/README.md` for its provenance).
@@ -15,15 +16,16 @@ const DEFAULT_NAME: &str = "default_pebble.ply (bundled)";
 pub struct Args {
     /// Mesh files (STL, OBJ, PLY) or folders of them. None: the bundled default pebble.
     pub paths: Vec<PathBuf>,
-    /// Print one JSON object (one file) instead of the human summary.
+    /// Print one JSON object (one file) instead of the human summary; with several files, JSON
+    /// lines: one compact object per file, in order (`{"file", "error", "kind"}` for a failure).
     #[arg(long)]
     pub json: bool,
     /// Fix ν of the macro scale (default: the automatic plateau; the paper's hand experimenter
     /// is 0.0035).
     #[arg(long, value_parser = parse_nu)]
     pub nu: Option<f64>,
-    /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal).
-    #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL)]
+    /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal), in (0, 1e-3].
+    #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = parse_coplanar_tol)]
     pub coplanar_tol: f64,
     /// Write plots (n(ν), hull picture) and a flock-coloured PLY into this folder.
     #[arg(short, long)]
@@ -38,12 +40,29 @@ fn parse_nu(s: &str) -> Result<f64, String> {
     check_nu(v).map_err(|e| e.to_string())
 }
 
+fn parse_coplanar_tol(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
+    check_coplanar_tol(v).map_err(|e| e.to_string())
+}
+
 pub fn run(args: Args) -> Result<()> {
     let opts = Options { nu: args.nu, coplanar_tol: args.coplanar_tol, ..Options::default() };
+    opts.check()?;
     let files = expand(&args.paths)?;
+    let is_batch = args.paths.iter().any(|p| p.is_dir()) || files.len() > 1 || args.csv.is_some();
+    if is_batch && args.output.is_some() {
+        anyhow::bail!(
+            "-o/--output writes the plots and files of one stone; for {} files use --csv FILE (or --json for JSON lines)",
+            files.len()
+        );
+    }
+    if args.csv.is_some() && args.json {
+        anyhow::bail!("--csv and --json choose two different outputs for a batch: give one of them");
+    }
     match files.as_slice() {
-        [] => single(None, &args, &opts),
-        [one] if !args.paths.iter().any(|p| p.is_dir()) => single(Some(one), &args, &opts),
+        [] if args.csv.is_none() => single(None, &args, &opts),
+        [] => anyhow::bail!("--csv needs mesh files or folders to analyse"),
+        [one] if !is_batch => single(Some(one), &args, &opts),
         many => batch(many, &args, &opts),
     }
 }
@@ -88,8 +107,21 @@ pub fn is_bundled(name: &str) -> bool {
     name == DEFAULT_NAME
 }
 
+/// Say on standard error what was accepted although not clean (shallow self-intersections).
+fn warn(name: &str, r: &rocking_stones::mesh::Repairs) {
+    if r.shallow_crossings > 0 {
+        eprintln!(
+            "warning: {name}: {} pair(s) of triangles cross each other, at most {:.1e} of the size deep (accepted: below {:.0e}); volume and G are those of the surface as given",
+            r.shallow_crossings,
+            r.crossing_depth,
+            rocking_stones::mesh::SHALLOW_CROSSING_DEPTH
+        );
+    }
+}
+
 fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
     let (analysis, name) = load_analysis(path.map(|p| p.as_path()), opts)?;
+    warn(&name, &analysis.repairs);
     let report = analysis.report(&name, opts);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -107,37 +139,61 @@ fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
     Ok(())
 }
 
+/// One file of a batch: its report, or its error message and kind.
+type Outcome = Result<Report, (String, &'static str)>;
+
 fn batch(files: &[PathBuf], args: &Args, opts: &Options) -> Result<()> {
     let bar = indicatif::ProgressBar::new(files.len() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {elapsed_precise} {msg}")
             .expect("valid template"),
     );
-    let results: Vec<(PathBuf, Result<Report, String>)> = files
+    let results: Vec<(PathBuf, Outcome)> = files
         .par_iter()
         .map(|f| {
-            let r =
-                Analysis::of_file(f, opts).map(|a| a.report(&f.display().to_string(), opts)).map_err(|e| e.to_string());
+            let r = Analysis::of_file(f, opts)
+                .map(|a| a.report(&f.display().to_string(), opts))
+                .map_err(|e| (e.to_string(), e.kind()));
             bar.inc(1);
             (f.clone(), r)
         })
         .collect();
     bar.finish_and_clear();
-    let mut failed = 0;
+    let failed = results.iter().filter(|(_, r)| r.is_err()).count();
     for (_, r) in &results {
-        if let Err(e) = r {
-            eprintln!("error: {e}");
-            failed += 1;
+        match r {
+            Err((e, _)) => eprintln!("error: {e}"),
+            Ok(report) => warn(&report.file, &report.repairs),
         }
     }
-    let rows = results.iter().map(|(f, r)| (f.as_path(), r.as_ref().map_err(|e| e.as_str())));
-    match &args.csv {
-        Some(path) => {
-            let file = std::fs::File::create(path).with_context(|| format!("{}: cannot create", path.display()))?;
-            report::write_batch_csv(file, rows)?;
-            eprintln!("wrote {} ({} files, {} failed)", path.display(), results.len(), failed);
+    if args.json {
+        let mut out = std::io::stdout().lock();
+        for (f, r) in &results {
+            let line = match r {
+                Ok(report) => serde_json::to_string(report)?,
+                Err((e, kind)) => serde_json::to_string(
+                    &serde_json::json!({ "file": f.display().to_string(), "error": e, "kind": kind }),
+                )?,
+            };
+            writeln!(out, "{line}")?;
         }
-        None => report::write_batch_csv(std::io::stdout().lock(), rows)?,
+    } else {
+        let rows = results.iter().map(|(f, r)| (f.as_path(), r.as_ref().map_err(|(e, _)| e.as_str())));
+        match &args.csv {
+            Some(path) => {
+                let file = std::fs::File::create(path).with_context(|| format!("{}: cannot create", path.display()))?;
+                report::write_batch_csv(file, rows)?;
+                eprintln!("wrote {} ({} files, {} failed)", path.display(), results.len(), failed);
+            }
+            None => report::write_batch_csv(std::io::stdout().lock(), rows)?,
+        }
+    }
+    if failed > 0 {
+        anyhow::bail!(
+            "{failed} of {} files failed (their errors are above and in the {} output)",
+            results.len(),
+            if args.json { "JSON lines" } else { "CSV `error` column of the" }
+        );
     }
     Ok(())
 }

@@ -124,7 +124,8 @@ pub(super) fn read(bytes: &[u8]) -> Result<TriMesh> {
     let header = header(bytes)?;
     let mut sink = sink_for(&header.elements, bytes.len() / 3)?;
     match header.encoding {
-        Encoding::Ascii => read_ascii(&bytes[header.body..], &header, &mut sink)?,
+        Encoding::Ascii => read_ascii(&bytes[header.body..], &header, &mut sink)
+            .map_err(|e| count_hint(e, &bytes[header.body..], &header))?,
         enc => read_binary(&bytes[header.body..], header.body, &header.elements, enc == Encoding::Big, &mut sink)?,
     }
     Ok(sink.mesh)
@@ -419,7 +420,36 @@ fn read_ascii(body: &[u8], header: &Header, sink: &mut Sink) -> Result<()> {
             }
         }
     }
+    if let Some((line, w)) = tokens.words.next() {
+        return Err(at(
+            line,
+            format!("'{w}' follows the last element the header declares: the body holds more data than the header's element counts"),
+        ));
+    }
     Ok(())
+}
+
+/// When an ascii body fails to parse and its number of non-empty lines differs from the number
+/// of element instances the header declares, say so first: a wrong count in the header makes the
+/// reader take face lines for vertices (or the reverse), and the value it then trips over is a
+/// consequence, not the cause.
+fn count_hint(e: crate::Error, body: &[u8], header: &Header) -> crate::Error {
+    use crate::Error;
+    let Error::Parse { path, what } = e else { return e };
+    let declared: usize = header.elements.iter().map(|e| e.count).sum();
+    let text = String::from_utf8_lossy(body);
+    let present = lines(&text).filter(|(_, l)| !l.trim().is_empty()).count();
+    if present == declared {
+        return Error::Parse { path, what };
+    }
+    let counts: Vec<String> = header.elements.iter().map(|e| format!("{} {}", e.count, e.name)).collect();
+    Error::Parse {
+        path,
+        what: format!(
+            "the header's element counts do not match the data: it declares {} ({declared} lines of data) but the body has {present} non-empty lines (reading stopped at: {what})",
+            counts.join(", ")
+        ),
+    }
 }
 
 /// The numbers of an ascii body with the line of the last one read.
