@@ -83,12 +83,11 @@ impl Analysis {
 
     /// The serialisable summary of the analysis.
     pub fn report(&self, file: &str, opts: &Options) -> Report {
-        let (nu, nu_source) = self.macro_nu(opts);
-        let flocks = self.hierarchy.flocks_at(nu);
+        let m = self.hierarchy.macro_scale(opts.nu);
+        let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         let eq = &self.equilibria;
-        let rocking = self
-            .hierarchy
-            .rocking_at(nu)
+        let rocking = m
+            .rocking
             .into_iter()
             .map(|i| {
                 let p = &eq.points[i];
@@ -120,7 +119,7 @@ impl Analysis {
                 flock: flocks.membership[i],
             })
             .collect();
-        let macro_counts = self.hierarchy.counts_at(nu);
+        let macro_counts = m.counts;
         Report {
             file: file.to_string(),
             repairs: self.repairs.clone(),
@@ -156,7 +155,7 @@ impl Analysis {
                 unstable: macro_counts.unstable,
                 saddle: macro_counts.saddle,
             },
-            plateau: self.hierarchy.plateau(),
+            plateau: m.plateau,
             flocks: flocks.flocks,
             rocking,
             staircase: self.hierarchy.staircase(),
