@@ -122,12 +122,11 @@ impl Analysis {
 
     /// The serialisable summary of the analysis.
     pub fn report(&self, file: &str, opts: &Options) -> Report {
-        let (nu, nu_source) = self.macro_nu(opts);
-        let flocks = self.hierarchy.flocks_at(nu);
+        let m = self.hierarchy.macro_scale(opts.nu);
+        let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         let eq = &self.equilibria;
-        let rocking = self
-            .hierarchy
-            .rocking_at(nu)
+        let rocking = m
+            .rocking
             .into_iter()
             .map(|i| {
                 let p = &eq.points[i];
@@ -159,7 +158,14 @@ impl Analysis {
                 flock: flocks.membership[i],
             })
             .collect();
-        let quasi_static = crate::basins::basin_probabilities(&self.hull, &self.mass.center_of_mass, eq);
+        // On the normalised hull (exact power-of-two scaling, as the pipeline): probabilities
+        // are scale-free, and no product overflows at extreme scales.
+        let k = self.mesh.unit_exponent();
+        let quasi_static = crate::basins::basin_probabilities(
+            &self.hull.clone().scaled_pow2(k),
+            &crate::mesh::scale_point(&self.mass.center_of_mass, k),
+            &eq.clone().scaled_pow2(k),
+        );
         let stable_facets = eq
             .at_facet
             .iter()
@@ -176,7 +182,7 @@ impl Analysis {
                 })
             })
             .collect();
-        let macro_counts = self.hierarchy.counts_at(nu);
+        let macro_counts = m.counts;
         Report {
             file: file.to_string(),
             repairs: self.repairs.clone(),
@@ -212,7 +218,7 @@ impl Analysis {
                 unstable: macro_counts.unstable,
                 saddle: macro_counts.saddle,
             },
-            plateau: self.hierarchy.plateau(),
+            plateau: m.plateau,
             flocks: flocks.flocks,
             rocking,
             staircase: self.hierarchy.staircase(),

@@ -185,6 +185,19 @@ pub enum NuSource {
     PaperDefault,
 }
 
+/// A hierarchy read at its macro scale ([`Hierarchy::macro_scale`]).
+#[derive(Clone, Debug)]
+pub struct MacroScale {
+    pub nu: f64,
+    pub source: NuSource,
+    pub plateau: Option<Plateau>,
+    /// S(ν), U(ν), H(ν).
+    pub counts: Counts,
+    pub flocks: Flocks,
+    /// The rocking equilibria at ν ([`Hierarchy::rocking_at`]).
+    pub rocking: Vec<usize>,
+}
+
 /// The macro-scale ν, one rule for the 3D and the planar case: the user's, else the midpoint of
 /// a clear `plateau`, else [`PAPER_NU`] (an unclear plateau's own ν is not a macro scale).
 pub fn macro_nu(user: Option<f64>, plateau: Option<Plateau>) -> (f64, NuSource) {
@@ -427,6 +440,21 @@ impl Hierarchy {
             }
         }
         Flocks { membership, flocks }
+    }
+
+    /// The hierarchy read at its macro scale: ν by [`macro_nu`] (`user` first), and the plateau,
+    /// counts, flocks and rocking equilibria there — what the 3D and the planar reports show.
+    pub fn macro_scale(&self, user: Option<f64>) -> MacroScale {
+        let plateau = self.plateau();
+        let (nu, source) = macro_nu(user, plateau);
+        MacroScale {
+            nu,
+            source,
+            plateau,
+            counts: self.counts_at(nu),
+            flocks: self.flocks_at(nu),
+            rocking: self.rocking_at(nu),
+        }
     }
 
     /// The rocking equilibria at ν: stable nodes whose flock is not a stable flock (sorted).

@@ -714,12 +714,11 @@ impl PlanarAnalysis {
     }
 
     pub fn report(&self, user_nu: Option<f64>) -> PlanarReport {
-        let (nu, nu_source) = self.macro_nu(user_nu);
-        let flocks = self.hierarchy.flocks_at(nu);
+        let m = self.hierarchy.macro_scale(user_nu);
+        let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         let eq = &self.equilibria;
-        let rocking = self
-            .hierarchy
-            .rocking_at(nu)
+        let rocking = m
+            .rocking
             .into_iter()
             .map(|i| {
                 let p = &eq.points[i];
@@ -748,8 +747,8 @@ impl PlanarAnalysis {
             degenerate_decisions: eq.degenerate_decisions,
             nu,
             nu_source,
-            plateau: self.hierarchy.plateau(),
-            macro_counts: self.hierarchy.counts_at(nu),
+            plateau: m.plateau,
+            macro_counts: m.counts,
             flock_contents: FlockContents::of(&flocks.flocks),
             flocks: flocks.flocks,
             rocking,
