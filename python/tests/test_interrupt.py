@@ -1,0 +1,55 @@
+"""Long runs release the GIL and stop on Ctrl-C."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import rocking_stones as rs
+
+LONG_DROP = """
+import sys, rocking_stones as rs
+a = rs.analyze(rs.generate("pebble", n=400, seed=1))
+print("ready", flush=True)
+rs.drop(a, n=10**6, seed=1)
+"""
+
+
+def test_ctrl_c_stops_a_long_drop_quickly():
+    p = subprocess.Popen([sys.executable, "-c", LONG_DROP], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "ready"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    try:
+        _, err = p.communicate(timeout=20)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        raise AssertionError("the drop run did not stop on SIGINT")
+    waited = time.monotonic() - sent
+    assert "KeyboardInterrupt" in err, err
+    assert waited < 5.0, f"stopped {waited:.1f} s after Ctrl-C"
+
+
+def test_drops_release_the_gil():
+    a = rs.analyze(rs.generate("pebble", n=300, seed=2))
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    start = time.monotonic()
+    rs.drop(a, n=200, seed=1, threads=1)
+    elapsed = time.monotonic() - start
+    done.set()
+    t.join()
+    # The counting thread ran while the drops did (≈ one tick per ms, generously lower bound).
+    assert len(ticks) > 0.2 * elapsed * 1000 * 0.5, (len(ticks), elapsed)
