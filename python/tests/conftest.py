@@ -50,6 +50,8 @@ class Cli:
 @pytest.fixture(scope="session")
 def cli() -> Cli:
     path = rocking_binary()
+    if os.environ.get("ROCKING_BIN") and not path.exists():
+        pytest.fail(f"ROCKING_BIN={path} does not exist")
     if path is None or not path.exists():
         pytest.skip("the rocking CLI is not built (cargo build --bin rocking, or set ROCKING_BIN)")
     return Cli(path)
