@@ -1,10 +1,29 @@
 """Type stubs of rocking_stones (the classes and functions live in the native module)."""
 
 import os
-from typing import Any, Dict, List, Literal, Mapping, Optional, Protocol, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Optional, Protocol, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "DEFAULT_COPLANAR_TOL",
+    "PAPER_NU",
+    "Analysis",
+    "Basins",
+    "DropResult",
+    "DynamicsResult",
+    "MeshError",
+    "Study",
+    "__version__",
+    "analyze",
+    "basins",
+    "drop",
+    "generate",
+    "perturb",
+    "shake",
+    "study",
+]
 
 __version__: str
 DEFAULT_COPLANAR_TOL: float
@@ -18,7 +37,7 @@ class _HasMesh(Protocol):
     @property
     def faces(self) -> Any: ...
 
-MeshLike = Union[
+_MeshLike = Union[
     str,
     "os.PathLike[str]",
     Tuple[npt.ArrayLike, npt.ArrayLike],
@@ -27,17 +46,18 @@ MeshLike = Union[
 """A mesh file path (STL, OBJ, PLY), a ``(vertices (n, 3), faces (m, 3))`` pair of arrays, or
 any object with ``.vertices`` and ``.faces`` such as a ``trimesh.Trimesh``."""
 
-Counts = Tuple[int, int, int]
+_Counts = Tuple[int, int, int]
 """(S, U, H): stable, unstable and saddle equilibria."""
 
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
+_FloatArray = npt.NDArray[np.float64]
+_IntArray = npt.NDArray[np.int64]
 
 class MeshError(ValueError):
     """The mesh is not the boundary of a solid (open, non-manifold, inconsistently oriented,
     several shells, flat, NaN, truncated or unparsable file...). ``str(e)`` is the message
     ``rocking`` prints after ``error:``, naming the file (or ``<memory>`` / ``name``)."""
 
+@final
 class Analysis:
     """The static analysis of one stone (``rocking analyze``): mass properties, exact hull,
     micro-equilibria, the ν-hierarchy N(ν), the plateau, macro counts, flocks and rocking
@@ -47,10 +67,10 @@ class Analysis:
     def name(self) -> str:
         """The path as given, ``<memory>``, or the ``name`` passed to :func:`analyze`."""
     @property
-    def micro(self) -> Counts:
+    def micro(self) -> _Counts:
         """Micro-scale (S, U, H): stable facets, unstable vertices, saddle edges of the hull."""
     @property
-    def macro(self) -> Counts:
+    def macro(self) -> _Counts:
         """Macro-scale (S, U, H) at :attr:`nu`."""
     @property
     def nu(self) -> float:
@@ -65,14 +85,14 @@ class Analysis:
     def staircase(self) -> Dict[str, npt.NDArray[Any]]:
         """N(ν) as columns ``nu_lo, nu_hi, stable, unstable, saddle, n`` (n = N/N(0)): one row
         per constant step, from ν = 0 upwards."""
-    def counts_at(self, nu: float) -> Counts:
+    def counts_at(self, nu: float) -> _Counts:
         """(S, U, H) of the hierarchy at any ν ≥ 0."""
     @property
     def equilibria(self) -> Dict[str, npt.NDArray[Any]]:
         """Every micro-equilibrium as columns ``index, kind ('stable'|'saddle'|'unstable'),
         site ('facet'|'edge'|'vertex'), site_index, x, y, z, r, flock`` (``pd.DataFrame``-ready)."""
     @property
-    def points(self) -> FloatArray:
+    def points(self) -> _FloatArray:
         """Contact points of the micro-equilibria, (n, 3), in the order of :attr:`equilibria`."""
     @property
     def flocks(self) -> List[Dict[str, Any]]:
@@ -92,31 +112,31 @@ class Analysis:
     def area(self) -> float:
         """Surface area of the mesh."""
     @property
-    def center_of_mass(self) -> FloatArray:
+    def center_of_mass(self) -> _FloatArray:
         """Centre of mass G of the homogeneous solid, (3,)."""
     @property
-    def inertia(self) -> FloatArray:
+    def inertia(self) -> _FloatArray:
         """Inertia tensor about G for density 1, (3, 3) (as trimesh's ``moment_inertia``)."""
     @property
-    def principal_moments(self) -> FloatArray:
+    def principal_moments(self) -> _FloatArray:
         """Principal moments of inertia, ascending, (3,)."""
     @property
-    def principal_axes(self) -> FloatArray:
+    def principal_axes(self) -> _FloatArray:
         """Principal axes as unit columns, (3, 3)."""
     @property
     def hull(self) -> Dict[str, Any]:
         """Hull summary: facets, edges, vertices, triangles, coplanar_tol, volume, area."""
     @property
-    def hull_vertices(self) -> FloatArray:
+    def hull_vertices(self) -> _FloatArray:
         """Vertices of the convex hull, (k, 3)."""
     @property
-    def facet_normals(self) -> FloatArray:
+    def facet_normals(self) -> _FloatArray:
         """Outward unit normals of the hull facets, (f, 3), indexed by facet number."""
     @property
-    def vertices(self) -> FloatArray:
+    def vertices(self) -> _FloatArray:
         """Vertices of the checked mesh (exact duplicates welded, unused ones dropped), (n, 3)."""
     @property
-    def faces(self) -> IntArray:
+    def faces(self) -> _IntArray:
         """Triangles of the checked mesh, outward (counter-clockwise), (m, 3)."""
     @property
     def repairs(self) -> Dict[str, Any]:
@@ -131,27 +151,28 @@ class Analysis:
     def basins(self) -> "Basins":
         """Quasi-static resting probabilities of this stone (see :func:`basins`)."""
 
+@final
 class Basins:
     """Quasi-static resting probabilities: the basin of attraction of every stable facet on the
     sphere of down directions, area / 4π, computed exactly (error ≤ :attr:`error`)."""
 
     @property
-    def facet(self) -> IntArray:
+    def facet(self) -> _IntArray:
         """Hull facet of each stable micro-equilibrium."""
     @property
-    def equilibrium(self) -> IntArray:
+    def equilibrium(self) -> _IntArray:
         """Index of the stable micro-equilibrium (as in :attr:`Analysis.equilibria`)."""
     @property
-    def flock(self) -> IntArray:
+    def flock(self) -> _IntArray:
         """Flock of the stable micro-equilibrium at :attr:`nu`."""
     @property
-    def normal(self) -> FloatArray:
+    def normal(self) -> _FloatArray:
         """Outward unit normal of the facet, (k, 3); at rest it points straight down."""
     @property
-    def probability(self) -> FloatArray:
+    def probability(self) -> _FloatArray:
         """Quasi-static probability of coming to rest on the facet (sums to 1)."""
     @property
-    def flock_probability(self) -> FloatArray:
+    def flock_probability(self) -> _FloatArray:
         """Probability of every flock, indexed by flock id."""
     @property
     def error(self) -> float:
@@ -164,6 +185,7 @@ class Basins:
         """Columns ``facet, equilibrium, flock, nx, ny, nz, probability``."""
     def __len__(self) -> int: ...
 
+@final
 class DropResult:
     """A drop run (``rocking drop``): counts per facet and flock with 95 % Wilson intervals
     beside the quasi-static probabilities, χ² and KL, and every drop's outcome."""
@@ -208,6 +230,7 @@ class DropResult:
     def summary(self) -> str:
         """The human summary ``rocking drop`` prints."""
 
+@final
 class DynamicsResult:
     """A perturbation (``rocking perturb``) or shaking (``rocking shake``) run."""
 
@@ -218,9 +241,10 @@ class DynamicsResult:
     def trials(self) -> Dict[str, Any]:
         """Every trial as columns (nested fields joined with ``_``)."""
     def summary(self) -> str: ...
-    def __getitem__(self, key: str) -> Any:
+    def __getitem__(self, key: str, /) -> Any:
         """A top-level field of :meth:`to_dict`."""
 
+@final
 class Study:
     """A field study (``rocking study FOLDER``): one row per scan."""
 
@@ -246,7 +270,7 @@ class Study:
     def __len__(self) -> int: ...
 
 def analyze(
-    mesh: Optional[MeshLike] = None,
+    mesh: Optional[_MeshLike] = None,
     nu: Optional[float] = None,
     coplanar_tol: float = ...,
     name: Optional[str] = None,
@@ -263,11 +287,11 @@ def analyze(
     ``OSError`` for unreadable files, ``ValueError`` for bad options.
     """
 
-def basins(mesh: Union[MeshLike, Analysis, None] = None, nu: Optional[float] = None, name: Optional[str] = None) -> Basins:
+def basins(mesh: Union[_MeshLike, Analysis, None] = None, nu: Optional[float] = None, name: Optional[str] = None) -> Basins:
     """Quasi-static probability of resting on each stable facet, with its normal."""
 
 def drop(
-    mesh: Union[MeshLike, Analysis, None] = None,
+    mesh: Union[_MeshLike, Analysis, None] = None,
     n: int = 1000,
     seed: int = 1,
     *,
@@ -289,7 +313,7 @@ def drop(
     """
 
 def perturb(
-    mesh: Union[MeshLike, Analysis, None] = None,
+    mesh: Union[_MeshLike, Analysis, None] = None,
     *,
     equilibria: Optional[Sequence[int]] = None,
     flock: Optional[int] = None,
@@ -313,7 +337,7 @@ def perturb(
     contact_frequency, settle_time, hold_time, rest thresholds."""
 
 def shake(
-    mesh: Union[MeshLike, Analysis, None] = None,
+    mesh: Union[_MeshLike, Analysis, None] = None,
     *,
     equilibria: Optional[Sequence[int]] = None,
     pulse: Optional[Tuple[float, float, float]] = None,
@@ -337,7 +361,7 @@ def study(
     folder: Union[str, "os.PathLike[str]"],
     meta: Optional[Union[str, "os.PathLike[str]"]] = None,
     *,
-    nu: float = 0.0035,
+    nu: float = ...,
     coplanar_tol: float = ...,
     allow_unmatched: bool = False,
     dynamic: bool = False,
@@ -359,6 +383,6 @@ def generate(
     noise: Optional[float] = None,
     roughness: Optional[float] = None,
     seed: int = 0,
-) -> Tuple[FloatArray, IntArray]:
+) -> Tuple[_FloatArray, _IntArray]:
     """A synthetic shape as ``(vertices, faces)``, as ``rocking generate`` builds it (Platonic
     solids have circumradius 1)."""

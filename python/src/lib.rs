@@ -1026,12 +1026,13 @@ fn drop_stone(
                 return Err(Cancelled);
             }
             let start = Instant::now();
-            let upto = (done.len() as u64 + chunk).min(n);
+            let before = done.len() as u64;
+            let upto = (before + chunk).min(n);
             let part = RunHeader { drops: upto, ..header.clone() };
             for o in montecarlo::run(&setup.body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
                 done.insert(o.index, o);
             }
-            let per_drop = start.elapsed().as_secs_f64() / chunk as f64;
+            let per_drop = start.elapsed().as_secs_f64() / (upto - before) as f64;
             let threads = rayon::current_num_threads() as u64;
             chunk = ((0.25 / per_drop.max(1e-6)) as u64).clamp(threads, 64 * threads.max(4));
         }
@@ -1121,6 +1122,13 @@ fn select_starts(
     let list =
         || stone.stable.iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
     if let Some(k) = flock {
+        if k >= stone.flock_kinds.len() {
+            return Err(PyValueError::new_err(format!(
+                "there is no flock {k} (the stone has {} flocks at ν = {:.3e})",
+                stone.flock_kinds.len(),
+                stone.nu
+            )));
+        }
         let v: Vec<usize> = (0..stone.stable.len()).filter(|&i| stone.stable[i].flock == k).collect();
         if v.is_empty() {
             return Err(PyValueError::new_err(format!(
