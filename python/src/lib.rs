@@ -703,7 +703,18 @@ fn kind_name(k: rocking_stones::equilibria::Kind) -> String {
     serde_json::to_value(k).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default()
 }
 
-/// Analyse a stone as `rocking analyze` does.
+/// Analyse a stone as `rocking analyze` does; returns an `Analysis`.
+///
+/// mesh: a path (STL, OBJ, PLY), a (vertices (n, 3), faces (m, 3)) pair of arrays, an object
+///     with .vertices and .faces (trimesh.Trimesh), or None for the bundled scanned stone.
+///     In-memory meshes are welded and checked like files; errors name `name` (default
+///     "<memory>").
+/// nu: fixed ν of the macro scale (default: the automatic plateau, else 0.0035).
+/// coplanar_tol: relative tolerance of the facet merge (× bounding-box diagonal); 1e-6 for f32
+///     CAD files.
+///
+/// Raises MeshError (a ValueError) for unusable meshes, FileNotFoundError / OSError for
+/// unreadable files, ValueError for bad options, each with the CLI's message.
 #[pyfunction]
 #[pyo3(signature = (mesh = None, nu = None, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, name = None))]
 fn analyze(
@@ -836,7 +847,8 @@ impl PyBasins {
     }
 }
 
-/// Quasi-static resting probability of every stable facet.
+/// Quasi-static resting probability of every stable facet, with its normal and flock; returns
+/// `Basins`. `mesh` as for `analyze`, or an `Analysis`.
 #[pyfunction]
 #[pyo3(signature = (mesh = None, nu = None, name = None))]
 fn basins(
@@ -979,11 +991,17 @@ impl PyDropResult {
     }
 }
 
-/// Drop the stone `n` times from uniformly random orientations, as `rocking drop`.
+// The one place the binding calls the Monte Carlo loop (to adapt when the dynamics API changes):
+// drops run in chunks through `montecarlo::run` (drop i depends only on (seed, i), so chunks give
+// exactly the outcomes of one run) and the caller's Ctrl-C is checked between chunks.
+/// Drop the stone `n` times from uniformly random orientations in rapier3d, as
+/// `rocking drop MESH -n N --seed S`; returns a `DropResult` whose to_dict() is the CLI's --json.
 ///
-/// The one place the binding calls the Monte Carlo loop: drops run in chunks through
-/// [`montecarlo::run`] (drop i depends only on (seed, i), so chunks give exactly the outcomes of
-/// one run) and the caller's Ctrl-C is checked between chunks.
+/// **params: height, spin, friction, restitution, linear_damping, angular_damping, dt, max_time,
+/// rest_linear_speed, rest_angular_speed, rest_time (the CLI's defaults otherwise).
+/// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
+/// preset: only None / "default" in this version. threads: threads of this run (default:
+/// RAYON_NUM_THREADS or all cores). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = None, certificate = "facet", nu = None, name = None, threads = None, **params))]
 #[pyo3(name = "drop")]
@@ -1151,7 +1169,10 @@ fn select_starts(
     }
 }
 
-/// Push or spin the stone resting on its stable micro-equilibria, as `rocking perturb`.
+/// Push or spin the stone resting on its stable micro-equilibria, as `rocking perturb`;
+/// returns a `DynamicsResult` whose to_dict() is the CLI's --json. **params: friction,
+/// restitution, linear_damping, angular_damping, dt, max_time, contact_frequency, settle_time,
+/// hold_time, rest thresholds. preset: only None / "default" in this version.
 #[pyfunction]
 #[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = false, preset = None, nu = None, name = None, threads = None, **params))]
 #[allow(clippy::too_many_arguments)]
@@ -1196,7 +1217,10 @@ fn perturb(
     dynamics_result("perturb", &report, &report.trials, pt::summary(&report, &s.name))
 }
 
-/// Shake the ground under the resting stone, as `rocking shake`: fragility curves.
+/// Shake the ground under the resting stone, as `rocking shake`: fragility curves; returns a
+/// `DynamicsResult`. pulse=(amplitude in g, frequency in Hz for a stone of `size` metres,
+/// cycles) or motion=CSV of time and acceleration; the default sweeps a 2-cycle 2 Hz pulse up to
+/// 1 g. **params as for `perturb`.
 #[pyfunction]
 #[pyo3(signature = (mesh = None, *, equilibria = None, pulse = None, motion = None, pga_max = None, pga_steps = 20, size = 1.0, azimuth = None, trials = 40, seed = 1, preset = None, nu = None, name = None, threads = None, **params))]
 #[allow(clippy::too_many_arguments)]
@@ -1354,7 +1378,9 @@ impl PyStudy {
     }
 }
 
-/// A field study over a folder of scans, as `rocking study FOLDER`.
+/// A field study over a folder of scans, as `rocking study FOLDER --meta META`; returns a
+/// `Study` with one row per pebble (the columns of pebbles.csv). dynamic=True adds the
+/// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble).
 #[pyfunction]
 #[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None))]
 #[allow(clippy::too_many_arguments)]
@@ -1407,7 +1433,9 @@ fn study(
 // ---------------------------------------------------------------------------------------------
 // generate
 
-/// A synthetic shape as `(vertices, faces)` arrays, as `rocking generate`.
+/// A synthetic shape as (vertices, faces) arrays, as `rocking generate`: tetrahedron, cube,
+/// octahedron, dodecahedron, icosahedron (circumradius 1), box (axes = edge lengths), ellipsoid,
+/// noisy-box, pebble (axes = semi-axes; n points, noise, roughness, seed).
 #[pyfunction]
 #[pyo3(signature = (shape, *, axes = None, n = None, noise = None, roughness = None, seed = 0))]
 #[allow(clippy::type_complexity)]
