@@ -1,7 +1,7 @@
 """Type stubs of rocking_stones (the classes and functions live in the native module)."""
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Protocol, Sequence, Tuple, Union, final
+from typing import Any, Callable, Dict, List, Literal, Optional, Protocol, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -20,6 +20,7 @@ __all__ = [
     "basins",
     "drop",
     "generate",
+    "num_threads",
     "perturb",
     "shake",
     "study",
@@ -300,6 +301,7 @@ def drop(
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
     **params: float,
 ) -> DropResult:
     """Drop the stone ``n`` times from uniformly random orientations in rapier3d, as
@@ -310,6 +312,7 @@ def drop(
     rest_angular_speed, rest_time. ``preset``: only None / "default" (the CLI's defaults) in this
     version. Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
+    ``progress``: ``callable(done, total)`` called about every 0.1 s (a tqdm bar's ``update``).
     """
 
 def perturb(
@@ -329,6 +332,7 @@ def perturb(
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
     **params: float,
 ) -> DynamicsResult:
     """Push or spin the stone resting on its stable micro-equilibria, as ``rocking perturb``:
@@ -352,6 +356,7 @@ def shake(
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
     **params: float,
 ) -> DynamicsResult:
     """Shake the ground under the resting stone, as ``rocking shake``: fragility curves.
@@ -369,6 +374,7 @@ def study(
     height: float = ...,
     seed: int = 1,
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
 ) -> Study:
     """Field study over a folder of scans, as ``rocking study FOLDER --meta META``: one row per
     pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``."""
@@ -386,3 +392,6 @@ def generate(
 ) -> Tuple[_FloatArray, _IntArray]:
     """A synthetic shape as ``(vertices, faces)``, as ``rocking generate`` builds it (Platonic
     solids have circumradius 1)."""
+
+def num_threads() -> int:
+    """Threads of the long runs by default: ``RAYON_NUM_THREADS`` if set, else the cores."""

@@ -33,7 +33,7 @@ use rocking_stones::{Error, Point3};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -278,12 +278,14 @@ impl Stone {
 struct Cancelled;
 
 /// Run `work` on a worker thread (in a pool of `threads` threads if given, else rayon's global
-/// pool) while this thread, without the GIL, waits for it and checks for signals every 100 ms.
-/// On Ctrl-C the run is told to stop (`stop()` turns true, `tick()` unwinds at the next trial),
-/// the worker is joined and `KeyboardInterrupt` is raised.
+/// pool) while this thread, without the GIL, waits for it and checks for signals every 100 ms,
+/// calling `progress(done, total)` then if given. On Ctrl-C (or an exception in `progress`) the
+/// run is told to stop (`stopped()` turns true, `tick()` unwinds at the next trial), the worker
+/// is joined and the exception is raised.
 fn interruptible<T: Send>(
     py: Python<'_>,
     threads: Option<usize>,
+    progress: Option<(&Bound<'_, PyAny>, u64)>,
     work: impl FnOnce(&Control) -> T + Send,
 ) -> PyResult<T> {
     let pool = match threads {
@@ -296,7 +298,13 @@ fn interruptible<T: Send>(
         ),
         None => None,
     };
-    let control = Control { cancel: AtomicBool::new(false) };
+    let control = Control { cancel: AtomicBool::new(false), done: AtomicU64::new(0) };
+    let report = |control: &Control| -> PyResult<()> {
+        match progress {
+            Some((f, total)) => f.call1((control.done.load(Ordering::Relaxed), total)).map(|_| ()),
+            None => Ok(()),
+        }
+    };
     std::thread::scope(|s| {
         let (tx, mut rx) = std::sync::mpsc::channel();
         let (control, pool) = (&control, &pool);
@@ -317,14 +325,14 @@ fn interruptible<T: Send>(
             if done {
                 break;
             }
-            if let Err(e) = py.check_signals() {
+            if let Err(e) = py.check_signals().and_then(|_| report(control)) {
                 control.cancel.store(true, Ordering::Relaxed);
                 let _ = py.detach(move || worker.join());
                 return Err(e);
             }
         }
         match py.detach(move || worker.join()) {
-            Ok(Ok(v)) => Ok(v),
+            Ok(Ok(v)) => report(control).map(|_| v),
             Ok(Err(payload)) | Err(payload) => {
                 if payload.is::<Cancelled>() {
                     Err(PyKeyboardInterrupt::new_err("interrupted"))
@@ -339,6 +347,8 @@ fn interruptible<T: Send>(
 /// What a running computation sees of the caller's Ctrl-C.
 struct Control {
     cancel: AtomicBool,
+    /// Trials (drops, files) finished, for `progress`.
+    done: AtomicU64,
 }
 
 impl Control {
@@ -347,8 +357,14 @@ impl Control {
         self.cancel.load(Ordering::Relaxed)
     }
 
-    /// For progress callbacks: stop the run here if the caller asked to.
+    /// One more trial finished.
+    fn advance(&self) {
+        self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// For progress callbacks: count the trial, and stop the run here if the caller asked to.
     fn tick(&self) {
+        self.advance();
         if self.stopped() {
             std::panic::resume_unwind(Box::new(Cancelled));
         }
@@ -1001,9 +1017,10 @@ impl PyDropResult {
 /// rest_linear_speed, rest_angular_speed, rest_time (the CLI's defaults otherwise).
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
 /// preset: only None / "default" in this version. threads: threads of this run (default:
-/// RAYON_NUM_THREADS or all cores). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+/// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
+/// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = None, certificate = "facet", nu = None, name = None, threads = None, **params))]
+#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = None, certificate = "facet", nu = None, name = None, threads = None, progress = None, **params))]
 #[pyo3(name = "drop")]
 #[allow(clippy::too_many_arguments)]
 fn drop_stone(
@@ -1016,6 +1033,7 @@ fn drop_stone(
     nu: Option<f64>,
     name: Option<String>,
     threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDropResult> {
     check_preset(preset)?;
@@ -1033,9 +1051,10 @@ fn drop_stone(
         params: p,
         certificate,
     };
-    let outcomes = interruptible(py, threads, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
+    let progress = progress.map(|f| (f, n));
+    let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
         let cert = setup.certificate(header.certificate);
-        let sink = std::sync::Mutex::new(|_: &DropOutcome| {});
+        let sink = std::sync::Mutex::new(|_: &DropOutcome| control.advance());
         let mut done = BTreeMap::new();
         // Chunks of about a quarter of a second, so that Ctrl-C is answered quickly.
         let mut chunk = rayon::current_num_threads() as u64;
@@ -1174,7 +1193,7 @@ fn select_starts(
 /// restitution, linear_damping, angular_damping, dt, max_time, contact_frequency, settle_time,
 /// hold_time, rest thresholds. preset: only None / "default" in this version.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = false, preset = None, nu = None, name = None, threads = None, **params))]
+#[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = false, preset = None, nu = None, name = None, threads = None, progress = None, **params))]
 #[allow(clippy::too_many_arguments)]
 fn perturb(
     py: Python<'_>,
@@ -1193,6 +1212,7 @@ fn perturb(
     nu: Option<f64>,
     name: Option<String>,
     threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
     use rocking_stones::dynamics::perturb::{self as pt, PerturbConfig};
@@ -1213,7 +1233,8 @@ fn perturb(
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let starts = select_starts(&stone, equilibria, flock)?;
-    let report = interruptible(py, threads, |c| pt::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
+    let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
+    let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
     dynamics_result("perturb", &report, &report.trials, pt::summary(&report, &s.name))
 }
 
@@ -1222,7 +1243,7 @@ fn perturb(
 /// cycles) or motion=CSV of time and acceleration; the default sweeps a 2-cycle 2 Hz pulse up to
 /// 1 g. **params as for `perturb`.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, *, equilibria = None, pulse = None, motion = None, pga_max = None, pga_steps = 20, size = 1.0, azimuth = None, trials = 40, seed = 1, preset = None, nu = None, name = None, threads = None, **params))]
+#[pyo3(signature = (mesh = None, *, equilibria = None, pulse = None, motion = None, pga_max = None, pga_steps = 20, size = 1.0, azimuth = None, trials = 40, seed = 1, preset = None, nu = None, name = None, threads = None, progress = None, **params))]
 #[allow(clippy::too_many_arguments)]
 fn shake(
     py: Python<'_>,
@@ -1240,6 +1261,7 @@ fn shake(
     nu: Option<f64>,
     name: Option<String>,
     threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
     use rocking_stones::dynamics::perturb::{self as pt, default_pair};
@@ -1286,7 +1308,8 @@ fn shake(
         }
         Some(ids) => select_starts(&stone, Some(ids), None)?,
     };
-    let report = interruptible(py, threads, |c| sh::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
+    let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
+    let report = interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
     dynamics_result("shake", &report, &report.trials, sh::summary(&report, &s.name))
 }
 
@@ -1382,7 +1405,7 @@ impl PyStudy {
 /// `Study` with one row per pebble (the columns of pebbles.csv). dynamic=True adds the
 /// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble).
 #[pyfunction]
-#[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None))]
+#[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn study(
     py: Python<'_>,
@@ -1396,6 +1419,7 @@ fn study(
     height: f64,
     seed: u64,
     threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyStudy> {
     use rocking_stones::study::{self as st, Experimenter, Metadata, StudyOptions};
     let nu = check_nu(nu).map_err(py_err)?;
@@ -1415,8 +1439,10 @@ fn study(
     let files = st::mesh_files(&folder).map_err(py_err)?;
     let meta = meta.as_deref().map(Metadata::read).transpose().map_err(py_err)?;
     let opts = StudyOptions { analysis: options(None, coplanar_tol)?, nu, experimenter, allow_unmatched };
-    let (study, _unmatched) =
-        interruptible(py, threads, |c| st::run_files(&files, meta.as_ref(), &opts, &|| c.tick()))?.map_err(py_err)?;
+    let (study, _unmatched) = interruptible(py, threads, progress.map(|f| (f, files.len() as u64)), |c| {
+        st::run_files(&files, meta.as_ref(), &opts, &|| c.tick())
+    })?
+    .map_err(py_err)?;
     let text = |r: anyhow::Result<()>, buf: Vec<u8>| -> PyResult<String> {
         r.map_err(|e| PyRuntimeError::new_err(format!("{e:#}")))?;
         String::from_utf8(buf).map_err(|e| PyRuntimeError::new_err(e.to_string()))
@@ -1471,6 +1497,12 @@ fn generate<'py>(
     Ok((v, f))
 }
 
+/// Threads of the long runs by default: `RAYON_NUM_THREADS` if set, else the number of cores.
+#[pyfunction]
+fn num_threads() -> usize {
+    rayon::current_num_threads()
+}
+
 // ---------------------------------------------------------------------------------------------
 
 #[pymodule]
@@ -1491,5 +1523,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(shake, m)?)?;
     m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
+    m.add_function(wrap_pyfunction!(num_threads, m)?)?;
     Ok(())
 }

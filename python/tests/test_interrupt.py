@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import sys
@@ -55,3 +56,33 @@ def test_drops_release_the_gil():
     # drops it could not have run at all).
     assert elapsed > 0.2, f"the run was too short to tell ({elapsed:.2f} s)"
     assert len(ticks) >= 20, (len(ticks), elapsed)
+
+
+def test_progress_is_reported_and_can_stop_a_run():
+    a = rs.analyze(rs.generate("box"))
+    seen = []
+    d = rs.drop(a, n=300, seed=1, progress=lambda done, total: seen.append((done, total)))
+    assert seen and seen[-1] == (300, 300) and all(t == 300 for _, t in seen)
+    assert [x for x, _ in seen] == sorted(x for x, _ in seen)
+    assert d.drops == 300
+
+    class Stop(Exception):
+        pass
+
+    def stop(done, total):
+        raise Stop
+
+    try:
+        rs.drop(a, n=10**6, seed=1, progress=stop)
+    except Stop:
+        pass
+    else:
+        raise AssertionError("the exception raised by progress should stop the run")
+
+
+def test_thread_count_follows_rayon_num_threads():
+    code = "import rocking_stones as rs; print(rs.num_threads())"
+    for n in ("1", "3"):
+        out = subprocess.run([sys.executable, "-c", code], env={**os.environ, "RAYON_NUM_THREADS": n},
+                             capture_output=True, text=True, check=True)
+        assert out.stdout.strip() == n
