@@ -9,9 +9,10 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
-use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, DropSetup, RunHeader, FORMAT};
+use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -40,11 +41,16 @@ fn main() -> anyhow::Result<()> {
         let (mesh, rep) = mesh.into_solid_boundary()?;
         let a = Analysis::of_solid(mesh, rep, &Options::default())?;
         let (nu, _) = a.macro_nu(&Options::default());
-        let setup = DropSetup::new(&a, nu)?;
-        eprintln!("{name}: quasi-static error ±{:.1e} ({})", setup.quasi_static.error, setup.quasi_static.method);
+        let setup = Stone::new(&a, nu)?;
+        eprintln!("{name}: quasi-static error ±{:.1e} ({})", setup.quasi_static().error, setup.quasi_static().method);
         for &e in &RESTITUTIONS {
             for &hgt in &HEIGHTS {
-                let params = DropParams { height: hgt, restitution: e, spin: 0.0, ..DropParams::default() };
+                let params = DropParams {
+                    height: hgt,
+                    restitution: e,
+                    spin: 0.0,
+                    ..rocking_stones::dynamics::perturb::legacy_contact()
+                };
                 let header = RunHeader {
                     format: FORMAT.into(),
                     mesh: name.into(),
@@ -53,6 +59,7 @@ fn main() -> anyhow::Result<()> {
                     drops: DROPS,
                     params,
                     certificate: CertificateMode::Facet,
+                    preset: None,
                 };
                 let t = std::time::Instant::now();
                 let (report, _) = run_report(&setup, &header);
@@ -80,7 +87,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
     let (mesh, rep) = generate::pebble([1.0, 0.72, 0.5], 0.02, 1500, 3).into_solid_boundary()?;
     let a = Analysis::of_solid(mesh, rep, &Options::default())?;
     let (nu, _) = a.macro_nu(&Options::default());
-    let setup = DropSetup::new(&a, nu)?;
+    let setup = Stone::new(&a, nu)?;
     let mut out = Vec::new();
     for d in [0.3, 1.0, 3.0, 10.0, 30.0] {
         let params = DropParams {
@@ -89,7 +96,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             linear_damping: d,
             angular_damping: d,
             max_time: 60.0,
-            ..DropParams::default()
+            ..rocking_stones::dynamics::perturb::legacy_contact()
         };
         let header = RunHeader {
             format: FORMAT.into(),
@@ -99,11 +106,12 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             drops: 1000,
             params,
             certificate: CertificateMode::Facet,
+            preset: None,
         };
         let (report, _) = run_report(&setup, &header);
         eprintln!(
             "  damping {d}: KL flocks {:.4}, non-stable {}",
-            report.fit_flocks.kl_divergence, report.on_non_stable_facet
+            report.fit_flocks.kl_divergence, report.off_equilibrium
         );
         out.push((d, report));
     }
@@ -270,7 +278,7 @@ fn summary(path: &Path, rows: &[Row], damping: &[(f64, DropReport)]) -> anyhow::
             s,
             "| {d} | {} | {} | {} | {:.4} | {} |",
             r.settled,
-            r.on_non_stable_facet,
+            r.off_equilibrium,
             r.unsettled,
             r.fit_flocks.kl_divergence,
             r.fit_facets.as_ref().map_or("—".into(), |f| format!("{:.4}", f.kl_divergence))

@@ -13,11 +13,12 @@
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::perturb::{
-    self, default_pair, log_grid, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport,
-    Stone, Threshold,
+    self, default_pair, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
+    Threshold,
 };
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::Vec3;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -36,15 +37,15 @@ fn main() -> anyhow::Result<()> {
             let a = Analysis::of_solid(mesh, rep, &Options::default()).ok()?;
             let (nu, _) = a.macro_nu(&Options::default());
             let stone = Stone::new(&a, nu).ok()?;
-            let n_rocking = stone.stable.iter().filter(|s| s.class == Class::Rocking).count();
+            let n_rocking = stone.stable().iter().filter(|s| s.class == Class::Rocking).count();
             let (reg, rock) = default_pair(&stone, &params);
-            let ok = rock.is_some_and(|r| stone.stable[r].basin_exit.epsilon >= 1e-4) && reg.is_some();
+            let ok = rock.is_some_and(|r| stone.stable()[r].basin_exit.epsilon >= 1e-4) && reg.is_some();
             let _ = writeln!(
                 search,
                 "| {seed} | {} | {} | {n_rocking} | {} |",
-                stone.stable.len(),
+                stone.stable().len(),
                 stone.flock_kinds.len(),
-                rock.map_or("none stays at rest".into(), |r| format!("{:.2e}", stone.stable[r].basin_exit.epsilon))
+                rock.map_or("none stays at rest".into(), |r| format!("{:.2e}", stone.stable()[r].basin_exit.epsilon))
             );
             ok.then(|| (seed, a, stone, reg.unwrap(), rock.unwrap()))
         })
@@ -55,7 +56,7 @@ fn main() -> anyhow::Result<()> {
         let cfg = PerturbConfig {
             params: params.clone(),
             family,
-            epsilons: log_grid(1e-6, 1.0, 19),
+            epsilons: log_grid(1e-6, 1.0, GridSize::Points(19)),
             trials: TRIALS,
             seed: SEED,
             epsilon_star: None,
@@ -137,7 +138,7 @@ fn plot_poses(path: &Path, stone: &Stone, a: &Analysis, which: &[usize]) -> anyh
     let g = a.mass.center_of_mass;
     let r_max = stone.body.r_max;
     for (area, &i) in root.split_evenly((1, which.len())).iter().zip(which) {
-        let s = &stone.stable[i];
+        let s = &stone.stable()[i];
         let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
         let pts: Vec<(f64, f64)> = a
             .hull

@@ -12,8 +12,9 @@
 //! Run: `cargo run --release --example fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`.
 
 use rocking_stones::analysis::{Options, PAPER_NU};
+use rocking_stones::stats::LogFit;
 use rocking_stones::study::{
-    self, Comparison, Experimenter, FitOptions, HandSample, LogFit, Metadata, PopulationParams, StudyOptions,
+    self, Comparison, Experimenter, FitOptions, HandSample, Metadata, PopulationParams, StudyOptions,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -37,7 +37,7 @@ fn main() -> anyhow::Result<()> {
             let (nu, _) = a.macro_nu(&Options::default());
             let stone = Stone::new(&a, nu).ok()?;
             let (reg, rock) = default_pair(&stone, &params);
-            let ok = rock.is_some_and(|r| stone.stable[r].basin_exit.epsilon >= 1e-4) && reg.is_some();
+            let ok = rock.is_some_and(|r| stone.stable()[r].basin_exit.epsilon >= 1e-4) && reg.is_some();
             ok.then(|| (seed, stone, reg.unwrap(), rock.unwrap()))
         })
         .expect("a pebble with a rocking equilibrium");

@@ -11,7 +11,7 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::params::DropParams;
 use rocking_stones::dynamics::perturb::{PerturbParams, Stone, GRAVITY};
 use rocking_stones::dynamics::shake::{free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::generate;
@@ -26,7 +26,7 @@ fn block(b: f64) -> (Stone, usize) {
     let (mesh, rep) = generate::cuboid(2.0 * b, 2.0 * DEPTH, 2.0).into_solid_boundary().unwrap();
     let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
     let s = Stone::new(&a, 0.01).unwrap();
-    let start = s.stable.iter().position(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap();
+    let start = s.stable().iter().position(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap();
     (s, start)
 }
 
@@ -48,7 +48,7 @@ fn params(s: &Setting) -> PerturbParams {
             linear_damping: 0.0,
             angular_damping: 0.0,
             dt: s.dt,
-            ..DropParams::default()
+            ..rocking_stones::dynamics::perturb::legacy_contact()
         },
         contact_frequency: s.contact_frequency,
         ..PerturbParams::default()

@@ -16,10 +16,10 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::perturb::{
-    self, dynamic_class, log_grid, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
-    Threshold,
+    self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
 };
 use rocking_stones::generate;
+use rocking_stones::stats::{log_grid, GridSize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -74,13 +74,13 @@ fn main() -> anyhow::Result<()> {
     for (name, kind, a) in inputs {
         let (nu, _) = a.macro_nu(&Options::default());
         let stone = Stone::new(&a, nu)?;
-        let all: Vec<usize> = (0..stone.stable.len()).collect();
+        let all: Vec<usize> = (0..stone.stable().len()).collect();
         let mut reports = Vec::new();
         for family in [Family::Push, Family::Spin] {
             let cfg = PerturbConfig {
                 params: params.clone(),
                 family,
-                epsilons: log_grid(1e-6, 1.0, 13),
+                epsilons: log_grid(1e-6, 1.0, GridSize::Points(13)),
                 trials: TRIALS,
                 seed: SEED,
                 epsilon_star: None,
@@ -354,9 +354,9 @@ fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
             "| {} | {:.2e} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {}; {} / {} |",
             r.name,
             r.stone.nu,
-            r.stone.stable.len(),
-            r.stone.stable.iter().filter(|e| e.class == Class::Regular).count(),
-            r.stone.stable.iter().filter(|e| e.class == Class::Rocking).count(),
+            r.stone.stable().len(),
+            r.stone.stable().iter().filter(|e| e.class == Class::Regular).count(),
+            r.stone.stable().iter().filter(|e| e.class == Class::Rocking).count(),
             p.equilibria.iter().filter(|e| !e.rest.stays).count(),
             c.regular_as_regular,
             c.regular_as_rocking,

@@ -342,10 +342,10 @@ fn readme(out: &Path, runs: &[Run], r0: f64, opts: &FitOptions) -> anyhow::Resul
         std::iter::once(b.nu).chain(runs.iter().filter(|r| r.group == "seed").map(|r| r.fit.nu)).collect();
     let (s_lo, s_hi) = (seeds.iter().cloned().fold(f64::INFINITY, f64::min), seeds.iter().cloned().fold(0.0, f64::max));
     let logs: Vec<f64> = seeds.iter().map(|x| x.log10()).collect();
-    let seed_sd = study::sample_sd(&logs);
+    let seed_sd = rocking_stones::stats::sample_sd(&logs);
     let chis: Vec<f64> =
         std::iter::once(b.chi2_min).chain(runs.iter().filter(|r| r.group == "seed").map(|r| r.fit.chi2_min)).collect();
-    let chi_sd = study::sample_sd(&chis);
+    let chi_sd = rocking_stones::stats::sample_sd(&chis);
     let group_range = |g: &str| -> (f64, f64) {
         let v: Vec<f64> = runs.iter().filter(|r| r.group == g).map(|r| r.fit.nu).chain([b.nu]).collect();
         (v.iter().cloned().fold(f64::INFINITY, f64::min), v.iter().cloned().fold(0.0, f64::max))

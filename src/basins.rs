@@ -181,19 +181,6 @@ fn frame(u: &Vec3) -> (Vec3, Vec3) {
     (p1, u.cross(&p1))
 }
 
-/// Fixed quasi-uniform directions (Fibonacci sphere).
-fn fibonacci(n: usize) -> Vec<Vec3> {
-    let golden = PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|k| {
-            let z = 1.0 - (2 * k + 1) as f64 / n as f64;
-            let rho = (1.0 - z * z).max(0.0).sqrt();
-            let t = golden * k as f64;
-            Vec3::new(rho * t.cos(), rho * t.sin(), z)
-        })
-        .collect()
-}
-
 impl SupportFlow {
     /// Precompute the flow of h for hull `poly` and centre of mass `g`; the stable facets are
     /// those of `eq` (which must belong to the same hull and G).
@@ -242,7 +229,7 @@ impl SupportFlow {
         flow.leave = (0..poly.facets.len())
             .map(|f| if eq.at_facet.get(f).is_some_and(|s| s.is_some()) { Leave::Stable } else { flow.leave_facet(f) })
             .collect();
-        flow.seeds = fibonacci(SEEDS)
+        flow.seeds = crate::rng::fibonacci_sphere(SEEDS)
             .into_iter()
             .map(|d| {
                 let best = (0..flow.w.len())
@@ -1072,7 +1059,7 @@ mod tests {
     fn support_vertex_hill_climb_matches_a_scan() {
         let (poly, g, eq) = setup(platonic(Platonic::Icosahedron));
         let flow = SupportFlow::new(&poly, &g, &eq);
-        for d in fibonacci(200) {
+        for d in crate::rng::fibonacci_sphere(200) {
             let scan = (0..poly.vertices.len()).map(|v| (poly.vertices[v] - g).dot(&d)).fold(f64::MIN, f64::max);
             assert!((flow.w[flow.support_vertex(&d) as usize].dot(&d) - scan).abs() < 1e-14);
         }

@@ -15,10 +15,9 @@
 
 use crate::hull::convex_hull;
 use crate::mesh::TriMesh;
+use crate::rng::{fibonacci_sphere, random_rotation, random_unit};
 use crate::{Error, Point3, Result, Vec3};
-use nalgebra::{Quaternion, Rotation3, UnitQuaternion};
 use rand::{RngExt, SeedableRng};
-use rand_distr::StandardNormal;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use std::f64::consts::PI;
 use std::fmt;
@@ -128,27 +127,12 @@ pub fn cuboid(a: f64, b: f64, c: f64) -> TriMesh {
     hull_mesh(corners.collect())
 }
 
-/// A uniformly random rotation: the unit quaternion of four independent standard normals.
-fn random_rotation(rng: &mut Xoshiro256PlusPlus) -> Rotation3<f64> {
-    let mut g = || rng.sample::<f64, _>(StandardNormal);
-    let q = Quaternion::new(g(), g(), g(), g());
-    UnitQuaternion::from_quaternion(q).to_rotation_matrix()
-}
-
 /// `n` quasi-uniform unit directions: the Fibonacci sphere zₖ = 1 − (2k+1)/n,
 /// θₖ = k·π(3 − √5) (the golden angle), turned by a seeded uniformly random rotation so that
 /// different seeds give different samplings.
 pub fn fibonacci_directions(n: usize, rng: &mut Xoshiro256PlusPlus) -> Vec<Vec3> {
-    let rot = random_rotation(rng);
-    let golden = PI * (3.0 - 5f64.sqrt());
-    (0..n)
-        .map(|k| {
-            let z = 1.0 - (2 * k + 1) as f64 / n as f64;
-            let rho = (1.0 - z * z).max(0.0).sqrt();
-            let t = golden * k as f64;
-            rot * Vec3::new(rho * t.cos(), rho * t.sin(), z)
-        })
-        .collect()
+    let rot = random_rotation(rng).to_rotation_matrix();
+    fibonacci_sphere(n).into_iter().map(|u| rot * u).collect()
 }
 
 /// The star-shaped mesh `pₖ = factor[k] · D uₖ` triangulated by the hull of the directions
@@ -293,16 +277,6 @@ fn roughness_field(dirs: &[Vec3], rng: &mut Xoshiro256PlusPlus) -> Vec<f64> {
         *fk += amplitude * x;
     }
     f
-}
-
-/// A uniformly random unit vector (normalised standard normal triple).
-fn random_unit(rng: &mut Xoshiro256PlusPlus) -> Vec3 {
-    loop {
-        let v = Vec3::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal));
-        if v.norm() > 1e-9 {
-            return v.normalize();
-        }
-    }
 }
 
 /// Smallest number of sample points of an ellipsoid or pebble.

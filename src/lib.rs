@@ -51,8 +51,10 @@ pub mod morse_smale;
 pub mod planar;
 pub mod plot;
 pub mod report;
+pub mod rng;
 pub mod shape;
 pub mod solid;
+pub mod stats;
 pub mod study;
 
 pub use error::{Error, Result};

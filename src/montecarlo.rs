@@ -2,7 +2,7 @@
 //! checkpointed, merged, and summarised against the static theory.
 //!
 //! * **Reproducibility.** Drop i of a run with seed s draws everything from its own generator,
-//!   Xoshiro256++ seeded with SplitMix64(s, i) ([`drop_rng`]); rapier is deterministic for a
+//!   Xoshiro256++ seeded with SplitMix64(s, i) ([`item_rng`]); rapier is deterministic for a
 //!   given binary and input. So the outcome of drop i does not depend on the thread count, the
 //!   order of execution, or how the run is sharded: counts from any sharding merged with
 //!   [`merge`] equal those of one big run.
@@ -12,42 +12,22 @@
 //! * **Statistics.** Wilson score intervals (95 %) per facet and per flock; Pearson's χ² and the
 //!   Kullback–Leibler divergence of the empirical distribution from the static one.
 
-use crate::dynamics::drop::{simulate, Certificate, DropBody, DropOutcome, DropParams, Release};
+use crate::dynamics::drop::{launch, simulate, DropOutcome};
+use crate::dynamics::params::DropParams;
+pub use crate::dynamics::run::CertificateMode;
+use crate::dynamics::run::{Certificate, EnergyCertificate, NoCertificate};
+pub use crate::dynamics::stone::StaticModel;
+use crate::dynamics::stone::Stone;
 use crate::equilibria::Kind;
+use crate::rng::item_rng;
+use crate::stats::{chi_square, kl_divergence, wilson};
 use crate::{Error, Result, Vec3};
-use nalgebra::{Quaternion, UnitQuaternion};
-use rand::SeedableRng;
-use rand_distr::{Distribution, StandardNormal};
-use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::io::{BufRead, Write};
 use std::path::Path;
 use std::sync::Mutex;
-
-/// SplitMix64 finaliser: a bijective mix of 64 bits.
-fn splitmix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// The random stream of drop `index` of a run seeded with `seed`.
-pub fn drop_rng(seed: u64, index: u64) -> Xoshiro256PlusPlus {
-    Xoshiro256PlusPlus::seed_from_u64(splitmix(splitmix(seed) ^ index))
-}
-
-/// A uniformly random orientation (a normalised 4-D Gaussian is uniform on S³, i.e. Haar on
-/// SO(3)) and an angular velocity of magnitude `spin` about a uniformly random axis.
-pub fn random_release(rng: &mut Xoshiro256PlusPlus, spin: f64) -> Release {
-    let mut g = || -> f64 { StandardNormal.sample(rng) };
-    let q = Quaternion::new(g(), g(), g(), g());
-    let axis = Vec3::new(g(), g(), g());
-    let axis = if axis.norm() > 0.0 { axis.normalize() } else { Vec3::z() };
-    Release { orientation: UnitQuaternion::from_quaternion(q), angvel: axis * spin }
-}
 
 /// Which drops a process runs: indices `index`, `index + count`, `index + 2 count`, …
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -77,18 +57,6 @@ impl Shard {
     }
 }
 
-/// Early termination of drops by the energy certificate of the static theory.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "lowercase")]
-pub enum CertificateMode {
-    /// Simulate every drop until it rests (or the time cap).
-    None,
-    /// Stop once the final facet is certain.
-    Facet,
-    /// Stop once the final flock is certain.
-    Flock,
-}
-
 /// What identifies a run: every partial result of the same run has the same header.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunHeader {
@@ -101,10 +69,15 @@ pub struct RunHeader {
     pub drops: u64,
     pub params: DropParams,
     pub certificate: CertificateMode,
+    /// The preset and surface the parameters started from (for the report; `params` is what
+    /// was run).
+    #[serde(default)]
+    pub preset: Option<String>,
 }
 
-/// Header format tag of checkpoint files.
-pub const FORMAT: &str = "rocking-drops/1";
+/// Header format tag of checkpoint files (2: launches with horizontal speed and Gaussian spin,
+/// rolling resistance, outcomes by the quasi-static descent).
+pub const FORMAT: &str = "rocking-drops/2";
 
 /// FNV-1a over the bit patterns of the vertices and the triangle indices.
 pub fn fingerprint(mesh: &crate::mesh::TriMesh) -> String {
@@ -123,20 +96,20 @@ pub fn fingerprint(mesh: &crate::mesh::TriMesh) -> String {
 /// Run the drops of `shard` that are not in `done`, in parallel, calling `on_done` (under a
 /// lock) as each finishes. Returns the new outcomes sorted by index.
 pub fn run(
-    body: &DropBody,
+    stone: &Stone,
     header: &RunHeader,
     shard: Shard,
     done: &BTreeMap<u64, DropOutcome>,
-    cert: &(dyn Certificate + Sync),
+    cert: &dyn Certificate,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
 ) -> Vec<DropOutcome> {
     let todo: Vec<u64> = shard.indices(header.drops).filter(|i| !done.contains_key(i)).collect();
     let mut out: Vec<DropOutcome> = todo
         .par_iter()
         .map(|&i| {
-            let mut rng = drop_rng(header.seed, i);
-            let release = random_release(&mut rng, header.params.spin);
-            let o = simulate(body, &header.params, &release, i, cert);
+            let mut rng = item_rng(header.seed, i);
+            let release = launch(&mut rng, &header.params);
+            let o = simulate(stone, &header.params, &release, i, cert);
             (on_done.lock().expect("no panic while holding the lock"))(&o);
             o
         })
@@ -252,68 +225,6 @@ pub fn merge(parts: &[(RunHeader, BTreeMap<u64, DropOutcome>)]) -> Result<(RunHe
     Ok((first.clone(), all))
 }
 
-/// Wilson score interval for k successes in n trials at z (1.96 for 95 %).
-pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
-    if n == 0 {
-        return (0.0, 1.0);
-    }
-    let (k, n) = (k as f64, n as f64);
-    let p = k / n;
-    let denom = 1.0 + z * z / n;
-    let centre = (p + z * z / (2.0 * n)) / denom;
-    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / denom;
-    ((centre - half).max(0.0), (centre + half).min(1.0))
-}
-
-/// Pearson's χ² of counts against probabilities (categories with expected count < 5 are pooled
-/// into one), its degrees of freedom and p-value.
-pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
-    let n: u64 = counts.iter().sum();
-    let (mut chi2, mut cats) = (0.0, 0usize);
-    let (mut pooled_o, mut pooled_e) = (0.0, 0.0);
-    for (&o, &p) in counts.iter().zip(probabilities) {
-        let e = p * n as f64;
-        if e < 5.0 {
-            pooled_o += o as f64;
-            pooled_e += e;
-        } else {
-            chi2 += (o as f64 - e).powi(2) / e;
-            cats += 1;
-        }
-    }
-    if pooled_e > 0.0 {
-        chi2 += (pooled_o - pooled_e).powi(2) / pooled_e;
-        cats += 1;
-    }
-    let dof = cats.saturating_sub(1);
-    let p = if dof == 0 {
-        1.0
-    } else {
-        use statrs::distribution::{ChiSquared, ContinuousCDF};
-        ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
-    };
-    (chi2, dof, p)
-}
-
-/// Kullback–Leibler divergence D(empirical ‖ static) in nats (categories with zero counts
-/// contribute 0; a count where the static probability is 0 gives ∞).
-pub fn kl_divergence(counts: &[u64], probabilities: &[f64]) -> f64 {
-    let n: u64 = counts.iter().sum();
-    counts
-        .iter()
-        .zip(probabilities)
-        .filter(|(&o, _)| o > 0)
-        .map(|(&o, &p)| {
-            let q = o as f64 / n as f64;
-            if p > 0.0 {
-                q * (q / p).ln()
-            } else {
-                f64::INFINITY
-            }
-        })
-        .sum()
-}
-
 /// Per-facet row of a drop report.
 #[derive(Clone, Debug, Serialize)]
 pub struct FacetRow {
@@ -350,23 +261,6 @@ pub struct Fit {
     pub kl_divergence: f64,
 }
 
-/// What the static theory says about each facet, to summarise drops against it.
-#[derive(Clone, Debug)]
-pub struct StaticModel {
-    /// Outward unit normal of every hull facet (mesh frame).
-    pub facet_normals: Vec<Vec3>,
-    /// For every facet, its stable micro-equilibrium (None: not a stable facet).
-    pub facet_equilibrium: Vec<Option<usize>>,
-    /// For every facet, the flock of its stable micro-equilibrium.
-    pub facet_flock: Vec<Option<usize>>,
-    /// Type of every flock.
-    pub flock_kinds: Vec<Kind>,
-    /// Quasi-static resting probability of every facet (0 for non-stable ones).
-    pub facet_probability: Vec<f64>,
-    /// ν at which the flocks were read.
-    pub nu: f64,
-}
-
 /// The numbers of a drop run, read by the CLI, the plots and the experiments.
 #[derive(Clone, Debug, Serialize)]
 pub struct DropReport {
@@ -380,16 +274,27 @@ pub struct DropReport {
     pub settled: u64,
     /// Drops still moving at the time cap.
     pub unsettled: u64,
-    /// Settled drops whose downward facet is not a stable facet.
-    pub on_non_stable_facet: u64,
+    /// Settled drops that stopped above their stable facet by more than the contact tolerance
+    /// ([`crate::dynamics::stone::REST_TOLERANCE`]): held on a slope by friction or rolling
+    /// resistance. Their facet is the one the quasi-static descent reaches.
+    pub off_equilibrium: u64,
     /// Drops ended by the energy certificate.
     pub certified: u64,
-    /// Mean simulated time per drop (s, scaled frame).
+    /// Mean simulated time per drop (s, scaled frame), whatever ended it.
     pub mean_time: f64,
+    /// Mean simulated time to rest of the drops that came to rest without the certificate.
+    pub mean_time_to_rest: Option<f64>,
+    /// Mean simulated time to the certificate's decision of the certified drops.
+    pub mean_time_to_decision: Option<f64>,
+    /// Drops whose final facet is determined (settled and not ended by a flock-level
+    /// certificate): the per-facet fractions are over these.
+    pub facet_drops: u64,
     pub params: DropParams,
+    pub preset: Option<String>,
     pub certificate: CertificateMode,
     pub nu: f64,
-    /// Facets that were reached or have a positive static probability.
+    /// Facets that were reached or have a positive static probability (empty in flock-certified
+    /// mode, where the certificate leaves facets undetermined).
     pub facets: Vec<FacetRow>,
     pub flocks: Vec<FlockRow>,
     /// χ² / KL of settled drops on stable facets against the static facet probabilities
@@ -403,20 +308,25 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
     let nf = model.facet_normals.len();
     let mut facet_counts = vec![0u64; nf];
     let mut flock_counts = vec![0u64; model.flock_kinds.len()];
-    let (mut settled, mut unsettled, mut non_stable, mut certified, mut time) = (0, 0, 0, 0, 0.0);
+    let (mut settled, mut unsettled, mut off, mut certified, mut time) = (0, 0, 0, 0, 0.0);
+    let (mut rest_time, mut rested, mut decision_time) = (0.0, 0u64, 0.0);
     for o in outcomes.values() {
         time += o.time;
         certified += u64::from(o.certified);
+        if o.certified {
+            decision_time += o.time;
+        } else if o.settled {
+            rest_time += o.time;
+            rested += 1;
+        }
         if !o.settled {
             unsettled += 1;
             continue;
         }
         settled += 1;
+        off += u64::from(o.off_equilibrium());
         if let Some(f) = o.facet {
             facet_counts[f as usize] += 1;
-            if model.facet_equilibrium[f as usize].is_none() {
-                non_stable += 1;
-            }
         }
         let flock = o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| model.facet_flock[f as usize]));
         if let Some(k) = flock {
@@ -427,8 +337,9 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         .map(|k| (0..nf).filter(|&f| model.facet_flock[f] == Some(k)).map(|f| model.facet_probability[f]).sum())
         .collect();
     let n_facet: u64 = facet_counts.iter().sum();
+    let facets_determined = header.certificate != CertificateMode::Flock;
     let facets = (0..nf)
-        .filter(|&f| facet_counts[f] > 0 || model.facet_probability[f] > 0.0)
+        .filter(|&f| facets_determined && (facet_counts[f] > 0 || model.facet_probability[f] > 0.0))
         .map(|f| FacetRow {
             facet: f as u32,
             normal: model.facet_normals[f],
@@ -456,8 +367,8 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         let (chi_square, dof, p_value) = chi_square(counts, p);
         Fit { chi_square, dof, p_value, kl_divergence: kl_divergence(counts, p) }
     };
-    let fit_facets =
-        (header.certificate != CertificateMode::Flock).then(|| fit(&facet_counts, &model.facet_probability));
+    let fit_facets = facets_determined.then(|| fit(&facet_counts, &model.facet_probability));
+    let mean = |t: f64, n: u64| (n > 0).then(|| t / n as f64);
     DropReport {
         mesh: header.mesh.clone(),
         seed: header.seed,
@@ -465,10 +376,14 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         drops: outcomes.len() as u64,
         settled,
         unsettled,
-        on_non_stable_facet: non_stable,
+        off_equilibrium: off,
         certified,
         mean_time: if outcomes.is_empty() { 0.0 } else { time / outcomes.len() as f64 },
+        mean_time_to_rest: mean(rest_time, rested),
+        mean_time_to_decision: mean(decision_time, certified),
+        facet_drops: if facets_determined { n_facet } else { 0 },
         params: header.params.clone(),
+        preset: header.preset.clone(),
         certificate: header.certificate,
         nu: model.nu,
         facets,
@@ -478,119 +393,29 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
     }
 }
 
-/// Everything a drop run needs about one analysed stone: the body, the static model to
-/// compare with, and the merge tree for the energy certificate.
-pub struct DropSetup {
-    pub body: DropBody,
-    pub model: StaticModel,
-    pub tree: crate::basins::MergeTree,
-    /// Quasi-static probabilities and their stated error.
-    pub quasi_static: crate::basins::QuasiStatic,
-}
-
-impl DropSetup {
-    /// Prepare drops of an analysed stone, with flocks read at `nu`.
-    pub fn new(a: &crate::analysis::Analysis, nu: f64) -> Result<Self> {
-        let g = a.mass.center_of_mass;
-        let eq = &a.equilibria;
-        let body = DropBody::new(&a.hull, &g, &a.mass.inertia, a.mass.volume);
-        let flocks = a.hierarchy.flocks_at(nu);
-        let facet_equilibrium: Vec<Option<usize>> = eq.at_facet.iter().map(|s| s.map(|s| s as usize)).collect();
-        let facet_flock = facet_equilibrium.iter().map(|s| s.map(|s| flocks.membership[s])).collect();
-        let quasi_static = crate::basins::basin_probabilities(&a.hull, &g, eq);
-        let model = StaticModel {
-            facet_normals: a.hull.facets.iter().map(|f| f.normal).collect(),
-            facet_equilibrium,
-            facet_flock,
-            flock_kinds: flocks.flocks.iter().map(|f| f.kind).collect(),
-            facet_probability: quasi_static.facet_probability.clone(),
-            nu,
-        };
-        let tree = crate::basins::MergeTree::new(&a.hull, &g, eq);
-        Ok(DropSetup { body, model, tree, quasi_static })
-    }
-
-    /// The energy certificate for `mode` (a no-op for [`CertificateMode::None`]).
-    pub fn certificate(&self, mode: CertificateMode) -> Box<dyn Certificate + Sync + '_> {
-        match mode {
-            CertificateMode::None => Box::new(crate::dynamics::drop::NoCertificate),
-            _ => Box::new(TreeCertificate { setup: self, flock_level: mode == CertificateMode::Flock }),
-        }
-    }
-}
-
-/// Safety margin added to the energy level before asking the merge tree, in units of R_max: the
-/// body sinks into the ground by the contact's penetration, so z_G can be below h(d) by that much.
-/// Measured with the project's collider: at most 8·10⁻⁴ R_max over 300 drops up to 2 R_max high
-/// with restitution 0.6 (the certificate is validated drop by drop against full settling in
-/// `tests/drops.rs` and `results/drops_certificate/`).
-pub const CERTIFICATE_MARGIN: f64 = 3e-3;
-
-/// The merge-tree certificate of SPEC §6: E/(m g) bounds the support function h along the rest
-/// of a passive drop, so a sublevel component with one stable facet (or one flock) decides it.
-struct TreeCertificate<'a> {
-    setup: &'a DropSetup,
-    flock_level: bool,
-}
-
-impl Certificate for TreeCertificate<'_> {
-    fn decided(&self, down: &Vec3, level: f64) -> Option<crate::dynamics::drop::Decided> {
-        use crate::dynamics::drop::Decided;
-        let level = (level + CERTIFICATE_MARGIN) * self.setup.body.r_max;
-        if self.flock_level {
-            self.setup.tree.decided_flock(down, level, &self.setup.model.facet_flock).map(|k| Decided::Flock(k as u32))
-        } else {
-            self.setup.tree.decided(down, level).map(Decided::Facet)
-        }
+/// The certificate of `mode` on `stone` (a no-op for [`CertificateMode::None`]).
+pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate + '_> {
+    match EnergyCertificate::new(stone, mode) {
+        Some(c) => Box::new(c),
+        None => Box::new(NoCertificate),
     }
 }
 
 /// Run every drop of `header` in memory (no checkpoint, no progress) and summarise them; for
 /// experiments and tests. Returns the report and the outcomes by index.
-pub fn run_report(setup: &DropSetup, header: &RunHeader) -> (DropReport, BTreeMap<u64, DropOutcome>) {
+pub fn run_report(stone: &Stone, header: &RunHeader) -> (DropReport, BTreeMap<u64, DropOutcome>) {
     let sink = Mutex::new(|_: &DropOutcome| {});
-    let cert = setup.certificate(header.certificate);
-    let outcomes: BTreeMap<u64, DropOutcome> =
-        run(&setup.body, header, Shard::ALL, &BTreeMap::new(), cert.as_ref(), &sink)
-            .into_iter()
-            .map(|o| (o.index, o))
-            .collect();
-    (summarize(&setup.model, header, &outcomes), outcomes)
+    let cert = certificate(stone, header.certificate);
+    let outcomes: BTreeMap<u64, DropOutcome> = run(stone, header, Shard::ALL, &BTreeMap::new(), cert.as_ref(), &sink)
+        .into_iter()
+        .map(|o| (o.index, o))
+        .collect();
+    (summarize(&stone.model(), header, &outcomes), outcomes)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn wilson_interval_matches_a_hand_computation() {
-        // k = 10, n = 100, z = 1.96: centre (0.1 + 0.019208)/1.038416 = 0.114798,
-        // half-width 1.96·√(0.0009 + 0.00009604)/1.038416 = 0.059570 → (0.0552, 0.1744), the
-        // textbook Wilson interval for 10/100.
-        let (lo, hi) = wilson(10, 100, 1.96);
-        assert!((lo - 0.055228).abs() < 1e-5, "{lo}");
-        assert!((hi - 0.174368).abs() < 1e-5, "{hi}");
-    }
-
-    #[test]
-    fn chi_square_of_a_perfect_fit_is_zero_and_p_is_one() {
-        let (c, dof, p) = chi_square(&[100, 200, 300], &[1.0 / 6.0, 2.0 / 6.0, 3.0 / 6.0]);
-        assert!(c.abs() < 1e-12 && dof == 2 && (p - 1.0).abs() < 1e-12);
-        // 2 categories, O = (60, 40) vs E = (50, 50): χ² = 4, p = 0.0455.
-        let (c, dof, p) = chi_square(&[60, 40], &[0.5, 0.5]);
-        assert!((c - 4.0).abs() < 1e-12 && dof == 1 && (p - 0.0455).abs() < 1e-4, "{p}");
-    }
-
-    #[test]
-    fn drop_streams_depend_only_on_seed_and_index() {
-        use rand::Rng;
-        let a: Vec<u64> = (0..5).map(|i| drop_rng(7, i).next_u64()).collect();
-        let b: Vec<u64> =
-            (0..5).rev().map(|i| drop_rng(7, i).next_u64()).collect::<Vec<_>>().into_iter().rev().collect();
-        assert_eq!(a, b);
-        assert_ne!(drop_rng(7, 0).next_u64(), drop_rng(8, 0).next_u64());
-        assert_ne!(a[0], a[1]);
-    }
 
     #[test]
     fn shards_partition_the_indices() {

@@ -445,16 +445,59 @@ pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> anyhow::Result<()> {
 pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     let mut s = String::new();
     let p = &r.params;
+    let plural = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     let _ = writeln!(
         s,
-        "{}: {} of {} drops (seed {}), {} settled, {} still moving after {} s, {} on a non-stable facet, {} ended by the certificate ({:?})",
-        r.mesh, r.drops, r.drops_requested, r.seed, r.settled, r.unsettled, p.max_time, r.on_non_stable_facet, r.certified, r.certificate
+        "{}: {} of {} (seed {}), preset {}; {} settled, {} ended by the {} certificate",
+        r.mesh,
+        r.drops,
+        plural(r.drops_requested, "drop", "drops"),
+        r.seed,
+        r.preset.as_deref().unwrap_or("custom"),
+        r.settled,
+        r.certified,
+        r.certificate.name()
     );
     let _ = writeln!(
         s,
-        "  drop: height {} R_max, spin {} rad/s, friction {}, restitution {}, damping {}/{} 1/s, dt {:.5} s; mean simulated time {:.2} s",
-        p.height, p.spin, p.friction, p.restitution, p.linear_damping, p.angular_damping, p.dt, r.mean_time
+        "  launch: height {} R_max, horizontal speed {} m/s, spin {} rad/s ({}), scaled to R_max = 1 m",
+        p.height,
+        p.horizontal_speed,
+        p.spin,
+        match p.spin_distribution {
+            crate::dynamics::params::SpinDistribution::Fixed => "exact",
+            crate::dynamics::params::SpinDistribution::Gaussian => "rms, Gaussian",
+        }
     );
+    let _ = writeln!(
+        s,
+        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max, damping {}/{} 1/s; dt {:.5} s",
+        p.friction, p.restitution, p.rolling_resistance, p.torsional_friction, p.linear_damping, p.angular_damping, p.dt
+    );
+    let mean = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.2} s"));
+    let _ = writeln!(
+        s,
+        "  simulated time per drop: {} to rest, {} to the certificate's decision",
+        mean(r.mean_time_to_rest),
+        mean(r.mean_time_to_decision)
+    );
+    if r.unsettled > 0 {
+        let _ = writeln!(
+            s,
+            "  WARNING: {} still moving at the {} s cap (counted where the quasi-static descent from their last \
+             position leads). Raise --max-time, lower --dt, or add --rolling-resistance.",
+            plural(r.unsettled, "drop", "drops"),
+            p.max_time
+        );
+    }
+    if r.off_equilibrium > 0 {
+        let _ = writeln!(
+            s,
+            "  note: {} stopped above their stable facet (held by friction or rolling resistance); counted \
+             where the quasi-static descent leads",
+            plural(r.off_equilibrium, "drop", "drops")
+        );
+    }
     let _ = writeln!(s, "  flocks at ν = {:.4e}:", r.nu);
     let _ = writeln!(
         s,
@@ -475,12 +518,26 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     }
     let mut facets: Vec<_> = r.facets.iter().collect();
     facets.sort_by(|a, b| b.count.cmp(&a.count).then(b.static_probability.total_cmp(&a.static_probability)));
-    let _ = writeln!(s, "  facets (the {} most frequent of {}):", facets.len().min(12), facets.len());
-    let _ = writeln!(
-        s,
-        "    {:>6} {:>5} {:>7} {:>9} {:>18} {:>9}",
-        "facet", "flock", "drops", "fraction", "95% interval", "static"
-    );
+    if facets.is_empty() {
+        let _ = writeln!(
+            s,
+            "  facets: not determined (the flock certificate stops a drop once its flock is certain; \
+             use --certificate facet or none for per-facet counts)"
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "  stable facets (the {} most frequent of {}; fractions of the {} drops whose facet is determined):",
+            facets.len().min(12),
+            facets.len(),
+            r.facet_drops
+        );
+        let _ = writeln!(
+            s,
+            "    {:>6} {:>5} {:>7} {:>9} {:>18} {:>9}",
+            "facet", "flock", "drops", "fraction", "95% interval", "static"
+        );
+    }
     for f in facets.iter().take(12) {
         let _ = writeln!(
             s,

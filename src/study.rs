@@ -33,13 +33,16 @@
 //! divisor better: 5 of the 6 decisive pairs.)
 
 use crate::analysis::{Analysis, Options, Report, PAPER_NU};
-use crate::dynamics::drop::DropParams;
+use crate::dynamics::params::{DropParams, Preset, Surface};
+use crate::dynamics::stone::Stone;
 use crate::equilibria::Kind;
 use crate::hierarchy::{Counts, Hierarchy};
-use crate::montecarlo::{drop_rng, run_report, CertificateMode, DropSetup, RunHeader, FORMAT};
+use crate::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
 use crate::plot::{init_fonts, FONT_FAMILY};
+use crate::rng::{fnv1a_str, item_rng};
 use crate::shape::{describe, Zingg};
 use crate::solid::MassProperties;
+use crate::stats::{log_fit, log_grid, mean, sample_sd, GridSize, LogFit};
 use crate::{generate, Error, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -53,25 +56,6 @@ use std::path::{Path, PathBuf};
 // ---------------------------------------------------------------------------------------------
 // Statistics
 // ---------------------------------------------------------------------------------------------
-
-/// Arithmetic mean (NaN for no data).
-pub fn mean(x: &[f64]) -> f64 {
-    if x.is_empty() {
-        f64::NAN
-    } else {
-        x.iter().sum::<f64>() / x.len() as f64
-    }
-}
-
-/// Sample standard deviation, divisor n − 1 (the paper's convention, see the module docs); NaN
-/// for fewer than two values.
-pub fn sample_sd(x: &[f64]) -> f64 {
-    if x.len() < 2 {
-        return f64::NAN;
-    }
-    let m = mean(x);
-    (x.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (x.len() - 1) as f64).sqrt()
-}
 
 /// E and σ (sample standard deviation) of S and U over a group of pebbles.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -100,67 +84,6 @@ impl Moments {
     pub fn as_array(&self) -> [f64; 4] {
         [self.es, self.eu, self.sd_s, self.sd_u]
     }
-}
-
-/// A logarithmic trend line y = intercept + slope · ln x (least squares), as the trend lines of
-/// the paper's Figure 12, with its coefficient of determination R².
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct LogFit {
-    pub intercept: f64,
-    pub slope: f64,
-    /// 1 − SS_res / SS_tot.
-    pub r2: f64,
-    pub n: usize,
-}
-
-impl LogFit {
-    /// The trend at x.
-    pub fn eval(&self, x: f64) -> f64 {
-        self.intercept + self.slope * x.ln()
-    }
-
-    /// `y = 2.31 ln x + 4.12 (R² = 0.78, n = 22)`.
-    pub fn describe(&self) -> String {
-        format!(
-            "y = {:.3} ln x {} {:.3} (R² = {:.3}, n = {})",
-            self.slope,
-            sign(self.intercept),
-            self.intercept.abs(),
-            self.r2,
-            self.n
-        )
-    }
-}
-
-fn sign(x: f64) -> char {
-    if x < 0.0 {
-        '−'
-    } else {
-        '+'
-    }
-}
-
-/// Least-squares y = a + b ln x over the points with x > 0 and finite y; `None` with fewer than
-/// two such points or all x equal.
-pub fn log_fit(points: &[(f64, f64)]) -> Option<LogFit> {
-    let p: Vec<(f64, f64)> =
-        points.iter().filter(|(x, y)| *x > 0.0 && x.is_finite() && y.is_finite()).map(|(x, y)| (x.ln(), *y)).collect();
-    if p.len() < 2 {
-        return None;
-    }
-    let n = p.len() as f64;
-    let (mx, my) = (p.iter().map(|q| q.0).sum::<f64>() / n, p.iter().map(|q| q.1).sum::<f64>() / n);
-    let sxx: f64 = p.iter().map(|q| (q.0 - mx).powi(2)).sum();
-    if sxx <= 0.0 {
-        return None;
-    }
-    let sxy: f64 = p.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
-    let slope = sxy / sxx;
-    let intercept = my - slope * mx;
-    let ss_tot: f64 = p.iter().map(|q| (q.1 - my).powi(2)).sum();
-    let ss_res: f64 = p.iter().map(|q| (q.1 - intercept - slope * q.0).powi(2)).sum();
-    let r2 = if ss_tot > 0.0 { 1.0 - ss_res / ss_tot } else { 1.0 };
-    Some(LogFit { intercept, slope, r2, n: p.len() })
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -375,11 +298,17 @@ pub const DEFAULT_TRIALS: u64 = 20;
 /// Default release height of the simulated experimenter, in R_max: a pebble put down by hand.
 pub const DEFAULT_SET_DOWN_HEIGHT: f64 = 0.05;
 
+/// The contact and launch of a pebble set down by hand: the [`Preset::Drop`] protocol (from rest,
+/// no spin) on [`Surface::StoneOnStone`], released [`DEFAULT_SET_DOWN_HEIGHT`] above the ground.
+pub fn set_down_params() -> DropParams {
+    DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..Preset::Drop.params(Surface::StoneOnStone) }
+}
+
 impl Default for Experimenter {
     fn default() -> Self {
         Experimenter {
             trials: DEFAULT_TRIALS,
-            params: DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..DropParams::default() },
+            params: DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..set_down_params() },
             seed: 1,
         }
     }
@@ -401,10 +330,10 @@ pub struct DynamicCounts {
 
 /// Set the analysed pebble down `exp.trials` times in uniformly random orientations from
 /// `exp.params.height` (in R_max) and count the distinct flocks of G(ν) it rests in. Trial i
-/// uses [`drop_rng`]`(seed, i)`. A trial settling on a facet that is not stable counts for the
+/// uses [`item_rng`]`(seed, i)`. A trial settling on a facet that is not stable counts for the
 /// flock its steepest descent drains to; a trial still moving at the time cap counts for nothing.
 pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> Result<DynamicCounts> {
-    let setup = DropSetup::new(a, nu)?;
+    let stone = Stone::new(a, nu)?;
     let header = RunHeader {
         format: FORMAT.into(),
         mesh: String::new(),
@@ -413,23 +342,20 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         drops: exp.trials,
         params: exp.params.clone(),
         certificate: CertificateMode::Flock,
+        preset: None,
     };
-    let (_, outcomes) = run_report(&setup, &header);
-    let basins = a.basins();
-    let membership = a.hierarchy.flocks_at(nu).membership;
+    let (_, outcomes) = run_report(&stone, &header);
     let mut found = BTreeSet::new();
     let mut settled = 0;
     for o in outcomes.values().filter(|o| o.settled) {
         settled += 1;
-        let flock = o.flock.map(|k| k as usize).or_else(|| {
-            o.facet
-                .and_then(|f| setup.model.facet_flock[f as usize].or_else(|| basins[f as usize].map(|s| membership[s])))
-        });
+        // Facets of outcomes are stable facets (the rule of `Stone::rest`).
+        let flock = o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]));
         if let Some(k) = flock {
             found.insert(k);
         }
     }
-    let kinds = &setup.model.flock_kinds;
+    let kinds = &stone.flock_kinds;
     let stable = found.iter().filter(|&&k| kinds[k] == Kind::Stable).count();
     Ok(DynamicCounts {
         trials: exp.trials,
@@ -537,17 +463,6 @@ pub fn pebble_id(path: &Path) -> String {
     path.file_stem().map_or(String::new(), |s| s.to_string_lossy().into_owned())
 }
 
-/// FNV-1a of a string: mixes a pebble's id into the experimenter's seed, so that the dynamic
-/// counts of a pebble do not depend on which other files are in the folder.
-pub fn fnv1a(s: &str) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in s.bytes() {
-        h ^= b as u64;
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    }
-    h
-}
-
 /// Analyse `files` in parallel (calling `tick` after each) and join them with `meta` on their
 /// ids. Errors: two files with the same id; metadata ids without a scan (unless
 /// `opts.allow_unmatched`, when they are returned as the second value). A file that fails to
@@ -591,7 +506,7 @@ pub fn run_files(
         .zip(ids.par_iter())
         .map(|(f, id)| {
             let name = f.display().to_string();
-            let seed = opts.experimenter.as_ref().map_or(0, |e| e.seed ^ fnv1a(id));
+            let seed = opts.experimenter.as_ref().map_or(0, |e| e.seed ^ fnv1a_str(id));
             let result = Analysis::of_file(f, &opts.analysis)
                 .and_then(|a| Counted::of(&a, &name, &opts.analysis, opts.nu, opts.experimenter.as_ref(), seed))
                 .map_err(|e| e.to_string());
@@ -894,7 +809,7 @@ pub struct SyntheticSpec {
 /// Smallest ratio drawn for c/b or b/a.
 pub const MIN_RATIO: f64 = 0.15;
 
-/// The pebbles of a synthetic sample. Pebble j draws from [`drop_rng`]`(seed ^ fnv1a(name), j)`
+/// The pebbles of a synthetic sample. Pebble j draws from [`item_rng`]`(seed ^ fnv1a_str(name), j)`
 /// a mesh seed and two standard normals z₁, z₂; its ellipsoid has semi-axes
 /// (1, β, β γ) with γ = c/b = clamp(μ_c/b + spread·z₁) and β = b/a = clamp(μ_b/a + spread·z₂),
 /// clamped to [0.15, 1], μ_b/a = (c/a)/(c/b) of the target. With `calibrate`, the population is
@@ -916,10 +831,10 @@ pub fn synthetic_specs(target: &SampleTarget, params: &PopulationParams) -> Resu
     if !(params.spread >= 0.0 && params.spread.is_finite()) {
         return Err(Error::Usage(format!("spread must be ≥ 0, got {}", params.spread)));
     }
-    let base = params.seed ^ fnv1a(&target.name);
+    let base = params.seed ^ fnv1a_str(&target.name);
     let draws: Vec<(u64, f64, f64)> = (0..params.count as u64)
         .map(|j| {
-            let mut rng = drop_rng(base, j);
+            let mut rng = item_rng(base, j);
             let seed = rng.next_u64();
             (seed, rng.sample::<f64, _>(StandardNormal), rng.sample::<f64, _>(StandardNormal))
         })
@@ -1101,13 +1016,6 @@ pub fn read_table2(path: &Path) -> Result<Vec<HandSample>> {
     Ok(out)
 }
 
-/// `n` points per decade from `lo` to `hi` (both included, log-spaced).
-pub fn log_grid(lo: f64, hi: f64, per_decade: usize) -> Vec<f64> {
-    let decades = (hi / lo).log10();
-    let steps = (decades * per_decade as f64).round().max(1.0) as usize;
-    (0..=steps).map(|k| lo * 10f64.powf(decades * k as f64 / steps as f64)).collect()
-}
-
 /// The loss of the fit of ν: a χ² over samples i and the four statistics k ∈ {E(S), E(U), σ(S),
 /// σ(U)},
 ///
@@ -1147,7 +1055,12 @@ pub struct FitOptions {
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions { grid: log_grid(1e-5, 1e-1, 20), bootstrap: 200, seed: 1, statistics: [true; 4] }
+        FitOptions {
+            grid: log_grid(1e-5, 1e-1, GridSize::PerDecade(20)),
+            bootstrap: 200,
+            seed: 1,
+            statistics: [true; 4],
+        }
     }
 }
 
@@ -1247,7 +1160,7 @@ pub fn fit_nu(hand: &[HandSample], pops: &[Vec<CountCurve>], opts: &FitOptions) 
     let bootstrap: Vec<f64> = (0..opts.bootstrap as u64)
         .into_par_iter()
         .map(|b| {
-            let mut rng = drop_rng(opts.seed ^ 0xb007_5742, b);
+            let mut rng = item_rng(opts.seed ^ 0xb007_5742, b);
             let picks: Vec<Vec<usize>> =
                 pops.iter().map(|p| (0..p.len()).map(|_| rng.random_range(0..p.len().max(1))).collect()).collect();
             let t: Vec<[f64; 4]> = hand

@@ -2,21 +2,25 @@
 //! shards, checkpoints, and the energy bound of the static theory.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::{simulate, DropOutcome, DropParams};
+use rocking_stones::dynamics::drop::{launch, simulate, DropOutcome};
+use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::run::NoCertificate;
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::montecarlo::{
-    drop_rng, merge, random_release, read_partial, run, summarize, wilson, CertificateMode, Checkpoint, DropSetup,
-    RunHeader, Shard, FORMAT,
+    merge, read_partial, run, summarize, CertificateMode, Checkpoint, RunHeader, Shard, FORMAT,
 };
+use rocking_stones::rng::item_rng;
+use rocking_stones::stats::wilson;
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
-fn setup(mesh: TriMesh) -> (Analysis, DropSetup) {
+fn setup(mesh: TriMesh) -> (Analysis, Stone) {
     let (mesh, rep) = mesh.into_solid_boundary().unwrap();
     let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
     let (nu, _) = a.macro_nu(&Options::default());
-    let s = DropSetup::new(&a, nu).unwrap();
+    let s = Stone::new(&a, nu).unwrap();
     (a, s)
 }
 
@@ -27,15 +31,16 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         mesh_fingerprint: "0".into(),
         seed,
         drops,
-        params: DropParams::default(),
+        params: rocking_stones::dynamics::perturb::legacy_contact(),
         certificate,
+        preset: None,
     }
 }
 
-fn run_all(s: &DropSetup, h: &RunHeader, shard: Shard) -> Vec<DropOutcome> {
+fn run_all(s: &Stone, h: &RunHeader, shard: Shard) -> Vec<DropOutcome> {
     let sink = Mutex::new(|_: &DropOutcome| {});
-    let cert = s.certificate(h.certificate);
-    run(&s.body, h, shard, &BTreeMap::new(), cert.as_ref(), &sink)
+    let cert = rocking_stones::montecarlo::certificate(s, h.certificate);
+    run(s, h, shard, &BTreeMap::new(), cert.as_ref(), &sink)
 }
 
 #[test]
@@ -43,9 +48,9 @@ fn a_cube_lands_on_each_face_with_probability_one_sixth() {
     let (_, s) = setup(generate::cuboid(1.0, 1.0, 1.0));
     let h = header(1200, 11, CertificateMode::None);
     let outcomes: BTreeMap<u64, DropOutcome> = run_all(&s, &h, Shard::ALL).into_iter().map(|o| (o.index, o)).collect();
-    let r = summarize(&s.model, &h, &outcomes);
+    let r = summarize(&s.model(), &h, &outcomes);
     assert_eq!(r.settled, 1200, "every cube drop must come to rest");
-    assert_eq!(r.on_non_stable_facet, 0);
+    assert_eq!(r.off_equilibrium, 0);
     let stable: Vec<_> = r.facets.iter().filter(|f| f.equilibrium.is_some()).collect();
     assert_eq!(stable.len(), 6);
     for f in &stable {
@@ -84,8 +89,8 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
         assert!(done.is_empty());
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
-        let cert = s.certificate(h.certificate);
-        run(&s.body, &h, Shard { index: 0, count: 2 }, &BTreeMap::new(), cert.as_ref(), &sink);
+        let cert = rocking_stones::montecarlo::certificate(&s, h.certificate);
+        run(&s, &h, Shard { index: 0, count: 2 }, &BTreeMap::new(), cert.as_ref(), &sink);
     }
     std::fs::write(&path, std::fs::read_to_string(&path).unwrap() + "{\"index\": 1, \"sett").unwrap();
     assert!(Checkpoint::open(&path, &h, false).is_err(), "an existing checkpoint must not be overwritten");
@@ -96,8 +101,8 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
     {
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
-        let cert = s.certificate(h.certificate);
-        let rest = run(&s.body, &h, Shard::ALL, &done, cert.as_ref(), &sink);
+        let cert = rocking_stones::montecarlo::certificate(&s, h.certificate);
+        let rest = run(&s, &h, Shard::ALL, &done, cert.as_ref(), &sink);
         assert_eq!(rest.len(), 15);
     }
     let (_, all) = read_partial(&path).unwrap();
@@ -111,7 +116,7 @@ fn certified_drops_end_where_full_settling_ends() {
     let facet = run_all(&s, &header(60, 3, CertificateMode::Facet), Shard::ALL);
     let flock = run_all(&s, &header(60, 3, CertificateMode::Flock), Shard::ALL);
     let flock_of =
-        |o: &DropOutcome| o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| s.model.facet_flock[f as usize]));
+        |o: &DropOutcome| o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| s.facet_flock[f as usize]));
     let settled = plain.iter().filter(|p| p.settled).count();
     assert!(settled >= 58, "only {settled} of 60 plain drops settled");
     for ((p, f), k) in plain.iter().zip(&facet).zip(&flock) {
@@ -132,18 +137,18 @@ fn certified_drops_end_where_full_settling_ends() {
 #[test]
 fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
     let (a, s) = setup(generate::pebble([1.0, 0.7, 0.45], 0.04, 500, 8));
-    let p = DropParams { height: 0.05, ..DropParams::default() };
+    let p = DropParams { height: 0.05, ..rocking_stones::dynamics::perturb::legacy_contact() };
     let g = a.mass.center_of_mass;
     for i in 0..40 {
-        let mut rng = drop_rng(21, i);
-        let release = random_release(&mut rng, 0.0);
+        let mut rng = item_rng(21, i);
+        let release = launch(&mut rng, &p);
         let down = release.orientation.inverse() * -rocking_stones::Vec3::z();
         // Initial energy level (input units): the lowest point p.height·R_max above the ground.
         let level = (p.height + s.body.support(&down)) * s.body.r_max;
         let start = rocking_stones::basins::settle(&a.hull, &g, &down);
-        let o = simulate(&s.body, &p, &release, i, &rocking_stones::dynamics::drop::NoCertificate);
+        let o = simulate(&s, &p, &release, i, &NoCertificate);
         let end = o.facet.unwrap();
-        if s.model.facet_equilibrium[end as usize].is_none() {
+        if s.facet_equilibrium[end as usize].is_none() {
             continue;
         }
         let barrier = s.tree.entry_barrier(start, end);

@@ -4,9 +4,9 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::params::DropParams;
 use rocking_stones::dynamics::perturb::{
-    self, check_rest, default_pair, kick, log_grid, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone,
+    self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone,
     Threshold, GRAVITY,
 };
 use rocking_stones::dynamics::shake::{
@@ -14,6 +14,7 @@ use rocking_stones::dynamics::shake::{
 };
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
+use rocking_stones::stats::{log_grid, GridSize};
 
 fn stone(mesh: TriMesh) -> Stone {
     let (mesh, rep) = mesh.into_solid_boundary().unwrap();
@@ -26,7 +27,7 @@ fn stone(mesh: TriMesh) -> Stone {
 /// resting face with normal −z in `stone.stable`.
 fn block(b: f64, d: f64, h: f64) -> (Stone, usize) {
     let s = stone(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h));
-    let start = s.stable.iter().position(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap();
+    let start = s.stable().iter().position(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap();
     (s, start)
 }
 
@@ -38,7 +39,7 @@ fn housner_params() -> PerturbParams {
             restitution: 0.0,
             linear_damping: 0.0,
             angular_damping: 0.0,
-            ..DropParams::default()
+            ..rocking_stones::dynamics::perturb::legacy_contact()
         },
         ..PerturbParams::default()
     }
@@ -123,9 +124,9 @@ fn a_pulse_below_g_tan_alpha_does_not_rock_a_block() {
 #[test]
 fn kicks_carry_the_requested_energy() {
     let s = pebble();
-    let mut rng = rocking_stones::montecarlo::drop_rng(3, 0);
+    let mut rng = rocking_stones::rng::item_rng(3, 0);
     for family in [Family::Push, Family::Spin] {
-        for (i, e) in s.stable.iter().enumerate().take(4) {
+        for (i, e) in s.stable().iter().enumerate().take(4) {
             let q = perturb::resting_orientation(&s.body.facet_normals[e.facet as usize]);
             let (v, w, _) = kick(&s, e.facet, &q, e.r_normalised, family, 0.01, &mut rng);
             let r = q.to_rotation_matrix();
@@ -145,11 +146,11 @@ fn kicks_carry_the_requested_energy() {
 fn no_perturbation_below_the_static_barrier_leaves_the_basin() {
     let s = pebble();
     let p = PerturbParams::default();
-    let starts: Vec<usize> = (0..s.stable.len()).filter(|&i| check_rest(&s, i, &p).stays).collect();
+    let starts: Vec<usize> = (0..s.stable().len()).filter(|&i| check_rest(&s, i, &p).stays).collect();
     assert!(starts.len() >= 6, "only {} equilibria stay at rest", starts.len());
     let mut tasks = Vec::new();
     for &i in &starts {
-        let e = &s.stable[i];
+        let e = &s.stable()[i];
         for family in [Family::Push, Family::Spin] {
             for f in [0.3, 0.7, 0.95] {
                 tasks.push((i, family, f * e.basin_exit.epsilon));
@@ -186,10 +187,10 @@ fn rocking_equilibria_topple_where_regular_ones_stay() {
     let p = PerturbParams::default();
     let (regular, rocking) = default_pair(&s, &p);
     let (regular, rocking) = (regular.unwrap(), rocking.unwrap());
-    assert_eq!(s.stable[regular].class, Class::Regular);
-    assert_eq!(s.stable[rocking].class, Class::Rocking);
+    assert_eq!(s.stable()[regular].class, Class::Regular);
+    assert_eq!(s.stable()[rocking].class, Class::Rocking);
     let eps = 0.05;
-    assert!(s.stable[rocking].flock_exit.epsilon < eps / 10.0 && s.stable[regular].flock_exit.epsilon > 3.0 * eps);
+    assert!(s.stable()[rocking].flock_exit.epsilon < eps / 10.0 && s.stable()[regular].flock_exit.epsilon > 3.0 * eps);
     let run = |i: usize| -> Vec<Outcome> {
         (0..12u32).into_par_iter().map(|k| trial(&s, i, &p, Family::Spin, eps, 5, k).outcome).collect()
     };
@@ -207,7 +208,7 @@ fn runs_are_reproducible_and_independent_of_threads() {
     let cfg = PerturbConfig {
         params: PerturbParams::default(),
         family: Family::Push,
-        epsilons: log_grid(1e-4, 1e-1, 3),
+        epsilons: log_grid(1e-4, 1e-1, GridSize::Points(3)),
         trials: 4,
         seed: 9,
         epsilon_star: None,

@@ -4,6 +4,7 @@ use rocking_stones::analysis::{Analysis, Options, PAPER_NU};
 use rocking_stones::generate;
 use rocking_stones::hierarchy::Counts;
 use rocking_stones::report::CSV_HEADER;
+use rocking_stones::stats::{log_fit, log_grid, sample_sd, GridSize};
 use rocking_stones::study::*;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -174,7 +175,7 @@ fn analyses() -> Vec<(String, Analysis)> {
 #[test]
 fn at_nu_zero_the_counts_are_the_micro_counts_and_they_fall_monotonically_to_one_one() {
     let mut grid = vec![0.0];
-    grid.extend(log_grid(1e-8, 1.0, 8));
+    grid.extend(log_grid(1e-8, 1.0, GridSize::PerDecade(8)));
     for (name, a) in analyses() {
         let curve = CountCurve::of(&a.hierarchy);
         let micro =
@@ -339,7 +340,12 @@ fn the_fit_recovers_the_nu_of_synthetic_hand_data() {
         })
         .collect();
     // … fitted with an independent population (another seed).
-    let opts = FitOptions { grid: log_grid(1e-5, 1e-1, 16), bootstrap: 40, seed: 3, ..FitOptions::default() };
+    let opts = FitOptions {
+        grid: log_grid(1e-5, 1e-1, GridSize::PerDecade(16)),
+        bootstrap: 40,
+        seed: 3,
+        ..FitOptions::default()
+    };
     let (fit, _) = fit_table2(&hand, &params(12), &opts).unwrap();
     println!(
         "true ν {truth:.2e}, fitted {:.2e}, interval {:?}, bootstrap {:?}",

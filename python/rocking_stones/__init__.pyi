@@ -205,7 +205,8 @@ class DropResult:
     def certified(self) -> int:
         """Drops ended early by the energy certificate."""
     @property
-    def on_non_stable_facet(self) -> int: ...
+    def off_equilibrium(self) -> int:
+        """Settled drops that did not end on a stable micro-equilibrium."""
     @property
     def mean_time(self) -> float:
         """Mean simulated time per drop (s of the scaled 1 m body)."""
@@ -296,21 +297,25 @@ def drop(
     n: int = 1000,
     seed: int = 1,
     *,
-    preset: Optional[Literal["default"]] = None,
+    preset: Literal["quasi-static", "drop", "throw"] = "throw",
+    surface: Literal["steel-on-wood", "stone-on-stone", "rock-on-concrete", "rock-on-steel"] = "steel-on-wood",
+    size: Optional[float] = None,
     certificate: Literal["none", "facet", "flock"] = "facet",
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
     progress: Optional[Callable[[int, int], Any]] = None,
-    **params: float,
+    **params: Union[float, str],
 ) -> DropResult:
-    """Drop the stone ``n`` times from uniformly random orientations in rapier3d, as
-    ``rocking drop MESH -n N --seed S``; drop i depends only on (seed, i).
+    """Drop the stone ``n`` times in rapier3d, as ``rocking drop MESH -n N --seed S --preset P
+    --surface S``; drop i depends only on (seed, i).
 
-    ``**params`` are the drop parameters (the CLI's options): height, spin, friction,
-    restitution, linear_damping, angular_damping, dt, max_time, rest_linear_speed,
-    rest_angular_speed, rest_time. ``preset``: only None / "default" (the CLI's defaults) in this
-    version. Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
+    ``preset`` and ``surface`` choose the parameters as the CLI does (``size``: R_max of the real
+    stone in metres, scaling the contact like ``--size``); ``**params`` override single ones, as
+    the CLI's options: height, horizontal_speed, spin, spin_distribution, friction, restitution,
+    rolling_resistance, torsional_friction, linear_damping, angular_damping, dt,
+    solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time.
+    Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
     ``progress``: ``callable(done, total)`` called about every 0.1 s (a tqdm bar's ``update``).
     """

@@ -26,9 +26,11 @@ use pyo3::exceptions::{
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 use rocking_stones::analysis::{check_nu, Analysis, Options, Report, PAPER_NU};
-use rocking_stones::dynamics::drop::{DropOutcome, DropParams};
+use rocking_stones::dynamics::drop::DropOutcome;
+use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::stone::Stone as Body;
 use rocking_stones::mesh::{io, TriMesh};
-use rocking_stones::montecarlo::{self, CertificateMode, DropReport, DropSetup, RunHeader, Shard};
+use rocking_stones::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
 use rocking_stones::{Error, Point3};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -388,10 +390,12 @@ fn with_params<T: Serialize + serde::de::DeserializeOwned>(
             let key: String = k.extract()?;
             let new = if let Ok(b) = v.extract::<bool>() {
                 serde_json::Value::from(b)
+            } else if let Ok(text) = v.extract::<String>() {
+                serde_json::Value::from(text) // an enum field, e.g. spin_distribution
             } else {
                 let x: f64 = v.extract().map_err(|_| {
                     PyTypeError::new_err(format!(
-                        "{what}: parameter {key} must be a number, got {}",
+                        "{what}: parameter {key} must be a number (or a name), got {}",
                         v.repr().map_or_else(|_| "?".into(), |r| r.to_string())
                     ))
                 })?;
@@ -439,14 +443,32 @@ fn field_names(v: &serde_json::Value, out: &mut Vec<String>) {
     }
 }
 
-/// `preset=`: only the library defaults exist in this version.
+/// `preset=`: perturbations and shaking have only their defaults in this version.
 fn check_preset(preset: Option<&str>) -> PyResult<()> {
     match preset {
         None | Some("default") => Ok(()),
         Some(p) => Err(PyValueError::new_err(format!(
-            "unknown preset {p:?}: this version has only 'default' (the CLI's defaults); set parameters by keyword"
+            "unknown preset {p:?}: perturb and shake have only 'default' (the CLI's contact); set parameters by keyword"
         ))),
     }
+}
+
+/// The drop parameters of `rocking drop --preset P --surface S [--size L]` before option
+/// overrides (as `cmd::drop::params`; to move into the library so that both call it).
+fn preset_params(preset: Preset, surface: Surface, size: Option<f64>) -> PyResult<DropParams> {
+    let mut p = preset.params(surface);
+    if let Some(size) = size {
+        if !(size > 0.0 && size.is_finite()) {
+            return Err(PyValueError::new_err(format!("size must be a positive length in metres, got {size}")));
+        }
+        let (damping_l, damping_a, restitution) = (p.linear_damping, p.angular_damping, p.restitution);
+        surface.scaled(&mut p, size);
+        // The quasi-static limit keeps its own restitution.
+        if preset == Preset::QuasiStatic {
+            (p.linear_damping, p.angular_damping, p.restitution) = (damping_l, damping_a, restitution);
+        }
+    }
+    Ok(p)
 }
 
 /// A lowercase serde enum (certificate mode, family) from its name.
@@ -913,10 +935,10 @@ impl PyDropResult {
     fn certified(&self) -> u64 {
         self.report.certified
     }
-    /// Settled drops on a facet that is not stable.
+    /// Settled drops that did not end on a stable micro-equilibrium.
     #[getter]
-    fn on_non_stable_facet(&self) -> u64 {
-        self.report.on_non_stable_facet
+    fn off_equilibrium(&self) -> u64 {
+        self.report.off_equilibrium
     }
     /// Mean simulated time per drop (s, scaled 1 m body).
     #[getter]
@@ -1013,14 +1035,19 @@ impl PyDropResult {
 /// Drop the stone `n` times from uniformly random orientations in rapier3d, as
 /// `rocking drop MESH -n N --seed S`; returns a `DropResult` whose to_dict() is the CLI's --json.
 ///
-/// **params: height, spin, friction, restitution, linear_damping, angular_damping, dt, max_time,
-/// rest_linear_speed, rest_angular_speed, rest_time (the CLI's defaults otherwise).
+/// preset: "quasi-static", "drop" or "throw" (the CLI's default); surface: "steel-on-wood" (the
+/// default), "stone-on-stone", "rock-on-concrete", "rock-on-steel"; size: R_max of the real
+/// stone in metres (scales the contact as --size does).
+/// **params override single parameters, as the CLI's options: height, horizontal_speed, spin,
+/// spin_distribution, friction, restitution, rolling_resistance, torsional_friction,
+/// linear_damping, angular_damping, dt, solver_iterations, max_time, rest_linear_speed,
+/// rest_angular_speed, rest_time.
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
-/// preset: only None / "default" in this version. threads: threads of this run (default:
+/// threads: threads of this run (default:
 /// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
 /// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = None, certificate = "facet", nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", nu = None, name = None, threads = None, progress = None, **params))]
 #[pyo3(name = "drop")]
 #[allow(clippy::too_many_arguments)]
 fn drop_stone(
@@ -1028,7 +1055,9 @@ fn drop_stone(
     mesh: Option<&Bound<'_, PyAny>>,
     n: u64,
     seed: u64,
-    preset: Option<&str>,
+    preset: &str,
+    surface: &str,
+    size: Option<f64>,
     certificate: &str,
     nu: Option<f64>,
     name: Option<String>,
@@ -1036,12 +1065,16 @@ fn drop_stone(
     progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDropResult> {
-    check_preset(preset)?;
-    let p: DropParams = with_params("drop", &DropParams::default(), params)?;
-    p.check().map_err(PyValueError::new_err)?;
+    if n == 0 {
+        return Err(PyValueError::new_err("n must be at least 1"));
+    }
+    let preset: Preset = preset.parse().map_err(py_err)?;
+    let surface: Surface = surface.parse().map_err(py_err)?;
+    let p: DropParams = with_params("drop", &preset_params(preset, surface, size)?, params)?;
+    p.check().map_err(py_err)?;
     let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
     let stone = analysed(py, mesh, name, nu)?;
-    let setup = py.detach(|| DropSetup::new(&stone.analysis, stone.nu())).map_err(py_err)?;
+    let body = py.detach(|| Body::new(&stone.analysis, stone.nu())).map_err(py_err)?;
     let header = RunHeader {
         format: montecarlo::FORMAT.into(),
         mesh: stone.name.clone(),
@@ -1050,10 +1083,11 @@ fn drop_stone(
         drops: n,
         params: p,
         certificate,
+        preset: Some(format!("{preset} on {surface}")),
     };
     let progress = progress.map(|f| (f, n));
     let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
-        let cert = setup.certificate(header.certificate);
+        let cert = montecarlo::certificate(&body, header.certificate);
         let sink = std::sync::Mutex::new(|_: &DropOutcome| control.advance());
         let mut done = BTreeMap::new();
         // Chunks of about a quarter of a second, so that Ctrl-C is answered quickly.
@@ -1066,7 +1100,7 @@ fn drop_stone(
             let before = done.len() as u64;
             let upto = (before + chunk).min(n);
             let part = RunHeader { drops: upto, ..header.clone() };
-            for o in montecarlo::run(&setup.body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
+            for o in montecarlo::run(&body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
                 done.insert(o.index, o);
             }
             let per_drop = start.elapsed().as_secs_f64() / (upto - before) as f64;
@@ -1076,7 +1110,7 @@ fn drop_stone(
         Ok(done)
     })?
     .map_err(|_| PyKeyboardInterrupt::new_err("interrupted"))?;
-    let report = montecarlo::summarize(&setup.model, &header, &outcomes);
+    let report = montecarlo::summarize(&body.model(), &header, &outcomes);
     Ok(PyDropResult { report, outcomes: outcomes.into_values().collect() })
 }
 
@@ -1146,7 +1180,7 @@ fn perturb_params(
 ) -> PyResult<rocking_stones::dynamics::perturb::PerturbParams> {
     let p: rocking_stones::dynamics::perturb::PerturbParams =
         with_params(what, &rocking_stones::dynamics::perturb::PerturbParams::default(), params)?;
-    p.check().map_err(PyValueError::new_err)?;
+    p.check().map_err(py_err)?;
     Ok(p)
 }
 
@@ -1157,7 +1191,7 @@ fn select_starts(
     flock: Option<usize>,
 ) -> PyResult<Vec<usize>> {
     let list =
-        || stone.stable.iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
+        || stone.stable().iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
     if let Some(k) = flock {
         if k >= stone.flock_kinds.len() {
             return Err(PyValueError::new_err(format!(
@@ -1166,7 +1200,7 @@ fn select_starts(
                 stone.nu
             )));
         }
-        let v: Vec<usize> = (0..stone.stable.len()).filter(|&i| stone.stable[i].flock == k).collect();
+        let v: Vec<usize> = (0..stone.stable().len()).filter(|&i| stone.stable()[i].flock == k).collect();
         if v.is_empty() {
             return Err(PyValueError::new_err(format!(
                 "flock {k} has no stable micro-equilibrium; stable ones: {}",
@@ -1176,7 +1210,7 @@ fn select_starts(
         return Ok(v);
     }
     match equilibria {
-        None => Ok((0..stone.stable.len()).collect()),
+        None => Ok((0..stone.stable().len()).collect()),
         Some(ids) => ids
             .iter()
             .map(|&id| {
@@ -1224,12 +1258,12 @@ fn perturb(
     let cfg = PerturbConfig {
         params,
         family: enum_from_str("family", family, "'push', 'spin'")?,
-        epsilons: pt::log_grid(eps_min, eps_max, eps_steps),
+        epsilons: rocking_stones::stats::log_grid(eps_min, eps_max, rocking_stones::stats::GridSize::Points(eps_steps)),
         trials,
         seed,
         epsilon_star,
     };
-    cfg.check().map_err(PyValueError::new_err)?;
+    cfg.check().map_err(py_err)?;
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let starts = select_starts(&stone, equilibria, flock)?;
@@ -1292,7 +1326,7 @@ fn shake(
         None => vec![motion.peak()],
     };
     let cfg = ShakeConfig { params, motion, pgas, trials, seed, azimuth: azimuth.map(f64::to_radians), scale };
-    cfg.check().map_err(PyValueError::new_err)?;
+    cfg.check().map_err(py_err)?;
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let starts = match equilibria {
@@ -1427,8 +1461,8 @@ fn study(
         return Err(PyValueError::new_err(format!("{}: not a folder", folder.display())));
     }
     let experimenter = if dynamic {
-        let params = DropParams { height, ..DropParams::default() };
-        params.check().map_err(PyValueError::new_err)?;
+        let params = DropParams { height, ..st::set_down_params() };
+        params.check().map_err(py_err)?;
         if trials == 0 {
             return Err(PyValueError::new_err("trials must be at least 1"));
         }
@@ -1443,10 +1477,10 @@ fn study(
         st::run_files(&files, meta.as_ref(), &opts, &|| c.tick())
     })?
     .map_err(py_err)?;
-    let text = |r: anyhow::Result<()>, buf: Vec<u8>| -> PyResult<String> {
+    fn text<E: std::fmt::Display>(r: Result<(), E>, buf: Vec<u8>) -> PyResult<String> {
         r.map_err(|e| PyRuntimeError::new_err(format!("{e:#}")))?;
         String::from_utf8(buf).map_err(|e| PyRuntimeError::new_err(e.to_string()))
-    };
+    }
     let mut p = Vec::new();
     let r = st::write_pebbles_csv(&study, &mut p);
     let pebbles_csv = text(r, p)?;

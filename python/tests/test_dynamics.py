@@ -34,6 +34,14 @@ def test_drop_parameters_map_to_the_cli_options(cli, box_file):
     assert d.certified == 0
 
 
+def test_presets_and_surfaces_are_the_cli_ones(cli, box_file):
+    d = rs.drop(box_file, 10, 2, preset="drop", surface="stone-on-stone", size=0.05, spin=3.0)
+    expected = cli.json(["drop", str(box_file), "-n", "10", "--seed", "2", "--preset", "drop",
+                         "--surface", "stone-on-stone", "--size", "0.05", "--spin", "3"])
+    assert d.to_dict() == expected
+    assert expected["preset"] == "drop on stone-on-stone"
+
+
 def test_drops_do_not_depend_on_threads_or_chunks(box_file):
     a = rs.analyze(box_file)
     one = rs.drop(a, 40, 11, threads=1)

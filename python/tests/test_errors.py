@@ -95,5 +95,9 @@ def test_bad_drop_parameters():
         rs.drop(box, 1, restitution=2.0)
     with pytest.raises(ValueError, match="preset"):
         rs.drop(box, 1, preset="gravel")
+    with pytest.raises(ValueError, match="size"):
+        rs.drop(box, 1, size=-1.0)
+    with pytest.raises(ValueError, match="preset"):
+        rs.perturb(box, preset="gravel")
     with pytest.raises(ValueError, match="certificate must be one of"):
         rs.drop(box, 1, certificate="maybe")

@@ -1,11 +1,13 @@
 //! `rocking drop` and `rocking merge`: Monte Carlo drops of a scan in rapier3d.
 
 use super::analyze::load_analysis;
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use rocking_stones::analysis::{check_nu, Options};
-use rocking_stones::dynamics::drop::{DropOutcome, DropParams};
+use rocking_stones::dynamics::drop::DropOutcome;
+use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
-    merge, read_partial, run, summarize, CertificateMode, Checkpoint, DropReport, DropSetup, RunHeader, Shard, FORMAT,
+    certificate, merge, read_partial, run, summarize, CertificateMode, Checkpoint, DropReport, RunHeader, Shard, FORMAT,
 };
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -15,7 +17,7 @@ use std::sync::Mutex;
 pub struct Args {
     /// Mesh file (STL, OBJ, PLY). None: the bundled default stone.
     pub mesh: Option<PathBuf>,
-    /// Number of drops in the whole run.
+    /// Number of drops in the whole run (≥ 1).
     #[arg(short = 'n', long, default_value_t = 1000)]
     pub drops: u64,
     /// Seed: drop i uses its own stream derived from (seed, i).
@@ -24,30 +26,53 @@ pub struct Args {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
-    /// Drop height of the lowest point, in units of R_max.
-    #[arg(long, default_value_t = DropParams::default().height)]
-    pub height: f64,
-    /// Initial angular speed (rad/s of the body scaled to R_max = 1 m).
-    #[arg(long, default_value_t = DropParams::default().spin)]
-    pub spin: f64,
-    #[arg(long, default_value_t = DropParams::default().friction)]
-    pub friction: f64,
-    #[arg(long, default_value_t = DropParams::default().restitution)]
-    pub restitution: f64,
-    /// Linear velocity damping (1/s).
-    #[arg(long, default_value_t = DropParams::default().linear_damping)]
-    pub linear_damping: f64,
-    /// Angular velocity damping (1/s): stands in for rolling resistance.
-    #[arg(long, default_value_t = DropParams::default().angular_damping)]
-    pub angular_damping: f64,
-    /// Time step (s).
-    #[arg(long, default_value_t = DropParams::default().dt)]
-    pub dt: f64,
-    /// Time cap per drop (s).
-    #[arg(long, default_value_t = DropParams::default().max_time)]
-    pub max_time: f64,
-    /// End drops early once the energy certificate decides the facet (or the flock).
-    #[arg(long, value_enum, default_value_t = CertificateMode::Facet)]
+    /// Launch protocol: throw (a hand throw onto a table, calibrated on measured dice), drop
+    /// (released from rest 1 R_max above the ground) or quasi-static (the overdamped limit of the
+    /// basins). Every parameter below overrides the preset's value.
+    #[arg(long, default_value = "throw", value_parser = parse_preset)]
+    pub preset: Preset,
+    /// Surface pair setting friction, restitution and rolling resistance: steel-on-wood,
+    /// stone-on-stone, rock-on-concrete, rock-on-steel.
+    #[arg(long, default_value = "steel-on-wood", value_parser = parse_surface)]
+    pub surface: Surface,
+    /// Real size of the stone, R_max in metres (the surface's rolling-resistance length is
+    /// divided by it); default 0.01 m.
+    #[arg(long)]
+    pub size: Option<f64>,
+    /// Release height of the lowest point, in units of R_max.
+    #[arg(long)]
+    pub height: Option<f64>,
+    /// Horizontal release speed (m/s of the body scaled to R_max = 1 m).
+    #[arg(long)]
+    pub horizontal_speed: Option<f64>,
+    /// Release angular speed (rad/s of the scaled body; rms for the Gaussian law of the presets).
+    #[arg(long)]
+    pub spin: Option<f64>,
+    #[arg(long)]
+    pub friction: Option<f64>,
+    #[arg(long)]
+    pub restitution: Option<f64>,
+    /// Rolling-resistance length δ / R_max (torque ≤ δ N at the contact).
+    #[arg(long)]
+    pub rolling_resistance: Option<f64>,
+    /// Torsional-friction length δ_t / R_max.
+    #[arg(long)]
+    pub torsional_friction: Option<f64>,
+    /// Global linear velocity damping (1/s); 0 except in the quasi-static preset.
+    #[arg(long)]
+    pub linear_damping: Option<f64>,
+    /// Global angular velocity damping (1/s); 0 except in the quasi-static preset.
+    #[arg(long)]
+    pub angular_damping: Option<f64>,
+    /// Time step (s of the scaled body).
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Time cap per drop (s of the scaled body).
+    #[arg(long)]
+    pub max_time: Option<f64>,
+    /// End drops early once the energy certificate decides the facet (facet), the flock (flock),
+    /// or never (none).
+    #[arg(long, default_value = "facet", value_parser = parse_certificate)]
     pub certificate: CertificateMode,
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
     #[arg(long)]
@@ -61,9 +86,26 @@ pub struct Args {
     /// Continue the run recorded in --checkpoint, skipping the drops it already holds.
     #[arg(long, requires = "checkpoint")]
     pub resume: bool,
-    /// Write report.json and the bar plots (per flock, per facet) into this folder.
+    /// Write drops.json and the bar plots (per flock, per facet) into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+}
+
+pub fn parse_preset(s: &str) -> std::result::Result<Preset, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+}
+
+pub fn parse_surface(s: &str) -> std::result::Result<Surface, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+}
+
+pub fn parse_certificate(s: &str) -> std::result::Result<CertificateMode, String> {
+    match s {
+        "none" => Ok(CertificateMode::None),
+        "facet" => Ok(CertificateMode::Facet),
+        "flock" => Ok(CertificateMode::Flock),
+        _ => Err(format!("unknown certificate {s:?}: expected none, facet or flock")),
+    }
 }
 
 #[derive(clap::Args)]
@@ -84,27 +126,47 @@ pub struct MergeArgs {
 }
 
 fn params(a: &Args) -> Result<DropParams> {
-    let p = DropParams {
-        height: a.height,
-        spin: a.spin,
-        friction: a.friction,
-        restitution: a.restitution,
-        linear_damping: a.linear_damping,
-        angular_damping: a.angular_damping,
-        dt: a.dt,
-        max_time: a.max_time,
-        ..DropParams::default()
+    let mut p = a.preset.params(a.surface);
+    if let Some(size) = a.size {
+        if !(size > 0.0 && size.is_finite()) {
+            bail!("--size must be a positive length in metres, got {size}");
+        }
+        let (damping_l, damping_a, restitution) = (p.linear_damping, p.angular_damping, p.restitution);
+        a.surface.scaled(&mut p, size);
+        // The quasi-static limit keeps its own restitution.
+        if a.preset == Preset::QuasiStatic {
+            (p.linear_damping, p.angular_damping, p.restitution) = (damping_l, damping_a, restitution);
+        }
+    }
+    let set = |field: &mut f64, v: Option<f64>| {
+        if let Some(v) = v {
+            *field = v;
+        }
     };
-    p.check().map_err(anyhow::Error::msg)?;
+    set(&mut p.height, a.height);
+    set(&mut p.horizontal_speed, a.horizontal_speed);
+    set(&mut p.spin, a.spin);
+    set(&mut p.friction, a.friction);
+    set(&mut p.restitution, a.restitution);
+    set(&mut p.rolling_resistance, a.rolling_resistance);
+    set(&mut p.torsional_friction, a.torsional_friction);
+    set(&mut p.linear_damping, a.linear_damping);
+    set(&mut p.angular_damping, a.angular_damping);
+    set(&mut p.dt, a.dt);
+    set(&mut p.max_time, a.max_time);
+    p.check()?;
     Ok(p)
 }
 
 pub fn run_drop(args: Args) -> Result<()> {
+    if args.drops == 0 {
+        bail!("-n/--drops must be at least 1");
+    }
     let p = params(&args)?;
     let opts = Options { nu: args.nu.map(check_nu).transpose()?, ..Options::default() };
     let (analysis, name) = load_analysis(args.mesh.as_deref(), &opts)?;
     let (nu, _) = analysis.macro_nu(&opts);
-    let setup = DropSetup::new(&analysis, nu)?;
+    let stone = Stone::new(&analysis, nu)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     let header = RunHeader {
         format: FORMAT.into(),
@@ -114,6 +176,7 @@ pub fn run_drop(args: Args) -> Result<()> {
         drops: args.drops,
         params: p,
         certificate: args.certificate,
+        preset: Some(format!("{} on {}", args.preset, args.surface)),
     };
     let (mut checkpoint, done) = match &args.checkpoint {
         Some(path) => {
@@ -138,8 +201,8 @@ pub fn run_drop(args: Args) -> Result<()> {
             }
             bar.inc(1);
         });
-        let cert = setup.certificate(args.certificate);
-        run(&setup.body, &header, shard, &done, cert.as_ref(), &sink)
+        let cert = certificate(&stone, args.certificate);
+        run(&stone, &header, shard, &done, cert.as_ref(), &sink)
     };
     bar.finish_and_clear();
     if let Some(e) = write_error {
@@ -147,7 +210,7 @@ pub fn run_drop(args: Args) -> Result<()> {
     }
     let mut all = done;
     all.extend(new.into_iter().map(|o| (o.index, o)));
-    let report = summarize(&setup.model, &header, &all);
+    let report = summarize(&stone.model(), &header, &all);
     emit(&report, args.json, args.output.as_deref())
 }
 
@@ -169,12 +232,12 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
         );
     }
     let (nu, _) = analysis.macro_nu(&opts);
-    let setup = DropSetup::new(&analysis, nu)?;
+    let stone = Stone::new(&analysis, nu)?;
     let missing = header.drops - outcomes.len() as u64;
     if missing > 0 {
         eprintln!("note: {missing} of {} drops are not in these partial results", header.drops);
     }
-    emit(&summarize(&setup.model, &header, &outcomes), args.json, args.output.as_deref())
+    emit(&summarize(&stone.model(), &header, &outcomes), args.json, args.output.as_deref())
 }
 
 fn emit(report: &DropReport, json: bool, output: Option<&std::path::Path>) -> Result<()> {

@@ -4,30 +4,32 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::dynamics::drop::DropParams;
-use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, Stone};
+use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::perturb::{self, legacy_contact, Family, PerturbConfig, PerturbParams, Stone};
+use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
 
 /// Simulation parameters shared by `rocking perturb` and `rocking shake`.
 #[derive(clap::Args, Clone)]
 pub struct SimArgs {
     /// Coulomb friction coefficient of stone and ground.
-    #[arg(long, default_value_t = DropParams::default().friction)]
+    #[arg(long, default_value_t = legacy_contact().friction)]
     pub friction: f64,
     /// Restitution coefficient.
-    #[arg(long, default_value_t = DropParams::default().restitution)]
+    #[arg(long, default_value_t = legacy_contact().restitution)]
     pub restitution: f64,
-    /// Angular velocity damping (1/s): stands in for rolling resistance.
-    #[arg(long, default_value_t = DropParams::default().angular_damping)]
+    /// Angular velocity damping (1/s): stands in for rolling resistance in perturbation and
+    /// shaking runs (the contact of their results in `results/`).
+    #[arg(long, default_value_t = legacy_contact().angular_damping)]
     pub angular_damping: f64,
     /// Linear velocity damping (1/s).
-    #[arg(long, default_value_t = DropParams::default().linear_damping)]
+    #[arg(long, default_value_t = legacy_contact().linear_damping)]
     pub linear_damping: f64,
     /// Time step (s of the scaled 1 m body).
-    #[arg(long, default_value_t = DropParams::default().dt)]
+    #[arg(long, default_value_t = legacy_contact().dt)]
     pub dt: f64,
     /// Time cap per trial after the perturbation / the motion (s, scaled).
-    #[arg(long, default_value_t = DropParams::default().max_time)]
+    #[arg(long, default_value_t = legacy_contact().max_time)]
     pub max_time: f64,
     /// Natural frequency (Hz) of the soft contact constraints.
     #[arg(long, default_value_t = rocking_stones::dynamics::perturb::CONTACT_FREQUENCY)]
@@ -47,12 +49,12 @@ impl SimArgs {
                 linear_damping: self.linear_damping,
                 dt: self.dt,
                 max_time: self.max_time,
-                ..DropParams::default()
+                ..legacy_contact()
             },
             contact_frequency: self.contact_frequency,
             ..PerturbParams::default()
         };
-        p.check().map_err(anyhow::Error::msg)?;
+        p.check()?;
         Ok(p)
     }
 
@@ -79,7 +81,7 @@ pub struct Args {
     pub flock: Option<usize>,
     /// push: impulse at a random surface point in a random inward direction; spin: angular
     /// velocity about a random axis through the contact point.
-    #[arg(long, value_enum, default_value_t = Family::Push)]
+    #[arg(long, default_value = "push", value_parser = parse_family)]
     pub family: Family,
     /// Trials per equilibrium and ε.
     #[arg(short = 'n', long, default_value_t = 40)]
@@ -116,19 +118,19 @@ pub struct Args {
 /// Positions in `stone.stable` of the requested equilibria (all if none requested).
 pub fn select(stone: &Stone, equilibria: &[usize], flock: Option<usize>) -> Result<Vec<usize>> {
     let list =
-        || stone.stable.iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
+        || stone.stable().iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
     if let Some(k) = flock {
         if k >= stone.flock_kinds.len() {
             bail!("there is no flock {k} (the stone has {} flocks at ν = {:.3e})", stone.flock_kinds.len(), stone.nu);
         }
-        let v: Vec<usize> = (0..stone.stable.len()).filter(|&i| stone.stable[i].flock == k).collect();
+        let v: Vec<usize> = (0..stone.stable().len()).filter(|&i| stone.stable()[i].flock == k).collect();
         if v.is_empty() {
             bail!("flock {k} has no stable micro-equilibrium; stable ones: {}", list());
         }
         return Ok(v);
     }
     if equilibria.is_empty() {
-        return Ok((0..stone.stable.len()).collect());
+        return Ok((0..stone.stable().len()).collect());
     }
     equilibria
         .iter()
@@ -158,12 +160,12 @@ pub fn run(args: Args) -> Result<()> {
     let cfg = PerturbConfig {
         params,
         family: args.family,
-        epsilons: perturb::log_grid(args.eps_min, args.eps_max, args.eps_steps),
+        epsilons: log_grid(args.eps_min, args.eps_max, GridSize::Points(args.eps_steps)),
         trials: args.trials,
         seed: args.seed,
         epsilon_star: args.epsilon_star,
     };
-    cfg.check().map_err(anyhow::Error::msg)?;
+    cfg.check()?;
     let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = select(&stone, &args.equilibria, args.flock)?;
     let bar = bar(perturb::task_count(starts.len(), &cfg));
@@ -212,4 +214,8 @@ pub fn write_outputs(r: &perturb::PerturbReport, name: &str, dir: &Path) -> Resu
         written.push(p);
     }
     Ok(written)
+}
+
+fn parse_family(s: &str) -> std::result::Result<Family, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
 }

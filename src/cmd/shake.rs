@@ -106,7 +106,7 @@ pub fn run(args: Args) -> Result<()> {
         azimuth: args.azimuth.map(f64::to_radians),
         scale,
     };
-    cfg.check().map_err(anyhow::Error::msg)?;
+    cfg.check()?;
     let bar = bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64);
     let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
     bar.finish_and_clear();

@@ -7,7 +7,8 @@
 
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
-use rocking_stones::dynamics::drop::DropParams;
+use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::study::{
     self, Experimenter, FitOptions, Metadata, PopulationParams, SampleTarget, Study, StudyOptions,
 };
@@ -55,8 +56,8 @@ impl DynamicArgs {
         if !self.dynamic {
             return Ok(None);
         }
-        let params = DropParams { height: self.height, ..DropParams::default() };
-        params.check().map_err(anyhow::Error::msg)?;
+        let params = DropParams { height: self.height, ..rocking_stones::study::set_down_params() };
+        params.check()?;
         if self.trials == 0 {
             anyhow::bail!("--trials must be at least 1");
         }
@@ -328,7 +329,7 @@ fn fit(args: FitArgs) -> Result<()> {
         anyhow::bail!("{}: no sample to fit", args.table.display());
     }
     let opts = FitOptions {
-        grid: study::log_grid(args.nu_min, args.nu_max, args.per_decade),
+        grid: log_grid(args.nu_min, args.nu_max, GridSize::PerDecade(args.per_decade)),
         bootstrap: args.bootstrap,
         seed: args.seed,
         statistics: if args.s_only { [true, false, true, false] } else { [true; 4] },

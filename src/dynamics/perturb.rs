@@ -39,7 +39,7 @@
 //!   P (the stable point, below G), v_G = ω × (G − P): the stone starts to rock about its contact,
 //!   with energy ½ ω·I_P ω (I_P the inertia about P).
 //!
-//! Trial k of equilibrium i uses the random stream [`drop_rng`]`(seed, stream)` with
+//! Trial k of equilibrium i uses the random stream [`item_rng`]`(seed, stream)` with
 //! stream = (family bit, i, k) (see [`stream_index`]), and the same stream at every ε (common
 //! random numbers: trial k pushes at the same point in the same direction at every ε, only
 //! harder), so the curves are smooth in ε, and results are independent of threads.
@@ -72,17 +72,17 @@
 //! micro-equilibrium in a stable flock = regular, in an unstable or saddle flock = rocking,
 //! [`crate::hierarchy::Hierarchy::rocking_at`]); [`Confusion`] compares the two.
 
-use crate::analysis::Analysis;
-use crate::basins::MergeTree;
-use crate::dynamics::drop::{DropBody, DropParams, RestDetector, Simulation};
-use crate::equilibria::{Kind, Site};
-use crate::montecarlo::{drop_rng, wilson, CERTIFICATE_MARGIN};
+use super::params::DropParams;
+use super::run::{self as run_loop, Certificate, CertificateMode, Decided, EnergyCertificate, Passive};
+pub use super::stone::{resting_orientation, Class, Exit, StableEquilibrium, Stone};
+use super::world::Simulation;
+pub use super::world::GRAVITY;
+use crate::equilibria::Kind;
 use crate::plot::{init_fonts, FONT_FAMILY};
+use crate::rng::{item_rng, random_unit, Stream};
+use crate::stats::wilson;
 use crate::{Error, Result, Vec3};
 use nalgebra::{Matrix3, UnitQuaternion};
-use rand::RngExt;
-use rand_distr::{Distribution, StandardNormal};
-use rand_xoshiro::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -91,11 +91,8 @@ use std::path::Path;
 /// [`PerturbParams::contact_frequency`].
 pub const CONTACT_FREQUENCY: f64 = 120.0;
 
-/// Gravity of the scaled frame (as in [`crate::dynamics::drop`]).
-pub const GRAVITY: f64 = 9.81;
-
 /// How a resting stone is perturbed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Family {
     /// Impulsive push at a random point of the surface in a random inward direction.
@@ -105,10 +102,22 @@ pub enum Family {
 }
 
 impl Family {
+    /// The user-facing name.
     pub fn name(self) -> &'static str {
         match self {
             Family::Push => "push",
             Family::Spin => "spin",
+        }
+    }
+}
+
+impl std::str::FromStr for Family {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Family> {
+        match s {
+            "push" => Ok(Family::Push),
+            "spin" => Ok(Family::Spin),
+            _ => Err(Error::Usage(format!("unknown perturbation family {s:?}: expected push or spin"))),
         }
     }
 }
@@ -128,7 +137,10 @@ pub enum Outcome {
 /// Simulation parameters of perturbation and shaking runs.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PerturbParams {
-    /// Contact, damping, time step, time cap and rest thresholds (`height` and `spin` unused).
+    /// Contact, damping, time step, time cap and rest thresholds (launch fields unused).
+    /// Default: friction 0.6, restitution 0.2, global damping 0.1 s⁻¹ (linear) and 1 s⁻¹
+    /// (angular), no rolling resistance — the contact with which the perturbation and shaking
+    /// results in `results/` were computed ([`legacy_contact`]).
     pub sim: DropParams,
     /// Settling time (s) on the equilibrium before the perturbation.
     pub settle_time: f64,
@@ -149,10 +161,30 @@ pub struct PerturbParams {
     pub certificate: bool,
 }
 
+/// The contact of the perturbation and shaking runs in `results/`: friction 0.6, restitution
+/// 0.2, global damping 0.1 s⁻¹ linear and 1 s⁻¹ angular standing in for rolling resistance, dt
+/// 1/240 s, cap 20 s.
+pub fn legacy_contact() -> DropParams {
+    DropParams {
+        height: 0.5,
+        horizontal_speed: 0.0,
+        spin: 0.0,
+        spin_distribution: super::params::SpinDistribution::Fixed,
+        friction: 0.6,
+        restitution: 0.2,
+        rolling_resistance: 0.0,
+        torsional_friction: 0.0,
+        linear_damping: 0.1,
+        angular_damping: 1.0,
+        max_time: 20.0,
+        ..DropParams::default()
+    }
+}
+
 impl Default for PerturbParams {
     fn default() -> Self {
         PerturbParams {
-            sim: DropParams::default(),
+            sim: legacy_contact(),
             settle_time: 0.25,
             hold_time: 1.0,
             contact_frequency: CONTACT_FREQUENCY,
@@ -162,218 +194,20 @@ impl Default for PerturbParams {
 }
 
 impl PerturbParams {
-    pub fn check(&self) -> std::result::Result<(), String> {
+    /// Refuse parameters that cannot describe a run.
+    pub fn check(&self) -> Result<()> {
         self.sim.check()?;
+        let bad = |what: String| Err(Error::Usage(what));
         if !(self.settle_time >= 0.0 && self.settle_time.is_finite()) {
-            return Err(format!("settle time must be ≥ 0, got {}", self.settle_time));
+            return bad(format!("settle time must be ≥ 0, got {}", self.settle_time));
         }
         if !(self.contact_frequency > 0.0 && self.contact_frequency.is_finite()) {
-            return Err(format!("contact frequency must be positive, got {}", self.contact_frequency));
+            return bad(format!("contact frequency must be positive, got {}", self.contact_frequency));
         }
         if !(self.hold_time >= 0.0 && self.hold_time.is_finite()) {
-            return Err(format!("hold time must be ≥ 0, got {}", self.hold_time));
+            return bad(format!("hold time must be ≥ 0, got {}", self.hold_time));
         }
         Ok(())
-    }
-}
-
-/// Where the stone can leave a stable micro-equilibrium most cheaply, statically.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct Exit {
-    /// Barrier in units of m g R_max: (merge level − R_F)/R_max (∞, serialised as null, if
-    /// there is no way out).
-    pub epsilon: f64,
-    /// The stable facet reached at that level (the cheapest one; ties: lowest index).
-    pub facet: Option<u32>,
-    /// Its micro-equilibrium and flock.
-    pub equilibrium: Option<usize>,
-    pub flock: Option<usize>,
-}
-
-/// Static class of a stable micro-equilibrium (paper §1.1, §4.1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Class {
-    /// In a stable flock.
-    Regular,
-    /// In an unstable or saddle flock.
-    Rocking,
-}
-
-/// One stable micro-equilibrium with its static description.
-#[derive(Clone, Debug, Serialize)]
-pub struct StableEquilibrium {
-    /// Index into the analysis' equilibria.
-    pub index: usize,
-    pub facet: u32,
-    /// R_F (input units) and R_F / R_max.
-    pub r: f64,
-    pub r_normalised: f64,
-    pub flock: usize,
-    pub flock_kind: Kind,
-    pub class: Class,
-    /// Static barrier out of the micro-equilibrium's basin.
-    pub basin_exit: Exit,
-    /// Static barrier out of the flock.
-    pub flock_exit: Exit,
-    /// Quasi-static horizontal ground acceleration (in g) that lifts the stone off its facet in
-    /// the most fragile direction: (distance from the stable point to the nearest side of F)
-    /// / R_F (Housner's tan α for a block). Taken on the whole facet; the collider keeps at most
-    /// four corners of a facet as its support polygon (the quadrilateral with the largest margin,
-    /// see [`crate::dynamics::hull_shape`]), so on facets with more corners the simulated stone
-    /// can lift off a little earlier in some directions.
-    pub uplift_acceleration: f64,
-}
-
-/// A stone prepared for perturbation and shaking runs: the body in the scaled frame, the merge
-/// tree of its support function, its flocks at `nu`, and every stable micro-equilibrium with its
-/// static barriers.
-pub struct Stone {
-    pub body: DropBody,
-    pub tree: MergeTree,
-    /// ν at which the flocks were read.
-    pub nu: f64,
-    /// For every facet: its stable micro-equilibrium.
-    pub facet_equilibrium: Vec<Option<usize>>,
-    /// For every facet: the flock of its stable micro-equilibrium.
-    pub facet_flock: Vec<Option<usize>>,
-    /// Flock of every micro-equilibrium, and type of every flock.
-    pub membership: Vec<usize>,
-    pub flock_kinds: Vec<Kind>,
-    /// The stable micro-equilibria (in the analysis' order).
-    pub stable: Vec<StableEquilibrium>,
-    /// Surface triangles in the scaled body frame (relative to G) with their facet, and the
-    /// cumulative areas, for sampling push points.
-    triangles: Vec<(u32, [Vec3; 3])>,
-    cumulative_area: Vec<f64>,
-}
-
-impl Stone {
-    /// Prepare an analysed stone with flocks read at `nu`.
-    pub fn new(a: &Analysis, nu: f64) -> Result<Stone> {
-        let g = a.mass.center_of_mass;
-        let eq = &a.equilibria;
-        let body = DropBody::new(&a.hull, &g, &a.mass.inertia, a.mass.volume);
-        let tree = MergeTree::new(&a.hull, &g, eq);
-        let flocks = a.hierarchy.flocks_at(nu);
-        let facet_equilibrium: Vec<Option<usize>> = eq.at_facet.iter().map(|s| s.map(|s| s as usize)).collect();
-        let facet_flock: Vec<Option<usize>> =
-            facet_equilibrium.iter().map(|s| s.map(|s| flocks.membership[s])).collect();
-        let flock_kinds: Vec<Kind> = flocks.flocks.iter().map(|f| f.kind).collect();
-        let r_max = eq.r_max;
-        let stable_facets: Vec<u32> =
-            (0..a.hull.facets.len() as u32).filter(|&f| facet_equilibrium[f as usize].is_some()).collect();
-        let mut stable = Vec::new();
-        for (i, p) in eq.points.iter().enumerate() {
-            let (Kind::Stable, Site::Facet(f)) = (p.kind, p.site) else { continue };
-            let flock = flocks.membership[i];
-            let flock_kind = flock_kinds[flock];
-            let exit = |pred: &dyn Fn(u32) -> bool| {
-                let mut best: (f64, Option<u32>) = (f64::INFINITY, None);
-                for &s in stable_facets.iter().filter(|&&s| s != f && pred(s)) {
-                    let level = tree.entry_barrier(f, s);
-                    if level < best.0 {
-                        best = (level, Some(s));
-                    }
-                }
-                let equilibrium = best.1.and_then(|s| facet_equilibrium[s as usize]);
-                Exit {
-                    epsilon: (best.0 - p.r) / r_max,
-                    facet: best.1,
-                    equilibrium,
-                    flock: equilibrium.map(|e| flocks.membership[e]),
-                }
-            };
-            let basin_exit = exit(&|_| true);
-            let flock_exit = exit(&|s| facet_flock[s as usize] != Some(flock));
-            let facet = &a.hull.facets[f as usize];
-            let n = facet.vertices.len();
-            let margin = (0..n)
-                .map(|k| {
-                    let (u, v) = (
-                        a.hull.vertices[facet.vertices[k] as usize],
-                        a.hull.vertices[facet.vertices[(k + 1) % n] as usize],
-                    );
-                    let e = v - u;
-                    e.cross(&(p.point - u)).norm() / e.norm()
-                })
-                .fold(f64::INFINITY, f64::min);
-            stable.push(StableEquilibrium {
-                index: i,
-                facet: f,
-                r: p.r,
-                r_normalised: p.r / r_max,
-                flock,
-                flock_kind,
-                class: if flock_kind == Kind::Stable { Class::Regular } else { Class::Rocking },
-                basin_exit,
-                flock_exit,
-                uplift_acceleration: margin / p.r,
-            });
-        }
-        let mut triangles = Vec::new();
-        let mut cumulative_area = Vec::new();
-        let mut total = 0.0;
-        for (fi, facet) in a.hull.facets.iter().enumerate() {
-            for t in &facet.triangles {
-                let c = t.map(|v| body.corners[v as usize]);
-                total += 0.5 * (c[1] - c[0]).cross(&(c[2] - c[0])).norm();
-                triangles.push((fi as u32, c));
-                cumulative_area.push(total);
-            }
-        }
-        if stable.is_empty() {
-            return Err(Error::check("no stable micro-equilibrium to perturb"));
-        }
-        Ok(Stone {
-            body,
-            tree,
-            nu,
-            facet_equilibrium,
-            facet_flock,
-            membership: flocks.membership,
-            flock_kinds,
-            stable,
-            triangles,
-            cumulative_area,
-        })
-    }
-
-    /// The position in [`Stone::stable`] of micro-equilibrium `index` (an index into the
-    /// analysis' equilibria), if it is a stable one.
-    pub fn position(&self, index: usize) -> Option<usize> {
-        self.stable.iter().position(|s| s.index == index)
-    }
-
-    /// The final equilibrium of a body at rest (or stopped) with body-frame down direction
-    /// `down`: the facet facing down if it is stable, else the end of the quasi-static descent
-    /// from `down` (flagged by the second value).
-    pub fn final_facet(&self, down: &Vec3) -> (u32, bool) {
-        let f = self.body.facet_towards(down);
-        if self.facet_equilibrium[f as usize].is_some() {
-            return (f, false);
-        }
-        (self.tree.flow().settle(down).unwrap_or(f), true)
-    }
-
-    /// A point uniformly distributed on the hull surface outside facet `exclude` (scaled body
-    /// frame, relative to G) and the outward normal of its facet.
-    fn surface_point(&self, rng: &mut Xoshiro256PlusPlus, exclude: u32) -> (Vec3, Vec3) {
-        let total = *self.cumulative_area.last().expect("a hull has facets");
-        for _ in 0..1000 {
-            let x = rng.random_range(0.0..total);
-            let k = self.cumulative_area.partition_point(|&c| c <= x).min(self.triangles.len() - 1);
-            let (f, [a, b, c]) = self.triangles[k];
-            if f == exclude {
-                continue;
-            }
-            let (s, t): (f64, f64) = (rng.random(), rng.random());
-            let s = s.sqrt();
-            let p = a * (1.0 - s) + b * (s * (1.0 - t)) + c * (s * t);
-            return (p, self.body.facet_normals[f as usize]);
-        }
-        // Only reachable if the resting facet is (almost) the whole surface.
-        (self.body.corners[0], self.body.corners[0].normalize())
     }
 }
 
@@ -383,18 +217,13 @@ impl Stone {
 /// balanced rocking position), each among those that stay at rest (checked with `p`). Either
 /// may be missing.
 pub fn default_pair(stone: &Stone, p: &PerturbParams) -> (Option<usize>, Option<usize>) {
+    let stable = stone.stable();
     let pick = |class: Class, key: &dyn Fn(&StableEquilibrium) -> f64| {
-        let mut order: Vec<usize> = (0..stone.stable.len()).filter(|&i| stone.stable[i].class == class).collect();
-        order.sort_by(|&a, &b| key(&stone.stable[a]).total_cmp(&key(&stone.stable[b])));
+        let mut order: Vec<usize> = (0..stable.len()).filter(|&i| stable[i].class == class).collect();
+        order.sort_by(|&a, &b| key(&stable[a]).total_cmp(&key(&stable[b])));
         order.into_iter().find(|&i| check_rest(stone, i, p).stays)
     };
     (pick(Class::Regular, &|s| s.r), pick(Class::Rocking, &|s| -s.basin_exit.epsilon))
-}
-
-/// The orientation (body → world) that puts the outward normal `n` (body frame) straight down.
-pub fn resting_orientation(n: &Vec3) -> UnitQuaternion<f64> {
-    UnitQuaternion::rotation_between(n, &-Vec3::z())
-        .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vec3::x_axis(), std::f64::consts::PI))
 }
 
 /// Why a stone would not stay on a micro-equilibrium before any perturbation.
@@ -406,27 +235,21 @@ pub struct SettleCheck {
     pub tilt: f64,
     /// Sinking of G below R_F at the end of the check (R_max; the contact's penetration).
     pub sink: f64,
-    /// Linear and angular speed at the end of the check.
+    /// Linear speed at the end of the check.
     pub speed: f64,
+    /// Angular speed at the end of the check.
     pub angular_speed: f64,
     /// The facet the quasi-static descent from the final down direction reaches.
     pub facet_reached: u32,
 }
 
-/// Apply the contact settings of `p` (the contact stiffness) to a simulation.
-pub fn configure(sim: &mut Simulation, p: &PerturbParams) {
-    let ip = &mut sim.world.integration_parameters;
-    ip.contact_softness.natural_frequency = p.contact_frequency as f32;
-    ip.static_contact_softness.natural_frequency = p.contact_frequency as f32;
-}
-
 /// A new simulation with the stone at rest on stable micro-equilibrium `eq` (position in
 /// [`Stone::stable`]), after `time` seconds of settling.
 pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &PerturbParams, time: f64) -> Simulation<'a> {
-    let s = &stone.stable[eq];
+    let s = &stone.stable()[eq];
     let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, s.r_normalised, &Vec3::zeros(), &Vec3::zeros());
-    configure(&mut sim, p);
+    sim.set_contact_frequency(p.contact_frequency);
     for _ in 0..(time / p.sim.dt).round() as u64 {
         sim.step();
     }
@@ -435,11 +258,11 @@ pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &PerturbParams, ti
 
 /// Put the stone on `eq`, let it settle and hold, and check that it stays.
 pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
-    let s = &stone.stable[eq];
+    let s = &stone.stable()[eq];
     let sim = resting_simulation(stone, eq, p, p.settle_time + p.hold_time);
     let st = sim.state();
     let n = stone.body.facet_normals[s.facet as usize];
-    let facet_reached = stone.tree.flow().settle(&st.down).unwrap_or(u32::MAX);
+    let facet_reached = stone.rest(&st.down).facet;
     let (speed, angular_speed) = (st.linvel.norm(), st.angvel.norm());
     SettleCheck {
         stays: facet_reached == s.facet && speed < p.sim.rest_linear_speed && angular_speed < p.sim.rest_angular_speed,
@@ -448,23 +271,6 @@ pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
         speed,
         angular_speed,
         facet_reached,
-    }
-}
-
-/// Inertia tensor about G in the world frame for body orientation `q` (unit mass, scaled).
-fn world_inertia(body: &DropBody, q: &UnitQuaternion<f64>) -> Matrix3<f64> {
-    let r = q.to_rotation_matrix();
-    r.matrix() * body.inertia * r.matrix().transpose()
-}
-
-/// A uniformly random unit vector.
-fn random_unit(rng: &mut Xoshiro256PlusPlus) -> Vec3 {
-    loop {
-        let v = Vec3::new(StandardNormal.sample(rng), StandardNormal.sample(rng), StandardNormal.sample(rng));
-        let n = v.norm();
-        if n > 1e-9 {
-            return v / n;
-        }
     }
 }
 
@@ -478,10 +284,10 @@ pub fn kick(
     z: f64,
     family: Family,
     epsilon: f64,
-    rng: &mut Xoshiro256PlusPlus,
+    rng: &mut Stream,
 ) -> (Vec3, Vec3, Option<Vec3>) {
     let energy = epsilon * GRAVITY;
-    let inertia = world_inertia(&stone.body, q);
+    let inertia = stone.body.world_inertia(q);
     match family {
         Family::Push => {
             let (x, n) = stone.surface_point(rng, facet);
@@ -509,23 +315,30 @@ pub fn kick(
 /// One perturbation trial.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Trial {
-    /// Position of the start equilibrium in [`Stone::stable`], and its analysis index.
+    /// Position of the start equilibrium in [`Stone::stable`].
     pub start: usize,
+    /// Its analysis index.
     pub equilibrium: usize,
+    /// Push or spin.
     pub family: Family,
+    /// Energy of the perturbation (m g R_max).
     pub epsilon: f64,
     /// Trial number at this (equilibrium, ε): its random stream.
     pub trial: u32,
+    /// Same, same flock or toppled.
     pub outcome: Outcome,
-    /// Final facet (None when a flock-level certificate ended the trial), equilibrium, flock.
+    /// Final facet (None when a flock-level certificate ended the trial).
     pub final_facet: Option<u32>,
+    /// Final stable micro-equilibrium.
     pub final_equilibrium: Option<usize>,
+    /// Final flock.
     pub final_flock: usize,
     /// Came to rest (or was decided by the certificate) before the cap.
     pub settled: bool,
     /// Ended by the energy certificate.
     pub certified: bool,
-    /// The facet facing down at rest was not stable: the quasi-static descent decided.
+    /// The stone stopped above its final stable facet by more than the contact tolerance
+    /// ([`crate::dynamics::stone::Rest::on_equilibrium`]); the quasi-static descent decided.
     pub non_stable_facet: bool,
     /// Simulated time after the perturbation (s).
     pub time: f64,
@@ -545,8 +358,8 @@ pub fn stream_index(family: Family, start: usize, trial: u32) -> u64 {
 }
 
 /// Classify a final facet (or flock) relative to the start.
-fn classify(stone: &Stone, start: usize, facet: Option<u32>, flock: usize) -> Outcome {
-    let s = &stone.stable[start];
+pub fn classify(stone: &Stone, start: usize, facet: Option<u32>, flock: usize) -> Outcome {
+    let s = &stone.stable()[start];
     if facet == Some(s.facet) {
         Outcome::Same
     } else if flock == s.flock {
@@ -556,75 +369,61 @@ fn classify(stone: &Stone, start: usize, facet: Option<u32>, flock: usize) -> Ou
     }
 }
 
-/// Run one trial: rest on `start`, kick, simulate to rest.
-pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, epsilon: f64, seed: u64, k: u32) -> Trial {
-    let s = &stone.stable[start];
-    let mut rng = drop_rng(seed, stream_index(family, start, k));
-    let mut sim = resting_simulation(stone, start, p, p.settle_time);
-    let (q, z) = {
-        let rb = &sim.world.bodies[sim.body_handle];
-        (crate::dynamics::drop::convert::quat_back(rb.rotation()), rb.translation().z as f64)
-    };
-    let (v, w, _) = kick(stone, s.facet, &q, z, family, epsilon, &mut rng);
-    {
-        use crate::dynamics::drop::convert::vec;
-        let rb = &mut sim.world.bodies[sim.body_handle];
-        rb.set_linvel(vec(&v), true);
-        rb.set_angvel(vec(&w), true);
-    }
-    let level0 = sim.state().level;
-    let mut rest = RestDetector::new(&p.sim);
-    let steps_max = (p.sim.max_time / p.sim.dt).ceil() as u64;
-    let mut max_rise: f64 = 0.0;
-    let r_max = stone.body.r_max;
-    let done =
-        |facet: Option<u32>, flock: usize, step: u64, settled: bool, certified: bool, nsf: bool, rise: f64| Trial {
-            start,
-            equilibrium: s.index,
-            family,
-            epsilon,
-            trial: k,
-            outcome: classify(stone, start, facet, flock),
-            final_facet: facet,
-            final_equilibrium: facet.and_then(|f| stone.facet_equilibrium[f as usize]),
-            final_flock: flock,
-            settled,
-            certified,
-            non_stable_facet: nsf,
-            time: step as f64 * p.sim.dt,
-            max_level_rise: rise,
-        };
-    let flock_of = |f: u32| stone.facet_flock[f as usize].unwrap_or(usize::MAX);
-    for step in 1..=steps_max {
-        sim.step();
-        let st = sim.state();
-        max_rise = max_rise.max(st.level - level0);
-        if p.certificate && step % 4 == 0 {
-            let level = (st.level + CERTIFICATE_MARGIN) * r_max;
-            if let Some(f) = stone.tree.decided(&st.down, level) {
-                return done(Some(f), flock_of(f), step, true, true, false, max_rise);
-            }
-            if let Some(k) = stone.tree.decided_flock(&st.down, level, &stone.facet_flock) {
-                if k != s.flock {
-                    return done(None, k, step, true, true, false, max_rise);
-                }
-            }
-        }
-        if rest.at_rest(&st.linvel, &st.angvel) {
-            let (f, nsf) = stone.final_facet(&st.down);
-            return done(Some(f), flock_of(f), step, true, false, nsf, max_rise);
-        }
-    }
-    let (f, nsf) = stone.final_facet(&sim.state().down);
-    done(Some(f), flock_of(f), steps_max, false, false, nsf, max_rise)
+/// The certificate of a trial: the final facet once it is certain, or the flock once a flock
+/// other than the start's is certain (a decided start flock leaves same vs same-flock open).
+struct TrialCertificate<'a> {
+    energy: EnergyCertificate<'a>,
+    start_flock: usize,
 }
 
-/// A log-spaced grid of `n` values from `lo` to `hi` (both included).
-pub fn log_grid(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    match n {
-        0 => vec![],
-        1 => vec![lo],
-        _ => (0..n).map(|i| if i + 1 == n { hi } else { lo * (hi / lo).powf(i as f64 / (n - 1) as f64) }).collect(),
+impl Certificate for TrialCertificate<'_> {
+    fn decided(&self, down: &Vec3, level: f64) -> Option<Decided> {
+        if let Some(f) = self.energy.facet(down, level) {
+            return Some(Decided::Facet(f));
+        }
+        self.energy.flock(down, level).filter(|&k| k != self.start_flock).map(|k| Decided::Flock(k as u32))
+    }
+}
+
+/// Run one trial: rest on `start`, kick, simulate to rest.
+pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, epsilon: f64, seed: u64, k: u32) -> Trial {
+    let s = &stone.stable()[start];
+    let mut rng = item_rng(seed, stream_index(family, start, k));
+    let mut sim = resting_simulation(stone, start, p, p.settle_time);
+    let (q, z) = sim.pose();
+    let (v, w, _) = kick(stone, s.facet, &q, z, family, epsilon, &mut rng);
+    sim.set_velocity(&v, &w);
+    let level0 = sim.state().level;
+    let mut max_rise: f64 = 0.0;
+    let energy = EnergyCertificate::new(stone, CertificateMode::Facet).expect("a facet certificate");
+    let cert = TrialCertificate { energy, start_flock: s.flock };
+    let none = super::run::NoCertificate;
+    let cert: &dyn Certificate = if p.certificate { &cert } else { &none };
+    let end = run_loop::run(&mut sim, &p.sim, &mut Passive, cert, &mut |st| max_rise = max_rise.max(st.level - level0));
+    let flock_of = |f: u32| stone.facet_flock[f as usize].unwrap_or(usize::MAX);
+    let (facet, flock, off) = match end.decided {
+        Some(Decided::Facet(f)) => (Some(f), flock_of(f), false),
+        Some(Decided::Flock(k)) => (None, k as usize, false),
+        None => {
+            let rest = stone.rest(&end.state.down);
+            (Some(rest.facet), rest.flock, !rest.on_equilibrium())
+        }
+    };
+    Trial {
+        start,
+        equilibrium: s.index,
+        family,
+        epsilon,
+        trial: k,
+        outcome: classify(stone, start, facet, flock),
+        final_facet: facet,
+        final_equilibrium: facet.and_then(|f| stone.facet_equilibrium[f as usize]),
+        final_flock: flock,
+        settled: end.settled,
+        certified: end.decided.is_some(),
+        non_stable_facet: off,
+        time: end.steps as f64 * p.sim.dt,
+        max_level_rise: max_rise,
     }
 }
 
@@ -763,7 +562,7 @@ impl BarrierCheck {
         let mut c = BarrierCheck::default();
         let min = |a: &mut Option<f64>, x: f64| *a = Some(a.map_or(x, |y: f64| y.min(x)));
         for t in trials {
-            let s = &stone.stable[t.start];
+            let s = &stone.stable()[t.start];
             let (b, f) = (s.basin_exit.epsilon, s.flock_exit.epsilon);
             c.max_level_rise = c.max_level_rise.max(t.max_level_rise);
             if t.epsilon < b {
@@ -841,16 +640,16 @@ pub struct PerturbConfig {
 }
 
 impl PerturbConfig {
-    pub fn check(&self) -> std::result::Result<(), String> {
+    pub fn check(&self) -> Result<()> {
         self.params.check()?;
         if self.epsilons.is_empty() || self.epsilons.iter().any(|e| !(*e > 0.0 && e.is_finite())) {
-            return Err("the ε grid must hold positive values".into());
+            return Err(Error::Usage("the ε grid must hold positive values".into()));
         }
         if self.epsilons.windows(2).any(|w| w[1] <= w[0]) {
-            return Err("the ε grid must be increasing".into());
+            return Err(Error::Usage("the ε grid must be increasing".into()));
         }
         if self.trials == 0 {
-            return Err("at least one trial per ε".into());
+            return Err(Error::Usage("at least one trial per ε".into()));
         }
         Ok(())
     }
@@ -894,7 +693,7 @@ pub fn robustness(
     trials: &[Trial],
     epsilon_star: f64,
 ) -> Robustness {
-    let eq = stone.stable[start].clone();
+    let eq = stone.stable()[start].clone();
     let curve: Vec<CurvePoint> = if rest.stays {
         epsilons
             .iter()

@@ -45,12 +45,13 @@
 //!   perfectly plastic impact at that corner alone) — [`free_rocking`] measures the ratio of the
 //!   impact angular velocities of successive half-cycles (see there for how).
 
-use super::drop::{convert, RestDetector, Simulation};
 use super::perturb::{
-    check_rest, resting_orientation, resting_simulation, CurvePoint, Outcome, PerturbParams, SettleCheck,
+    check_rest, classify, resting_orientation, resting_simulation, CurvePoint, Outcome, PerturbParams, SettleCheck,
     StableEquilibrium, Stone, Threshold, GRAVITY,
 };
-use crate::montecarlo::drop_rng;
+use super::run::{self as run_loop, Drive, NoCertificate};
+use super::world::{convert, Simulation};
+use crate::rng::item_rng;
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
 use rand::RngExt;
@@ -177,28 +178,28 @@ impl Motion {
     }
 
     /// Refuse motions that cannot be simulated.
-    pub fn check(&self) -> std::result::Result<(), String> {
+    pub fn check(&self) -> Result<()> {
         match self {
             Motion::Pulse(p) => {
                 if !(p.frequency > 0.0 && p.frequency.is_finite()) {
-                    return Err(format!("pulse frequency must be positive, got {}", p.frequency));
+                    return Err(Error::Usage(format!("pulse frequency must be positive, got {}", p.frequency)));
                 }
                 if !(p.cycles > 0.0 && p.cycles.is_finite()) {
-                    return Err(format!("pulse cycles must be positive, got {}", p.cycles));
+                    return Err(Error::Usage(format!("pulse cycles must be positive, got {}", p.cycles)));
                 }
                 if !p.amplitude.is_finite() {
-                    return Err("pulse amplitude must be finite".into());
+                    return Err(Error::Usage("pulse amplitude must be finite".into()));
                 }
             }
             Motion::Record(r) => {
                 if r.times.len() < 2 || r.times.len() != r.accel.len() {
-                    return Err(format!("{}: a record needs at least two samples", r.name));
+                    return Err(Error::Usage(format!("{}: a record needs at least two samples", r.name)));
                 }
                 if r.times.windows(2).any(|w| !(w[1] > w[0])) {
-                    return Err(format!("{}: times must increase", r.name));
+                    return Err(Error::Usage(format!("{}: times must increase", r.name)));
                 }
                 if r.times.iter().chain(&r.accel).any(|x| !x.is_finite()) {
-                    return Err(format!("{}: every value must be finite", r.name));
+                    return Err(Error::Usage(format!("{}: every value must be finite", r.name)));
                 }
             }
         }
@@ -233,7 +234,7 @@ pub fn read_record(path: &Path, scale: TimeScale) -> Result<Record> {
     }
     let name = path.file_name().map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned());
     let r = Record { name, times, accel };
-    Motion::Record(r.clone()).check().map_err(parse)?;
+    Motion::Record(r.clone()).check().map_err(|e| parse(e.to_string()))?;
     Ok(r)
 }
 
@@ -255,7 +256,7 @@ pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> anyhow::Result
 /// so the ground ends near rest) and scaled to PGA `pga` (g). All in the scaled body's time.
 pub fn synthetic_record(name: &str, duration: f64, f_ground: f64, pga: f64, seed: u64) -> Record {
     use rand_distr::{Distribution, StandardNormal};
-    let mut rng = drop_rng(seed, 0);
+    let mut rng = item_rng(seed, 0);
     let dt = 0.01;
     let n = (duration / dt).round() as usize + 1;
     let (w, z) = (2.0 * std::f64::consts::PI * f_ground, 0.6);
@@ -324,6 +325,34 @@ fn drive(sim: &mut Simulation, motion: &Motion, dir: &Vec3, dt: f64, step: u64, 
     sim.step();
 }
 
+/// The ground driven along `dir` by `motion` ([`drive`]), as a [`Drive`] of the run loop.
+struct GroundMotion<'m> {
+    motion: &'m Motion,
+    dir: Vec3,
+    dt: f64,
+    /// Ground speed along `dir` at the end of the last step.
+    v: f64,
+    /// Mean ground speed of the last step.
+    v_mean: f64,
+}
+
+impl Drive for GroundMotion<'_> {
+    fn before_step(&mut self, sim: &mut Simulation, step: u64) {
+        let t = step as f64 * self.dt;
+        let a = self.motion.accel(t + 0.5 * self.dt) * GRAVITY;
+        let v_new = self.v + a * self.dt;
+        self.v_mean = 0.5 * (self.v + v_new);
+        sim.set_ground_velocity(&(self.dir * self.v_mean));
+        self.v = v_new;
+    }
+    fn ground_velocity(&self) -> Vec3 {
+        self.dir * self.v
+    }
+    fn active_steps(&self) -> u64 {
+        (self.motion.duration() / self.dt).ceil() as u64
+    }
+}
+
 /// Shake the ground under a stone resting on `start` with `motion` along azimuth `azimuth`,
 /// then let it come to rest relative to the ground.
 pub fn shake_trial(
@@ -334,52 +363,32 @@ pub fn shake_trial(
     azimuth: f64,
     k: u32,
 ) -> ShakeTrial {
-    let s = &stone.stable[start];
+    let s = &stone.stable()[start];
     let dt = p.sim.dt;
     let mut sim = resting_simulation(stone, start, p, p.settle_time);
     let dir = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0);
     let n = stone.body.facet_normals[s.facet as usize];
-    let motion_steps = (motion.duration() / dt).ceil() as u64;
-    let steps_max = motion_steps + (p.sim.max_time / dt).ceil() as u64;
-    let mut v = 0.0;
-    let mut rest = RestDetector::new(&p.sim);
+    let mut ground = GroundMotion { motion, dir, dt, v: 0.0, v_mean: 0.0 };
     let mut max_tilt: f64 = 0.0;
-    let flock_of = |f: u32| stone.facet_flock[f as usize].unwrap_or(usize::MAX);
-    let finish = |down: &Vec3, step: u64, settled: bool, max_tilt: f64| {
-        let (f, nsf) = stone.final_facet(down);
-        let flock = flock_of(f);
-        ShakeTrial {
-            start,
-            equilibrium: s.index,
-            pga: motion.peak(),
-            azimuth,
-            trial: k,
-            outcome: if f == s.facet {
-                Outcome::Same
-            } else if flock == s.flock {
-                Outcome::SameFlock
-            } else {
-                Outcome::Toppled
-            },
-            final_facet: f,
-            final_equilibrium: stone.facet_equilibrium[f as usize],
-            final_flock: flock,
-            settled,
-            non_stable_facet: nsf,
-            max_tilt,
-            time: step as f64 * dt,
-        }
-    };
-    for step in 0..steps_max {
-        drive(&mut sim, motion, &dir, dt, step, &mut v);
-        let st = sim.state();
-        max_tilt = max_tilt.max(n.dot(&st.down).clamp(-1.0, 1.0).acos());
-        let rel = st.linvel - dir * v;
-        if rest.at_rest(&rel, &st.angvel) && step >= motion_steps {
-            return finish(&st.down, step + 1, true, max_tilt);
-        }
+    let end = run_loop::run(&mut sim, &p.sim, &mut ground, &NoCertificate, &mut |st| {
+        max_tilt = max_tilt.max(n.dot(&st.down).clamp(-1.0, 1.0).acos())
+    });
+    let rest = stone.rest(&end.state.down);
+    ShakeTrial {
+        start,
+        equilibrium: s.index,
+        pga: motion.peak(),
+        azimuth,
+        trial: k,
+        outcome: classify(stone, start, Some(rest.facet), rest.flock),
+        final_facet: rest.facet,
+        final_equilibrium: Some(rest.equilibrium),
+        final_flock: rest.flock,
+        settled: end.settled,
+        non_stable_facet: !rest.on_equilibrium(),
+        max_tilt,
+        time: end.steps as f64 * dt,
     }
-    finish(&sim.state().down, steps_max, false, max_tilt)
 }
 
 /// The random stream of shaking trial `trial` on `start` (bit 62 set: never a push stream).
@@ -404,20 +413,20 @@ pub struct ShakeConfig {
 }
 
 impl ShakeConfig {
-    pub fn check(&self) -> std::result::Result<(), String> {
+    pub fn check(&self) -> Result<()> {
         self.params.check()?;
         self.motion.check()?;
         if self.pgas.is_empty() || self.pgas.iter().any(|a| !(*a >= 0.0 && a.is_finite())) {
-            return Err("the PGA grid must hold values ≥ 0".into());
+            return Err(Error::Usage("the PGA grid must hold values ≥ 0".into()));
         }
         if self.pgas.windows(2).any(|w| w[1] <= w[0]) {
-            return Err("the PGA grid must be increasing".into());
+            return Err(Error::Usage("the PGA grid must be increasing".into()));
         }
         if self.trials == 0 {
-            return Err("at least one trial per PGA".into());
+            return Err(Error::Usage("at least one trial per PGA".into()));
         }
         if !(self.scale.r_max_m > 0.0 && self.scale.r_max_m.is_finite()) {
-            return Err(format!("the size must be positive, got {}", self.scale.r_max_m));
+            return Err(Error::Usage(format!("the size must be positive, got {}", self.scale.r_max_m)));
         }
         Ok(())
     }
@@ -471,7 +480,7 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, progress: &(
         .par_iter()
         .map(|&(s, i, k)| {
             let azimuth = cfg.azimuth.unwrap_or_else(|| {
-                let mut rng = drop_rng(cfg.seed, shake_stream(s, k));
+                let mut rng = item_rng(cfg.seed, shake_stream(s, k));
                 rng.random_range(0.0..2.0 * std::f64::consts::PI)
             });
             let motion = cfg.motion.scaled_to(cfg.pgas[i]);
@@ -498,7 +507,7 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, progress: &(
             let leave: Vec<f64> = curve.iter().map(|c| 1.0 - c.p_same).collect();
             let topple: Vec<f64> = curve.iter().map(|c| c.p_toppled).collect();
             Fragility {
-                equilibrium: stone.stable[s].clone(),
+                equilibrium: stone.stable()[s].clone(),
                 rest,
                 pga50_micro: Threshold::of(&x, &leave, false),
                 pga50_flock: Threshold::of(&x, &topple, false),
@@ -742,7 +751,7 @@ pub fn ramp_tipping(
     tilt: f64,
     a_max: f64,
 ) -> Option<f64> {
-    let s = &stone.stable[start];
+    let s = &stone.stable()[start];
     let dt = p.sim.dt;
     let mut sim = resting_simulation(stone, start, p, p.settle_time);
     let dir = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0);
@@ -791,13 +800,13 @@ pub fn free_rocking(
     theta0: f64,
     duration: f64,
 ) -> Vec<HalfCycle> {
-    let s = &stone.stable[start];
+    let s = &stone.stable()[start];
     let q0 = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
     let q = UnitQuaternion::from_axis_angle(&Vec3::y_axis(), theta0) * q0;
     let down = q.inverse() * -Vec3::z();
     let z = stone.body.support(&down);
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
-    super::perturb::configure(&mut sim, p);
+    sim.set_contact_frequency(p.contact_frequency);
     let dt = p.sim.dt;
     let r_max = stone.body.r_max;
     let (b, h) = (b / r_max, h / r_max);

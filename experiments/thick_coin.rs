@@ -1,0 +1,174 @@
+//! The thick coin (issue 10): a cylinder of height h and diameter d (a prism over a regular
+//! 32-gon), P(lands on its edge) against h/d, under the calibrated `throw` and the
+//! `quasi-static` preset, beside the quasi-static basin probability and two published
+//! predictions:
+//!
+//! * the quasi-static (solid-angle) coin is fair three ways — P(edge) = 1/3 — at
+//!   h/d = 1/(2√2) ≈ 0.354 (the edge's share of the sphere of directions around G);
+//! * a vigorously flipped coin that lands where its angular momentum leaves it (Yong &
+//!   Mahadevan, Am. J. Phys. 79, 1195 (2011)) is fair at h/d = 1/√3 ≈ 0.577.
+//!
+//! Neither is a calibration target; they bracket what a physical throw should give.
+//!
+//! Run: `cargo run --release --example thick_coin [-- N]` (N = 300 per point and preset) →
+//! `results/thick_coin/`.
+
+use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::mesh::TriMesh;
+use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::stats::wilson;
+use rocking_stones::Point3;
+use std::fmt::Write as _;
+use std::path::Path;
+
+const SIDES: usize = 32;
+
+/// A prism of height `h` over the regular `SIDES`-gon inscribed in a circle of diameter 1.
+fn coin(h: f64) -> TriMesh {
+    let mut v = Vec::new();
+    for z in [-0.5 * h, 0.5 * h] {
+        for k in 0..SIDES {
+            let t = std::f64::consts::TAU * k as f64 / SIDES as f64;
+            v.push(Point3::new(0.5 * t.cos(), 0.5 * t.sin(), z));
+        }
+    }
+    let n = SIDES as u32;
+    let mut t = Vec::new();
+    for k in 1..n - 1 {
+        t.push([0, k + 1, k]); // bottom, facing −z
+        t.push([n, n + k, n + k + 1]); // top, facing +z
+    }
+    for k in 0..n {
+        let j = (k + 1) % n;
+        t.push([k, j, n + j]);
+        t.push([k, n + j, n + k]);
+    }
+    TriMesh::new(v, t)
+}
+
+/// (edge count, drops, quasi-static P(edge)).
+fn p_edge(stone: &Stone, p: &DropParams, n: u64) -> (u64, u64, f64) {
+    let header = RunHeader {
+        format: FORMAT.into(),
+        mesh: "coin".into(),
+        mesh_fingerprint: String::new(),
+        seed: 5,
+        drops: n,
+        params: p.clone(),
+        certificate: CertificateMode::Facet,
+        preset: None,
+    };
+    let (r, _) = run_report(stone, &header);
+    let edge = |f: &&rocking_stones::montecarlo::FacetRow| f.normal.z.abs() < 0.5;
+    (
+        r.facets.iter().filter(edge).map(|f| f.count).sum(),
+        r.facet_drops,
+        r.facets.iter().filter(edge).map(|f| f.static_probability).sum(),
+    )
+}
+
+fn main() {
+    let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N"));
+    let out = Path::new("results/thick_coin");
+    std::fs::create_dir_all(out).expect("results folder");
+    let ratios = [0.1, 0.2, 0.3, 0.354, 0.45, 0.577, 0.7, 0.85, 1.0];
+    let mut rows = Vec::new();
+    let mut csv = String::from("h_over_d,quasi_static_basin,throw,throw_lo,throw_hi,quasi_static_preset,qs_lo,qs_hi\n");
+    for &hd in &ratios {
+        let (mesh, rep) = coin(hd).into_solid_boundary().expect("a closed prism");
+        let a = Analysis::of_solid(mesh, rep, &Options::default()).expect("a prism analyses");
+        let stone = Stone::new(&a, 0.0035).expect("stable facets");
+        let (kt, nt, basin) = p_edge(&stone, &Preset::Throw.params(Surface::SteelOnWood), n);
+        let (kq, nq, _) = p_edge(&stone, &Preset::QuasiStatic.params(Surface::SteelOnWood), n);
+        let (pt, pq) = (kt as f64 / nt as f64, kq as f64 / nq as f64);
+        let (tl, th) = wilson(kt, nt, 1.96);
+        let (ql, qh) = wilson(kq, nq, 1.96);
+        eprintln!("h/d {hd}: basin {basin:.3}, throw {pt:.3}, quasi-static {pq:.3}");
+        let _ = writeln!(csv, "{hd},{basin:.4},{pt:.4},{tl:.4},{th:.4},{pq:.4},{ql:.4},{qh:.4}");
+        rows.push((hd, basin, pt, tl, th, pq, ql, qh));
+    }
+    std::fs::write(out.join("p_edge.csv"), csv).expect("csv");
+    plot(out, &rows).expect("plot");
+    let cross = |f: &dyn Fn(&Row) -> f64| {
+        rows.windows(2).find(|w| f(&w[0]) < 1.0 / 3.0 && f(&w[1]) >= 1.0 / 3.0).map(|w| {
+            let (a, b) = (f(&w[0]), f(&w[1]));
+            w[0].0 + (1.0 / 3.0 - a) / (b - a) * (w[1].0 - w[0].0)
+        })
+    };
+    let fmt = |x: Option<f64>| x.map_or("not on the grid".to_string(), |v| format!("{v:.3}"));
+    let mut md = String::new();
+    let _ = writeln!(md, "# The thick coin: P(edge) against h/d\n");
+    let _ = writeln!(md, "A prism over a regular {SIDES}-gon (diameter d = 1, height h), {n} drops per point and preset, steel on wood. `p_edge.png`: the quasi-static basin probability (exact), the `quasi-static` preset (damped creep from contact), the calibrated `throw` with 95 % intervals; vertical lines at the two published fair-coin ratios.\n");
+    let _ = writeln!(md, "| h/d where P(edge) = 1/3 | value |\n|---|---|");
+    let _ = writeln!(md, "| quasi-static basins (this code) | {} |", fmt(cross(&|r| r.1)));
+    let _ = writeln!(md, "| solid-angle closed form | 0.354 |");
+    let _ = writeln!(md, "| `quasi-static` preset | {} |", fmt(cross(&|r| r.5)));
+    let _ = writeln!(md, "| calibrated `throw` | {} |", fmt(cross(&|r| r.2)));
+    let _ = writeln!(md, "| Yong & Mahadevan 2011, vigorous flip | 0.577 |\n");
+    let _ = writeln!(md, "| h/d | basin | quasi-static preset | throw |\n|---|---|---|---|");
+    for r in &rows {
+        let _ = writeln!(
+            md,
+            "| {} | {:.3} | {:.3} [{:.3}, {:.3}] | {:.3} [{:.3}, {:.3}] |",
+            r.0, r.1, r.5, r.6, r.7, r.2, r.3, r.4
+        );
+    }
+    std::fs::write(out.join("README.md"), md).expect("README");
+}
+
+type Row = (f64, f64, f64, f64, f64, f64, f64, f64);
+
+fn plot(out: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    init_fonts();
+    let path = out.join("p_edge.png");
+    let root = BitMapBackend::new(&path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(60)
+        .caption("Thick coin: P(lands on its edge) against h/d", (FONT_FAMILY, 22))
+        .build_cartesian_2d(0.0f64..1.05, 0.0f64..1.0)?;
+    chart
+        .configure_mesh()
+        .x_desc("h / d (height over diameter)")
+        .y_desc("P(edge)")
+        .label_style((FONT_FAMILY, 15))
+        .draw()?;
+    let (blue, green, orange, grey) =
+        (RGBColor(0, 114, 178), RGBColor(0, 158, 115), RGBColor(230, 159, 0), RGBColor(120, 120, 120));
+    for (x, label) in [(0.354, "solid angle 1/(2√2)"), (0.577, "Yong & Mahadevan 1/√3")] {
+        chart.draw_series(std::iter::once(PathElement::new(vec![(x, 0.0), (x, 1.0)], grey.stroke_width(1))))?;
+        chart.draw_series(std::iter::once(Text::new(label, (x + 0.01, 0.95), (FONT_FAMILY, 13))))?;
+    }
+    chart.draw_series(std::iter::once(PathElement::new(
+        vec![(0.0, 1.0 / 3.0), (1.05, 1.0 / 3.0)],
+        grey.stroke_width(1),
+    )))?;
+    chart
+        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.1)), green.stroke_width(2)))?
+        .label("quasi-static basins (exact)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], green.stroke_width(2)));
+    chart
+        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.5)), orange.stroke_width(2)))?
+        .label("quasi-static preset (simulated)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], orange.stroke_width(2)));
+    chart
+        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.2)), blue.stroke_width(2)))?
+        .label("calibrated throw, 95 % intervals")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
+    chart.draw_series(rows.iter().map(|r| PathElement::new(vec![(r.0, r.3), (r.0, r.4)], blue.stroke_width(2))))?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .label_font((FONT_FAMILY, 15))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}

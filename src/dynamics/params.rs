@@ -1,0 +1,354 @@
+//! Parameters of a simulated run: the launch, the contact, the numerics — and the named presets
+//! and surface pairs that set them (SPEC §6 "Launches", "Contact physics").
+//!
+//! **Units.** Every run is simulated in the stone's scaled frame: lengths in units of R_max (the
+//! largest distance from G to a hull corner), mass 1, g = 9.81 m/s². Rigid-body dynamics with
+//! Coulomb friction, restitution and a rolling-resistance *length* is invariant under Froude
+//! scaling, so only dimensionless groups matter: height / R_max, speed / √(g R_max),
+//! spin · √(R_max / g), δ / R_max. A number given here for the scaled body (R_max = 1 m) converts
+//! to a real stone of size R_max = L (metres) as
+//!
+//! ```text
+//! length_real = length · L,   speed_real = speed · √L,   spin_real = spin / √L,   time_real = time · √L
+//! ```
+//!
+//! (e.g. a spin of 5 rad/s of the scaled body is 5/√0.01 = 50 rad/s for a die with R_max = 1 cm).
+//! [`Surface::scaled`] turns the surface pair's physical rolling-resistance length into δ / R_max
+//! for a stone of a given size.
+
+use crate::{Error, Result};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// How the angular velocity of a launch is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpinDistribution {
+    /// |ω| = `spin` exactly, about a uniformly random axis.
+    Fixed,
+    /// ω isotropic Gaussian: each component normal with mean 0 and standard deviation
+    /// `spin`/√3, so the root-mean-square |ω| is `spin` (|ω| has a Maxwell distribution). A hand
+    /// throw does not give every die the same spin; this is the maximum-entropy law with a given
+    /// mean rotational energy.
+    Gaussian,
+}
+
+/// Parameters of a run, in the scaled frame (see the module docs). Every field documents its
+/// default, which is the calibrated [`Preset::Throw`] on [`Surface::SteelOnWood`] (see
+/// `results/cuboid_dice/`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DropParams {
+    /// Release height of the lowest hull point above the ground, in R_max. Default: the
+    /// calibrated throw's.
+    pub height: f64,
+    /// Horizontal speed of G at release (m/s of the scaled body), along a uniformly random
+    /// azimuth. Default: the calibrated throw's.
+    pub horizontal_speed: f64,
+    /// Angular speed at release (rad/s of the scaled body): exact or root-mean-square, see
+    /// `spin_distribution`. Default: the calibrated throw's.
+    pub spin: f64,
+    /// Law of the release angular velocity. Default: [`SpinDistribution::Gaussian`].
+    pub spin_distribution: SpinDistribution,
+    /// Coulomb friction coefficient of the contact. Default 0.4 (steel on wood).
+    pub friction: f64,
+    /// Restitution coefficient of the contact. Default 0.5 (steel on wood).
+    pub restitution: f64,
+    /// Rolling-resistance length δ_r / R_max: the contact's rolling torque is at most δ_r N
+    /// ([`super::world`]). Default 0.02: steel on wood (δ = 0.2 mm) for R_max = 1 cm.
+    pub rolling_resistance: f64,
+    /// Torsional-friction length δ_t / R_max: the contact's torque about its normal is at most
+    /// δ_t N. Default: equal to `rolling_resistance`.
+    pub torsional_friction: f64,
+    /// Global linear velocity damping (1/s). Default 0: it would slow a body in flight; kept
+    /// for the overdamped [`Preset::QuasiStatic`] limit and for comparison with older runs.
+    pub linear_damping: f64,
+    /// Global angular velocity damping (1/s). Default 0 (see `linear_damping`).
+    pub angular_damping: f64,
+    /// Time step (s of the scaled body). Default 1/240 s.
+    pub dt: f64,
+    /// Velocity iterations of rapier's contact solver per step. Default 4 (rapier's).
+    pub solver_iterations: usize,
+    /// Give up after this long (s of the scaled body). Default 60 s: with rolling resistance
+    /// instead of global damping, a smooth pebble thrown onto a table rolls for 5–15 s (scaled)
+    /// before it rests (measured on a 400-vertex pebble: mean 9 s at δ = 0.02 R_max).
+    pub max_time: f64,
+    /// Rest: linear speed below this (m/s, scaled) … Default 2·10⁻³.
+    pub rest_linear_speed: f64,
+    /// … and angular speed below this (rad/s, scaled) … Default 5·10⁻³.
+    pub rest_angular_speed: f64,
+    /// … for this long (s). Default 0.25 s.
+    pub rest_time: f64,
+}
+
+impl Default for DropParams {
+    fn default() -> Self {
+        Preset::Throw.params(Surface::SteelOnWood)
+    }
+}
+
+impl DropParams {
+    /// Refuse parameters that cannot describe a run, naming the parameter (as the CLI spells
+    /// it) and the value.
+    pub fn check(&self) -> Result<()> {
+        let bad = |what: String| Err(Error::Usage(what));
+        let positive = [("--dt", self.dt), ("--max-time", self.max_time), ("rest time", self.rest_time)];
+        if let Some((name, v)) = positive.iter().find(|(_, v)| !(*v > 0.0 && v.is_finite())) {
+            return bad(format!("{name} must be positive and finite, got {v}"));
+        }
+        let non_negative = [
+            ("--height", self.height),
+            ("--horizontal-speed", self.horizontal_speed),
+            ("--spin", self.spin),
+            ("--friction", self.friction),
+            ("--rolling-resistance", self.rolling_resistance),
+            ("--torsional-friction", self.torsional_friction),
+            ("--linear-damping", self.linear_damping),
+            ("--angular-damping", self.angular_damping),
+            ("rest linear speed", self.rest_linear_speed),
+            ("rest angular speed", self.rest_angular_speed),
+        ];
+        if let Some((name, v)) = non_negative.iter().find(|(_, v)| !(*v >= 0.0 && v.is_finite())) {
+            return bad(format!("{name} must be ≥ 0 and finite, got {v}"));
+        }
+        if !(0.0..=1.0).contains(&self.restitution) {
+            return bad(format!("--restitution must be in [0, 1], got {}", self.restitution));
+        }
+        if self.solver_iterations == 0 || self.solver_iterations > 1000 {
+            return bad(format!("solver iterations must be in 1..=1000, got {}", self.solver_iterations));
+        }
+        if self.dt > self.max_time {
+            return bad(format!("--dt ({}) is longer than the time cap --max-time ({})", self.dt, self.max_time));
+        }
+        // Contact stability: rapier's soft contacts (30–60 Hz) need several steps per
+        // oscillation, and a body must not fall through more than a fraction of itself per step.
+        if self.dt > MAX_STABLE_DT {
+            return bad(format!(
+                "--dt {} s is too long for the contact solver: at most {MAX_STABLE_DT} s of the scaled body \
+                 (the soft contacts oscillate at 30–60 Hz and need ≥ 4 steps per period); the default is 1/240 s",
+                self.dt
+            ));
+        }
+        if self.max_time / self.dt > 1e8 {
+            return bad(format!("--max-time / --dt = {:.3e} steps is more than 10⁸", self.max_time / self.dt));
+        }
+        Ok(())
+    }
+
+    /// Speed of G when the body first touches the ground (m/s, scaled): √(v_h² + 2 g h).
+    pub fn impact_speed(&self) -> f64 {
+        (self.horizontal_speed.powi(2) + 2.0 * super::world::GRAVITY * self.height).sqrt()
+    }
+}
+
+/// The longest time step (s, scaled) a run accepts: 1/120 s, four steps per period of the
+/// stiffest default contact (30 Hz). Measured: at 1/120 s the cube still lands 1/6 on each face;
+/// at dt = 1 s 4 of 5 drops never settle.
+pub const MAX_STABLE_DT: f64 = 1.0 / 120.0;
+
+/// Named, documented launch protocols (SPEC §6). Each sets the launch and the numerics; the
+/// contact comes from a [`Surface`]. Every field can still be overridden.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Preset {
+    /// The overdamped limit of the quasi-static basins: released at rest touching the ground
+    /// (height 10⁻³ R_max), no restitution, strong global damping 10 s⁻¹ (linear and angular) so
+    /// the body creeps down the support function. Drops under it converge to the basin
+    /// probabilities (measured in `results/drops_quasistatic_limit/`: micro-facet KL 0.008 at
+    /// 10 s⁻¹).
+    QuasiStatic,
+    /// Released from rest (no spin, no horizontal speed) with the lowest point 1 R_max above the
+    /// ground: a stone let fall from the hand.
+    Drop,
+    /// A hand throw onto a table: released 4 R_max above it with 1 m/s (scaled) of horizontal
+    /// speed and a Gaussian angular velocity of 7 rad/s rms (scaled), values calibrated on the
+    /// seven measured dice of `data/cuboid_dice_throws.csv` (`results/cuboid_dice/`).
+    Throw,
+}
+
+impl Preset {
+    /// Every preset, in the order of the documentation.
+    pub const ALL: [Preset; 3] = [Preset::QuasiStatic, Preset::Drop, Preset::Throw];
+
+    /// The user-facing name (as `--preset` takes it).
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::QuasiStatic => "quasi-static",
+            Preset::Drop => "drop",
+            Preset::Throw => "throw",
+        }
+    }
+
+    /// The parameters of this preset on `surface`.
+    pub fn params(self, surface: Surface) -> DropParams {
+        let c = surface.contact();
+        let base = DropParams {
+            height: 1.0,
+            horizontal_speed: 0.0,
+            spin: 0.0,
+            spin_distribution: SpinDistribution::Gaussian,
+            friction: c.friction,
+            restitution: c.restitution,
+            rolling_resistance: c.rolling_resistance_m / REFERENCE_R_MAX_M,
+            torsional_friction: c.rolling_resistance_m / REFERENCE_R_MAX_M,
+            linear_damping: 0.0,
+            angular_damping: 0.0,
+            dt: 1.0 / 240.0,
+            solver_iterations: 4,
+            max_time: 60.0,
+            rest_linear_speed: 2e-3,
+            rest_angular_speed: 5e-3,
+            rest_time: 0.25,
+        };
+        match self {
+            Preset::QuasiStatic => {
+                DropParams { height: 1e-3, restitution: 0.0, linear_damping: 10.0, angular_damping: 10.0, ..base }
+            }
+            Preset::Drop => base,
+            Preset::Throw => {
+                DropParams { height: THROW_HEIGHT, horizontal_speed: THROW_HORIZONTAL_SPEED, spin: THROW_SPIN, ..base }
+            }
+        }
+    }
+}
+
+/// Calibrated release height of [`Preset::Throw`] (R_max), see `results/cuboid_dice/`.
+pub const THROW_HEIGHT: f64 = 4.0;
+/// Horizontal speed of [`Preset::Throw`] (m/s of the scaled body; fixed, not fitted).
+pub const THROW_HORIZONTAL_SPEED: f64 = 1.0;
+/// Calibrated rms spin of [`Preset::Throw`] (rad/s of the scaled body), see `results/cuboid_dice/`.
+pub const THROW_SPIN: f64 = 7.0;
+
+/// The size at which a surface's physical rolling-resistance length is turned into δ / R_max by
+/// the presets when the stone's real size is not given: R_max = 1 cm (a die, a pebble).
+pub const REFERENCE_R_MAX_M: f64 = 0.01;
+
+impl fmt::Display for Preset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Preset {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Preset> {
+        Preset::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| Error::Usage(format!("unknown preset {s:?}: expected one of quasi-static, drop, throw")))
+    }
+}
+
+/// The physical contact of a surface pair.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Contact {
+    /// Coulomb friction coefficient.
+    pub friction: f64,
+    /// Coefficient of restitution of a normal impact.
+    pub restitution: f64,
+    /// Rolling-resistance length δ (metres): the lever arm of the normal force that resists
+    /// rolling, M_r ≤ δ N.
+    pub rolling_resistance_m: f64,
+}
+
+/// Named surface pairs, with friction, restitution and rolling resistance inside published
+/// ranges (each variant cites them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Surface {
+    /// Steel dice on a wooden table: μ = 0.4 (dry steel on wood 0.2–0.6 in the friction
+    /// tables of Marks' Standard Handbook for Mechanical Engineers), e = 0.5 (steel ball on hardwood
+    /// 0.4–0.6), δ = 0.2 mm (rolling-friction lever arm of steel on wood, 0.05–0.5 mm in
+    /// handbook tables; the geometric middle of that range).
+    SteelOnWood,
+    /// A stone on a rock surface: μ = 0.6 (Byerlee 1978: 0.6–0.85 for rock on rock), e = 0.3
+    /// (normal restitution of rock on bedrock 0.2–0.5 in rockfall back-analyses, e.g. Giani 1992;
+    /// Asteriou et al. 2012), δ = 0.1 mm.
+    StoneOnStone,
+    /// A rock on a concrete slab or shake table: μ = 0.6 (0.5–0.7), e = 0.3, δ = 0.1 mm.
+    RockOnConcrete,
+    /// A rock on a steel plate: μ = 0.45 (0.3–0.6 for dry rock on steel), e = 0.4, δ = 0.05 mm.
+    RockOnSteel,
+}
+
+impl Surface {
+    /// Every surface pair.
+    pub const ALL: [Surface; 4] =
+        [Surface::SteelOnWood, Surface::StoneOnStone, Surface::RockOnConcrete, Surface::RockOnSteel];
+
+    /// The user-facing name (as `--surface` takes it).
+    pub fn name(self) -> &'static str {
+        match self {
+            Surface::SteelOnWood => "steel-on-wood",
+            Surface::StoneOnStone => "stone-on-stone",
+            Surface::RockOnConcrete => "rock-on-concrete",
+            Surface::RockOnSteel => "rock-on-steel",
+        }
+    }
+
+    /// The contact of this pair.
+    pub fn contact(self) -> Contact {
+        let (friction, restitution, rolling_resistance_m) = match self {
+            Surface::SteelOnWood => (0.4, 0.5, 2e-4),
+            Surface::StoneOnStone => (0.6, 0.3, 1e-4),
+            Surface::RockOnConcrete => (0.6, 0.3, 1e-4),
+            Surface::RockOnSteel => (0.45, 0.4, 5e-5),
+        };
+        Contact { friction, restitution, rolling_resistance_m }
+    }
+
+    /// Set the contact of `p` to this pair's, for a stone of real size R_max = `r_max_m` metres.
+    pub fn scaled(self, p: &mut DropParams, r_max_m: f64) {
+        let c = self.contact();
+        p.friction = c.friction;
+        p.restitution = c.restitution;
+        p.rolling_resistance = c.rolling_resistance_m / r_max_m;
+        p.torsional_friction = c.rolling_resistance_m / r_max_m;
+    }
+}
+
+impl fmt::Display for Surface {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Surface {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Surface> {
+        Surface::ALL.into_iter().find(|p| p.name() == s).ok_or_else(|| {
+            let names: Vec<&str> = Surface::ALL.iter().map(|s| s.name()).collect();
+            Error::Usage(format!("unknown surface {s:?}: expected one of {}", names.join(", ")))
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_and_surfaces_parse_their_names_and_pass_the_check() {
+        for p in Preset::ALL {
+            assert_eq!(p.name().parse::<Preset>().unwrap(), p);
+            for s in Surface::ALL {
+                assert_eq!(s.name().parse::<Surface>().unwrap(), s);
+                p.params(s).check().unwrap();
+            }
+        }
+        assert!("fling".parse::<Preset>().is_err());
+        // No global damping except in the overdamped limit.
+        assert_eq!(DropParams::default().angular_damping, 0.0);
+        assert!(Preset::QuasiStatic.params(Surface::StoneOnStone).angular_damping > 0.0);
+    }
+
+    #[test]
+    fn nonsense_parameters_are_refused_with_their_flag() {
+        let p = DropParams { dt: 1.0, ..DropParams::default() };
+        assert!(p.check().unwrap_err().to_string().contains("--dt"));
+        let p = DropParams { friction: f64::NAN, ..DropParams::default() };
+        assert!(p.check().unwrap_err().to_string().contains("--friction"));
+        let p = DropParams { restitution: 1.5, ..DropParams::default() };
+        assert!(p.check().unwrap_err().to_string().contains("--restitution"));
+    }
+}

@@ -1,0 +1,247 @@
+//! The rapier world of one run: a flat ground (a half-space on a kinematic body, so that it can
+//! be shaken) and the stone, in the scaled frame of [`super::params`], with the contact law of
+//! SPEC §6 — Coulomb friction and restitution from rapier, rolling resistance and torsional
+//! friction added here.
+//!
+//! # Rolling resistance and torsional friction ([`Simulation::step`])
+//!
+//! Rapier has no rolling resistance: a smooth pebble rocks on its micro-facets for ever, and a
+//! global velocity damping (what this project used before) also slows a body in flight. Here a
+//! torque acts only through the contact. After every rapier step, with N Δt the total normal
+//! impulse the ground gave the stone during the step (from the contact manifolds), n = +z the
+//! ground's normal and ω the stone's angular velocity relative to the ground (which does not
+//! rotate), split ω = ω_r + ω_s n into rolling (ω_r ⊥ n) and spinning parts. The contact applies
+//! the torque impulses
+//!
+//! ```text
+//! J_r = −min(δ_r N Δt, |ω_r| / (ω̂_rᵀ I⁻¹ ω̂_r)) ω̂_r        (rolling resistance, δ_r a length)
+//! J_s = −min(δ_t N Δt, |ω_s'| / (nᵀ I⁻¹ n)) sign(ω_s') n     (torsional friction, δ_t a length)
+//! ```
+//!
+//! (I⁻¹ the world-frame inverse inertia about G, ω_s' the spin after J_r), i.e. a couple of
+//! magnitude δ N opposing the relative rotation while it rotates (kinetic), and no more than
+//! what stops the rotation's component along its own direction within the step (static: it
+//! never reverses it). Each impulse changes the kinetic energy by
+//! ΔT = −j|ω| + ½ j² ω̂ᵀI⁻¹ω̂ ≤ −½ j|ω| ≤ 0 for the clamped j, so the law only dissipates:
+//! the mechanical energy stays non-increasing and the energy certificate of
+//! [`super::run`] stays valid (tested in `tests/contact.rs`). A body in flight has N = 0 and
+//! feels nothing.
+
+use super::params::DropParams;
+use super::stone::Body;
+use crate::Vec3;
+use nalgebra::{Matrix3, UnitQuaternion};
+use rapier3d::prelude::*;
+
+/// Gravity of the scaled frame (m/s²).
+pub const GRAVITY: f64 = 9.81;
+
+/// Penetration the contact solver allows, in units of R_max.
+pub const ALLOWED_PENETRATION: f64 = 1e-3;
+
+/// Conversions between the f64 nalgebra geometry and rapier's f32 glam types (the one boundary).
+pub mod convert {
+    use crate::Vec3;
+    use nalgebra::{Matrix3, UnitQuaternion};
+    use rapier3d::math::{Matrix, Rotation, Vector};
+
+    /// nalgebra → glam vector.
+    pub fn vec(v: &Vec3) -> Vector {
+        Vector::new(v.x as f32, v.y as f32, v.z as f32)
+    }
+    /// glam → nalgebra vector.
+    pub fn vec_back(v: Vector) -> Vec3 {
+        Vec3::new(v.x as f64, v.y as f64, v.z as f64)
+    }
+    /// nalgebra → glam rotation.
+    pub fn quat(q: &UnitQuaternion<f64>) -> Rotation {
+        Rotation::from_xyzw(q.i as f32, q.j as f32, q.k as f32, q.w as f32).normalize()
+    }
+    /// glam → nalgebra rotation.
+    pub fn quat_back(q: &Rotation) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w as f64, q.x as f64, q.y as f64, q.z as f64))
+    }
+    /// nalgebra → glam matrix.
+    pub fn mat(m: &Matrix3<f64>) -> Matrix {
+        Matrix::from_cols(
+            Vector::new(m[(0, 0)] as f32, m[(1, 0)] as f32, m[(2, 0)] as f32),
+            Vector::new(m[(0, 1)] as f32, m[(1, 1)] as f32, m[(2, 1)] as f32),
+            Vector::new(m[(0, 2)] as f32, m[(1, 2)] as f32, m[(2, 2)] as f32),
+        )
+    }
+}
+
+/// The state of the stone that the rest criterion and the certificate read (scaled frame).
+#[derive(Clone, Copy, Debug)]
+pub struct BodyState {
+    /// Down direction in the body frame.
+    pub down: Vec3,
+    /// Height of G above the ground.
+    pub z: f64,
+    /// Linear velocity (world frame).
+    pub linvel: Vec3,
+    /// Angular velocity (world frame).
+    pub angvel: Vec3,
+    /// Energy level L = E/(m g) = z_G + kinetic energy/(m g): a bound on h(down) for the rest of
+    /// a passive motion.
+    pub level: f64,
+}
+
+/// A rapier world with the ground and the stone, in the scaled frame. Drops, pushes and ground
+/// shaking all run on it ([`super::run`]).
+pub struct Simulation<'a> {
+    /// The rapier world.
+    pub world: PhysicsWorld,
+    /// The stone's rigid body.
+    pub body_handle: RigidBodyHandle,
+    /// The (kinematic) ground's rigid body.
+    pub ground_handle: RigidBodyHandle,
+    body_collider: ColliderHandle,
+    ground_collider: ColliderHandle,
+    rolling_resistance: f64,
+    torsional_friction: f64,
+    body: &'a Body,
+}
+
+impl<'a> Simulation<'a> {
+    /// The stone with orientation `orientation` (body → world), G at height `z`, and the given
+    /// velocities (world frame), above a flat ground.
+    pub fn new(
+        body: &'a Body,
+        p: &DropParams,
+        orientation: &UnitQuaternion<f64>,
+        z: f64,
+        linvel: &Vec3,
+        angvel: &Vec3,
+    ) -> Self {
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
+        world.integration_parameters.dt = p.dt as f32;
+        world.integration_parameters.length_unit = 1.0;
+        world.integration_parameters.num_solver_iterations = p.solver_iterations;
+        // Rapier's allowed linear error, in R_max (default 0.005). Note: in rapier 0.36.1 it is
+        // read only by continuous collision detection; the penetration the certificate's margin
+        // must cover is bounded by measurement instead (see `run::CERTIFICATE_MARGIN`).
+        world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
+        let ground_handle = world.bodies.insert(RigidBodyBuilder::kinematic_velocity_based().build());
+        let ground = ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
+            .friction(p.friction as f32)
+            .restitution(p.restitution as f32)
+            .build();
+        let ground_collider = world.colliders.insert_with_parent(ground, ground_handle, &mut world.bodies);
+        let mass = MassProperties::with_inertia_matrix(Vector::ZERO, 1.0, convert::mat(&body.inertia));
+        let rb = RigidBodyBuilder::dynamic()
+            .pose(Pose::from_parts(Vector::new(0.0, 0.0, z as f32), convert::quat(orientation)))
+            .linvel(convert::vec(linvel))
+            .angvel(convert::vec(angvel))
+            .linear_damping(p.linear_damping as f32)
+            .angular_damping(p.angular_damping as f32)
+            .additional_mass_properties(mass)
+            .gyroscopic_forces_enabled(true)
+            .can_sleep(false)
+            .build();
+        let body_handle = world.bodies.insert(rb);
+        let collider = ColliderBuilder::new(body.shape.clone())
+            .density(0.0)
+            .friction(p.friction as f32)
+            .restitution(p.restitution as f32)
+            .build();
+        let body_collider = world.colliders.insert_with_parent(collider, body_handle, &mut world.bodies);
+        Simulation {
+            world,
+            body_handle,
+            ground_handle,
+            body_collider,
+            ground_collider,
+            rolling_resistance: p.rolling_resistance,
+            torsional_friction: p.torsional_friction,
+            body,
+        }
+    }
+
+    /// Advance one time step: rapier's step, then the contact's rolling resistance and torsional
+    /// friction (module docs).
+    pub fn step(&mut self) {
+        self.world.step();
+        if self.rolling_resistance > 0.0 || self.torsional_friction > 0.0 {
+            self.resist_rotation();
+        }
+    }
+
+    /// Total normal impulse the ground gave the stone during the last step.
+    pub fn normal_impulse(&self) -> f64 {
+        self.world
+            .narrow_phase
+            .contact_pair(self.ground_collider, self.body_collider)
+            .map_or(0.0, |c| c.total_impulse_magnitude() as f64)
+    }
+
+    fn resist_rotation(&mut self) {
+        let jn = self.normal_impulse();
+        if !(jn > 0.0) {
+            return;
+        }
+        let rb = &self.world.bodies[self.body_handle];
+        let q = convert::quat_back(rb.rotation());
+        let w = convert::vec_back(rb.angvel());
+        let inv: Matrix3<f64> = self.body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
+        let n = Vec3::z();
+        let mut dw = Vec3::zeros();
+        // Rolling: the part of ω in the ground's plane.
+        let wr = w - n * w.dot(&n);
+        let wr_norm = wr.norm();
+        if wr_norm > 0.0 && self.rolling_resistance > 0.0 {
+            let u = wr / wr_norm;
+            let stop = wr_norm / u.dot(&(inv * u));
+            let j = (self.rolling_resistance * jn).min(stop);
+            dw -= inv * (u * j);
+        }
+        // Spinning about the normal, after the rolling impulse.
+        let ws = (w + dw).dot(&n);
+        if ws != 0.0 && self.torsional_friction > 0.0 {
+            let stop = ws.abs() / n.dot(&(inv * n));
+            let j = (self.torsional_friction * jn).min(stop);
+            dw -= inv * (n * (j * ws.signum()));
+        }
+        let rb = &mut self.world.bodies[self.body_handle];
+        rb.set_angvel(convert::vec(&(w + dw)), true);
+    }
+
+    /// Set the ground's velocity (world frame) for the next steps.
+    pub fn set_ground_velocity(&mut self, v: &Vec3) {
+        self.world.bodies[self.ground_handle].set_linvel(convert::vec(v), true);
+    }
+
+    /// Set the stone's velocities (world frame).
+    pub fn set_velocity(&mut self, linvel: &Vec3, angvel: &Vec3) {
+        let rb = &mut self.world.bodies[self.body_handle];
+        rb.set_linvel(convert::vec(linvel), true);
+        rb.set_angvel(convert::vec(angvel), true);
+    }
+
+    /// The stone's orientation (body → world) and the height of G.
+    pub fn pose(&self) -> (UnitQuaternion<f64>, f64) {
+        let rb = &self.world.bodies[self.body_handle];
+        (convert::quat_back(rb.rotation()), rb.translation().z as f64)
+    }
+
+    /// Set the soft contacts' natural frequency (Hz) against moving and fixed bodies.
+    pub fn set_contact_frequency(&mut self, hz: f64) {
+        let ip = &mut self.world.integration_parameters;
+        ip.contact_softness.natural_frequency = hz as f32;
+        ip.static_contact_softness.natural_frequency = hz as f32;
+    }
+
+    /// The stone's current state.
+    pub fn state(&self) -> BodyState {
+        let rb = &self.world.bodies[self.body_handle];
+        let q = convert::quat_back(rb.rotation());
+        let down = q.inverse() * -Vec3::z();
+        let linvel = convert::vec_back(rb.linvel());
+        let angvel = convert::vec_back(rb.angvel());
+        let w_body = q.inverse() * angvel;
+        let kinetic = 0.5 * linvel.norm_squared() + 0.5 * w_body.dot(&(self.body.inertia * w_body));
+        let z = rb.translation().z as f64;
+        BodyState { down, z, linvel, angvel, level: z + kinetic / GRAVITY }
+    }
+}

@@ -1,0 +1,194 @@
+//! Statistics of runs and samples: binomial intervals, goodness of fit, moments, trend lines and
+//! grids.
+
+use serde::Serialize;
+
+/// Wilson score interval for k successes in n trials at z (1.96 for 95 %); (0, 1) for n = 0.
+pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
+    if n == 0 {
+        return (0.0, 1.0);
+    }
+    let (k, n) = (k as f64, n as f64);
+    let p = k / n;
+    let denom = 1.0 + z * z / n;
+    let centre = (p + z * z / (2.0 * n)) / denom;
+    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / denom;
+    ((centre - half).max(0.0), (centre + half).min(1.0))
+}
+
+/// Pearson's χ² of counts against probabilities (categories with expected count < 5 are pooled
+/// into one), its degrees of freedom and p-value.
+pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
+    let n: u64 = counts.iter().sum();
+    let (mut chi2, mut cats) = (0.0, 0usize);
+    let (mut pooled_o, mut pooled_e) = (0.0, 0.0);
+    for (&o, &p) in counts.iter().zip(probabilities) {
+        let e = p * n as f64;
+        if e < 5.0 {
+            pooled_o += o as f64;
+            pooled_e += e;
+        } else {
+            chi2 += (o as f64 - e).powi(2) / e;
+            cats += 1;
+        }
+    }
+    if pooled_e > 0.0 {
+        chi2 += (pooled_o - pooled_e).powi(2) / pooled_e;
+        cats += 1;
+    }
+    let dof = cats.saturating_sub(1);
+    let p = if dof == 0 {
+        1.0
+    } else {
+        use statrs::distribution::{ChiSquared, ContinuousCDF};
+        ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
+    };
+    (chi2, dof, p)
+}
+
+/// Kullback–Leibler divergence D(empirical ‖ static) in nats (categories with zero counts
+/// contribute 0; a count where the static probability is 0 gives ∞).
+pub fn kl_divergence(counts: &[u64], probabilities: &[f64]) -> f64 {
+    let n: u64 = counts.iter().sum();
+    counts
+        .iter()
+        .zip(probabilities)
+        .filter(|(&o, _)| o > 0)
+        .map(|(&o, &p)| {
+            let q = o as f64 / n as f64;
+            if p > 0.0 {
+                q * (q / p).ln()
+            } else {
+                f64::INFINITY
+            }
+        })
+        .sum()
+}
+
+/// Arithmetic mean (NaN for no data).
+pub fn mean(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        f64::NAN
+    } else {
+        x.iter().sum::<f64>() / x.len() as f64
+    }
+}
+
+/// Sample standard deviation, divisor n − 1 (the paper's convention for Table 2, see
+/// [`crate::study`]); NaN for fewer than two values.
+pub fn sample_sd(x: &[f64]) -> f64 {
+    if x.len() < 2 {
+        return f64::NAN;
+    }
+    let m = mean(x);
+    (x.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (x.len() - 1) as f64).sqrt()
+}
+
+/// A logarithmic trend line y = intercept + slope · ln x (least squares), as the trend lines of
+/// the paper's Figure 12, with its coefficient of determination R².
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct LogFit {
+    /// a of y = a + b ln x.
+    pub intercept: f64,
+    /// b of y = a + b ln x.
+    pub slope: f64,
+    /// 1 − SS_res / SS_tot.
+    pub r2: f64,
+    /// Points used.
+    pub n: usize,
+}
+
+impl LogFit {
+    /// The trend at x.
+    pub fn eval(&self, x: f64) -> f64 {
+        self.intercept + self.slope * x.ln()
+    }
+
+    /// `y = 2.31 ln x + 4.12 (R² = 0.78, n = 22)`.
+    pub fn describe(&self) -> String {
+        let sign = if self.intercept < 0.0 { '−' } else { '+' };
+        format!("y = {:.3} ln x {} {:.3} (R² = {:.3}, n = {})", self.slope, sign, self.intercept.abs(), self.r2, self.n)
+    }
+}
+
+/// Least-squares y = a + b ln x over the points with x > 0 and finite y; `None` with fewer than
+/// two such points or all x equal.
+pub fn log_fit(points: &[(f64, f64)]) -> Option<LogFit> {
+    let p: Vec<(f64, f64)> =
+        points.iter().filter(|(x, y)| *x > 0.0 && x.is_finite() && y.is_finite()).map(|(x, y)| (x.ln(), *y)).collect();
+    if p.len() < 2 {
+        return None;
+    }
+    let n = p.len() as f64;
+    let (mx, my) = (p.iter().map(|q| q.0).sum::<f64>() / n, p.iter().map(|q| q.1).sum::<f64>() / n);
+    let sxx: f64 = p.iter().map(|q| (q.0 - mx).powi(2)).sum();
+    if sxx <= 0.0 {
+        return None;
+    }
+    let sxy: f64 = p.iter().map(|q| (q.0 - mx) * (q.1 - my)).sum();
+    let slope = sxy / sxx;
+    let intercept = my - slope * mx;
+    let ss_tot: f64 = p.iter().map(|q| (q.1 - my).powi(2)).sum();
+    let ss_res: f64 = p.iter().map(|q| (q.1 - intercept - slope * q.0).powi(2)).sum();
+    let r2 = if ss_tot > 0.0 { 1.0 - ss_res / ss_tot } else { 1.0 };
+    Some(LogFit { intercept, slope, r2, n: p.len() })
+}
+
+/// How many points a [`log_grid`] has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GridSize {
+    /// Exactly this many points (both ends included).
+    Points(usize),
+    /// This many points per decade (rounded to a whole number of steps, at least one).
+    PerDecade(usize),
+}
+
+/// A log-spaced grid from `lo` to `hi`, both included.
+pub fn log_grid(lo: f64, hi: f64, size: GridSize) -> Vec<f64> {
+    match size {
+        GridSize::Points(0) => vec![],
+        GridSize::Points(1) => vec![lo],
+        GridSize::Points(n) => {
+            (0..n).map(|i| if i + 1 == n { hi } else { lo * (hi / lo).powf(i as f64 / (n - 1) as f64) }).collect()
+        }
+        GridSize::PerDecade(per_decade) => {
+            let decades = (hi / lo).log10();
+            let steps = (decades * per_decade as f64).round().max(1.0) as usize;
+            (0..=steps).map(|k| lo * 10f64.powf(decades * k as f64 / steps as f64)).collect()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wilson_interval_matches_a_hand_computation() {
+        // k = 10, n = 100, z = 1.96: centre (0.1 + 0.019208)/1.038416 = 0.114798,
+        // half-width 1.96·√(0.0009 + 0.00009604)/1.038416 = 0.059570 → (0.0552, 0.1744), the
+        // textbook Wilson interval for 10/100.
+        let (lo, hi) = wilson(10, 100, 1.96);
+        assert!((lo - 0.055228).abs() < 1e-5, "{lo}");
+        assert!((hi - 0.174368).abs() < 1e-5, "{hi}");
+    }
+
+    #[test]
+    fn chi_square_of_a_perfect_fit_is_zero_and_p_is_one() {
+        let (c, dof, p) = chi_square(&[100, 200, 300], &[1.0 / 6.0, 2.0 / 6.0, 3.0 / 6.0]);
+        assert!(c.abs() < 1e-12 && dof == 2 && (p - 1.0).abs() < 1e-12);
+        // 2 categories, O = (60, 40) vs E = (50, 50): χ² = 4, p = 0.0455.
+        let (c, dof, p) = chi_square(&[60, 40], &[0.5, 0.5]);
+        assert!((c - 4.0).abs() < 1e-12 && dof == 1 && (p - 0.0455).abs() < 1e-4, "{p}");
+    }
+
+    #[test]
+    fn log_grids_hit_both_ends() {
+        let g = log_grid(1e-3, 1.0, GridSize::Points(4));
+        assert_eq!(g.len(), 4);
+        assert!((g[1] - 1e-2).abs() < 1e-15 && g[3] == 1.0);
+        let g = log_grid(1e-4, 1e-2, GridSize::PerDecade(5));
+        assert_eq!(g.len(), 11);
+        assert!((g[5] / 1e-3 - 1.0).abs() < 1e-12 && (g[10] / 1e-2 - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,125 @@
+//! The contact law of `dynamics::world` (issue 10): rolling resistance against its closed form,
+//! energy that never rises, and rest without global damping.
+
+use nalgebra::{Matrix3, UnitQuaternion};
+use rapier3d::prelude::SharedShape;
+use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::drop::launch;
+use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::run::{run, Passive, CERTIFICATE_MARGIN};
+use rocking_stones::dynamics::stone::{Body, Stone};
+use rocking_stones::dynamics::world::{Simulation, GRAVITY};
+use rocking_stones::generate;
+use rocking_stones::rng::item_rng;
+use rocking_stones::Vec3;
+
+/// A rigid ball of radius 1 and unit mass (I = 2/5) as a [`Body`]: the closed forms below are
+/// for a sphere, which a polyhedral hull only approximates.
+fn ball() -> Body {
+    Body {
+        corners: vec![Vec3::x(), -Vec3::x(), Vec3::y(), -Vec3::y(), Vec3::z(), -Vec3::z()],
+        shape: SharedShape::ball(1.0),
+        facet_normals: vec![Vec3::z()],
+        inertia: Matrix3::identity() * 0.4,
+        r_max: 1.0,
+    }
+}
+
+fn roll(delta: f64, v0: f64) -> (f64, f64) {
+    let body = ball();
+    let p = DropParams {
+        friction: 1.0,
+        restitution: 0.0,
+        rolling_resistance: delta,
+        torsional_friction: delta,
+        dt: 1.0 / 480.0,
+        ..Preset::Drop.params(Surface::StoneOnStone)
+    };
+    // Rolling without slipping along +x: ω = ẑ × v / r … about +y.
+    let mut sim = Simulation::new(
+        &body,
+        &p,
+        &UnitQuaternion::identity(),
+        1.0,
+        &Vec3::new(v0, 0.0, 0.0),
+        &Vec3::new(0.0, v0, 0.0),
+    );
+    let x0 = sim.world.bodies[sim.body_handle].translation().x as f64;
+    let mut t = 0.0;
+    for _ in 0..(60.0 / p.dt) as usize {
+        sim.step();
+        t += p.dt;
+        if sim.state().linvel.norm() < 1e-4 {
+            break;
+        }
+    }
+    (sim.world.bodies[sim.body_handle].translation().x as f64 - x0, t)
+}
+
+#[test]
+fn a_rolling_ball_stops_where_the_closed_form_says() {
+    // (m + I/r²) dv/dt = −δ m g / r ⇒ a = 5 δ g / (7 r), d = 7 r v₀² / (10 δ g), t = v₀ / a.
+    for (delta, v0) in [(0.01, 1.0), (0.02, 2.0), (0.005, 0.5)] {
+        let (d, t) = roll(delta, v0);
+        let d_exact = 7.0 * v0 * v0 / (10.0 * delta * GRAVITY);
+        let t_exact = v0 / (5.0 * delta * GRAVITY / 7.0);
+        assert!((d / d_exact - 1.0).abs() < 0.03, "δ = {delta}, v₀ = {v0}: stopped after {d} m, closed form {d_exact}");
+        assert!((t / t_exact - 1.0).abs() < 0.03, "δ = {delta}, v₀ = {v0}: stopped after {t} s, closed form {t_exact}");
+    }
+    // Without rolling resistance the ball rolls on (no global damping): it is not a stand-in.
+    let (d, _) = roll(0.0, 1.0);
+    assert!(d > 50.0, "a ball without rolling resistance stopped after {d} m");
+}
+
+#[test]
+fn a_spinning_ball_stops_by_torsional_friction() {
+    // Spin about the vertical only: I dω/dt = −δ_t m g ⇒ t = I ω₀ / (δ_t m g).
+    let body = ball();
+    let delta = 0.02;
+    let p =
+        DropParams { rolling_resistance: 0.0, torsional_friction: delta, ..Preset::Drop.params(Surface::StoneOnStone) };
+    let w0 = 3.0;
+    let mut sim =
+        Simulation::new(&body, &p, &UnitQuaternion::identity(), 1.0, &Vec3::zeros(), &Vec3::new(0.0, 0.0, w0));
+    let mut t = 0.0;
+    while sim.state().angvel.z > 1e-6 && t < 30.0 {
+        sim.step();
+        t += p.dt;
+    }
+    let t_exact = 0.4 * w0 / (delta * GRAVITY);
+    assert!((t / t_exact - 1.0).abs() < 0.03, "stopped after {t} s, closed form {t_exact}");
+}
+
+#[test]
+fn mechanical_energy_never_rises_under_the_contact_law() {
+    // Throws of a pebble with rolling resistance and no damping: the energy level
+    // L = z_G + KE/(m g) may rise only by the contact's penetration correction, which the
+    // certificate's margin covers.
+    let a = Analysis::of_solid(
+        generate::pebble([1.0, 0.7, 0.5], 0.03, 400, 5).into_solid_boundary().unwrap().0,
+        Default::default(),
+        &Options::default(),
+    )
+    .unwrap();
+    let stone = Stone::new(&a, 0.0035).unwrap();
+    let p = DropParams::default();
+    assert!(p.rolling_resistance > 0.0 && p.angular_damping == 0.0);
+    let mut worst: f64 = 0.0;
+    let mut dissipated = 0;
+    for i in 0..40 {
+        let r = launch(&mut item_rng(5, i), &p);
+        let down = r.orientation.inverse() * -Vec3::z();
+        let z0 = p.height + stone.body.support(&down);
+        let mut sim = Simulation::new(&stone.body, &p, &r.orientation, z0, &r.linvel, &r.angvel);
+        let start = sim.state().level;
+        let mut lowest = start;
+        let end = run(&mut sim, &p, &mut Passive, &rocking_stones::dynamics::run::NoCertificate, &mut |s| {
+            worst = worst.max(s.level - lowest);
+            lowest = lowest.min(s.level);
+        });
+        assert!(end.settled, "throw {i} did not settle in {} s", p.max_time);
+        dissipated += usize::from(end.state.level < start - 0.1);
+    }
+    assert!(worst < CERTIFICATE_MARGIN, "the energy level rose by {worst} R_max above its running minimum");
+    assert_eq!(dissipated, 40, "every throw must lose energy");
+}
