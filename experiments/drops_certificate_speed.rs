@@ -70,6 +70,7 @@ fn main() -> anyhow::Result<()> {
                     params: preset.params(Surface::SteelOnWood),
                     certificate: mode,
                     preset: Some(preset.name().into()),
+                    center_of_mass: None,
                 };
                 let t = std::time::Instant::now();
                 let (report, outcomes) = pool.install(|| run_report(&stone, &header));

@@ -60,6 +60,7 @@ fn main() -> anyhow::Result<()> {
                     params,
                     certificate: CertificateMode::Facet,
                     preset: None,
+                    center_of_mass: None,
                 };
                 let t = std::time::Instant::now();
                 let (report, _) = run_report(&setup, &header);
@@ -107,6 +108,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             params,
             certificate: CertificateMode::Facet,
             preset: None,
+            center_of_mass: None,
         };
         let (report, _) = run_report(&setup, &header);
         eprintln!(

@@ -53,6 +53,7 @@ fn main() {
             params: p.clone(),
             certificate: CertificateMode::None,
             preset: Some("throw on steel-on-wood".into()),
+            center_of_mass: None,
         };
         let t0 = Instant::now();
         let (r, outcomes) = run_report(&stone, &header);

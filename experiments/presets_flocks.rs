@@ -49,6 +49,7 @@ fn main() {
                     params: preset.params(surface),
                     certificate: CertificateMode::Flock,
                     preset: Some(preset.name().into()),
+                    center_of_mass: None,
                 };
                 let t = std::time::Instant::now();
                 let r = run_report(&stone, &header).0;

@@ -60,6 +60,7 @@ fn p_edge(stone: &Stone, p: &DropParams, n: u64) -> (u64, u64, f64) {
         params: p.clone(),
         certificate: CertificateMode::Facet,
         preset: None,
+        center_of_mass: None,
     };
     let (r, _) = run_report(stone, &header);
     let edge = |f: &&rocking_stones::montecarlo::FacetRow| f.normal.z.abs() < 0.5;

@@ -23,11 +23,20 @@ pub struct Options {
     pub degeneracy_tol: f64,
     /// Fixed ν for the macro scale; `None` = the automatic plateau (or [`PAPER_NU`] if none).
     pub nu: Option<f64>,
+    /// A known centre of mass (input frame and units) overriding the homogeneous solid's G:
+    /// a weighted die, a hollow print, a scan of only the hull. The inertia is then taken about
+    /// it ([`MassProperties::about`]). `None`: the solid's G.
+    pub center_of_mass: Option<Point3>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { coplanar_tol: DEFAULT_COPLANAR_TOL, degeneracy_tol: DEFAULT_DEGENERACY_TOL, nu: None }
+        Options {
+            coplanar_tol: DEFAULT_COPLANAR_TOL,
+            degeneracy_tol: DEFAULT_DEGENERACY_TOL,
+            nu: None,
+            center_of_mass: None,
+        }
     }
 }
 
@@ -57,7 +66,13 @@ impl Analysis {
     pub fn of_solid(mesh: TriMesh, repairs: Repairs, opts: &Options) -> Result<Self> {
         let k = mesh.unit_exponent();
         let unit = mesh.scaled_pow2(k);
-        let unit_mass = MassProperties::of_unscaled(&unit)?;
+        let mut unit_mass = MassProperties::of_unscaled(&unit)?;
+        if let Some(c) = opts.center_of_mass {
+            if !c.coords.iter().all(|x| x.is_finite()) {
+                return Err(Error::Usage(format!("--center-of-mass must be three finite numbers, got {c}")));
+            }
+            unit_mass = unit_mass.about(&crate::mesh::scale_point(&c, k));
+        }
         let mass = unit_mass.scaled_pow2(-k);
         Self::normalised(mesh, unit, k, repairs, mass, unit_mass, opts)
     }

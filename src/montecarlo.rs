@@ -73,6 +73,9 @@ pub struct RunHeader {
     /// was run).
     #[serde(default)]
     pub preset: Option<String>,
+    /// A declared centre of mass (mesh units), if the run used one instead of the solid's G.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub center_of_mass: Option<[f64; 3]>,
 }
 
 /// Header format tag of checkpoint files (2: launches with horizontal speed and Gaussian spin,

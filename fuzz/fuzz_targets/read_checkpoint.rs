@@ -17,8 +17,11 @@ fuzz_target!(|data: &[u8]| {
 fn tempfile_in_tmp() -> (std::path::PathBuf, std::fs::File) {
     use std::sync::atomic::{AtomicU64, Ordering};
     static N: AtomicU64 = AtomicU64::new(0);
-    let path = std::env::temp_dir()
-        .join(format!("rocking_fuzz_checkpoint_{}_{}.jsonl", std::process::id(), N.fetch_add(1, Ordering::Relaxed)));
+    let path = std::env::temp_dir().join(format!(
+        "rocking_fuzz_checkpoint_{}_{}.jsonl",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
     let file = std::fs::File::create(&path).expect("create a temporary checkpoint");
     (path, file)
 }

@@ -61,9 +61,13 @@ fn py_err(e: Error) -> PyErr {
         Error::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
         Error::Io { .. } => PyOSError::new_err(msg),
         Error::Usage(_) => PyValueError::new_err(msg),
-        Error::Parse { .. } | Error::InvalidMesh { .. } | Error::Degenerate { .. } | Error::Check { .. } => {
-            MeshError::new_err(msg)
-        }
+        Error::Parse { .. }
+        | Error::InvalidMesh { .. }
+        | Error::Degenerate { .. }
+        | Error::SelfIntersecting { .. }
+        | Error::CentreOutsideHull { .. }
+        | Error::Check { .. } => MeshError::new_err(msg),
+        Error::Plot { .. } => PyRuntimeError::new_err(msg),
     }
 }
 
@@ -1084,6 +1088,7 @@ fn drop_stone(
         params: p,
         certificate,
         preset: Some(format!("{preset} on {surface}")),
+        center_of_mass: None,
     };
     let progress = progress.map(|f| (f, n));
     let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
@@ -1269,7 +1274,7 @@ fn perturb(
     let starts = select_starts(&stone, equilibria, flock)?;
     let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
     let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
-    dynamics_result("perturb", &report, &report.trials, pt::summary(&report, &s.name))
+    dynamics_result("perturb", &report, &report.trials, rocking_stones::report::perturb::summary(&report, &s.name))
 }
 
 /// Shake the ground under the resting stone, as `rocking shake`: fragility curves; returns a
@@ -1344,7 +1349,7 @@ fn shake(
     };
     let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
     let report = interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
-    dynamics_result("shake", &report, &report.trials, sh::summary(&report, &s.name))
+    dynamics_result("shake", &report, &report.trials, rocking_stones::report::shake::summary(&report, &s.name))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1482,10 +1487,10 @@ fn study(
         String::from_utf8(buf).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
     let mut p = Vec::new();
-    let r = st::write_pebbles_csv(&study, &mut p);
+    let r = rocking_stones::report::study::write_pebbles_csv(&study, &mut p);
     let pebbles_csv = text(r, p)?;
     let mut s = Vec::new();
-    let r = st::write_samples_csv(&study, &st::summarize(&study), &mut s);
+    let r = rocking_stones::report::study::write_samples_csv(&study, &st::summarize(&study), &mut s);
     let samples_csv = text(r, s)?;
     Ok(PyStudy { study, pebbles_csv, samples_csv })
 }

@@ -24,6 +24,10 @@ pub struct Args {
     /// is 0.0035).
     #[arg(long, value_parser = parse_nu)]
     pub nu: Option<f64>,
+    /// A known centre of mass x,y,z (mesh units) instead of the homogeneous solid's G: a
+    /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
+    #[arg(long, value_parser = super::parse_point)]
+    pub center_of_mass: Option<rocking_stones::Point3>,
     /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal), in (0, 1e-3].
     #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = parse_coplanar_tol)]
     pub coplanar_tol: f64,
@@ -46,7 +50,12 @@ fn parse_coplanar_tol(s: &str) -> Result<f64, String> {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let opts = Options { nu: args.nu, coplanar_tol: args.coplanar_tol, ..Options::default() };
+    let opts = Options {
+        nu: args.nu,
+        coplanar_tol: args.coplanar_tol,
+        center_of_mass: args.center_of_mass,
+        ..Options::default()
+    };
     opts.check()?;
     let files = expand(&args.paths)?;
     let is_batch = args.paths.iter().any(|p| p.is_dir()) || files.len() > 1 || args.csv.is_some();

@@ -77,6 +77,10 @@ pub struct Args {
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
     #[arg(long)]
     pub nu: Option<f64>,
+    /// A known centre of mass x,y,z (mesh units) instead of the homogeneous solid's G: a
+    /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
+    #[arg(long, value_parser = super::parse_point)]
+    pub center_of_mass: Option<rocking_stones::Point3>,
     /// Run only shard i of n (drops i, i+n, i+2n, …); combine with `rocking merge`.
     #[arg(long)]
     pub shard: Option<String>,
@@ -163,7 +167,8 @@ pub fn run_drop(args: Args) -> Result<()> {
         bail!("-n/--drops must be at least 1");
     }
     let p = params(&args)?;
-    let opts = Options { nu: args.nu.map(check_nu).transpose()?, ..Options::default() };
+    let opts =
+        Options { nu: args.nu.map(check_nu).transpose()?, center_of_mass: args.center_of_mass, ..Options::default() };
     let (analysis, name) = load_analysis(args.mesh.as_deref(), &opts)?;
     let (nu, _) = analysis.macro_nu(&opts);
     let stone = Stone::new(&analysis, nu)?;
@@ -177,6 +182,7 @@ pub fn run_drop(args: Args) -> Result<()> {
         params: p,
         certificate: args.certificate,
         preset: Some(format!("{} on {}", args.preset, args.surface)),
+        center_of_mass: args.center_of_mass.map(|c| [c.x, c.y, c.z]),
     };
     let (mut checkpoint, done) = match &args.checkpoint {
         Some(path) => {
@@ -213,7 +219,11 @@ pub fn run_drop(args: Args) -> Result<()> {
 pub fn run_merge(args: MergeArgs) -> Result<()> {
     let parts = args.parts.iter().map(|p| read_partial(p)).collect::<rocking_stones::Result<Vec<_>>>()?;
     let (header, outcomes) = merge(&parts)?;
-    let opts = Options { nu: args.nu.map(check_nu).transpose()?, ..Options::default() };
+    let opts = Options {
+        nu: args.nu.map(check_nu).transpose()?,
+        center_of_mass: header.center_of_mass.map(|[x, y, z]| rocking_stones::Point3::new(x, y, z)),
+        ..Options::default()
+    };
     let mesh = match &args.mesh {
         Some(m) => Some(m.clone()),
         None if super::analyze::is_bundled(&header.mesh) => None,

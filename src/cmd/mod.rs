@@ -44,3 +44,16 @@ pub fn emit<R: serde::Serialize>(
     }
     Ok(())
 }
+
+/// Parse `x,y,z` (three finite numbers) as a point.
+pub fn parse_point(s: &str) -> std::result::Result<rocking_stones::Point3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| format!("expected x,y,z (three numbers), got {s:?}"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(rocking_stones::Point3::new(x, y, z)),
+        _ => Err(format!("expected x,y,z (three finite numbers), got {s:?}")),
+    }
+}

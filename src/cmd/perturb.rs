@@ -38,6 +38,10 @@ pub struct SimArgs {
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
     #[arg(long)]
     pub nu: Option<f64>,
+    /// A known centre of mass x,y,z (mesh units) instead of the homogeneous solid's G: a
+    /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
+    #[arg(long, value_parser = super::parse_point)]
+    pub center_of_mass: Option<rocking_stones::Point3>,
 }
 
 impl SimArgs {
@@ -61,7 +65,11 @@ impl SimArgs {
 
     /// Load and analyse the mesh (or the bundled stone) and prepare it.
     pub fn stone(&self, mesh: Option<&Path>) -> Result<(Analysis, Stone, String)> {
-        let opts = Options { nu: self.nu.map(check_nu).transpose()?, ..Options::default() };
+        let opts = Options {
+            nu: self.nu.map(check_nu).transpose()?,
+            center_of_mass: self.center_of_mass,
+            ..Options::default()
+        };
         let (analysis, name) = load_analysis(mesh, &opts)?;
         let (nu, _) = analysis.macro_nu(&opts);
         let stone = Stone::new(&analysis, nu)?;

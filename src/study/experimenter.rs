@@ -67,6 +67,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         params: exp.params.clone(),
         certificate: CertificateMode::Flock,
         preset: None,
+        center_of_mass: None,
     };
     let (_, outcomes) = run_report(&stone, &header);
     let mut found = BTreeSet::new();
