@@ -82,6 +82,7 @@ fn p_square(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64)
         certificate: CertificateMode::Facet,
         preset: None,
         center_of_mass: None,
+        shard: rocking_stones::montecarlo::Shard::ALL,
     };
     let (report, _) = run_report(stone, &header);
     let square = |normal: &rocking_stones::Vec3| normal.z.abs() > 0.99;

@@ -61,6 +61,7 @@ fn main() -> anyhow::Result<()> {
                     certificate: CertificateMode::Facet,
                     preset: None,
                     center_of_mass: None,
+                    shard: rocking_stones::montecarlo::Shard::ALL,
                 };
                 let t = std::time::Instant::now();
                 let (report, _) = run_report(&setup, &header);
@@ -109,6 +110,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             certificate: CertificateMode::Facet,
             preset: None,
             center_of_mass: None,
+            shard: rocking_stones::montecarlo::Shard::ALL,
         };
         let (report, _) = run_report(&setup, &header);
         eprintln!(

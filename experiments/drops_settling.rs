@@ -54,6 +54,7 @@ fn main() {
             certificate: CertificateMode::None,
             preset: Some("throw on steel-on-wood".into()),
             center_of_mass: None,
+            shard: rocking_stones::montecarlo::Shard::ALL,
         };
         let t0 = Instant::now();
         let (r, outcomes) = run_report(&stone, &header);

@@ -50,6 +50,7 @@ fn main() {
                     certificate: CertificateMode::Flock,
                     preset: Some(preset.name().into()),
                     center_of_mass: None,
+                    shard: rocking_stones::montecarlo::Shard::ALL,
                 };
                 let t = std::time::Instant::now();
                 let r = run_report(&stone, &header).0;
@@ -129,14 +130,20 @@ fn plot(path: &Path, title: &str, reports: &[DropReport]) -> Result<(), Box<dyn 
         .x_label_area_size(50)
         .y_label_area_size(60)
         .caption(format!("{title}: resting flocks by launch preset"), (FONT_FAMILY, 20))
-        .build_cartesian_2d(0.0f64..flocks.len() as f64, 0.0f64..(top * 1.25).min(1.0))?;
+        .build_cartesian_2d(-0.5f64..flocks.len() as f64 - 0.5, 0.0f64..(top * 1.25).min(1.0))?;
     chart
         .configure_mesh()
         .disable_x_mesh()
-        .x_labels(flocks.len().max(2))
+        .x_labels(flocks.len() + 1)
         .x_label_formatter(&|x| {
-            let k = x.floor() as usize;
-            flocks.get(k).map_or(String::new(), |f| format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()))
+            // A label under each group of bars (centred on the integers), none between them.
+            let k = x.round();
+            if (x - k).abs() > 1e-6 || k < 0.0 {
+                return String::new();
+            }
+            flocks
+                .get(k as usize)
+                .map_or(String::new(), |f| format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()))
         })
         .x_desc("flock (id, type)")
         .y_desc("fraction of drops")
@@ -155,7 +162,7 @@ fn plot(path: &Path, title: &str, reports: &[DropReport]) -> Result<(), Box<dyn 
         };
         chart
             .draw_series((0..flocks.len()).map(|k| {
-                let x0 = k as f64 + 0.1 + s as f64 * w;
+                let x0 = k as f64 - 0.4 + s as f64 * w;
                 Rectangle::new([(x0, 0.0), (x0 + w * 0.9, value(k))], colour.filled())
             }))?
             .label(label)

@@ -25,7 +25,7 @@ use crate::{Error, Result, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::io::{BufRead, Write};
+use std::io::Write;
 use std::path::Path;
 use std::sync::Mutex;
 
@@ -39,6 +39,16 @@ pub struct Shard {
 impl Shard {
     /// The whole run.
     pub const ALL: Shard = Shard { index: 0, count: 1 };
+
+    /// [`Shard::ALL`] (for serde defaults).
+    pub fn all() -> Shard {
+        Shard::ALL
+    }
+
+    /// Whether drop `i` belongs to this shard.
+    pub fn holds(&self, i: u64) -> bool {
+        self.count > 0 && i % self.count == self.index
+    }
 
     /// Parse `i/n` (0 ≤ i < n).
     pub fn parse(s: &str) -> Result<Shard> {
@@ -76,6 +86,45 @@ pub struct RunHeader {
     /// A declared centre of mass (mesh units), if the run used one instead of the solid's G.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub center_of_mass: Option<[f64; 3]>,
+    /// The shard this file holds (the whole run: 0/1).
+    #[serde(default = "Shard::all")]
+    pub shard: Shard,
+}
+
+impl RunHeader {
+    /// The fields (other than the shard) in which `other` differs from this header: empty when
+    /// both belong to the same run.
+    pub fn differences(&self, other: &RunHeader) -> Vec<String> {
+        let mut d = Vec::new();
+        let mut field = |name: &str, same: bool, a: String, b: String| {
+            if !same {
+                d.push(format!("{name} ({a} vs {b})"));
+            }
+        };
+        field("format", self.format == other.format, self.format.clone(), other.format.clone());
+        field(
+            "mesh fingerprint",
+            self.mesh_fingerprint == other.mesh_fingerprint,
+            self.mesh_fingerprint.clone(),
+            other.mesh_fingerprint.clone(),
+        );
+        field("seed", self.seed == other.seed, self.seed.to_string(), other.seed.to_string());
+        field("drops", self.drops == other.drops, self.drops.to_string(), other.drops.to_string());
+        field("parameters", self.params == other.params, format!("{:?}", self.params), format!("{:?}", other.params));
+        field(
+            "certificate",
+            self.certificate == other.certificate,
+            self.certificate.name().into(),
+            other.certificate.name().into(),
+        );
+        field(
+            "centre of mass",
+            self.center_of_mass == other.center_of_mass,
+            format!("{:?}", self.center_of_mass),
+            format!("{:?}", other.center_of_mass),
+        );
+        d
+    }
 }
 
 /// Header format tag of checkpoint files (2: launches with horizontal speed and Gaussian spin,
@@ -141,10 +190,18 @@ impl Checkpoint {
                 )));
             }
             let (h, outcomes) = read_partial(path)?;
-            if &h != header {
+            let mut differ = header.differences(&h);
+            if h.shard != header.shard {
+                differ.push(format!(
+                    "shard ({}/{} vs {}/{})",
+                    header.shard.index, header.shard.count, h.shard.index, h.shard.count
+                ));
+            }
+            if !differ.is_empty() {
                 return Err(Error::Usage(format!(
-                    "{}: this checkpoint belongs to a different run (mesh, seed, drops, parameters or certificate differ)",
-                    path.display()
+                    "{}: this checkpoint belongs to a different run; it differs in {}",
+                    path.display(),
+                    differ.join(", ")
                 )));
             }
             done = outcomes;
@@ -175,31 +232,99 @@ impl Checkpoint {
 }
 
 /// Read a partial result (checkpoint file): its header and outcomes by index. A truncated last
-/// line (an interrupted write) is ignored.
+/// line (an interrupted write) is ignored. Every line is checked against the header before it
+/// counts: valid UTF-8 and JSON, a drop index below the run's drop count, in the file's shard, and
+/// not seen before; a failure names the file, the line and the field. Facet and flock indices are
+/// checked against the stone by [`check_outcomes`].
 pub fn read_partial(path: &Path) -> Result<(RunHeader, BTreeMap<u64, DropOutcome>)> {
     let io = |e: std::io::Error| Error::Io { path: path.into(), error: e };
     let parse = |what: String| Error::Parse { path: path.into(), what };
-    let reader = std::io::BufReader::new(std::fs::File::open(path).map_err(io)?);
-    let mut lines = reader.lines();
-    let first = lines.next().ok_or_else(|| parse("empty file: not a drop result".into()))?.map_err(io)?;
+    let bytes = std::fs::read(path).map_err(io)?;
+    let mut lines: Vec<&[u8]> = bytes.split(|&b| b == b'\n').collect();
+    if lines.last().is_some_and(|l| l.is_empty()) {
+        lines.pop();
+    }
+    let text = |k: usize, l: &[u8]| -> Result<String> {
+        String::from_utf8(l.to_vec()).map_err(|e| parse(format!("line {}: not UTF-8 text ({e})", k + 1)))
+    };
+    let first = lines.first().ok_or_else(|| parse("empty file: not a drop result".into()))?;
     let header: RunHeader =
-        serde_json::from_str(&first).map_err(|e| parse(format!("line 1 is not a drop-run header: {e}")))?;
+        serde_json::from_str(&text(0, first)?).map_err(|e| parse(format!("line 1 is not a drop-run header: {e}")))?;
     if header.format != FORMAT {
         return Err(parse(format!("unknown format {:?} (expected {FORMAT:?})", header.format)));
     }
+    if header.shard.count == 0 || header.shard.index >= header.shard.count {
+        return Err(parse(format!(
+            "line 1: field shard: {}/{} is not a shard",
+            header.shard.index, header.shard.count
+        )));
+    }
     let mut outcomes = BTreeMap::new();
-    let all: Vec<String> = lines.collect::<std::io::Result<_>>().map_err(io)?;
-    let last = all.len();
-    for (k, line) in all.into_iter().enumerate() {
-        match serde_json::from_str::<DropOutcome>(&line) {
-            Ok(o) => {
-                outcomes.insert(o.index, o);
+    let mut seen: BTreeMap<u64, usize> = BTreeMap::new();
+    let last = lines.len();
+    for (k, raw) in lines.iter().enumerate().skip(1) {
+        let line = k + 1;
+        let o = match String::from_utf8(raw.to_vec()).ok().and_then(|t| serde_json::from_str::<DropOutcome>(&t).ok()) {
+            Some(o) => o,
+            None if k + 1 == last => break, // interrupted while writing the last line
+            None => {
+                let t = text(k, raw)?;
+                let e = serde_json::from_str::<DropOutcome>(&t).err().map_or(String::new(), |e| e.to_string());
+                return Err(parse(format!("line {line}: not a drop outcome: {e}")));
             }
-            Err(_) if k + 1 == last => {} // interrupted while writing the last line
-            Err(e) => return Err(parse(format!("line {}: {e}", k + 2))),
+        };
+        if o.index >= header.drops {
+            return Err(parse(format!(
+                "line {line}: field index: drop {} is beyond the run's {} drops",
+                o.index, header.drops
+            )));
         }
+        if !header.shard.holds(o.index) {
+            return Err(parse(format!(
+                "line {line}: field index: drop {} does not belong to shard {}/{}",
+                o.index, header.shard.index, header.shard.count
+            )));
+        }
+        if let Some(prev) = seen.insert(o.index, line) {
+            return Err(parse(format!("line {line}: field index: drop {} is already on line {prev}", o.index)));
+        }
+        if !(o.time.is_finite() && o.time >= 0.0) {
+            return Err(parse(format!("line {line}: field time: {} is not a simulated time", o.time)));
+        }
+        outcomes.insert(o.index, o);
     }
     Ok((header, outcomes))
+}
+
+/// Check outcomes read from `path` against the stone they are summarised on: every facet a stable
+/// facet of its hull, every flock one of its flocks. Errors name the file, the drop and the field.
+pub fn check_outcomes(path: &Path, outcomes: &BTreeMap<u64, DropOutcome>, model: &StaticModel) -> Result<()> {
+    let bad = |what: String| Err(Error::Parse { path: path.into(), what });
+    for o in outcomes.values() {
+        if let Some(f) = o.facet {
+            match model.facet_equilibrium.get(f as usize) {
+                None => {
+                    return bad(format!(
+                        "drop {}: field facet: {f} is beyond the hull's {} facets",
+                        o.index,
+                        model.facet_equilibrium.len()
+                    ))
+                }
+                Some(None) => return bad(format!("drop {}: field facet: {f} is not a stable facet", o.index)),
+                Some(Some(_)) => {}
+            }
+        }
+        if let Some(k) = o.flock {
+            if k as usize >= model.flock_kinds.len() {
+                return bad(format!(
+                    "drop {}: field flock: {k} is beyond the stone's {} flocks",
+                    o.index,
+                    model.flock_kinds.len()
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Combine partial results of one run. Headers must agree; an index present twice must have
@@ -208,24 +333,24 @@ pub fn merge(parts: &[(RunHeader, BTreeMap<u64, DropOutcome>)]) -> Result<(RunHe
     let (first, _) = parts.first().ok_or_else(|| Error::Usage("nothing to merge".into()))?;
     let mut all = BTreeMap::new();
     for (h, outcomes) in parts {
-        if h != first {
+        let differ = first.differences(h);
+        if !differ.is_empty() {
             return Err(Error::Usage(format!(
-                "partial results of different runs cannot be merged ({} seed {} vs {} seed {})",
-                first.mesh, first.seed, h.mesh, h.seed
+                "partial results of different runs cannot be merged: they differ in {}",
+                differ.join(", ")
             )));
         }
         for (i, o) in outcomes {
             if let Some(prev) = all.insert(*i, *o) {
                 if prev != *o {
-                    return Err(Error::Check {
-                        path: first.mesh.clone().into(),
-                        what: format!("drop {i} has two different outcomes in the partial results"),
-                    });
+                    return Err(Error::Usage(format!("drop {i} has two different outcomes in the partial results")));
                 }
             }
         }
     }
-    Ok((first.clone(), all))
+    let mut header = first.clone();
+    header.shard = Shard::ALL;
+    Ok((header, all))
 }
 
 /// Per-facet row of a drop report.

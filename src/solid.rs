@@ -113,7 +113,8 @@ impl MassProperties {
     /// homogeneous solid's taken about `c` by the parallel-axis theorem,
     /// I_c = I_G + m (|d|² 1 − d dᵀ), d = c − G. The true distribution of a non-uniform body is
     /// unknown; this keeps its mass and the geometric spread of the solid, the inertia a
-    /// rigid-body simulation needs about its centre of mass.
+    /// rigid-body simulation needs about its centre of mass. `self` must be the homogeneous
+    /// solid's own (central) properties.
     pub fn about(&self, c: &Point3) -> Self {
         let d = c - self.center_of_mass;
         let shift = (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * self.volume;
@@ -137,9 +138,9 @@ mod tests {
         assert!((s.inertia[(1, 1)] - (1.0 / 6.0 + 0.0625)).abs() < 1e-12);
         assert!((s.inertia[(2, 2)] - (1.0 / 6.0 + 0.0625)).abs() < 1e-12);
         assert!(s.inertia[(0, 1)].abs() < 1e-12 && s.volume == m.volume);
-        // And back: about G again gives the central inertia.
-        let back = s.about(&m.center_of_mass);
-        assert!((back.inertia - m.inertia).norm() < 1e-12);
+        // The principal moments follow the shifted tensor: 1/6, 1/6 + 1/16 (twice).
+        assert!((s.principal_moments[0] - 1.0 / 6.0).abs() < 1e-12);
+        assert!((s.principal_moments[2] - (1.0 / 6.0 + 0.0625)).abs() < 1e-12);
     }
 
     fn cube(h: f64, c: Vec3) -> TriMesh {

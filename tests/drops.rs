@@ -35,6 +35,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         certificate,
         preset: None,
         center_of_mass: None,
+        shard: rocking_stones::montecarlo::Shard::ALL,
     }
 }
 
@@ -158,4 +159,82 @@ fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
             "drop {i} ended on facet {end} behind a barrier {barrier} above its energy level {level}"
         );
     }
+}
+
+#[test]
+fn damaged_or_foreign_checkpoints_are_refused_naming_file_line_and_field() {
+    // The reproducers of issue 13: every line is checked against its run before it counts.
+    let (_, s) = setup(generate::cuboid(1.0, 0.8, 0.5));
+    let model = s.model();
+    let h = header(10, 3, CertificateMode::Facet);
+    let stable = (0..model.facet_equilibrium.len() as u32).find(|&f| model.facet_equilibrium[f as usize].is_some());
+    let line = |index: u64, facet: u32| {
+        serde_json::to_string(&DropOutcome {
+            index,
+            settled: true,
+            facet: Some(facet),
+            flock: None,
+            time: 1.0,
+            certified: false,
+            height_above: Some(0.0),
+        })
+        .unwrap()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, header: &RunHeader, lines: &[String]| {
+        let path = dir.path().join(name);
+        let mut text = serde_json::to_string(header).unwrap() + "\n";
+        for l in lines {
+            text += l;
+            text += "\n";
+        }
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let err = |r: rocking_stones::Result<_>| r.err().map(|e: rocking_stones::Error| e.to_string()).unwrap_or_default();
+    let f = stable.unwrap();
+    // A facet index beyond the hull: an error, not a panic.
+    let p = write("facet.jsonl", &h, &[line(0, f), line(1, 9999)]);
+    let (_, o) = read_partial(&p).unwrap();
+    let e = err(rocking_stones::montecarlo::check_outcomes(&p, &o, &model).map(|_| ()));
+    assert!(e.contains("facet.jsonl") && e.contains("drop 1") && e.contains("field facet"), "{e}");
+    // A drop index beyond the run.
+    let p = write("index.jsonl", &h, &[line(0, f), line(45, f), line(2, f)]);
+    let e = err(read_partial(&p).map(|_| ()));
+    assert!(e.contains("index.jsonl") && e.contains("line 3") && e.contains("field index"), "{e}");
+    // The same drop twice.
+    let p = write("twice.jsonl", &h, &[line(4, f), line(4, f), line(5, f)]);
+    let e = err(read_partial(&p).map(|_| ()));
+    assert!(e.contains("line 3") && e.contains("already on line 2"), "{e}");
+    // Not UTF-8.
+    let p = dir.path().join("bytes.jsonl");
+    let mut bytes = (serde_json::to_string(&h).unwrap() + "\n" + &line(0, f) + "\n").into_bytes();
+    bytes.extend_from_slice(&[0xff, 0xfe, b'{', b'\n']);
+    bytes.extend_from_slice((line(1, f) + "\n").as_bytes());
+    std::fs::write(&p, bytes).unwrap();
+    let e = err(read_partial(&p).map(|_| ()));
+    assert!(e.contains("line 3") && e.contains("UTF-8"), "{e}");
+    // Resuming with another shard.
+    let mut h0 = h.clone();
+    h0.shard = Shard { index: 0, count: 2 };
+    let p = write("shard0.jsonl", &h0, &[line(0, f), line(2, f)]);
+    let mut h1 = h.clone();
+    h1.shard = Shard { index: 1, count: 2 };
+    let e = err(Checkpoint::open(&p, &h1, true).map(|_| ()));
+    assert!(e.contains("shard (1/2 vs 0/2)"), "{e}");
+    // A line of another shard inside a shard's file.
+    let p = write("mixed.jsonl", &h0, &[line(0, f), line(1, f)]);
+    let e = err(read_partial(&p).map(|_| ()));
+    assert!(e.contains("line 3") && e.contains("shard 0/2"), "{e}");
+    // Another mesh: the fingerprints are named, not "seed 7 vs seed 7".
+    let mut other = h.clone();
+    other.mesh_fingerprint = "ffff".into();
+    let e = err(merge(&[(h.clone(), BTreeMap::new()), (other, BTreeMap::new())]).map(|_| ()));
+    assert!(e.contains("mesh fingerprint (0 vs ffff)"), "{e}");
+    // Shards of one run merge.
+    let (_, a) = read_partial(&write("a.jsonl", &h0, &[line(0, f), line(2, f)])).unwrap();
+    let (hm, m) =
+        merge(&[(h0.clone(), a), (h1.clone(), BTreeMap::from([(1, serde_json::from_str(&line(1, f)).unwrap())]))])
+            .unwrap();
+    assert_eq!((hm.shard, m.len()), (Shard::ALL, 3));
 }

@@ -32,6 +32,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         certificate,
         preset: Some("throw".into()),
         center_of_mass: None,
+        shard: rocking_stones::montecarlo::Shard::ALL,
     }
 }
 

@@ -1089,6 +1089,7 @@ fn drop_stone(
         certificate,
         preset: Some(format!("{preset} on {surface}")),
         center_of_mass: None,
+        shard: rocking_stones::montecarlo::Shard::ALL,
     };
     let progress = progress.map(|f| (f, n));
     let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {

@@ -7,7 +7,8 @@ use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
-    certificate, merge, read_partial, run, summarize, CertificateMode, Checkpoint, DropReport, RunHeader, Shard, FORMAT,
+    certificate, check_outcomes, merge, read_partial, run, summarize, CertificateMode, Checkpoint, DropReport,
+    RunHeader, Shard, FORMAT,
 };
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -183,10 +184,13 @@ pub fn run_drop(args: Args) -> Result<()> {
         certificate: args.certificate,
         preset: Some(format!("{} on {}", args.preset, args.surface)),
         center_of_mass: args.center_of_mass.map(|c| [c.x, c.y, c.z]),
+        shard,
     };
+    let model = stone.model();
     let (mut checkpoint, done) = match &args.checkpoint {
         Some(path) => {
             let (c, d) = Checkpoint::open(path, &header, args.resume)?;
+            check_outcomes(path, &d, &model)?;
             (Some(c), d)
         }
         None => (None, BTreeMap::new()),
@@ -212,13 +216,20 @@ pub fn run_drop(args: Args) -> Result<()> {
     }
     let mut all = done;
     all.extend(new.into_iter().map(|o| (o.index, o)));
-    let report = summarize(&stone.model(), &header, &all);
+    let report = summarize(&model, &header, &all);
     emit(&report, args.json, args.output.as_deref())
 }
 
 pub fn run_merge(args: MergeArgs) -> Result<()> {
     let parts = args.parts.iter().map(|p| read_partial(p)).collect::<rocking_stones::Result<Vec<_>>>()?;
     let (header, outcomes) = merge(&parts)?;
+    let missing_shards: Vec<String> = {
+        let count = parts[0].0.shard.count;
+        (0..count)
+            .filter(|i| !parts.iter().any(|(h, _)| h.shard.index == *i && h.shard.count == count))
+            .map(|i| format!("{i}/{count}"))
+            .collect()
+    };
     let opts = Options {
         nu: args.nu.map(check_nu).transpose()?,
         center_of_mass: header.center_of_mass.map(|[x, y, z]| rocking_stones::Point3::new(x, y, z)),
@@ -239,11 +250,20 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
     }
     let (nu, _) = analysis.macro_nu(&opts);
     let stone = Stone::new(&analysis, nu)?;
+    let model = stone.model();
+    for (path, (_, part)) in args.parts.iter().zip(&parts) {
+        check_outcomes(path, part, &model)?;
+    }
     let missing = header.drops - outcomes.len() as u64;
     if missing > 0 {
-        eprintln!("note: {missing} of {} drops are not in these partial results", header.drops);
+        let shards = if missing_shards.is_empty() {
+            String::new()
+        } else {
+            format!(" (shards {} absent)", missing_shards.join(", "))
+        };
+        eprintln!("note: {missing} of {} drops are not in these partial results{shards}", header.drops);
     }
-    emit(&summarize(&stone.model(), &header, &outcomes), args.json, args.output.as_deref())
+    emit(&summarize(&model, &header, &outcomes), args.json, args.output.as_deref())
 }
 
 fn emit(report: &DropReport, json: bool, output: Option<&std::path::Path>) -> Result<()> {

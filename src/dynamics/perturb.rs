@@ -375,11 +375,11 @@ struct TrialCertificate<'a> {
 }
 
 impl Certificate for TrialCertificate<'_> {
-    fn decided(&self, down: &Vec3, level: f64) -> Option<Decided> {
-        if let Some(f) = self.energy.facet(down, level) {
+    fn decided(&self, s: &super::world::BodyState) -> Option<Decided> {
+        if let Some(f) = self.energy.facet(s) {
             return Some(Decided::Facet(f));
         }
-        self.energy.flock(down, level).filter(|&k| k != self.start_flock).map(|k| Decided::Flock(k as u32))
+        self.energy.flock(s).filter(|&k| k != self.start_flock).map(|k| Decided::Flock(k as u32))
     }
 }
 

@@ -68,6 +68,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         certificate: CertificateMode::Flock,
         preset: None,
         center_of_mass: None,
+        shard: crate::montecarlo::Shard::ALL,
     };
     let (_, outcomes) = run_report(&stone, &header);
     let mut found = BTreeSet::new();
