@@ -6,8 +6,13 @@
 //! Data flows one way, and the module tree follows it:
 //!
 //! ```text
-//! mesh ─▶ solid ─▶ hull ─▶ equilibria ─▶ morse_smale ─▶ hierarchy ─▶ flocks ─▶ report
+//! mesh ─▶ solid ─▶ hull ─▶ equilibria ─▶ morse_smale ─▶ hierarchy ─▶ flocks ─▶ basins
+//!   ─▶ dynamics (stone ─▶ params ─▶ world ─▶ run; drop, perturb, shake)
+//!   ─▶ montecarlo / study ─▶ report
 //! ```
+//!
+//! Lower layers never import higher ones: `rng` and `stats` sit below `dynamics`; `dynamics`
+//! imports neither `montecarlo`, `study` nor `report`; only `report` and `plot` draw.
 //!
 //! * [`mesh`] — reading/writing scans (STL, OBJ, PLY), welding, closedness/orientation checks.
 //! * [`solid`] — volume, centre of mass G and inertia of the solid bounded by the mesh (f64).
@@ -20,7 +25,11 @@
 //! * [`planar`] — the planar case: polygons and discretised ellipses.
 //! * [`analysis`] — the whole static pipeline and its serialisable result.
 //! * [`basins`] — quasi-static resting probabilities and the energy merge tree.
-//! * [`dynamics`] — rapier3d: the hull collider, drops, pushes, ground shaking.
+//! * [`rng`], [`stats`] — per-item random streams, random rotations and directions, the
+//!   Fibonacci sphere; Wilson intervals, χ², KL, moments, log fits, log grids.
+//! * [`dynamics`] — rapier3d: the hull collider, the one prepared stone and its rest rule, launch
+//!   presets and surface pairs, the contact law (rolling resistance), the one run loop with the
+//!   energy certificate; drops, pushes, ground shaking.
 //! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
 //! * [`study`] — field studies and synthetic hand experiments.
 //! * [`report`] — everything a person reads: summaries, CSV and JSON files, plots (through

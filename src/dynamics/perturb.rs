@@ -23,7 +23,7 @@
 //! themselves; they are reported as not staying at rest and get no curve.
 //!
 //! With [`PerturbParams::certificate`] a trial ends as soon as the merge-tree certificate of
-//! [`crate::montecarlo`] (energy level plus its margin) decides the final facet, or a flock other
+//! [`super::run`] (energy level plus its margin) decides the final facet, or a flock other
 //! than the start's; on the bundled stone this gives the same outcomes 1.75× faster.
 //!
 //! # Perturbation families ([`Family`])
