@@ -42,13 +42,21 @@ impl Default for Options {
 
 /// Every intermediate object of the static analysis, in memory.
 pub struct Analysis {
+    /// The input triangle mesh after repairs.
     pub mesh: TriMesh,
+    /// Repairs applied to the input mesh.
     pub repairs: Repairs,
+    /// Volume, centre of mass and inertia of the solid.
     pub mass: MassProperties,
+    /// Convex hull with coplanar triangles merged into facets.
     pub hull: Polyhedron,
+    /// Micro-equilibria on the hull (stable, saddle, unstable).
     pub equilibria: Equilibria,
+    /// Morse–Smale graph of the distance function from G.
     pub graph: MorseSmaleGraph,
+    /// Cancellation hierarchy of the equilibria over ν.
     pub hierarchy: Hierarchy,
+    /// Shape descriptors (axis ratios, Zingg class).
     pub shape: ShapeDescriptors,
     /// The shared signs of the equilibrium predicates (reused by the tracer).
     pub signs: Signs,
@@ -244,48 +252,75 @@ impl Analysis {
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// Size of the input mesh.
 pub struct MeshSummary {
+    /// Number of mesh vertices.
     pub vertices: usize,
+    /// Number of mesh triangles.
     pub triangles: usize,
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// Mass properties of the solid (uniform density).
 pub struct SolidSummary {
+    /// Volume of the solid (input units³).
     pub volume: f64,
+    /// Centre of mass G (input units).
     pub center_of_mass: Point3,
+    /// Principal moments of inertia about G.
     pub principal_moments: [f64; 3],
+    /// Surface area of the mesh (input units²).
     pub area: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// Size and measures of the convex hull.
 pub struct HullSummary {
+    /// Number of hull facets (after the coplanar merge).
     pub facets: usize,
+    /// Number of hull edges.
     pub edges: usize,
+    /// Number of hull vertices.
     pub vertices: usize,
     /// Hull triangles before the coplanar merge.
     pub triangles: usize,
     /// Absolute coplanarity tolerance used (input units).
     pub coplanar_tol: f64,
+    /// Volume of the hull (input units³).
     pub volume: f64,
+    /// Surface area of the hull (input units²).
     pub area: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// Counts and extremes of the micro-equilibria.
 pub struct MicroSummary {
+    /// Number of stable micro-equilibria (S).
     pub stable: usize,
+    /// Number of unstable micro-equilibria (U).
     pub unstable: usize,
+    /// Number of saddle micro-equilibria (H).
     pub saddle: usize,
+    /// R_min: smallest distance from G to a stable equilibrium (input units).
     pub r_min: f64,
+    /// R_max: largest distance from G to a hull vertex (input units).
     pub r_max: f64,
+    /// Number of predicate signs decided by the symbolic perturbation (0 for generic input).
     pub degenerate_decisions: usize,
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// Macro-equilibrium counts at the chosen ν.
 pub struct MacroSummary {
+    /// Resolution ν at which the flocks are counted.
     pub nu: f64,
+    /// Where ν came from (user, plateau, …).
     pub nu_source: NuSource,
+    /// Number of stable flocks.
     pub stable: usize,
+    /// Number of unstable flocks.
     pub unstable: usize,
+    /// Number of saddle flocks.
     pub saddle: usize,
 }
 
@@ -296,21 +331,32 @@ pub struct RockingEquilibrium {
     pub index: usize,
     /// Hull facet the stone rests on.
     pub facet: u32,
+    /// Foot point of the equilibrium on the facet.
     pub point: Point3,
+    /// Distance from G to the equilibrium (input units).
     pub r: f64,
+    /// Distance from G divided by the largest equilibrium distance `r_max`.
     pub r_normalised: f64,
+    /// Index of the flock containing it.
     pub flock: usize,
+    /// Type of that flock (unstable or saddle).
     pub flock_type: Kind,
 }
 
 /// One micro-equilibrium with its flock at the report's ν.
 #[derive(Clone, Debug, Serialize)]
 pub struct MicroEquilibrium {
+    /// Index into the equilibria list.
     pub index: usize,
+    /// Stable, saddle or unstable.
     pub kind: Kind,
+    /// Hull facet, edge or vertex where it lies.
     pub site: Site,
+    /// Position of the equilibrium point (input units).
     pub point: Point3,
+    /// Distance from G to the equilibrium (input units).
     pub r: f64,
+    /// Index of its flock at the report's ν.
     pub flock: usize,
 }
 
@@ -336,18 +382,31 @@ pub struct StableFacet {
 /// Everything a run of `rocking analyze` says about one stone.
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
+    /// Name of the analysed mesh file.
     pub file: String,
+    /// Repairs applied to the input mesh.
     pub repairs: Repairs,
+    /// Size of the input mesh.
     pub mesh: MeshSummary,
+    /// Mass properties of the solid.
     pub solid: SolidSummary,
+    /// Size and measures of the convex hull.
     pub hull: HullSummary,
+    /// Micro-equilibrium counts.
     pub micro: MicroSummary,
+    /// Shape descriptors (axis ratios, Zingg class).
     pub shape: ShapeDescriptors,
+    /// Macro-equilibrium (flock) counts at ν.
     pub r#macro: MacroSummary,
+    /// Plateau of the count staircase from which ν was chosen, if any.
     pub plateau: Option<Plateau>,
+    /// Flocks of equilibria at ν.
     pub flocks: Vec<Flock>,
+    /// Stable micro-equilibria inside unstable or saddle flocks.
     pub rocking: Vec<RockingEquilibrium>,
+    /// Staircase of flock counts against ν.
     pub staircase: Vec<Step>,
+    /// Every micro-equilibrium with its flock.
     pub equilibria: Vec<MicroEquilibrium>,
     /// Every stable facet with its outward normal and quasi-static basin probability.
     pub stable_facets: Vec<StableFacet>,

@@ -53,15 +53,20 @@ pub enum Kind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(tag = "on", content = "index", rename_all = "lowercase")]
 pub enum Site {
+    /// Stable: on a hull facet (facet index).
     Facet(u32),
+    /// Saddle: on a hull edge (edge index).
     Edge(u32),
+    /// Unstable: at a hull vertex (vertex index).
     Vertex(u32),
 }
 
 /// One micro-equilibrium.
 #[derive(Clone, Debug, Serialize)]
 pub struct Equilibrium {
+    /// Stable, saddle or unstable.
     pub kind: Kind,
+    /// Hull facet, edge or vertex where it lies.
     pub site: Site,
     /// The contact point (projection of G, foot on the edge, or the vertex), input frame.
     pub point: Point3,
@@ -74,8 +79,11 @@ pub struct Equilibrium {
 pub struct Equilibria {
     /// Stable first (by facet), then saddles (by edge), then unstable (by vertex).
     pub points: Vec<Equilibrium>,
+    /// Number of stable equilibria (S).
     pub stable: usize,
+    /// Number of saddle equilibria (H).
     pub saddle: usize,
+    /// Number of unstable equilibria (U).
     pub unstable: usize,
     /// R_max: largest distance from G to a hull vertex (normalises the weights v_ij).
     pub r_max: f64,
@@ -87,8 +95,10 @@ pub struct Equilibria {
     #[serde(skip)]
     pub at_facet: Vec<Option<u32>>,
     #[serde(skip)]
+    /// For each edge, the index into `points` of its saddle, if any.
     pub at_edge: Vec<Option<u32>>,
     #[serde(skip)]
+    /// For each vertex, the index into `points` of its unstable equilibrium, if any.
     pub at_vertex: Vec<Option<u32>>,
 }
 
@@ -98,6 +108,7 @@ pub struct Signs {
     pub side: Vec<[bool; 2]>,
     /// `beyond[e] = [c(A→B) > 0, c(B→A) > 0]` for edge e = (A, B).
     pub beyond: Vec<[bool; 2]>,
+    /// Number of these signs decided by the symbolic perturbation.
     pub degenerate: usize,
 }
 

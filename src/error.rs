@@ -10,39 +10,83 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 pub enum Error {
     /// The file could not be read or written.
     #[error("{path}: {error}")]
-    Io { path: PathBuf, error: std::io::Error },
+    Io {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// The underlying I/O error.
+        error: std::io::Error,
+    },
     /// The file is not a mesh we can parse (format, truncation, bad numbers...).
     #[error("{path}: {what}")]
-    Parse { path: PathBuf, what: String },
+    Parse {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// What could not be parsed, and where in the file.
+        what: String,
+    },
     /// The mesh parsed but is not a closed, manifold, consistently oriented solid.
     #[error("{path}: {what}")]
-    InvalidMesh { path: PathBuf, what: String },
+    InvalidMesh {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// Which property of a solid boundary fails.
+        what: String,
+    },
     /// The geometry is degenerate (flat, empty, zero volume, all points coplanar...).
     #[error("{path}: degenerate geometry: {what}")]
-    Degenerate { path: PathBuf, what: String },
+    Degenerate {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// In what way the geometry is degenerate.
+        what: String,
+    },
     /// The surface crosses itself: two triangles (numbered as in the file, from 0) that share no
     /// edge intersect beyond their common vertices. Such a surface bounds no solid, and its G can
     /// even fall outside the hull.
     #[error("{path}: the surface intersects itself: triangles {first} and {second} cross{}, {depth:.3e} deep ({relative_depth:.1e} of the size; {pairs} crossing pair(s) in all); a stone must be a closed surface that does not pass through itself", near_text(.near))]
     SelfIntersecting {
+        /// The file concerned (`<memory>` for meshes built in memory).
         path: PathBuf,
+        /// Index of the first crossing triangle, as numbered in the file.
         first: usize,
+        /// Index of the second crossing triangle, as numbered in the file.
         second: usize,
+        /// Number of crossing triangle pairs in the whole mesh.
         pairs: usize,
+        /// How deep the deepest pair crosses (input units).
         depth: f64,
+        /// That depth divided by the diameter of the mesh.
         relative_depth: f64,
+        /// Approximate point where the two triangles meet (input units), if known.
         near: Option<[f64; 3]>,
     },
     /// The centre of mass lies outside (or on) the convex hull, so the stone cannot rest anywhere:
     /// the mesh is not the boundary of a solid (e.g. it intersects itself) or a given G is wrong.
     #[error("{path}: the centre of mass G = ({}, {}, {}) is not inside the convex hull: {what}", .g[0], .g[1], .g[2])]
-    CentreOutsideHull { path: PathBuf, g: [f64; 3], what: String },
+    CentreOutsideHull {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// The centre of mass G (input units).
+        g: [f64; 3],
+        /// How G lies relative to the hull.
+        what: String,
+    },
     /// A theorem that must hold failed (e.g. Poincaré–Hopf); this is a bug or a degenerate input.
     #[error("{path}: internal check failed: {what}")]
-    Check { path: PathBuf, what: String },
+    Check {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// Which check failed, with its numbers.
+        what: String,
+    },
     /// A plot could not be drawn into the file.
     #[error("{path}: cannot draw the plot: {what}")]
-    Plot { path: PathBuf, what: String },
+    Plot {
+        /// The plot file being written.
+        path: PathBuf,
+        /// What the plotting library reported.
+        what: String,
+    },
     /// Bad user input that is not a file (an option value, a generator parameter...).
     #[error("{0}")]
     Usage(String),

@@ -26,10 +26,15 @@ use std::str::FromStr;
 /// The five Platonic solids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Platonic {
+    /// Regular tetrahedron (4 triangular faces).
     Tetrahedron,
+    /// Cube (6 square faces).
     Cube,
+    /// Regular octahedron (8 triangular faces).
     Octahedron,
+    /// Regular dodecahedron (12 pentagonal faces).
     Dodecahedron,
+    /// Regular icosahedron (20 triangular faces).
     Icosahedron,
 }
 
@@ -311,6 +316,7 @@ fn check_unit(what: &str, x: f64) -> Result<()> {
 /// The shapes [`generate`] can build, by CLI name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shape {
+    /// A Platonic solid, by its name.
     Platonic(Platonic),
     /// `box`: [`cuboid`].
     Box,
@@ -375,10 +381,15 @@ impl FromStr for Shape {
 /// side (noisy box). Platonic solids have circumradius 1 and take no parameter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
+    /// Full edge lengths (boxes) or semi-axes (ellipsoid, pebble).
     pub axes: [f64; 3],
+    /// Number of points (ellipsoid, pebble) or grid cells per face side (noisy box).
     pub n: usize,
+    /// Relative radial noise amplitude in [0, 1) (ellipsoid, noisy box).
     pub noise: f64,
+    /// Largest relative radial deviation of the pebble from its ellipsoid, in [0, 1).
     pub roughness: f64,
+    /// Seed of the random generator.
     pub seed: u64,
 }
 

@@ -91,6 +91,7 @@ use serde::{Serialize, Serializer};
 /// A critical point of R in G(0).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Node {
+    /// Stable, unstable or saddle.
     pub kind: Kind,
     /// R: distance from G to the point.
     pub r: f64,
@@ -111,8 +112,11 @@ pub struct Cancellation {
 /// Numbers of stable, unstable and saddle points.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Counts {
+    /// Number of stable points (S).
     pub stable: usize,
+    /// Number of unstable points (U).
     pub unstable: usize,
+    /// Number of saddle points (H).
     pub saddle: usize,
 }
 
@@ -136,8 +140,11 @@ impl Counts {
 /// for the first step).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Step {
+    /// Lower end of the ν interval (exclusive).
     pub nu_lo: f64,
+    /// Upper end of the ν interval (inclusive).
     pub nu_hi: f64,
+    /// Counts of G(ν) on the step.
     pub counts: Counts,
     /// n = N/N(0).
     pub n: f64,
@@ -147,11 +154,14 @@ pub struct Step {
 /// module docs for the rule).
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Plateau {
+    /// Lower end of the plateau's ν interval.
     pub nu_lo: f64,
+    /// Upper end of the plateau's ν interval.
     pub nu_hi: f64,
     /// log10(nu_hi / nu_lo) (∞, serialised as null, when G(0) is its own macro scale).
     #[serde(serialize_with = "finite_or_null")]
     pub decades: f64,
+    /// Counts of G(ν) on the plateau.
     pub counts: Counts,
     /// decades / decades of the second-longest step (∞, serialised as null, if none).
     #[serde(serialize_with = "finite_or_null")]
@@ -188,11 +198,15 @@ pub enum NuSource {
 /// A hierarchy read at its macro scale ([`Hierarchy::macro_scale`]).
 #[derive(Clone, Debug)]
 pub struct MacroScale {
+    /// The macro-scale ν.
     pub nu: f64,
+    /// Where ν came from.
     pub source: NuSource,
+    /// The longest step of n(ν), if any.
     pub plateau: Option<Plateau>,
     /// S(ν), U(ν), H(ν).
     pub counts: Counts,
+    /// The flocks at ν.
     pub flocks: Flocks,
     /// The rocking equilibria at ν ([`Hierarchy::rocking_at`]).
     pub rocking: Vec<usize>,
@@ -226,6 +240,7 @@ impl Plateau {
 /// One flock: the micro-equilibria assigned to one survivor (macro-equilibrium) of G(ν).
 #[derive(Clone, Debug, Serialize)]
 pub struct Flock {
+    /// Flock id (its index in the flock list, ordered by root).
     pub id: usize,
     /// The type of the flock: the kind of its surviving macro-equilibrium.
     #[serde(rename = "type")]
@@ -234,8 +249,11 @@ pub struct Flock {
     pub root: usize,
     /// Every node of the flock (sorted), the root included.
     pub members: Vec<usize>,
+    /// Number of stable micro-equilibria in the flock.
     pub stable: usize,
+    /// Number of unstable micro-equilibria in the flock.
     pub unstable: usize,
+    /// Number of saddle micro-equilibria in the flock.
     pub saddle: usize,
 }
 
@@ -251,11 +269,13 @@ pub struct Flocks {
 /// G(0), the cancellation sequence, and everything that can be read from them.
 #[derive(Clone, Debug, Serialize)]
 pub struct Hierarchy {
+    /// Nodes of G(0): the micro-equilibria.
     pub nodes: Vec<Node>,
     /// Arcs of the original graph G(0) (node pairs; multi-arcs may repeat).
     pub arcs: Vec<(usize, usize)>,
     /// Largest distance from G to a hull vertex / polygon vertex.
     pub r_max: f64,
+    /// The cancellation sequence, in the order the cancellations happen.
     pub cancellations: Vec<Cancellation>,
 }
 

@@ -36,7 +36,9 @@ pub fn orient(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> f64 {
 /// `(triangles[t][k], triangles[t][(k+1)%3])`.
 #[derive(Clone, Debug)]
 pub struct HullTriangles {
+    /// Triangles as vertex-index triples, counter-clockwise seen from outside.
     pub triangles: Vec<[u32; 3]>,
+    /// For each triangle, the triangles across its three edges.
     pub neighbours: Vec<[u32; 3]>,
 }
 
@@ -380,7 +382,9 @@ pub struct Facet {
     pub edges: Vec<u32>,
     /// Outward unit normal n; the facet lies in the plane n·x = `offset`.
     pub normal: Vec3,
+    /// Offset of the facet's plane along the normal (input units).
     pub offset: f64,
+    /// Area of the facet (input units²).
     pub area: f64,
     /// The hull triangles (indices into [`Polyhedron::vertices`]) that make up the facet.
     pub triangles: Vec<[u32; 3]>,
@@ -390,7 +394,9 @@ pub struct Facet {
 /// counter-clockwise loop (the facet on the left), `facets[1]` runs it backwards.
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct Edge {
+    /// The two corners joined by the edge (indices into the corners).
     pub vertices: [u32; 2],
+    /// The two facets on either side (left, then right, of `vertices[0]`→`vertices[1]`).
     pub facets: [u32; 2],
 }
 
@@ -402,7 +408,9 @@ pub struct Polyhedron {
     pub vertices: Vec<Point3>,
     /// For each corner, the index of the input point it came from.
     pub source: Vec<u32>,
+    /// The polygonal facets.
     pub facets: Vec<Facet>,
+    /// The edges between facets.
     pub edges: Vec<Edge>,
     /// For each corner, the incident edges (unordered).
     pub vertex_edges: Vec<Vec<u32>>,

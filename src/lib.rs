@@ -47,6 +47,7 @@
 
 // `!(x > 0.0)` is used on purpose: it is true for NaN, which must be refused too.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![warn(missing_docs)]
 
 pub mod analysis;
 pub mod basins;

@@ -32,7 +32,9 @@ use std::sync::Mutex;
 /// Which drops a process runs: indices `index`, `index + count`, `index + 2 count`, …
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Shard {
+    /// Which residue class of drop indices this process runs (0 ≤ index < count).
     pub index: u64,
+    /// Number of shards the run is split into.
     pub count: u64,
 }
 
@@ -70,14 +72,19 @@ impl Shard {
 /// What identifies a run: every partial result of the same run has the same header.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunHeader {
+    /// Checkpoint format tag (`FORMAT`).
     pub format: String,
     /// The mesh file as given (for the report only).
     pub mesh: String,
     /// FNV-1a hash of the mesh's vertices and triangles after loading.
     pub mesh_fingerprint: String,
+    /// Seed of the random streams of the drops.
     pub seed: u64,
+    /// Number of drops in the run.
     pub drops: u64,
+    /// Simulation parameters of the drops.
     pub params: DropParams,
+    /// Whether and how the energy certificate may end a drop.
     pub certificate: CertificateMode,
     /// The preset and surface the parameters started from (for the report; `params` is what
     /// was run).
@@ -356,43 +363,61 @@ pub fn merge(parts: &[(RunHeader, BTreeMap<u64, DropOutcome>)]) -> Result<(RunHe
 /// Per-facet row of a drop report.
 #[derive(Clone, Debug, Serialize)]
 pub struct FacetRow {
+    /// Hull facet index.
     pub facet: u32,
     /// Outward unit normal of the facet (mesh frame).
     pub normal: Vec3,
     /// Index of the stable micro-equilibrium on it (None: the facet is not stable).
     pub equilibrium: Option<usize>,
+    /// Flock of that equilibrium at ν (None: the facet is not stable).
     pub flock: Option<usize>,
+    /// Settled drops that ended on the facet.
     pub count: u64,
+    /// Fraction of the settled drops with a determined facet that ended on it.
     pub fraction: f64,
+    /// 95 % Wilson interval of `fraction`.
     pub ci95: (f64, f64),
+    /// Quasi-static resting probability of the facet (basin area / 4π).
     pub static_probability: f64,
 }
 
 /// Per-flock row of a drop report.
 #[derive(Clone, Debug, Serialize)]
 pub struct FlockRow {
+    /// Flock id.
     pub id: usize,
     #[serde(rename = "type")]
+    /// Type of the flock (stable, unstable or saddle).
     pub kind: Kind,
+    /// Settled drops that ended in the flock.
     pub count: u64,
+    /// Fraction of the settled drops with a known flock that ended in it.
     pub fraction: f64,
+    /// 95 % Wilson interval of `fraction`.
     pub ci95: (f64, f64),
+    /// Quasi-static resting probability of the flock (sum over its facets).
     pub static_probability: f64,
 }
 
 /// Goodness of fit of the drops against the static probabilities.
 #[derive(Clone, Debug, Serialize)]
 pub struct Fit {
+    /// Pearson χ² statistic of the counts against the static probabilities.
     pub chi_square: f64,
+    /// Degrees of freedom of the χ² test.
     pub dof: usize,
+    /// p-value of the χ² test.
     pub p_value: f64,
+    /// Kullback–Leibler divergence D(empirical ‖ static) in nats.
     pub kl_divergence: f64,
 }
 
 /// The numbers of a drop run, read by the CLI, the plots and the experiments.
 #[derive(Clone, Debug, Serialize)]
 pub struct DropReport {
+    /// The mesh file as given.
     pub mesh: String,
+    /// Seed of the random streams of the drops.
     pub seed: u64,
     /// Drops asked for in the run.
     pub drops_requested: u64,
@@ -417,17 +442,23 @@ pub struct DropReport {
     /// Drops whose final facet is determined (settled and not ended by a flock-level
     /// certificate): the per-facet fractions are over these.
     pub facet_drops: u64,
+    /// Simulation parameters of the drops.
     pub params: DropParams,
+    /// The preset the parameters started from, if any.
     pub preset: Option<String>,
+    /// Whether and how the energy certificate may end a drop.
     pub certificate: CertificateMode,
+    /// Resolution ν of the flocks.
     pub nu: f64,
     /// Facets that were reached or have a positive static probability (empty in flock-certified
     /// mode, where the certificate leaves facets undetermined).
     pub facets: Vec<FacetRow>,
+    /// One row per flock.
     pub flocks: Vec<FlockRow>,
     /// χ² / KL of settled drops on stable facets against the static facet probabilities
     /// (None in flock-certificate mode, where facets are not decided).
     pub fit_facets: Option<Fit>,
+    /// χ² / KL of the drops by flock against the static flock probabilities.
     pub fit_flocks: Fit,
 }
 

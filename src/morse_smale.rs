@@ -43,6 +43,7 @@ pub struct Arc {
 /// The Morse–Smale graph G(0): four arcs per saddle (two descending, two ascending).
 #[derive(Clone, Debug, Serialize)]
 pub struct MorseSmaleGraph {
+    /// The arcs, four per saddle (two descending, two ascending).
     pub arcs: Vec<Arc>,
 }
 

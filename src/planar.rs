@@ -49,6 +49,9 @@
 //! first quadrant's, so the polygon is exactly symmetric. Options: [`Sampling::Angle`] (uniform
 //! in the parameter t, vertex 0 at t = 0) and [`Sampling::Random`] (N independent uniform
 //! arc-length positions, seeded Xoshiro256++, sorted).
+//!
+//! The module is one file on purpose: it is the planar counterpart of the whole 3D pipeline,
+//! from the polygon to its flocks.
 
 use crate::hierarchy::{Counts, Flock, Flocks, Hierarchy, Kind, Node, Plateau, Step};
 use crate::{Error, Result};
@@ -93,6 +96,7 @@ pub struct Polygon {
     pub vertices: Vec<Point2>,
     /// G: the area centroid.
     pub centroid: Point2,
+    /// Area of the polygon.
     pub area: f64,
     /// D: the diagonal of the bounding box (scale of the tolerances).
     pub size: f64,
@@ -245,13 +249,16 @@ impl Polygon {
 pub enum PlanarSite {
     /// Side i = (V_i, V_{i+1}).
     Side(u32),
+    /// Vertex i (an unstable equilibrium).
     Vertex(u32),
 }
 
 /// One micro-equilibrium of a polygon.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct PlanarEquilibrium {
+    /// Stable (side) or unstable (vertex).
     pub kind: Kind,
+    /// Side or vertex where it lies.
     pub site: PlanarSite,
     /// Contact point: the foot of G on the side, or the vertex.
     pub point: Point2,
@@ -266,7 +273,9 @@ pub struct PlanarEquilibrium {
 pub struct PlanarEquilibria {
     /// Vertex i (if unstable) then side i (if stable), i = 0, 1, …: alternating kinds.
     pub points: Vec<PlanarEquilibrium>,
+    /// Number of stable equilibria (sides).
     pub stable: usize,
+    /// Number of unstable equilibria (vertices).
     pub unstable: usize,
     /// Largest distance from G to a vertex.
     pub r_max: f64,
@@ -408,7 +417,10 @@ pub enum Sampling {
     /// Equal steps of the parameter t of (a cos t, sin t), vertex 0 at t = 0.
     Angle,
     /// Independent uniform arc-length positions (seeded Xoshiro256++), sorted.
-    Random { seed: u64 },
+    Random {
+        /// Seed of the generator.
+        seed: u64,
+    },
 }
 
 /// N = 4k − 2, the paper's numbers of sides.
@@ -451,6 +463,7 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
 /// Arc length on the ellipse (a cos t, sin t): s(t) and its inverse.
 #[derive(Clone, Debug)]
 pub struct EllipseArc {
+    /// Semi-axis a of the ellipse along x (the other semi-axis is 1).
     pub a: f64,
     width: f64,
     cum: Vec<f64>,
@@ -462,6 +475,7 @@ const PANELS: usize = 256;
 const GL_POINTS: usize = 16;
 
 impl EllipseArc {
+    /// Tabulate the arc length of the ellipse with semi-axes `a` and 1 (Gauss–Legendre panels).
     pub fn new(a: f64) -> Self {
         let (nodes, weights) = gauss_legendre(GL_POINTS);
         let width = 2.0 * PI / PANELS as f64;
@@ -622,8 +636,11 @@ pub use crate::hierarchy::NuSource;
 /// Polygon, micro-equilibria and hierarchy, in memory.
 #[derive(Clone, Debug)]
 pub struct PlanarAnalysis {
+    /// The polygon.
     pub polygon: Polygon,
+    /// Its micro-equilibria.
     pub equilibria: PlanarEquilibria,
+    /// Cancellation hierarchy of the micro-equilibria over ν.
     pub hierarchy: Hierarchy,
 }
 
@@ -631,11 +648,14 @@ pub struct PlanarAnalysis {
 /// the (stable, unstable) counts of every stable and every unstable flock, in flock order.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct FlockContents {
+    /// (stable, unstable) counts of every stable flock.
     pub stable_flocks: Vec<(usize, usize)>,
+    /// (stable, unstable) counts of every unstable flock.
     pub unstable_flocks: Vec<(usize, usize)>,
 }
 
 impl FlockContents {
+    /// Collect the contents of `flocks` by type.
     pub fn of(flocks: &[Flock]) -> Self {
         let mut c = FlockContents::default();
         for f in flocks {
@@ -660,41 +680,62 @@ impl FlockContents {
 pub struct RockingSide {
     /// Index into the micro-equilibria.
     pub index: usize,
+    /// The stable side.
     pub side: u32,
+    /// Contact point: the foot of G on the side.
     pub point: Point2,
+    /// R = distance from G to the contact point.
     pub r: f64,
+    /// Polar angle of the contact point seen from G, in (−π, π].
     pub phi: f64,
+    /// Index of the (unstable) flock containing it.
     pub flock: usize,
 }
 
 /// The serialisable result of a planar analysis.
 #[derive(Clone, Debug, Serialize)]
 pub struct PlanarReport {
+    /// Number of sides of the polygon.
     pub sides: usize,
+    /// Area of the polygon.
     pub area: f64,
+    /// G: the area centroid.
     pub centroid: Point2,
     /// Micro-equilibria.
     pub stable: usize,
+    /// Number of unstable micro-equilibria (vertices).
     pub unstable: usize,
+    /// R_min: smallest distance from G to a stable side.
     pub r_min: f64,
+    /// R_max: largest distance from G to a vertex.
     pub r_max: f64,
+    /// v_max = (R_max − R_min)/R_max: the largest cancellation level.
     pub v_max: f64,
+    /// Number of signs decided within the tolerance τ = `tol_rel` · D.
     pub degenerate_decisions: usize,
     /// The macro scale used for flocks.
     pub nu: f64,
+    /// Where ν came from.
     pub nu_source: NuSource,
+    /// The longest step of n(ν), if any.
     pub plateau: Option<Plateau>,
     /// S(ν), U(ν).
     #[serde(rename = "macro")]
     pub macro_counts: Counts,
+    /// Flocks at ν.
     pub flocks: Vec<Flock>,
+    /// (stable, unstable) contents of the flocks by type.
     pub flock_contents: FlockContents,
+    /// Stable sides in unstable flocks.
     pub rocking: Vec<RockingSide>,
+    /// Every micro-equilibrium.
     pub micro: Vec<PlanarEquilibrium>,
+    /// Staircase of the counts against ν.
     pub staircase: Vec<Step>,
 }
 
 impl PlanarAnalysis {
+    /// Find the equilibria of `polygon` (signs within `tol_rel` · D decided symbolically), build and check the hierarchy.
     pub fn new(polygon: Polygon, tol_rel: f64) -> Result<Self> {
         let equilibria = PlanarEquilibria::new(&polygon, tol_rel)?;
         let hierarchy = hierarchy(&equilibria);
@@ -713,6 +754,7 @@ impl PlanarAnalysis {
         self.hierarchy.flocks_at(nu)
     }
 
+    /// The report at the user's ν, else at the automatic macro scale.
     pub fn report(&self, user_nu: Option<f64>) -> PlanarReport {
         let m = self.hierarchy.macro_scale(user_nu);
         let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);

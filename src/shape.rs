@@ -73,9 +73,13 @@ pub struct ShapeDescriptors {
     pub b: f64,
     /// Shortest principal-axes bounding-box edge.
     pub c: f64,
+    /// Flatness ratio c/b.
     pub c_over_b: f64,
+    /// Elongation ratio b/a.
     pub b_over_a: f64,
+    /// Ratio c/a.
     pub c_over_a: f64,
+    /// Zingg class from b/a and c/b.
     pub zingg: Zingg,
     /// Volume of the solid (input units³), from the mass properties.
     pub volume: f64,

@@ -12,7 +12,9 @@ use serde::Serialize;
 pub struct MergeNode {
     /// h(n_F) for a facet leaf; the weight of the arc that joined the children otherwise.
     pub level: f64,
+    /// Index of the node this one merges into (None at the root).
     pub parent: Option<u32>,
+    /// The two nodes joined at this node (None for a facet leaf).
     pub children: Option<[u32; 2]>,
     /// Number of stable facets below (or at) this node.
     pub stable: u32,

@@ -71,6 +71,9 @@
 //! It is **dynamically regular** if ε₅₀(flock) > ε*. The static class is the paper's (stable
 //! micro-equilibrium in a stable flock = regular, in an unstable or saddle flock = rocking,
 //! [`crate::hierarchy::Hierarchy::rocking_at`]); [`Confusion`] compares the two.
+//!
+//! The module is one file on purpose: the perturbation protocol, its trial loop, the statistics
+//! of the curves and the static–dynamic comparison belong together.
 
 use super::params::DropParams;
 use super::run::{self as run_loop, Certificate, CertificateMode, Decided, EnergyCertificate, Passive};
@@ -468,18 +471,27 @@ impl Threshold {
 pub struct CurvePoint {
     /// ε (perturbations) or peak ground acceleration in g (shaking).
     pub x: f64,
+    /// Number of trials.
     pub n: u64,
+    /// Trials that came back to the starting micro-equilibrium.
     pub same: u64,
+    /// Trials that ended on another micro-equilibrium of the same flock.
     pub same_flock: u64,
+    /// Trials that left the flock.
     pub toppled: u64,
     /// Trials that hit the time cap (classified from where they were).
     pub unsettled: u64,
+    /// P(same): fraction of trials back on the starting micro-equilibrium.
     pub p_same: f64,
+    /// 95 % Wilson interval of `p_same`.
     pub ci_same: (f64, f64),
     /// P(still in the flock) = P(same) + P(another micro-equilibrium of the flock).
     pub p_in_flock: f64,
+    /// 95 % Wilson interval of `p_in_flock`.
     pub ci_in_flock: (f64, f64),
+    /// P(toppled): fraction of trials that left the flock.
     pub p_toppled: f64,
+    /// 95 % Wilson interval of `p_toppled`.
     pub ci_toppled: (f64, f64),
 }
 
@@ -517,18 +529,23 @@ impl CurvePoint {
 /// The robustness of one stable micro-equilibrium.
 #[derive(Clone, Debug, Serialize)]
 pub struct Robustness {
+    /// The stable micro-equilibrium and its static description.
     pub equilibrium: StableEquilibrium,
+    /// Whether the unperturbed stone stays at rest on it.
     pub rest: SettleCheck,
     /// One point per ε of the grid (empty if the stone does not stay on the equilibrium).
     pub curve: Vec<CurvePoint>,
     /// ε₅₀ to leave the micro-equilibrium (P(same) < ½) and to leave the flock (P(toppled) ≥ ½).
     pub eps50_micro: Option<Threshold>,
+    /// ε₅₀ to leave the flock (P(toppled) ≥ ½).
     pub eps50_flock: Option<Threshold>,
     /// Smallest ε at which any trial left the micro-equilibrium / the flock.
     pub first_leave: Option<f64>,
+    /// Smallest ε at which any trial left the flock.
     pub first_topple: Option<f64>,
     /// ε₅₀ / static barrier (how far above the barrier the dynamic threshold sits).
     pub ratio_micro: Option<f64>,
+    /// ε₅₀(flock) / static flock barrier.
     pub ratio_flock: Option<f64>,
     /// Topples by destination flock: (flock, type, count).
     pub destinations: Vec<(usize, Kind, u64)>,
@@ -541,9 +558,11 @@ pub struct Robustness {
 pub struct BarrierCheck {
     /// Trials with ε below the basin barrier, and how many of them left the micro-equilibrium.
     pub below_basin: u64,
+    /// Trials below the basin barrier that left the micro-equilibrium.
     pub basin_violations: u64,
     /// Trials with ε below the flock barrier, and how many of them left the flock.
     pub below_flock: u64,
+    /// Trials below the flock barrier that left the flock.
     pub flock_violations: u64,
     /// Smallest ε / basin barrier among trials that left their micro-equilibrium (≥ 1 if the
     /// static theory holds; the reported numerical margin is how far below 1 it may go).
@@ -585,15 +604,20 @@ impl BarrierCheck {
 /// Static class (rows) against dynamic class (columns).
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Confusion {
+    /// Statically regular, dynamically regular.
     pub regular_as_regular: u64,
+    /// Statically regular, dynamically rocking.
     pub regular_as_rocking: u64,
+    /// Statically rocking, dynamically regular.
     pub rocking_as_regular: u64,
+    /// Statically rocking, dynamically rocking.
     pub rocking_as_rocking: u64,
     /// Equilibria the grid could not classify dynamically (or that do not stay at rest).
     pub undecided: u64,
 }
 
 impl Confusion {
+    /// Count one equilibrium with static class `stat` and dynamic class `dynamic` (None: undecided).
     pub fn add(&mut self, stat: Class, dynamic: Option<Class>) {
         match (stat, dynamic) {
             (Class::Regular, Some(Class::Regular)) => self.regular_as_regular += 1,
@@ -604,6 +628,7 @@ impl Confusion {
         }
     }
 
+    /// Add the counts of another matrix to this one.
     pub fn merge(&mut self, o: &Confusion) {
         self.regular_as_regular += o.regular_as_regular;
         self.regular_as_rocking += o.regular_as_rocking;
@@ -627,17 +652,22 @@ impl Confusion {
 /// What a perturbation run is.
 #[derive(Clone, Debug, Serialize)]
 pub struct PerturbConfig {
+    /// Simulation parameters.
     pub params: PerturbParams,
+    /// Perturbation family (push or spin).
     pub family: Family,
     /// Increasing grid of ε.
     pub epsilons: Vec<f64>,
+    /// Number of trials per equilibrium and ε.
     pub trials: u32,
+    /// Seed of the random streams of the trials.
     pub seed: u64,
     /// ε* of the dynamic classification (None: the stone's ν).
     pub epsilon_star: Option<f64>,
 }
 
 impl PerturbConfig {
+    /// Refuse invalid parameters, an empty, non-positive or non-increasing ε grid, or zero trials.
     pub fn check(&self) -> Result<()> {
         self.params.check()?;
         if self.epsilons.is_empty() || self.epsilons.iter().any(|e| !(*e > 0.0 && e.is_finite())) {
@@ -656,15 +686,25 @@ impl PerturbConfig {
 /// The numbers of a perturbation run.
 #[derive(Clone, Debug, Serialize)]
 pub struct PerturbReport {
+    /// Perturbation family (push or spin).
     pub family: Family,
+    /// Seed of the random streams of the trials.
     pub seed: u64,
+    /// Number of trials per equilibrium and ε.
     pub trials_per_point: u32,
+    /// Increasing grid of ε.
     pub epsilons: Vec<f64>,
+    /// Resolution ν of the flocks.
     pub nu: f64,
+    /// ε* of the dynamic classification.
     pub epsilon_star: f64,
+    /// Simulation parameters.
     pub params: PerturbParams,
+    /// Robustness of each stable micro-equilibrium.
     pub equilibria: Vec<Robustness>,
+    /// Trials below a static barrier that crossed it (SPEC §6).
     pub barrier_check: BarrierCheck,
+    /// Static against dynamic class of the equilibria.
     pub confusion: Confusion,
     /// Every trial (sorted by start, ε, trial).
     #[serde(skip)]

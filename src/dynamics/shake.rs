@@ -62,6 +62,7 @@ use std::path::Path;
 /// Conversion between a real stone of size R_max = `r_max_m` metres and the scaled 1 m body.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct TimeScale {
+    /// Real R_max of the stone (m).
     pub r_max_m: f64,
 }
 
@@ -73,15 +74,19 @@ impl TimeScale {
     pub fn factor(&self) -> f64 {
         self.r_max_m.sqrt()
     }
+    /// Real time (s) to time of the scaled body.
     pub fn to_scaled_time(&self, t_real: f64) -> f64 {
         t_real / self.factor()
     }
+    /// Time of the scaled body to real time (s).
     pub fn to_real_time(&self, t_scaled: f64) -> f64 {
         t_scaled * self.factor()
     }
+    /// Real frequency (Hz) to frequency of the scaled body.
     pub fn to_scaled_frequency(&self, f_real: f64) -> f64 {
         f_real * self.factor()
     }
+    /// Frequency of the scaled body to real frequency (Hz).
     pub fn to_real_frequency(&self, f_scaled: f64) -> f64 {
         f_scaled / self.factor()
     }
@@ -91,8 +96,11 @@ impl TimeScale {
 /// scaled body).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Pulse {
+    /// Peak acceleration A (g).
     pub amplitude: f64,
+    /// Frequency f (Hz of the scaled body).
     pub frequency: f64,
+    /// Number of sine cycles.
     pub cycles: f64,
 }
 
@@ -100,8 +108,11 @@ pub struct Pulse {
 /// linearly interpolated, zero outside.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Record {
+    /// Name of the record.
     pub name: String,
+    /// Sample times (s of the scaled body, increasing).
     pub times: Vec<f64>,
+    /// Ground acceleration at each sample time (g).
     pub accel: Vec<f64>,
 }
 
@@ -109,7 +120,9 @@ pub struct Record {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "type", rename_all = "lowercase")]
 pub enum Motion {
+    /// A few sine cycles.
     Pulse(Pulse),
+    /// A sampled acceleration history.
     Record(Record),
 }
 
@@ -285,16 +298,25 @@ pub fn synthetic_record(name: &str, duration: f64, f_ground: f64, pga: f64, seed
 pub struct ShakeTrial {
     /// Position of the start in [`Stone::stable`], and its analysis index.
     pub start: usize,
+    /// Analysis index of the start equilibrium.
     pub equilibrium: usize,
     /// Peak ground acceleration (g) and azimuth of shaking (rad, world frame).
     pub pga: f64,
+    /// Azimuth of shaking (rad, world frame).
     pub azimuth: f64,
+    /// Trial number at this (equilibrium, PGA): its random stream.
     pub trial: u32,
+    /// Same, same flock or toppled.
     pub outcome: Outcome,
+    /// Final facet.
     pub final_facet: u32,
+    /// Final stable micro-equilibrium.
     pub final_equilibrium: Option<usize>,
+    /// Final flock.
     pub final_flock: usize,
+    /// Came to rest before the time cap.
     pub settled: bool,
+    /// The stone stopped above its final stable facet; the quasi-static descent decided.
     pub non_stable_facet: bool,
     /// Largest tilt (rad) of the resting facet's normal away from straight down.
     pub max_tilt: f64,
@@ -388,12 +410,15 @@ pub fn shake_stream(start: usize, trial: u32) -> u64 {
 /// What a fragility run is.
 #[derive(Clone, Debug, Serialize)]
 pub struct ShakeConfig {
+    /// Simulation parameters.
     pub params: PerturbParams,
     /// The motion's shape (its amplitude is replaced by each PGA of the grid).
     pub motion: Motion,
     /// Increasing grid of peak ground accelerations (g).
     pub pgas: Vec<f64>,
+    /// Number of trials per equilibrium and PGA.
     pub trials: u32,
+    /// Seed of the random streams of the trials.
     pub seed: u64,
     /// Shake along this azimuth (rad) instead of a random one per trial.
     pub azimuth: Option<f64>,
@@ -402,6 +427,7 @@ pub struct ShakeConfig {
 }
 
 impl ShakeConfig {
+    /// Refuse invalid parameters or motion, a bad PGA grid, zero trials or a non-positive size.
     pub fn check(&self) -> Result<()> {
         self.params.check()?;
         self.motion.check()?;
@@ -424,12 +450,15 @@ impl ShakeConfig {
 /// The fragility of one stable micro-equilibrium.
 #[derive(Clone, Debug, Serialize)]
 pub struct Fragility {
+    /// The stable micro-equilibrium and its static description.
     pub equilibrium: StableEquilibrium,
+    /// Whether the unshaken stone stays at rest on it.
     pub rest: SettleCheck,
     /// One point per PGA (x = PGA in g).
     pub curve: Vec<CurvePoint>,
     /// PGA₅₀ to leave the micro-equilibrium and to topple out of the flock.
     pub pga50_micro: Option<Threshold>,
+    /// PGA₅₀ to topple out of the flock.
     pub pga50_flock: Option<Threshold>,
     /// Smallest PGA at which any trial toppled.
     pub first_topple: Option<f64>,
@@ -438,15 +467,24 @@ pub struct Fragility {
 /// The numbers of a shaking run.
 #[derive(Clone, Debug, Serialize)]
 pub struct ShakeReport {
+    /// The motion's shape (amplitude replaced by each PGA).
     pub motion: Motion,
+    /// Seed of the random streams of the trials.
     pub seed: u64,
+    /// Number of trials per equilibrium and PGA.
     pub trials_per_point: u32,
+    /// Increasing grid of peak ground accelerations (g).
     pub pgas: Vec<f64>,
+    /// Resolution ν of the flocks.
     pub nu: f64,
+    /// Simulation parameters.
     pub params: PerturbParams,
+    /// Real size of the stone, for reporting times and frequencies.
     pub scale: TimeScale,
+    /// Fragility of each stable micro-equilibrium.
     pub fragility: Vec<Fragility>,
     #[serde(skip)]
+    /// Every trial.
     pub trials: Vec<ShakeTrial>,
 }
 
@@ -563,6 +601,7 @@ pub fn ramp_tipping(
 pub struct HalfCycle {
     /// Start and end time (s, scaled).
     pub t0: f64,
+    /// End time (s, scaled).
     pub t1: f64,
     /// Largest |θ| in the half-cycle (rad).
     pub amplitude: f64,

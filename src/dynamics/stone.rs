@@ -104,6 +104,7 @@ pub struct Rest {
     pub facet: u32,
     /// Its stable micro-equilibrium (index into the analysis' equilibria) and flock.
     pub equilibrium: usize,
+    /// Its flock.
     pub flock: usize,
     /// h(final down) − R_F in units of R_max: how far above its rest on the facet G stopped
     /// (≤ [`REST_TOLERANCE`] when the body rests on the equilibrium; the soft contact's sink

@@ -35,10 +35,15 @@ pub const MAX_CELLS_PER_TRIANGLE: usize = 64;
 /// how many crossing pairs the mesh has in all.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Crossing {
+    /// Index of the first crossing triangle.
     pub first: usize,
+    /// Index of the second crossing triangle (`first < second`).
     pub second: usize,
+    /// Approximate point where the two triangles meet.
     pub near: Point3,
+    /// How deep the two triangles cross.
     pub depth: f64,
+    /// Number of crossing triangle pairs in the whole mesh.
     pub pairs: usize,
 }
 

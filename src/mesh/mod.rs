@@ -12,7 +12,9 @@ use std::collections::HashMap;
 /// [`TriMesh::into_solid_boundary`] has accepted them.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriMesh {
+    /// Vertex positions.
     pub vertices: Vec<Point3>,
+    /// Triangles as triples of vertex indices.
     pub triangles: Vec<[u32; 3]>,
 }
 

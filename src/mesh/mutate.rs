@@ -21,8 +21,16 @@ use std::path::Path;
 /// or a panic with its message.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Outcome {
+    /// The mutated input was accepted and analysed.
     Analysed,
-    Refused { kind: &'static str, message: String },
+    /// The input was refused with an error.
+    Refused {
+        /// The error's kind (`Error::kind`).
+        kind: &'static str,
+        /// The error's message.
+        message: String,
+    },
+    /// The analysis panicked, with the panic message.
     Panicked(String),
 }
 
@@ -230,7 +238,9 @@ pub struct Case {
     pub source: String,
     /// `bytes` or `mesh`, and the mutation's name.
     pub family: &'static str,
+    /// Name of the mutation applied.
     pub mutation: &'static str,
+    /// How the analysis of the mutated input ended.
     pub outcome: Outcome,
 }
 

@@ -161,9 +161,13 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
 
 /// One category of a bar plot: empirical fraction with its interval, and a reference value.
 pub struct Bar {
+    /// Category name on the x axis.
     pub label: String,
+    /// Empirical fraction.
     pub fraction: f64,
+    /// 95 % interval of the fraction.
     pub ci: (f64, f64),
+    /// Reference (static) probability drawn beside it.
     pub reference: f64,
 }
 

@@ -289,8 +289,11 @@ pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
 
 /// A panel of [`plot_curves`]: a title, the curve, and vertical markers (x, label, colour).
 pub struct Panel<'a> {
+    /// Title of the panel.
     pub title: String,
+    /// Points of the curve (x = ε or PGA).
     pub curve: &'a [CurvePoint],
+    /// Vertical markers: x position, label and colour.
     pub markers: Vec<(f64, String, RGBColor)>,
 }
 

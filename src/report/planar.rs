@@ -8,8 +8,22 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, Serialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum ShapeInfo {
-    Ellipse { a: f64, k: Option<usize>, sides: usize, sampling: Sampling },
-    Regular { n: usize },
+    /// A polygon inscribed in the ellipse with semi-axes `a` and 1.
+    Ellipse {
+        /// Semi-axis along x (the other is 1).
+        a: f64,
+        /// The paper's k when the sides were given as N = 4k − 2.
+        k: Option<usize>,
+        /// Number of sides N.
+        sides: usize,
+        /// How the ellipse was discretised.
+        sampling: Sampling,
+    },
+    /// A regular polygon.
+    Regular {
+        /// Number of sides.
+        n: usize,
+    },
 }
 
 /// A readable summary of a planar analysis of `info` (with Table 1's k → ∞ `limit` for an ellipse).

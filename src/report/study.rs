@@ -295,10 +295,13 @@ where
 /// One series of a scatter plot.
 #[derive(Clone, Debug)]
 pub struct Series {
+    /// Legend label.
     pub label: String,
+    /// Marker colour.
     pub color: RGBColor,
     /// Filled or hollow markers.
     pub filled: bool,
+    /// The (x, y) points.
     pub points: Vec<(f64, f64)>,
     /// Draw this trend line (its equation and R² go into the legend).
     pub trend: Option<LogFit>,
@@ -442,8 +445,11 @@ where
 
 /// Colours of the Figure 12 plots: hand (purple, yellow as in the paper) and computed (red, blue).
 pub const HAND_S: RGBColor = RGBColor(128, 60, 160);
+/// Hand experiments, unstable (yellow).
 pub const HAND_U: RGBColor = RGBColor(215, 170, 0);
+/// Computed, stable (red).
 pub const COMPUTED_S: RGBColor = RGBColor(210, 40, 40);
+/// Computed, unstable (blue).
 pub const COMPUTED_U: RGBColor = RGBColor(40, 90, 210);
 
 /// Write a comparison as CSV.

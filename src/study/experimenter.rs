@@ -41,6 +41,7 @@ impl Default for Experimenter {
 /// What the simulated experimenter found on one pebble.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DynamicCounts {
+    /// Times the pebble was set down.
     pub trials: u64,
     /// Trials that came to rest (the others were still moving at the time cap).
     pub settled: u64,

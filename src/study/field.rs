@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 pub struct Counted {
     /// What `rocking analyze` reports for it.
     pub report: Report,
+    /// Its counts S and U as functions of ν.
     pub curve: CountCurve,
     /// The simulated experimenter's findings at the study's ν, if asked for.
     pub dynamic: Option<DynamicCounts>,
@@ -51,6 +52,7 @@ pub struct Pebble {
     pub meta: Vec<String>,
     /// The file as `rocking analyze` names it.
     pub file: String,
+    /// Its counts, or why its analysis failed.
     pub result: std::result::Result<Counted, String>,
 }
 
@@ -59,7 +61,9 @@ pub struct Pebble {
 pub struct Study {
     /// ν of the fixed-ν (hand experiment) columns.
     pub nu: f64,
+    /// Names of the pass-through metadata columns.
     pub meta_columns: Vec<String>,
+    /// The pebbles, with their results.
     pub pebbles: Vec<Pebble>,
     /// Whether the dynamic experimenter ran.
     pub dynamic: bool,
@@ -181,13 +185,17 @@ pub fn run_files(
 /// One sample of a study: sizes, mean axis ratios and the moments of the counts at each scale.
 #[derive(Clone, Debug, Serialize)]
 pub struct SampleSummary {
+    /// Sample name.
     pub sample: String,
     /// Pebbles analysed.
     pub pebbles: usize,
     /// Pebbles whose analysis failed (not in the statistics).
     pub failed: usize,
+    /// Mean c/b over the analysed pebbles.
     pub mean_c_over_b: f64,
+    /// Mean c/a over the analysed pebbles.
     pub mean_c_over_a: f64,
+    /// Mean b/a over the analysed pebbles.
     pub mean_b_over_a: f64,
     /// G(0).
     pub micro: Moments,
@@ -197,6 +205,7 @@ pub struct SampleSummary {
     pub hand: Moments,
     /// Dynamic experimenter: E and σ of the stable flocks found (U is not observable).
     pub dyn_es: Option<f64>,
+    /// σ of the stable flocks found by the dynamic experimenter.
     pub dyn_sd_s: Option<f64>,
     /// Mean number of distinct rocking positions (unstable/saddle flocks) found.
     pub dyn_rocking: Option<f64>,

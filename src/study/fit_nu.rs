@@ -19,17 +19,23 @@ use std::path::Path;
 /// One sample of the paper's Table 2 (`data/table2_hand_experiments.csv`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct HandSample {
+    /// Sample id.
     pub id: String,
+    /// Where the sample was collected.
     pub location: String,
+    /// Rock type of the sample.
     pub rock_type: String,
     /// Pebbles counted by hand.
     pub n: usize,
     /// [E(S), E(U), σ(S), σ(U)] of the hand experiments.
     pub hand: [f64; 4],
+    /// Mean ratio c/b of the sample.
     pub c_over_b: f64,
+    /// Mean ratio c/a of the sample.
     pub c_over_a: f64,
     /// The paper's computer experiments at ν = 0.0035 (the 5 scanned samples only).
     pub computer: Option<[f64; 4]>,
+    /// Pebbles of the paper's computer experiments (the 5 scanned samples only).
     pub n_computer: Option<usize>,
 }
 
@@ -133,6 +139,7 @@ pub struct FitOptions {
     pub grid: Vec<f64>,
     /// Bootstrap replicates (0: none).
     pub bootstrap: usize,
+    /// Seed of the bootstrap resampling.
     pub seed: u64,
     /// Which of [E(S), E(U), σ(S), σ(U)] enter the loss (default: all four).
     pub statistics: [bool; 4],
@@ -152,14 +159,17 @@ impl Default for FitOptions {
 /// The result of [`fit_nu`].
 #[derive(Clone, Debug, Serialize)]
 pub struct NuFit {
+    /// The ν grid searched.
     pub grid: Vec<f64>,
     /// χ² at every grid ν.
     pub chi2: Vec<f64>,
     /// Best ν: the vertex of the parabola in log ν through the grid minimum and its neighbours.
     pub nu: f64,
+    /// χ² at the best ν.
     pub chi2_min: f64,
     /// Statistics fitted (up to 4 per sample) and degrees of freedom (terms − 1).
     pub terms: usize,
+    /// Degrees of freedom (terms − 1).
     pub dof: usize,
     /// The minimum is at an end of the grid (ν is then only bounded on one side).
     pub at_edge: bool,
@@ -367,13 +377,19 @@ pub fn moments_at(study: &Study, nu: f64) -> BTreeMap<String, Moments> {
 /// One row of a hand-vs-computed comparison.
 #[derive(Clone, Debug, Serialize)]
 pub struct Comparison {
+    /// Sample id.
     pub id: String,
     /// Mean ratios: Table 2's (hand) and the synthetic pebbles' measured ones.
     pub hand_c_over_b: f64,
+    /// Mean c/a of Table 2 (hand).
     pub hand_c_over_a: f64,
+    /// Measured mean c/b of the synthetic pebbles.
     pub sim_c_over_b: f64,
+    /// Measured mean c/a of the synthetic pebbles.
     pub sim_c_over_a: f64,
+    /// [E(S), E(U), σ(S), σ(U)] of the hand experiments (Table 2).
     pub hand: [f64; 4],
+    /// E and σ of S and U of the synthetic pebbles at ν.
     pub sim: Moments,
     /// The paper's computer experiments (5 scanned samples).
     pub paper_computer: Option<[f64; 4]>,
@@ -406,17 +422,27 @@ pub fn compare(hand: &[HandSample], study: &Study, nu: f64) -> Vec<Comparison> {
 pub struct Trends {
     /// E(S) against c/b and c/a (Figure 12A), hand and computed.
     pub hand_es_cb: Option<LogFit>,
+    /// E(S) against c/a, hand.
     pub hand_es_ca: Option<LogFit>,
+    /// E(S) against c/b, computed.
     pub sim_es_cb: Option<LogFit>,
+    /// E(S) against c/a, computed.
     pub sim_es_ca: Option<LogFit>,
+    /// E(U) against c/b, hand.
     pub hand_eu_cb: Option<LogFit>,
+    /// E(U) against c/a, hand.
     pub hand_eu_ca: Option<LogFit>,
+    /// E(U) against c/b, computed.
     pub sim_eu_cb: Option<LogFit>,
+    /// E(U) against c/a, computed.
     pub sim_eu_ca: Option<LogFit>,
     /// σ against E (Figure 12B).
     pub hand_sd_s: Option<LogFit>,
+    /// σ(U) against E(U), hand.
     pub hand_sd_u: Option<LogFit>,
+    /// σ(S) against E(S), computed.
     pub sim_sd_s: Option<LogFit>,
+    /// σ(U) against E(U), computed.
     pub sim_sd_u: Option<LogFit>,
 }
 

@@ -27,7 +27,9 @@ pub struct MetaRow {
 /// fields, and the same id twice.
 #[derive(Clone, Debug)]
 pub struct Metadata {
+    /// The metadata file.
     pub path: PathBuf,
+    /// Field delimiter detected in the file (`,` `;` or tab).
     pub delimiter: u8,
     /// The pass-through columns (all but `id` and `sample`), as named in the header.
     pub columns: Vec<String>,

@@ -63,10 +63,15 @@ use serde::Serialize;
 /// E and σ (sample standard deviation) of S and U over a group of pebbles.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Moments {
+    /// Number of pebbles.
     pub n: usize,
+    /// E(S): mean number of stable equilibria.
     pub es: f64,
+    /// E(U): mean number of unstable equilibria.
     pub eu: f64,
+    /// σ(S): sample standard deviation of S.
     pub sd_s: f64,
+    /// σ(U): sample standard deviation of U.
     pub sd_u: f64,
 }
 

@@ -18,8 +18,11 @@ use serde::Serialize;
 /// [`crate::shape`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SampleTarget {
+    /// Sample name.
     pub name: String,
+    /// Target mean c/b.
     pub c_over_b: f64,
+    /// Target mean c/a.
     pub c_over_a: f64,
 }
 
@@ -34,6 +37,7 @@ pub struct PopulationParams {
     pub points: usize,
     /// Pebbles per sample.
     pub count: usize,
+    /// Seed of the generator.
     pub seed: u64,
     /// Correct the generator's mean ratios once so that the *measured* means hit the target.
     pub calibrate: bool,
