@@ -596,6 +596,34 @@ impl Polyhedron {
     }
 }
 
+/// Steepest-ascent hill climbing on a graph from vertex `v`: move to the neighbour with the
+/// largest `score` while it strictly improves. On the vertex–edge graph of a convex polytope and a
+/// linear score x·d this ends at a maximiser (a local maximum of a linear function over the
+/// vertices of a convex polytope is global); the support-point queries of
+/// [`crate::basins::SupportFlow`] and of the collider [`crate::dynamics::hull_shape`] use it.
+#[inline]
+pub fn hill_climb<I: IntoIterator<Item = u32>>(
+    mut v: u32,
+    neighbours: impl Fn(u32) -> I,
+    score: impl Fn(u32) -> f64,
+) -> u32 {
+    let mut best = score(v);
+    loop {
+        let mut next = v;
+        for w in neighbours(v) {
+            let s = score(w);
+            if s > best {
+                best = s;
+                next = w;
+            }
+        }
+        if next == v {
+            return v;
+        }
+        v = next;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

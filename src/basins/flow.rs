@@ -124,23 +124,12 @@ impl SupportFlow {
     /// The corner of the hull touching the ground for down direction `d` (any length): the
     /// maximiser of w_V·d, by hill climbing from the nearest precomputed direction.
     pub fn support_vertex(&self, d: &Vec3) -> u32 {
-        let mut v = self.seeds.iter().max_by(|a, b| a.0.dot(d).total_cmp(&b.0.dot(d))).map_or(0, |s| s.1);
-        let mut best = self.w[v as usize].dot(d);
-        loop {
-            let mut next = v;
-            for &e in &self.vertex_edges[v as usize] {
-                let x = self.other(e, v);
-                let val = self.w[x as usize].dot(d);
-                if val > best {
-                    best = val;
-                    next = x;
-                }
-            }
-            if next == v {
-                return v;
-            }
-            v = next;
-        }
+        let v = self.seeds.iter().max_by(|a, b| a.0.dot(d).total_cmp(&b.0.dot(d))).map_or(0, |s| s.1);
+        crate::hull::hill_climb(
+            v,
+            |v| self.vertex_edges[v as usize].iter().map(move |&e| self.other(e, v)),
+            |x| self.w[x as usize].dot(d),
+        )
     }
 
     /// h(d) for a down direction `d` (normalised here).

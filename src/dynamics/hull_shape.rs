@@ -467,24 +467,14 @@ impl HullShape {
         &self.face_edges[self.face_start[f] as usize..self.face_start[f + 1] as usize]
     }
 
-    /// Steepest-ascent hill climbing from `v` (moves only on strict improvement).
+    /// Steepest-ascent hill climbing from `v` ([`crate::hull::hill_climb`]).
     #[inline]
-    fn climb(&self, mut v: u32, d: &[f64; 3]) -> u32 {
-        let mut best = dot64(self.points[v as usize], d);
-        loop {
-            let mut next = v;
-            for &(w, _) in self.neighbours(v) {
-                let s = dot64(self.points[w as usize], d);
-                if s > best {
-                    best = s;
-                    next = w;
-                }
-            }
-            if next == v {
-                return v;
-            }
-            v = next;
-        }
+    fn climb(&self, v: u32, d: &[f64; 3]) -> u32 {
+        crate::hull::hill_climb(
+            v,
+            |v| self.neighbours(v).iter().map(|&(w, _)| w),
+            |w| dot64(self.points[w as usize], d),
+        )
     }
 
     /// Index of a corner maximising x·dir (exact, see the module documentation); corner 0 for a
