@@ -798,22 +798,35 @@ pub fn task_count(n: usize, cfg: &PerturbConfig) -> u64 {
 
 /// [`run`], calling `progress` after every trial (from any thread).
 pub fn run_with(stone: &Stone, starts: &[usize], cfg: &PerturbConfig, progress: &(dyn Fn() + Sync)) -> PerturbReport {
-    let checks: Vec<SettleCheck> = starts.par_iter().map(|&s| check_rest(stone, s, &cfg.params)).collect();
-    let tasks: Vec<(usize, f64, u32)> = starts
+    let (checks, trials) = grid_trials(stone, starts, &cfg.params, cfg.epsilons.len(), cfg.trials, |s, i, k| {
+        let t = trial(stone, s, &cfg.params, cfg.family, cfg.epsilons[i], cfg.seed, k);
+        progress();
+        t
+    });
+    report(stone, starts, checks, trials, cfg)
+}
+
+/// The grid of trials of a perturbation or shaking run: check that the stone stays at rest on
+/// every start (in parallel), then run `trial(start, point, k)` for every start that stays, every
+/// grid point and every trial number, in parallel, in a fixed order (so the result does not
+/// depend on the thread count).
+pub fn grid_trials<T: Send>(
+    stone: &Stone,
+    starts: &[usize],
+    p: &PerturbParams,
+    points: usize,
+    trials: u32,
+    trial: impl Fn(usize, usize, u32) -> T + Sync,
+) -> (Vec<SettleCheck>, Vec<T>) {
+    let checks: Vec<SettleCheck> = starts.par_iter().map(|&s| check_rest(stone, s, p)).collect();
+    let tasks: Vec<(usize, usize, u32)> = starts
         .iter()
         .zip(&checks)
         .filter(|(_, c)| c.stays)
-        .flat_map(|(&s, _)| cfg.epsilons.iter().flat_map(move |&e| (0..cfg.trials).map(move |k| (s, e, k))))
+        .flat_map(|(&s, _)| (0..points).flat_map(move |i| (0..trials).map(move |k| (s, i, k))))
         .collect();
-    let trials: Vec<Trial> = tasks
-        .par_iter()
-        .map(|&(s, e, k)| {
-            let t = trial(stone, s, &cfg.params, cfg.family, e, cfg.seed, k);
-            progress();
-            t
-        })
-        .collect();
-    report(stone, starts, checks, trials, cfg)
+    let out = tasks.par_iter().map(|&(s, i, k)| trial(s, i, k)).collect();
+    (checks, out)
 }
 
 /// Assemble the report of a run from its rest checks and trials.

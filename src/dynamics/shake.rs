@@ -46,7 +46,7 @@
 //!   impact angular velocities of successive half-cycles (see there for how).
 
 use super::perturb::{
-    check_rest, classify, resting_orientation, resting_simulation, CurvePoint, Outcome, PerturbParams, SettleCheck,
+    classify, grid_trials, resting_orientation, resting_simulation, CurvePoint, Outcome, PerturbParams, SettleCheck,
     StableEquilibrium, Stone, Threshold, GRAVITY,
 };
 use super::run::{self as run_loop, Drive, NoCertificate};
@@ -55,7 +55,6 @@ use crate::rng::item_rng;
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
 use rand::RngExt;
-use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
 
@@ -496,27 +495,17 @@ pub fn run(stone: &Stone, starts: &[usize], cfg: &ShakeConfig) -> ShakeReport {
 
 /// [`run`], calling `progress` after every trial (from any thread).
 pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, progress: &(dyn Fn() + Sync)) -> ShakeReport {
-    let checks: Vec<SettleCheck> = starts.par_iter().map(|&s| check_rest(stone, s, &cfg.params)).collect();
-    let tasks: Vec<(usize, usize, u32)> = starts
-        .iter()
-        .zip(&checks)
-        .filter(|(_, c)| c.stays)
-        .flat_map(|(&s, _)| (0..cfg.pgas.len()).flat_map(move |i| (0..cfg.trials).map(move |k| (s, i, k))))
-        .collect();
-    let trials: Vec<ShakeTrial> = tasks
-        .par_iter()
-        .map(|&(s, i, k)| {
-            let azimuth = cfg.azimuth.unwrap_or_else(|| {
-                let mut rng = item_rng(cfg.seed, shake_stream(s, k));
-                rng.random_range(0.0..2.0 * std::f64::consts::PI)
-            });
-            let motion = cfg.motion.scaled_to(cfg.pgas[i]);
-            let mut t = shake_trial(stone, s, &cfg.params, &motion, azimuth, k);
-            t.pga = cfg.pgas[i];
-            progress();
-            t
-        })
-        .collect();
+    let (checks, trials) = grid_trials(stone, starts, &cfg.params, cfg.pgas.len(), cfg.trials, |s, i, k| {
+        let azimuth = cfg.azimuth.unwrap_or_else(|| {
+            let mut rng = item_rng(cfg.seed, shake_stream(s, k));
+            rng.random_range(0.0..2.0 * std::f64::consts::PI)
+        });
+        let motion = cfg.motion.scaled_to(cfg.pgas[i]);
+        let mut t = shake_trial(stone, s, &cfg.params, &motion, azimuth, k);
+        t.pga = cfg.pgas[i];
+        progress();
+        t
+    });
     let fragility = starts
         .iter()
         .zip(checks)
