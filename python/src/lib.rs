@@ -460,19 +460,10 @@ fn check_preset(preset: Option<&str>) -> PyResult<()> {
 /// The drop parameters of `rocking drop --preset P --surface S [--size L]` before option
 /// overrides (as `cmd::drop::params`; to move into the library so that both call it).
 fn preset_params(preset: Preset, surface: Surface, size: Option<f64>) -> PyResult<DropParams> {
-    let mut p = preset.params(surface);
-    if let Some(size) = size {
-        if !(size > 0.0 && size.is_finite()) {
-            return Err(PyValueError::new_err(format!("size must be a positive length in metres, got {size}")));
-        }
-        let (damping_l, damping_a, restitution) = (p.linear_damping, p.angular_damping, p.restitution);
-        surface.scaled(&mut p, size);
-        // The quasi-static limit keeps its own restitution.
-        if preset == Preset::QuasiStatic {
-            (p.linear_damping, p.angular_damping, p.restitution) = (damping_l, damping_a, restitution);
-        }
+    match size {
+        Some(size) => preset.params_at_size(surface, size).map_err(py_err),
+        None => Ok(preset.params(surface)),
     }
-    Ok(p)
 }
 
 /// A lowercase serde enum (certificate mode, family) from its name.

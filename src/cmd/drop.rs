@@ -131,18 +131,10 @@ pub struct MergeArgs {
 }
 
 fn params(a: &Args) -> Result<DropParams> {
-    let mut p = a.preset.params(a.surface);
-    if let Some(size) = a.size {
-        if !(size > 0.0 && size.is_finite()) {
-            bail!("--size must be a positive length in metres, got {size}");
-        }
-        let (damping_l, damping_a, restitution) = (p.linear_damping, p.angular_damping, p.restitution);
-        a.surface.scaled(&mut p, size);
-        // The quasi-static limit keeps its own restitution.
-        if a.preset == Preset::QuasiStatic {
-            (p.linear_damping, p.angular_damping, p.restitution) = (damping_l, damping_a, restitution);
-        }
-    }
+    let mut p = match a.size {
+        Some(size) => a.preset.params_at_size(a.surface, size)?,
+        None => a.preset.params(a.surface),
+    };
     let set = |field: &mut f64, v: Option<f64>| {
         if let Some(v) = v {
             *field = v;

@@ -181,8 +181,23 @@ impl Preset {
         }
     }
 
-    /// The parameters of this preset on `surface`.
+    /// The parameters of this preset on `surface`, for a stone of the reference size
+    /// [`REFERENCE_R_MAX_M`].
     pub fn params(self, surface: Surface) -> DropParams {
+        self.params_for_size(surface, REFERENCE_R_MAX_M)
+    }
+
+    /// The parameters of this preset on `surface` for a stone of real size R_max = `r_max_m`
+    /// metres (the surface's rolling-resistance length is divided by it); a size that is not a
+    /// positive finite length is a usage error.
+    pub fn params_at_size(self, surface: Surface, r_max_m: f64) -> Result<DropParams> {
+        if !(r_max_m > 0.0 && r_max_m.is_finite()) {
+            return Err(Error::Usage(format!("--size must be a positive length in metres, got {r_max_m}")));
+        }
+        Ok(self.params_for_size(surface, r_max_m))
+    }
+
+    fn params_for_size(self, surface: Surface, r_max_m: f64) -> DropParams {
         let c = surface.contact();
         let base = DropParams {
             height: 1.0,
@@ -191,8 +206,8 @@ impl Preset {
             spin_distribution: SpinDistribution::Gaussian,
             friction: c.friction,
             restitution: c.restitution,
-            rolling_resistance: c.rolling_resistance_m / REFERENCE_R_MAX_M,
-            torsional_friction: c.rolling_resistance_m / REFERENCE_R_MAX_M,
+            rolling_resistance: c.rolling_resistance_m / r_max_m,
+            torsional_friction: c.rolling_resistance_m / r_max_m,
             linear_damping: 0.0,
             angular_damping: 0.0,
             dt: 1.0 / 240.0,
