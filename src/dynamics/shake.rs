@@ -671,3 +671,382 @@ pub fn housner_ratio(b: f64, h: f64) -> f64 {
     let a = b.atan2(h);
     1.0 - 1.5 * a.sin().powi(2)
 }
+
+// ---------------------------------------------------------------------------------------------
+// Field rocks: a rock at its true size, in a physical pose, under a recorded 3-component motion.
+// ---------------------------------------------------------------------------------------------
+
+/// A ground acceleration history in SI, world frame: a(t) = [x, y horizontal, z up] in m/s² at
+/// real time t (s), zero outside [0, duration].
+pub trait GroundAcceleration: Sync {
+    /// Ground acceleration (m/s²) at real time `t` (s).
+    fn accel_at(&self, t: f64) -> [f64; 3];
+    /// When the motion ends (s).
+    fn duration_s(&self) -> f64;
+}
+
+impl<F: Fn(f64) -> [f64; 3] + Sync> GroundAcceleration for (F, f64) {
+    fn accel_at(&self, t: f64) -> [f64; 3] {
+        if t < 0.0 || t > self.1 {
+            [0.0; 3]
+        } else {
+            (self.0)(t)
+        }
+    }
+    fn duration_s(&self) -> f64 {
+        self.1
+    }
+}
+
+/// How the rock stands on the ground before the motion starts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Pose {
+    /// The mesh frame is the world frame (+z up, as field scans are stored): the rock is put
+    /// down on a horizontal ground under its lowest point and settles under gravity. It must come
+    /// to rest on the stable micro-equilibrium of the quasi-static descent from the as-scanned
+    /// down direction −z ([`Stone::rest`]).
+    AsScanned,
+    /// Exactly at rest on this stable micro-equilibrium (analysis index), as for pushes.
+    Facet {
+        /// Analysis index of the stable micro-equilibrium.
+        id: usize,
+    },
+    /// The mesh rotated by this unit quaternion (w, x, y, z; mesh → world), put down and settled
+    /// as for [`Pose::AsScanned`].
+    Quat {
+        /// Components w, x, y, z (normalised on use).
+        q: [f64; 4],
+    },
+}
+
+impl std::str::FromStr for Pose {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Pose> {
+        let bad = || {
+            Error::Usage(format!(
+                "--pose {s:?}: expected as-scanned, facet:ID (a stable micro-equilibrium) or quat:w,x,y,z"
+            ))
+        };
+        if s == "as-scanned" {
+            return Ok(Pose::AsScanned);
+        }
+        if let Some(id) = s.strip_prefix("facet:") {
+            return Ok(Pose::Facet { id: id.trim().parse().map_err(|_| bad())? });
+        }
+        if let Some(q) = s.strip_prefix("quat:") {
+            let v: Vec<f64> = q
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<std::result::Result<_, _>>()
+                .map_err(|_| bad())?;
+            let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if v.len() != 4 || !(n > 0.0 && n.is_finite()) {
+                return Err(Error::Usage(format!(
+                    "--pose {s:?}: a quaternion needs four finite numbers, not all zero"
+                )));
+            }
+            return Ok(Pose::Quat { q: [v[0], v[1], v[2], v[3]] });
+        }
+        Err(bad())
+    }
+}
+
+/// The length unit of a mesh: how many metres one mesh unit is (`mm`, `cm`, `m`, `km` or a
+/// positive number).
+pub fn parse_length_unit(s: &str) -> Result<f64> {
+    let v = match s {
+        "mm" => 1e-3,
+        "cm" => 1e-2,
+        "m" => 1.0,
+        "km" => 1e3,
+        _ => s.parse::<f64>().map_err(|_| {
+            Error::Usage(format!(
+                "--length-unit {s:?}: expected mm, cm, m, km or a positive number of metres per mesh unit"
+            ))
+        })?,
+    };
+    if !(v > 0.0 && v.is_finite()) {
+        return Err(Error::Usage(format!("--length-unit must be positive, got {s}")));
+    }
+    Ok(v)
+}
+
+/// A rock standing on the ground, settled, ready to be shaken.
+pub struct Placed<'a> {
+    /// The simulation, with the rock at rest.
+    pub sim: Simulation<'a>,
+    /// Position in [`Stone::stable`] of the micro-equilibrium it stands on.
+    pub start: usize,
+    /// Tilt (rad) of the body between where it was put down and where it came to rest.
+    pub settling_tilt: f64,
+}
+
+/// Rest criterion for placement: the pose's expected micro-equilibrium, else a usage error that
+/// says where the rock went instead.
+fn refuse_pose(stone: &Stone, pose: &Pose, expected: u32, got: u32, settled: bool) -> Error {
+    let eq = |f: u32| stone.facet_equilibrium[f as usize].map_or("?".to_string(), |e| e.to_string());
+    if !settled {
+        return Error::Usage(format!(
+            "pose {pose:?}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
+        ));
+    }
+    Error::Usage(format!(
+        "pose {pose:?}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
+         ({} by the quasi-static descent) but rolled to {}: the scan does not stand stably as given",
+        eq(expected),
+        eq(got)
+    ))
+}
+
+/// Put the rock down in `pose` and let it settle under gravity (module docs of the field-rock
+/// section: [`shake_record`]).
+///
+/// * `Facet`: exactly at rest on the facet, settled for `p.settle_time` (as for pushes).
+/// * `AsScanned` / `Quat`: the body orientation is the pose, G above the ground by the support
+///   function h(d) of the down direction d (the lowest point touches), zero velocity; simulated
+///   without motion until it rests ([`run_loop::RestDetector`] of `p.sim`, at most
+///   `p.sim.max_time`). It must rest on the micro-equilibrium the quasi-static descent of h from
+///   d reaches ([`Stone::rest`]), else the pose is refused.
+pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Placed<'a>> {
+    let q = match *pose {
+        Pose::Facet { id } => {
+            let start = stone.position(id).ok_or_else(|| {
+                let list: Vec<String> = stone.stable().iter().map(|s| s.index.to_string()).collect();
+                Error::Usage(format!("facet:{id} is not a stable micro-equilibrium; stable ones: {}", list.join(", ")))
+            })?;
+            let sim = resting_simulation(stone, start, p, p.settle_time);
+            let n = stone.body.facet_normals[stone.stable()[start].facet as usize];
+            let settling_tilt = n.dot(&sim.state().down).clamp(-1.0, 1.0).acos();
+            return Ok(Placed { sim, start, settling_tilt });
+        }
+        Pose::AsScanned => UnitQuaternion::identity(),
+        Pose::Quat { q } => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+    };
+    let down0 = q.inverse() * -Vec3::z();
+    let expected = stone.rest(&down0);
+    let z = stone.body.support(&down0);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
+    sim.set_contact_frequency(p.contact_frequency);
+    let min_steps = (p.settle_time / p.sim.dt).round() as u64;
+    for _ in 0..min_steps {
+        sim.step();
+    }
+    let end = rock_loop(&mut sim, &p.sim, &mut run_loop::Passive, &mut |_| {});
+    let rest = stone.rest(&end.state.down);
+    if !end.settled || rest.facet != expected.facet {
+        return Err(refuse_pose(stone, pose, expected.facet, rest.facet, end.settled));
+    }
+    let start = stone.position(rest.equilibrium).expect("a stable micro-equilibrium");
+    Ok(Placed { sim, start, settling_tilt: down0.dot(&end.state.down).clamp(-1.0, 1.0).acos() })
+}
+
+/// The ground driven by a 3-component acceleration in the scaled frame ([`shake_record`]).
+struct GroundMotion3<'m> {
+    motion: &'m dyn GroundAcceleration,
+    /// Real seconds per scaled second, √(R_max / 1 m).
+    time_factor: f64,
+    /// cos and sin of the azimuth.
+    rot: (f64, f64),
+    dt: f64,
+    v: Vec3,
+    steps: u64,
+}
+
+impl GroundMotion3<'_> {
+    /// Ground acceleration of the scaled frame at scaled time t: Froude scaling keeps
+    /// accelerations (g is the same), so it is the real one at real time t·√L, horizontal part
+    /// rotated by the azimuth.
+    fn accel(&self, t: f64) -> Vec3 {
+        let [x, y, z] = self.motion.accel_at(t * self.time_factor);
+        let (c, s) = self.rot;
+        Vec3::new(c * x - s * y, s * x + c * y, z)
+    }
+}
+
+impl Drive for GroundMotion3<'_> {
+    fn before_step(&mut self, sim: &mut Simulation, step: u64) {
+        let a = self.accel((step as f64 + 0.5) * self.dt);
+        let v_new = self.v + a * self.dt;
+        sim.set_ground_velocity(&((self.v + v_new) * 0.5));
+        self.v = v_new;
+    }
+    fn ground_velocity(&self) -> Vec3 {
+        self.v
+    }
+    fn active_steps(&self) -> u64 {
+        self.steps
+    }
+}
+
+/// The outcome of one rock under one ground motion ([`shake_record`]), real units.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RockRun {
+    /// Overturned: came to rest on a stable micro-equilibrium of another flock than the one it
+    /// stood on ([`Outcome::Toppled`]; a run still moving at the time cap is classified by the
+    /// quasi-static descent from its last down direction, and `settled` is false).
+    pub overturned: bool,
+    /// Same micro-equilibrium, another one of the same flock (it rocked to a neighbour), or
+    /// overturned.
+    pub outcome: Outcome,
+    /// Largest tilt (degrees) of the start facet's normal away from straight down.
+    pub max_tilt_deg: f64,
+    /// Residual sliding (m): horizontal displacement of G relative to the ground between the start
+    /// and the end of the run (includes the travel of an overturn).
+    pub slide_m: f64,
+    /// Tilt (degrees) of the body while it settled after being put down.
+    pub settling_tilt_deg: f64,
+    /// Analysis index of the stable micro-equilibrium it stood on, and its flock.
+    pub start_equilibrium: usize,
+    /// Flock it stood on.
+    pub start_flock: usize,
+    /// Analysis index of the stable micro-equilibrium it ended on.
+    pub final_equilibrium: usize,
+    /// Flock it ended in.
+    pub final_flock: usize,
+    /// Came to rest (relative to the ground) before the time cap.
+    pub settled: bool,
+    /// Azimuth of the record's x axis in the world frame (degrees).
+    pub azimuth_deg: f64,
+    /// Real R_max of the rock (m).
+    pub r_max_m: f64,
+    /// Real time simulated from the start of the motion (s).
+    pub time_s: f64,
+    /// Steps simulated (placement excluded).
+    pub steps: u64,
+}
+
+/// Shake a placed rock with `motion` (real time, SI, record x axis turned by `azimuth` rad in the
+/// world frame) until it rests relative to the ground.
+///
+/// # True size (Froude-exact scaled simulation)
+///
+/// The rock is simulated in the scaled frame of [`super::params`] (R_max = 1, g = 9.81 m/s²) and
+/// the motion is converted exactly: with L = `r_max_m`, t_scaled = t/√L, accelerations unchanged,
+/// ground velocity / √L, displacement / L. The rigid-body equations with Coulomb friction,
+/// Newton restitution and a rolling-resistance *length* δ (given as δ/L by
+/// [`super::params::Preset::params_at_size`]) are invariant under this change of units, so the
+/// scaled run *is* the run at true size in which the numerical parameters are converted the same
+/// way: time step dt·√L, contact natural frequency f/√L, rapier's length unit L (prediction
+/// distance, allowed penetration ∝ L). Every dimensional parameter enters through those four
+/// groups; the real frequencies of the record meet the real √(g/L) of the rock. Checked against
+/// Housner's rocking equation integrated at true size (`tests/shake_rock.rs`,
+/// `results/fragility_surface/`).
+pub fn shake_record(
+    stone: &Stone,
+    placed: Placed,
+    p: &PerturbParams,
+    motion: &dyn GroundAcceleration,
+    azimuth: f64,
+    r_max_m: f64,
+) -> RockRun {
+    let Placed { mut sim, start, settling_tilt } = placed;
+    let s = &stone.stable()[start];
+    let dt = p.sim.dt;
+    let time_factor = r_max_m.sqrt();
+    let steps = (motion.duration_s() / time_factor / dt).ceil() as u64;
+    let mut ground =
+        GroundMotion3 { motion, time_factor, rot: (azimuth.cos(), azimuth.sin()), dt, v: Vec3::zeros(), steps };
+    let rel = |sim: &Simulation| {
+        let b = sim.world.bodies[sim.body_handle].translation();
+        let g = sim.world.bodies[sim.ground_handle].translation();
+        Vec3::new((b.x - g.x) as f64, (b.y - g.y) as f64, 0.0)
+    };
+    let x0 = rel(&sim);
+    let n = stone.body.facet_normals[s.facet as usize];
+    let mut max_tilt: f64 = 0.0;
+    let end = rock_loop(&mut sim, &p.sim, &mut ground, &mut |st| {
+        max_tilt = max_tilt.max(n.dot(&st.down).clamp(-1.0, 1.0).acos())
+    });
+    let slide = (rel(&sim) - x0).norm() * r_max_m;
+    let rest = stone.rest(&end.state.down);
+    let outcome = classify(stone, start, Some(rest.facet), rest.flock);
+    RockRun {
+        overturned: outcome == Outcome::Toppled,
+        outcome,
+        max_tilt_deg: max_tilt.to_degrees(),
+        slide_m: slide,
+        settling_tilt_deg: settling_tilt.to_degrees(),
+        start_equilibrium: s.index,
+        start_flock: s.flock,
+        final_equilibrium: rest.equilibrium,
+        final_flock: rest.flock,
+        settled: end.settled,
+        azimuth_deg: azimuth.to_degrees(),
+        r_max_m,
+        time_s: end.steps as f64 * dt * time_factor,
+        steps: end.steps,
+    }
+}
+
+/// Shaking parameters of a rock at true size R_max = `r_max_m` on `surface`: the surface pair's
+/// friction, restitution and rolling-resistance length ([`super::params::Preset::params_at_size`]
+/// with the release-from-rest launch, whose launch fields are unused), the resting runs' contact
+/// frequency, dt 1/240 s and a 20 s cap after the motion (scaled).
+///
+/// The rest of field-rock runs is [`rock_loop`]'s (positions, not speeds), over windows of
+/// `rest_time` = 0.5 s.
+pub fn rock_params(surface: super::params::Surface, r_max_m: f64) -> Result<PerturbParams> {
+    let mut sim = super::params::Preset::Drop.params_at_size(surface, r_max_m)?;
+    sim.max_time = 20.0;
+    sim.rest_time = 0.5;
+    Ok(PerturbParams { sim, ..PerturbParams::default() })
+}
+
+/// Largest change of the down direction (rad) over a rest window for a field rock at rest.
+pub const ROCK_REST_ANGLE: f64 = 1e-3;
+/// Largest horizontal displacement of G relative to the ground (R_max) over a rest window.
+pub const ROCK_REST_DISPLACEMENT: f64 = 1e-3;
+
+/// The run loop of field rocks: [`run_loop::run`] with a rest criterion on *positions*.
+///
+/// A flat scanned base is many near-coplanar micro-facets, and a rock standing on it never comes
+/// to rest by the speed thresholds of drops (2·10⁻³ m/s, 5·10⁻³ rad/s, scaled): the soft
+/// contact switches between micro-facets in a limit cycle of ~10⁻⁵ rad of tilt at up to
+/// 2·10⁻² m/s and rad/s (measured on a block whose base is a 20 × 20 grid pushed down by up to
+/// 10⁻⁴ h, at any contact frequency 30–120 Hz and dt 1/240 s). Here the rock is at rest once,
+/// over a whole window of `rest_time` after the motion has ended, its down direction stayed
+/// within [`ROCK_REST_ANGLE`] and G within [`ROCK_REST_DISPLACEMENT`] (relative to the ground) of
+/// where they were at the window's start. A rock that still rocks by more than 0.06° is never at
+/// rest; where it rests is decided by the quasi-static descent ([`Stone::rest`]). No certificate:
+/// a driven system is not passive.
+pub fn rock_loop(
+    sim: &mut Simulation,
+    p: &super::params::DropParams,
+    drive: &mut dyn Drive,
+    observe: &mut dyn FnMut(&super::world::BodyState),
+) -> run_loop::RunEnd {
+    let active = drive.active_steps();
+    let window = ((p.rest_time / p.dt).ceil() as u64).max(1);
+    let steps_max = active + (p.max_time / p.dt).ceil() as u64;
+    let rel = |sim: &Simulation| {
+        let b = sim.world.bodies[sim.body_handle].translation();
+        let g = sim.world.bodies[sim.ground_handle].translation();
+        Vec3::new((b.x - g.x) as f64, (b.y - g.y) as f64, 0.0)
+    };
+    let mut state = sim.state();
+    let mut reference = (state.down, rel(sim));
+    let mut calm = true;
+    for step in 0..steps_max {
+        drive.before_step(sim, step);
+        sim.step();
+        state = sim.state();
+        observe(&state);
+        let taken = step + 1;
+        if taken <= active {
+            reference = (state.down, rel(sim));
+            continue;
+        }
+        let moved = state.down.dot(&reference.0).clamp(-1.0, 1.0).acos() > ROCK_REST_ANGLE
+            || (rel(sim) - reference.1).norm() > ROCK_REST_DISPLACEMENT;
+        calm &= !moved;
+        if (taken - active) % window == 0 {
+            if calm {
+                return run_loop::RunEnd { steps: taken, settled: true, decided: None, state };
+            }
+            reference = (state.down, rel(sim));
+            calm = true;
+        }
+    }
+    run_loop::RunEnd { steps: steps_max, settled: false, decided: None, state }
+}
