@@ -1,0 +1,230 @@
+//! Fragility of field rocks under ground motion (issue 11), and the checks behind it.
+//!
+//! A. **One-sine pulses on a slender block** (b/h = 0.25, R = 1.03 m, p = √(3g/4R) = 2.67 rad/s):
+//!    the minimum overturning acceleration a_p/(g tan α) against ω_p/p — the spectrum of
+//!    Zhang & Makris (2001, Bull. Seismol. Soc. Am. 91(2), "Rocking response of free-standing
+//!    blocks under cycloidal pulses", the one-sine "type A" pulse; Makris & Roussos 2000) — from the
+//!    rapier simulation at true size and from Housner's rocking equation integrated here.
+//! B. **Speed**: one 60 s three-component record at 800 Hz on a 1 872-vertex scanned quarry stone.
+//! C. **Fragility surfaces** P(overturn | PGA, PGV/PGA) (Purvance, Anooshehpoor & Brune 2008).
+//!
+//! Run: `cargo run --release --example fragility_surface` → `results/fragility_surface/`.
+
+use plotters::prelude::*;
+use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::params::Surface;
+use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::shake::{place, rock_params, shake_record, Pose};
+use rocking_stones::generate;
+use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+const G: f64 = 9.81;
+
+/// Housner's rocking equation for a rigid rectangular block (Housner 1963; the form integrated by
+/// Makris & Roussos 2000 and Zhang & Makris 2001), integrated here independently of rapier:
+///
+/// θ̈ = −p² [sin(α sgn θ − θ) + (ü_g/g) cos(α sgn θ − θ)],   p² = 3g/(4R),
+///
+/// rocking starts when |ü_g| > g tan α (θ takes the sign of −ü_g), at every impact (θ crossing 0)
+/// the angular velocity is multiplied by r = 1 − (3/2) sin² α, and the block returns to rest when
+/// an impact leaves it slower than 10⁻⁶ p while |ü_g| ≤ g tan α. It overturns when |θ| passes
+/// π/2, or passes α after the ground motion has ended (gravity alone then tips it over).
+/// RK4 with 4000 steps per 2π/p.
+fn housner_overturns(alpha: f64, p: f64, accel: &dyn Fn(f64) -> f64, duration: f64, r: f64) -> bool {
+    let g = 9.81;
+    let h = 2.0 * std::f64::consts::PI / p / 4000.0;
+    let rhs = |t: f64, th: f64, side: f64| {
+        let a = if t <= duration { accel(t) } else { 0.0 };
+        -p * p * ((alpha * side - th).sin() + a / g * (alpha * side - th).cos())
+    };
+    let (mut t, mut th, mut w, mut side, mut resting) = (0.0f64, 0.0f64, 0.0f64, 1.0f64, true);
+    let t_end = duration + 40.0 / p;
+    while t < t_end {
+        let a = if t <= duration { accel(t) } else { 0.0 };
+        if resting {
+            if a.abs() > g * alpha.tan() {
+                resting = false;
+                side = -a.signum();
+            } else {
+                t += h;
+                continue;
+            }
+        }
+        // RK4 on (θ, ω) on the current corner.
+        let k1 = (w, rhs(t, th, side));
+        let k2 = (w + 0.5 * h * k1.1, rhs(t + 0.5 * h, th + 0.5 * h * k1.0, side));
+        let k3 = (w + 0.5 * h * k2.1, rhs(t + 0.5 * h, th + 0.5 * h * k2.0, side));
+        let k4 = (w + h * k3.1, rhs(t + h, th + h * k3.0, side));
+        let th_new = th + h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+        let w_new = w + h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        t += h;
+        if th_new * side < 0.0 {
+            // Impact: onto the other corner, angular velocity × r.
+            th = 0.0;
+            w = r * w_new;
+            side = -side;
+            let a = if t <= duration { accel(t) } else { 0.0 };
+            if w.abs() < 1e-6 * p && a.abs() <= g * alpha.tan() {
+                resting = true;
+                w = 0.0;
+            }
+            continue;
+        }
+        th = th_new;
+        w = w_new;
+        if th.abs() > std::f64::consts::FRAC_PI_2 || (t > duration && th.abs() > alpha) {
+            return true;
+        }
+    }
+    false
+}
+
+fn analysed(mesh: rocking_stones::mesh::TriMesh) -> Stone {
+    let (mesh, rep) = mesh.into_solid_boundary().unwrap();
+    let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
+    let (nu, _) = a.macro_nu(&Options::default());
+    Stone::new(&a, nu).unwrap()
+}
+
+/// Part A: the block, the ω_p/p grid and the a_p/(g tan α) grid.
+const RATIOS: [f64; 7] = [1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0];
+const AMP_STEP: f64 = 0.05;
+const AMP_MAX: f64 = 8.0;
+
+struct PulseRow {
+    ratio: f64,
+    amp: f64,
+    ode: bool,
+    rapier_ideal: bool,
+    rapier_concrete: bool,
+}
+
+fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
+    let (b, d, h) = (0.25, 0.3, 1.0);
+    let stone = analysed(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h));
+    let r_max_m = stone.body.r_max; // length unit: metres
+    let big_r = (b * b + h * h).sqrt();
+    let p = (3.0 * G / (4.0 * big_r)).sqrt();
+    let alpha = (b / h).atan();
+    let r = 1.0 - 1.5 * alpha.sin().powi(2);
+    let bottom = stone.stable().iter().find(|e| stone.body.facet_normals[e.facet as usize].z < -0.999).unwrap().index;
+    let ideal = {
+        let mut q = rock_params(Surface::RockOnConcrete, r_max_m)?;
+        q.sim.friction = 1.0;
+        q.sim.restitution = 0.0;
+        q
+    };
+    let concrete = rock_params(Surface::RockOnConcrete, r_max_m)?;
+    let sim = |q: &PerturbParams, ap: f64, wp: f64| {
+        let placed = place(&stone, &Pose::Facet { id: bottom }, q).unwrap();
+        let m = (move |t: f64| [ap * (wp * t).sin(), 0.0, 0.0], 2.0 * std::f64::consts::PI / wp);
+        let run = shake_record(&stone, placed, q, &m, 0.0, r_max_m);
+        run.overturned || run.final_equilibrium != bottom
+    };
+    let amps: Vec<f64> = (0..).map(|k| 1.0 + AMP_STEP * k as f64).take_while(|a| *a <= AMP_MAX + 1e-9).collect();
+    let t0 = Instant::now();
+    let rows: Vec<PulseRow> = {
+        use rayon::prelude::*;
+        let jobs: Vec<(f64, f64)> = RATIOS.iter().flat_map(|&x| amps.iter().map(move |&a| (x, a))).collect();
+        jobs.par_iter()
+            .map(|&(ratio, amp)| {
+                let wp = ratio * p;
+                let ap = amp * G * alpha.tan();
+                let accel = move |t: f64| ap * (wp * t).sin();
+                PulseRow {
+                    ratio,
+                    amp,
+                    ode: housner_overturns(alpha, p, &accel, 2.0 * std::f64::consts::PI / wp, r),
+                    rapier_ideal: sim(&ideal, ap, wp),
+                    rapier_concrete: sim(&concrete, ap, wp),
+                }
+            })
+            .collect()
+    };
+    eprintln!("part A: {} runs in {:.1} s", rows.len(), t0.elapsed().as_secs_f64());
+    let mut csv = String::from(
+        "omega_p_over_p,ap_over_g_tan_alpha,ode_overturns,rapier_ideal_overturns,rapier_rock_on_concrete_overturns\n",
+    );
+    for x in &rows {
+        writeln!(csv, "{},{:.3},{},{},{}", x.ratio, x.amp, x.ode, x.rapier_ideal, x.rapier_concrete)?;
+    }
+    std::fs::write(out.join("one_sine_pulse.csv"), csv)?;
+    let min_of = |ratio: f64, f: &dyn Fn(&PulseRow) -> bool| {
+        rows.iter().filter(|x| x.ratio == ratio && f(x)).map(|x| x.amp).fold(f64::INFINITY, f64::min)
+    };
+    writeln!(
+        readme,
+        "## A. One-sine pulse on a slender block\n\nBlock b/h = {:.2} (α = {:.3} rad), R = {big_r:.3} m, p = {p:.3} rad/s, \
+         Housner r = {r:.3}; a_p/(g tan α) scanned from 1 to {AMP_MAX} in steps of {AMP_STEP}. Minimum overturning \
+         acceleration a_p/(g tan α) (∞: none up to {AMP_MAX}):\n\n| ω_p/p | Housner ODE | rapier, e = 0, μ = 1 | rapier, rock on concrete (μ 0.6, e 0.3) | rapier/ODE |\n|---|---|---|---|---|",
+        b / h,
+        alpha
+    )?;
+    let mut curve = Vec::new();
+    for &x in &RATIOS {
+        let (o, i, c) = (min_of(x, &|r| r.ode), min_of(x, &|r| r.rapier_ideal), min_of(x, &|r| r.rapier_concrete));
+        writeln!(readme, "| {x} | {o:.2} | {i:.2} | {c:.2} | {:.3} |", i / o)?;
+        curve.push((x, o, i, c));
+    }
+    // Plot: the overturning region in (ω_p/p, a_p/(g tan α)) for the ODE and the rapier run.
+    let path = out.join("one_sine_pulse.png");
+    {
+        let root = BitMapBackend::new(&path, (900, 600)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("One-sine pulse, block b/h = 0.25: overturning region", (FONT_FAMILY, 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.5f64..8.5, 0.8f64..AMP_MAX + 0.2)?;
+        chart.configure_mesh().x_desc("ω_p / p").y_desc("a_p / (g tan α)").label_style((FONT_FAMILY, 16)).draw()?;
+        let dx = 0.12;
+        chart
+            .draw_series(rows.iter().filter(|x| x.ode).map(|x| {
+                Rectangle::new(
+                    [(x.ratio - dx, x.amp - AMP_STEP / 2.0), (x.ratio, x.amp + AMP_STEP / 2.0)],
+                    RGBColor(120, 120, 120).filled(),
+                )
+            }))?
+            .label("Housner ODE overturns (left)")
+            .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], RGBColor(120, 120, 120).filled()));
+        chart
+            .draw_series(rows.iter().filter(|x| x.rapier_ideal).map(|x| {
+                Rectangle::new(
+                    [(x.ratio, x.amp - AMP_STEP / 2.0), (x.ratio + dx, x.amp + AMP_STEP / 2.0)],
+                    RED.mix(0.7).filled(),
+                )
+            }))?
+            .label("rapier (e = 0, μ = 1) overturns (right)")
+            .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], RED.mix(0.7).filled()));
+        chart
+            .draw_series(LineSeries::new(
+                curve.iter().filter(|c| c.3.is_finite()).map(|c| (c.0, c.3)),
+                BLUE.stroke_width(2),
+            ))?
+            .label("rapier, rock on concrete: minimum")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT_FAMILY, 15))
+            .draw()?;
+        root.present()?;
+    }
+    Ok(())
+}
+
+fn main() -> anyhow::Result<()> {
+    init_fonts();
+    let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_surface");
+    std::fs::create_dir_all(&out)?;
+    let mut readme = String::from("# Fragility of field rocks under ground motion (issue 11)\n\nRegenerate: `cargo run --release --example fragility_surface`.\n\n");
+    part_a(&out, &mut readme)?;
+    std::fs::write(out.join("README.md"), readme)?;
+    Ok(())
+}
