@@ -10,13 +10,15 @@
 
 pub mod analysis;
 pub mod drops;
+pub mod names;
 pub mod perturb;
 pub mod planar;
 pub mod shake;
 pub mod study;
 
 pub use analysis::{
-    flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, write_batch_csv, write_outputs, CSV_HEADER,
+    flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, summary_in, write_batch_csv, write_outputs,
+    CSV_HEADER,
 };
 pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
 
