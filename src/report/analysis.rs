@@ -249,17 +249,29 @@ fn csv_row(r: &Report) -> Vec<String> {
     ]
 }
 
-/// Write `report.json`, `n_nu.png/.svg`, `hull.png` and `hull_flocks.ply` into `dir`.
+/// Write `report.json`, `n_nu.png/.svg`, `hull.png/.svg`, `hull_flocks.ply` and `report.html`
+/// into `dir`, lengths in mesh units (see [`write_outputs_in`]).
 pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    write_outputs_in(a, r, &Unit::default(), dir)
+}
+
+/// [`write_outputs`] for a mesh whose coordinates are in `unit` (labels of the summary and the
+/// 3D view of `report.html`).
+pub fn write_outputs_in(a: &Analysis, r: &Report, unit: &Unit, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("report.json", |p| write_json(p, r))?;
     for ext in ["png", "svg"] {
         out.file(&format!("n_nu.{ext}"), |p| plot_n_nu(r, p))?;
     }
-    out.file("hull.png", |p| plot_hull(a, r, p))?;
+    for ext in ["png", "svg"] {
+        out.file(&format!("hull.{ext}"), |p| plot_hull(a, r, p))?;
+    }
     let (mesh, colors) = flock_colored_hull(a, r);
     out.file("hull_flocks.ply", |p| crate::mesh::io::write_colored_ply(p, &mesh, &colors))?;
-    Ok(out.written)
+    let mut written = out.written;
+    let title = format!("rocking analyze: {}", super::short_name(&r.file));
+    super::html::add_page(dir, &mut written, &title, &summary_in(r, unit), Some(&super::html::hull_view(a, r, unit)))?;
+    Ok(written)
 }
 
 /// The log ν – n(ν) staircase (paper Figure 10B) with the plateau and the chosen ν marked.
