@@ -76,7 +76,7 @@ fn main() -> anyhow::Result<()> {
             let q = &e.equilibrium;
             panels.push(report::perturb::Panel {
                 title: format!(
-                    "{}: eq {} ({}, {:?} flock), {}",
+                    "{}: eq {} (facet {}, {} flock), {}",
                     match q.class {
                         Class::Regular => "regular",
                         Class::Rocking => "ROCKING",
@@ -85,15 +85,10 @@ fn main() -> anyhow::Result<()> {
                     q.facet,
                     q.flock_kind,
                     r.family.name()
-                )
-                .to_lowercase()
-                .replace("rocking:", "ROCKING:"),
+                ),
                 curve: &e.curve,
-                markers: vec![
-                    (q.basin_exit.epsilon, "static barrier: basin".into(), RGBColor(40, 90, 200)),
-                    (q.flock_exit.epsilon, "static barrier: flock".into(), RGBColor(210, 50, 40)),
-                    (r.epsilon_star, "ε* = macro ν".into(), RGBColor(120, 120, 120)),
-                ],
+                markers: report::perturb::barrier_markers(q.basin_exit.epsilon, q.flock_exit.epsilon, r.epsilon_star),
+                note: None,
             });
         }
     }
@@ -127,7 +122,7 @@ fn main() -> anyhow::Result<()> {
 
 /// A panel is not Clone (it borrows); rebuild one with the same content.
 fn rebuild<'a>(p: &report::perturb::Panel<'a>) -> report::perturb::Panel<'a> {
-    report::perturb::Panel { title: p.title.clone(), curve: p.curve, markers: p.markers.clone() }
+    report::perturb::Panel { title: p.title.clone(), curve: p.curve, markers: p.markers.clone(), note: p.note.clone() }
 }
 
 /// Side views of the stone resting on each equilibrium (the photos of the paper's Figure 11):

@@ -11,7 +11,7 @@
 //!   ─▶ montecarlo / study ─▶ report
 //! ```
 //!
-//! Lower layers never import higher ones: `rng` and `stats` sit below `dynamics`; `dynamics`
+//! Lower layers never import higher ones: `rng`, `stats` and `ground_motion` sit below `dynamics`; `dynamics`
 //! imports neither `montecarlo`, `study` nor `report`; only `report` and `plot` draw.
 //!
 //! * [`mesh`] — reading/writing scans (STL, OBJ, PLY), welding, closedness/orientation checks.
@@ -27,6 +27,8 @@
 //! * [`basins`] — quasi-static resting probabilities and the energy merge tree.
 //! * [`rng`], [`stats`] — per-item random streams, random rotations and directions, the
 //!   Fibonacci sphere; Wilson intervals, χ², KL, moments, log fits, log grids.
+//! * [`ground_motion`] — recorded and synthetic ground accelerations (CSV, PEER `.AT2`),
+//!   resampling, baseline correction, PGA/PGV, and the fragility surface P(overturn | PGA, PGV/PGA).
 //! * [`dynamics`] — rapier3d: the hull collider, the one prepared stone and its rest rule, launch
 //!   presets and surface pairs, the contact law (rolling resistance), the one run loop with the
 //!   energy certificate; drops, pushes, ground shaking.
@@ -55,6 +57,7 @@ pub mod dynamics;
 pub mod equilibria;
 pub mod error;
 pub mod generate;
+pub mod ground_motion;
 pub mod hierarchy;
 pub mod hull;
 pub mod mesh;

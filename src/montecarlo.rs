@@ -12,6 +12,7 @@
 //! * **Statistics.** Wilson score intervals (95 %) per facet and per flock; Pearson's χ² and the
 //!   Kullback–Leibler divergence of the empirical distribution from the static one.
 
+use crate::dynamics::batch::simulate_batch;
 use crate::dynamics::drop::{launch, simulate, DropOutcome};
 use crate::dynamics::params::DropParams;
 pub use crate::dynamics::run::CertificateMode;
@@ -152,8 +153,13 @@ pub fn fingerprint(mesh: &crate::mesh::TriMesh) -> String {
     format!("{h:016x}")
 }
 
-/// Run the drops of `shard` that are not in `done`, in parallel, calling `on_done` (under a
-/// lock) as each finishes. Returns the new outcomes sorted by index.
+/// Stones per rapier world in [`run`] (`rocking drop --batch`), chosen from
+/// `results/drops_certificate/` (the gain levels off beyond it).
+pub const DEFAULT_BATCH: usize = 32;
+
+/// Run the drops of `shard` that are not in `done`, in parallel, [`DEFAULT_BATCH`] stones per
+/// world, calling `on_done` (under a lock) as each finishes. Returns the new outcomes sorted by
+/// index.
 pub fn run(
     stone: &Stone,
     header: &RunHeader,
@@ -162,17 +168,50 @@ pub fn run(
     cert: &dyn Certificate,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
 ) -> Vec<DropOutcome> {
+    run_batched(stone, header, shard, done, cert, DEFAULT_BATCH, on_done)
+}
+
+/// [`run`] with `batch` stones per rapier world ([`crate::dynamics::batch`]); 1: every drop
+/// alone in its own world ([`simulate`]). Every drop's outcome is the same for any batch size
+/// and thread count (`tests/batch.rs`). The pending drops are cut into contiguous chunks of a
+/// few batches, one world per chunk, run in parallel.
+pub fn run_batched(
+    stone: &Stone,
+    header: &RunHeader,
+    shard: Shard,
+    done: &BTreeMap<u64, DropOutcome>,
+    cert: &dyn Certificate,
+    batch: usize,
+    on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
+) -> Vec<DropOutcome> {
     let todo: Vec<u64> = shard.indices(header.drops).filter(|i| !done.contains_key(i)).collect();
-    let mut out: Vec<DropOutcome> = todo
-        .par_iter()
-        .map(|&i| {
-            let mut rng = item_rng(header.seed, i);
-            let release = launch(&mut rng, &header.params);
-            let o = simulate(stone, &header.params, &release, i, cert);
-            (on_done.lock().expect("no panic while holding the lock"))(&o);
-            o
-        })
-        .collect();
+    let release = |i: u64| launch(&mut item_rng(header.seed, i), &header.params);
+    let record = |o: &DropOutcome| (on_done.lock().expect("no panic while holding the lock"))(o);
+    let mut out: Vec<DropOutcome> = if batch <= 1 {
+        todo.par_iter()
+            .map(|&i| {
+                let o = simulate(stone, &header.params, &release(i), i, cert);
+                record(&o);
+                o
+            })
+            .collect()
+    } else {
+        // A world drains at the end of its chunk (fewer stones per step): chunks of several
+        // batches keep that tail short while leaving every thread work.
+        let per_thread = todo.len().div_ceil(4 * rayon::current_num_threads()).max(1);
+        let chunk = per_thread.clamp(batch, 16 * batch);
+        todo.par_chunks(chunk)
+            .flat_map_iter(|part| {
+                let mut outcomes = Vec::with_capacity(part.len());
+                let mut queue = part.iter().map(|&i| (i, release(i)));
+                simulate_batch(stone, &header.params, cert, batch, &mut queue, &mut |o| {
+                    record(&o);
+                    outcomes.push(o);
+                });
+                outcomes
+            })
+            .collect()
+    };
     out.sort_by_key(|o| o.index);
     out
 }

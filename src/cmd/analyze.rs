@@ -31,9 +31,14 @@ pub struct Args {
     /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal), in (0, 1e-3].
     #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = parse_coplanar_tol)]
     pub coplanar_tol: f64,
-    /// Write plots (n(ν), hull picture) and a flock-coloured PLY into this folder.
+    /// Write report.json, plots (n(ν), hull picture), a flock-coloured PLY and report.html (the
+    /// summary, the plots and an interactive 3D view of the hull) into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    /// Length unit of the mesh coordinates (mm, cm, m, in, …): labels volume (unit³), area
+    /// (unit²), G, axes and R in the summary and report.html. Default: "mesh units".
+    #[arg(long, value_name = "UNIT")]
+    pub unit: Option<String>,
     /// CSV file for a batch (several files or a folder); default: standard output.
     #[arg(long)]
     pub csv: Option<PathBuf>,
@@ -132,13 +137,14 @@ fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
     let (analysis, name) = load_analysis(path.map(|p| p.as_path()), opts)?;
     warn(&name, &analysis.repairs);
     let report = analysis.report(&name, opts);
+    let unit = report::names::Unit(args.unit.clone());
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        print!("{}", report::summary(&report));
+        print!("{}", report::summary_in(&report, &unit));
     }
     if let Some(dir) = &args.output {
-        let written = report::write_outputs(&analysis, &report, dir)?;
+        let written = report::write_outputs_in(&analysis, &report, &unit, dir)?;
         if !args.json {
             for w in written {
                 println!("wrote {}", w.display());

@@ -91,7 +91,7 @@ pub struct Args {
     /// Continue the run recorded in --checkpoint, skipping the drops it already holds.
     #[arg(long, requires = "checkpoint")]
     pub resume: bool,
-    /// Write drops.json and the bar plots (per flock, per facet) into this folder.
+    /// Write drops.json, the bar plots (per flock, per facet) and report.html into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }
@@ -209,7 +209,7 @@ pub fn run_drop(args: Args) -> Result<()> {
     let mut all = done;
     all.extend(new.into_iter().map(|o| (o.index, o)));
     let report = summarize(&model, &header, &all);
-    emit(&report, args.json, args.output.as_deref())
+    emit(&report, args.json, args.output.as_deref(), &analysis, nu)
 }
 
 pub fn run_merge(args: MergeArgs) -> Result<()> {
@@ -255,15 +255,28 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
         };
         eprintln!("note: {missing} of {} drops are not in these partial results{shards}", header.drops);
     }
-    emit(&summarize(&model, &header, &outcomes), args.json, args.output.as_deref())
+    emit(&summarize(&model, &header, &outcomes), args.json, args.output.as_deref(), &analysis, nu)
 }
 
-fn emit(report: &DropReport, json: bool, output: Option<&std::path::Path>) -> Result<()> {
+fn emit(
+    report: &DropReport,
+    json: bool,
+    output: Option<&std::path::Path>,
+    analysis: &rocking_stones::analysis::Analysis,
+    nu: f64,
+) -> Result<()> {
+    use rocking_stones::report;
     super::emit(
         report,
         json,
-        || rocking_stones::report::drop_summary(report),
+        || report::drop_summary(report),
         output,
-        |dir| Ok(rocking_stones::report::write_drop_outputs(report, dir)?),
+        |dir| {
+            let mut w = report::write_drop_outputs(report, dir)?;
+            let view = super::hull_view(analysis, &report.mesh, nu);
+            let title = format!("rocking drop: {}", report::short_name(&report.mesh));
+            report::html::add_page(dir, &mut w, &title, &report::drop_summary(report), Some(&view))?;
+            Ok(w)
+        },
     )
 }

@@ -57,3 +57,15 @@ pub fn parse_point(s: &str) -> std::result::Result<rocking_stones::Point3, Strin
         _ => Err(format!("expected x,y,z (three finite numbers), got {s:?}")),
     }
 }
+
+/// The 3D view of `report.html` for a dynamics run on `analysis` with flocks at `nu` (the
+/// stone's macro scale), lengths in mesh units.
+pub fn hull_view(
+    analysis: &rocking_stones::analysis::Analysis,
+    name: &str,
+    nu: f64,
+) -> rocking_stones::report::html::HullView {
+    let opts = rocking_stones::analysis::Options { nu: Some(nu), ..Default::default() };
+    let r = analysis.report(name, &opts);
+    rocking_stones::report::html::hull_view(analysis, &r, &Default::default())
+}

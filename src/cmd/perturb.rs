@@ -165,7 +165,7 @@ pub fn run(args: Args) -> Result<()> {
         epsilon_star: args.epsilon_star,
     };
     cfg.check()?;
-    let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = select(&stone, &args.equilibria, args.flock)?;
     let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
@@ -175,7 +175,13 @@ pub fn run(args: Args) -> Result<()> {
         args.json,
         || report::perturb::summary(&report, &name),
         args.output.as_deref(),
-        |dir| Ok(report::perturb::write_outputs(&report, &name, dir)?),
+        |dir| {
+            let mut w = report::perturb::write_outputs(&report, &name, dir)?;
+            let view = super::hull_view(&analysis, &name, stone.nu);
+            let title = format!("rocking perturb: {}", report::short_name(&name));
+            report::html::add_page(dir, &mut w, &title, &report::perturb::summary(&report, &name), Some(&view))?;
+            Ok(w)
+        },
     )
 }
 

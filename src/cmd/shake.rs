@@ -86,7 +86,7 @@ pub fn run(args: Args) -> Result<()> {
         }
         None => vec![motion.peak()],
     };
-    let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = if args.equilibria.is_empty() {
         let (regular, rocking) = default_pair(&stone, &params);
         let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
@@ -115,6 +115,12 @@ pub fn run(args: Args) -> Result<()> {
         args.json,
         || report::shake::summary(&report, &name),
         args.output.as_deref(),
-        |dir| Ok(report::shake::write_outputs(&report, &name, dir)?),
+        |dir| {
+            let mut w = report::shake::write_outputs(&report, &name, dir)?;
+            let view = super::hull_view(&analysis, &name, stone.nu);
+            let title = format!("rocking shake: {}", report::short_name(&name));
+            report::html::add_page(dir, &mut w, &title, &report::shake::summary(&report, &name), Some(&view))?;
+            Ok(w)
+        },
     )
 }

@@ -8,7 +8,7 @@
 //! function from the final down direction), never by the facet whose normal is closest to down.
 
 use super::params::{DropParams, SpinDistribution};
-use super::run::{run, Certificate, Decided, Passive};
+use super::run::{run, Certificate, Decided, Passive, RunEnd};
 use super::stone::Stone;
 use super::world::Simulation;
 use crate::rng::{random_rotation, random_unit, Stream};
@@ -73,12 +73,23 @@ pub fn launch(rng: &mut Stream, p: &DropParams) -> Release {
     Release { orientation, linvel, angvel }
 }
 
-/// Simulate one drop to rest (or to the certificate, or to the time cap).
-pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, cert: &dyn Certificate) -> DropOutcome {
+/// Height of G at release: the lowest hull point `p.height` above the ground.
+pub fn release_height(stone: &Stone, p: &DropParams, release: &Release) -> f64 {
     let down_body = release.orientation.inverse() * -Vec3::z();
-    let z0 = p.height + stone.body.support(&down_body);
+    p.height + stone.body.support(&down_body)
+}
+
+/// Simulate one drop to rest (or to the certificate, or to the time cap), alone in its world.
+pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, cert: &dyn Certificate) -> DropOutcome {
+    let z0 = release_height(stone, p, release);
     let mut sim = Simulation::new(&stone.body, p, &release.orientation, z0, &release.linvel, &release.angvel);
     let end = run(&mut sim, p, &mut Passive, cert, &mut |_| {});
+    outcome(stone, p, &end, index)
+}
+
+/// The outcome of drop `index` from how its run ended: the certificate's decision, or where the
+/// stone rests by [`Stone::rest`].
+pub fn outcome(stone: &Stone, p: &DropParams, end: &RunEnd, index: u64) -> DropOutcome {
     let time = end.steps as f64 * p.dt;
     let outcome = |facet, flock, height_above| DropOutcome {
         index,

@@ -9,8 +9,10 @@
 //! * [`world`] — the rapier world of one run and the contact law (rolling resistance, torsional
 //!   friction).
 //! * [`run`] — the one run loop and the energy certificate.
+//! * [`batch`] — many independent drops in one rapier world (the same outcomes, drop by drop).
 //! * [`drop`], [`perturb`], [`shake`] — what drives a run: a launch, a push, a ground motion.
 
+pub mod batch;
 pub mod drop;
 pub mod hull_shape;
 pub mod params;

@@ -214,6 +214,52 @@ pub struct RunEnd {
     pub state: BodyState,
 }
 
+/// The end rule of a run, step by step: no decision while the drive acts, then the certificate
+/// every [`CERTIFICATE_EVERY`] steps, the rest criterion, and the time cap counted from the
+/// drive's end. Shared by [`run`] and the many-body world of [`super::batch`], so that a drop
+/// ends on the same step in both.
+pub struct Progress {
+    rest: RestDetector,
+    active: u64,
+    steps_max: u64,
+    taken: u64,
+}
+
+impl Progress {
+    /// The rule of `p` for a drive that acts during `active` steps.
+    pub fn new(p: &DropParams, active: u64) -> Self {
+        Progress { rest: RestDetector::new(p), active, steps_max: active + (p.max_time / p.dt).ceil() as u64, taken: 0 }
+    }
+
+    /// Steps taken so far.
+    pub fn taken(&self) -> u64 {
+        self.taken
+    }
+
+    /// The time cap is reached.
+    pub fn capped(&self) -> bool {
+        self.taken >= self.steps_max
+    }
+
+    /// Account for one more step that ended in `state`, the ground moving at `ground_velocity`:
+    /// the end of the run if it ends here (decided, at rest, or at the cap).
+    pub fn after_step(&mut self, state: &BodyState, ground_velocity: &Vec3, cert: &dyn Certificate) -> Option<RunEnd> {
+        self.taken += 1;
+        let taken = self.taken;
+        if taken > self.active {
+            if taken % CERTIFICATE_EVERY == 0 {
+                if let Some(d) = cert.decided(state) {
+                    return Some(RunEnd { steps: taken, settled: true, decided: Some(d), state: *state });
+                }
+            }
+            if self.rest.at_rest(&(state.linvel - ground_velocity), &state.angvel) {
+                return Some(RunEnd { steps: taken, settled: true, decided: None, state: *state });
+            }
+        }
+        self.capped().then_some(RunEnd { steps: taken, settled: false, decided: None, state: *state })
+    }
+}
+
 /// Run `sim` until rest, a certificate's decision or the time cap, with `drive` and `cert`;
 /// `observe` sees the state after every step.
 pub fn run(
@@ -223,27 +269,16 @@ pub fn run(
     cert: &dyn Certificate,
     observe: &mut dyn FnMut(&BodyState),
 ) -> RunEnd {
-    let mut rest = RestDetector::new(p);
-    let active = drive.active_steps();
-    let steps_max = active + (p.max_time / p.dt).ceil() as u64;
+    let mut progress = Progress::new(p, drive.active_steps());
     let mut state = sim.state();
-    for step in 0..steps_max {
-        drive.before_step(sim, step);
+    while !progress.capped() {
+        drive.before_step(sim, progress.taken());
         sim.step();
         state = sim.state();
         observe(&state);
-        let taken = step + 1;
-        if taken <= active {
-            continue;
-        }
-        if taken % CERTIFICATE_EVERY == 0 {
-            if let Some(d) = cert.decided(&state) {
-                return RunEnd { steps: taken, settled: true, decided: Some(d), state };
-            }
-        }
-        if rest.at_rest(&(state.linvel - drive.ground_velocity()), &state.angvel) {
-            return RunEnd { steps: taken, settled: true, decided: None, state };
+        if let Some(end) = progress.after_step(&state, &drive.ground_velocity(), cert) {
+            return end;
         }
     }
-    RunEnd { steps: steps_max, settled: false, decided: None, state }
+    RunEnd { steps: progress.taken(), settled: false, decided: None, state }
 }

@@ -114,39 +114,8 @@ impl<'a> Simulation<'a> {
         linvel: &Vec3,
         angvel: &Vec3,
     ) -> Self {
-        let mut world = PhysicsWorld::new();
-        world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
-        world.integration_parameters.dt = p.dt as f32;
-        world.integration_parameters.length_unit = 1.0;
-        world.integration_parameters.num_solver_iterations = p.solver_iterations;
-        // Rapier's allowed linear error, in R_max (default 0.005). Note: in rapier 0.36.1 it is
-        // read only by continuous collision detection; the penetration the certificate's margin
-        // must cover is bounded by measurement instead (see `run::CERTIFICATE_MARGIN`).
-        world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
-        let ground_handle = world.bodies.insert(RigidBodyBuilder::kinematic_velocity_based().build());
-        let ground = ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
-            .friction(p.friction as f32)
-            .restitution(p.restitution as f32)
-            .build();
-        let ground_collider = world.colliders.insert_with_parent(ground, ground_handle, &mut world.bodies);
-        let mass = MassProperties::with_inertia_matrix(Vector::ZERO, 1.0, convert::mat(&body.inertia));
-        let rb = RigidBodyBuilder::dynamic()
-            .pose(Pose::from_parts(Vector::new(0.0, 0.0, z as f32), convert::quat(orientation)))
-            .linvel(convert::vec(linvel))
-            .angvel(convert::vec(angvel))
-            .linear_damping(p.linear_damping as f32)
-            .angular_damping(p.angular_damping as f32)
-            .additional_mass_properties(mass)
-            .gyroscopic_forces_enabled(true)
-            .can_sleep(false)
-            .build();
-        let body_handle = world.bodies.insert(rb);
-        let collider = ColliderBuilder::new(body.shape.clone())
-            .density(0.0)
-            .friction(p.friction as f32)
-            .restitution(p.restitution as f32)
-            .build();
-        let body_collider = world.colliders.insert_with_parent(collider, body_handle, &mut world.bodies);
+        let (mut world, ground_handle, ground_collider) = ground_world(p);
+        let (body_handle, body_collider) = insert_stone(&mut world, body, p, orientation, z, linvel, angvel);
         Simulation {
             world,
             body_handle,
@@ -170,41 +139,13 @@ impl<'a> Simulation<'a> {
 
     /// Total normal impulse the ground gave the stone during the last step.
     pub fn normal_impulse(&self) -> f64 {
-        self.world
-            .narrow_phase
-            .contact_pair(self.ground_collider, self.body_collider)
-            .map_or(0.0, |c| c.total_impulse_magnitude() as f64)
+        normal_impulse(&self.world, self.ground_collider, self.body_collider)
     }
 
     fn resist_rotation(&mut self) {
-        let jn = self.normal_impulse();
-        if !(jn > 0.0) {
-            return;
-        }
-        let rb = &self.world.bodies[self.body_handle];
-        let q = convert::quat_back(rb.rotation());
-        let w = convert::vec_back(rb.angvel());
-        let inv: Matrix3<f64> = self.body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
-        let n = Vec3::z();
-        let mut dw = Vec3::zeros();
-        // Rolling: the part of ω in the ground's plane.
-        let wr = w - n * w.dot(&n);
-        let wr_norm = wr.norm();
-        if wr_norm > 0.0 && self.rolling_resistance > 0.0 {
-            let u = wr / wr_norm;
-            let stop = wr_norm / u.dot(&(inv * u));
-            let j = (self.rolling_resistance * jn).min(stop);
-            dw -= inv * (u * j);
-        }
-        // Spinning about the normal, after the rolling impulse.
-        let ws = (w + dw).dot(&n);
-        if ws != 0.0 && self.torsional_friction > 0.0 {
-            let stop = ws.abs() / n.dot(&(inv * n));
-            let j = (self.torsional_friction * jn).min(stop);
-            dw -= inv * (n * (j * ws.signum()));
-        }
-        let rb = &mut self.world.bodies[self.body_handle];
-        rb.set_angvel(convert::vec(&(w + dw)), true);
+        let law =
+            ContactLaw { rolling_resistance: self.rolling_resistance, torsional_friction: self.torsional_friction };
+        law.apply(&mut self.world, self.body, self.body_handle, self.body_collider, self.ground_collider);
     }
 
     /// Set the ground's velocity (world frame) for the next steps.
@@ -234,14 +175,152 @@ impl<'a> Simulation<'a> {
 
     /// The stone's current state.
     pub fn state(&self) -> BodyState {
-        let rb = &self.world.bodies[self.body_handle];
-        let q = convert::quat_back(rb.rotation());
-        let down = q.inverse() * -Vec3::z();
-        let linvel = convert::vec_back(rb.linvel());
-        let angvel = convert::vec_back(rb.angvel());
-        let w_body = q.inverse() * angvel;
-        let kinetic = 0.5 * linvel.norm_squared() + 0.5 * w_body.dot(&(self.body.inertia * w_body));
-        let z = rb.translation().z as f64;
-        BodyState { down, z, linvel, angvel, level: z + kinetic / GRAVITY }
+        body_state(&self.world.bodies[self.body_handle], self.body)
     }
+}
+
+/// Collision groups: the ground (group 1) meets everything; a stone (group 2) meets only the
+/// ground, so that the stones of a [`super::batch`] world never touch each other (one body in a
+/// world behaves the same with or without them).
+pub fn ground_groups() -> InteractionGroups {
+    InteractionGroups::new(Group::GROUP_1, Group::ALL, InteractionTestMode::And)
+}
+
+/// See [`ground_groups`].
+pub fn stone_groups() -> InteractionGroups {
+    InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And)
+}
+
+/// An empty rapier world in the scaled frame with the numerics of `p` (gravity, dt, solver
+/// iterations) and a flat kinematic ground (the half-space z ≤ 0): the world, the ground's body
+/// and its collider.
+pub fn ground_world(p: &DropParams) -> (PhysicsWorld, RigidBodyHandle, ColliderHandle) {
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
+    world.integration_parameters.dt = p.dt as f32;
+    world.integration_parameters.length_unit = 1.0;
+    world.integration_parameters.num_solver_iterations = p.solver_iterations;
+    // Rapier's allowed linear error, in R_max (default 0.005). Note: in rapier 0.36.1 it is
+    // read only by continuous collision detection; the penetration the certificate's margin
+    // must cover is bounded by measurement instead (see `run::CERTIFICATE_MARGIN`).
+    world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
+    let ground_handle = world.bodies.insert(RigidBodyBuilder::kinematic_velocity_based().build());
+    let ground = ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
+        .friction(p.friction as f32)
+        .restitution(p.restitution as f32)
+        .collision_groups(ground_groups())
+        .build();
+    let ground_collider = world.colliders.insert_with_parent(ground, ground_handle, &mut world.bodies);
+    (world, ground_handle, ground_collider)
+}
+
+/// Insert a stone into `world` with orientation `orientation` (body → world), G at height `z`
+/// above the ground and the given velocities (world frame): its body and collider.
+pub fn insert_stone(
+    world: &mut PhysicsWorld,
+    body: &Body,
+    p: &DropParams,
+    orientation: &UnitQuaternion<f64>,
+    z: f64,
+    linvel: &Vec3,
+    angvel: &Vec3,
+) -> (RigidBodyHandle, ColliderHandle) {
+    let mass = MassProperties::with_inertia_matrix(Vector::ZERO, 1.0, convert::mat(&body.inertia));
+    let rb = RigidBodyBuilder::dynamic()
+        .pose(Pose::from_parts(Vector::new(0.0, 0.0, z as f32), convert::quat(orientation)))
+        .linvel(convert::vec(linvel))
+        .angvel(convert::vec(angvel))
+        .linear_damping(p.linear_damping as f32)
+        .angular_damping(p.angular_damping as f32)
+        .additional_mass_properties(mass)
+        .gyroscopic_forces_enabled(true)
+        .can_sleep(false)
+        .build();
+    let body_handle = world.bodies.insert(rb);
+    let collider = ColliderBuilder::new(body.shape.clone())
+        .density(0.0)
+        .friction(p.friction as f32)
+        .restitution(p.restitution as f32)
+        .collision_groups(stone_groups())
+        .build();
+    let body_collider = world.colliders.insert_with_parent(collider, body_handle, &mut world.bodies);
+    (body_handle, body_collider)
+}
+
+/// Total normal impulse between two colliders during the last step.
+pub fn normal_impulse(world: &PhysicsWorld, ground: ColliderHandle, stone: ColliderHandle) -> f64 {
+    world.narrow_phase.contact_pair(ground, stone).map_or(0.0, |c| c.total_impulse_magnitude() as f64)
+}
+
+/// The contact's rolling resistance and torsional friction (module docs), lengths in R_max.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactLaw {
+    /// δ_r / R_max.
+    pub rolling_resistance: f64,
+    /// δ_t / R_max.
+    pub torsional_friction: f64,
+}
+
+impl ContactLaw {
+    /// The law of `p`.
+    pub fn of(p: &DropParams) -> Self {
+        ContactLaw { rolling_resistance: p.rolling_resistance, torsional_friction: p.torsional_friction }
+    }
+
+    /// Whether the law acts at all.
+    pub fn acts(&self) -> bool {
+        self.rolling_resistance > 0.0 || self.torsional_friction > 0.0
+    }
+
+    /// Apply the torque impulses J_r and J_s of the module docs to the stone `handle` (collider
+    /// `stone`) after a rapier step, from the normal impulse the ground (collider `ground`) gave
+    /// it during the step.
+    pub fn apply(
+        &self,
+        world: &mut PhysicsWorld,
+        body: &Body,
+        handle: RigidBodyHandle,
+        stone: ColliderHandle,
+        ground: ColliderHandle,
+    ) {
+        let jn = normal_impulse(world, ground, stone);
+        if !(jn > 0.0) {
+            return;
+        }
+        let rb = &world.bodies[handle];
+        let q = convert::quat_back(rb.rotation());
+        let w = convert::vec_back(rb.angvel());
+        let inv: Matrix3<f64> = body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
+        let n = Vec3::z();
+        let mut dw = Vec3::zeros();
+        // Rolling: the part of ω in the ground's plane.
+        let wr = w - n * w.dot(&n);
+        let wr_norm = wr.norm();
+        if wr_norm > 0.0 && self.rolling_resistance > 0.0 {
+            let u = wr / wr_norm;
+            let stop = wr_norm / u.dot(&(inv * u));
+            let j = (self.rolling_resistance * jn).min(stop);
+            dw -= inv * (u * j);
+        }
+        // Spinning about the normal, after the rolling impulse.
+        let ws = (w + dw).dot(&n);
+        if ws != 0.0 && self.torsional_friction > 0.0 {
+            let stop = ws.abs() / n.dot(&(inv * n));
+            let j = (self.torsional_friction * jn).min(stop);
+            dw -= inv * (n * (j * ws.signum()));
+        }
+        world.bodies[handle].set_angvel(convert::vec(&(w + dw)), true);
+    }
+}
+
+/// The state of a stone's rigid body `rb` (scaled frame).
+pub fn body_state(rb: &RigidBody, body: &Body) -> BodyState {
+    let q = convert::quat_back(rb.rotation());
+    let down = q.inverse() * -Vec3::z();
+    let linvel = convert::vec_back(rb.linvel());
+    let angvel = convert::vec_back(rb.angvel());
+    let w_body = q.inverse() * angvel;
+    let kinetic = 0.5 * linvel.norm_squared() + 0.5 * w_body.dot(&(body.inertia * w_body));
+    let z = rb.translation().z as f64;
+    BodyState { down, z, linvel, angvel, level: z + kinetic / GRAVITY }
 }

@@ -1,21 +1,29 @@
 //! What a person reads: the human summary, the batch CSV, and the pictures and coloured mesh of
 //! one analysis. Everything here reads [`Report`] / [`Analysis`]; nothing is recomputed.
 
+use super::names::{number, plural, Unit};
 use super::{write_json, Folder};
-use crate::analysis::{Analysis, NuSource, Report};
+use crate::analysis::{Analysis, Report};
 use crate::equilibria::Kind;
 use crate::mesh::TriMesh;
-use crate::plot::{render, DrawResult, FONT_FAMILY};
+use crate::plot::{colors, draw_legend, legend_height, log_tick, render, style, DrawResult, Mark, FONT_FAMILY};
 use crate::Point3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// A short, readable summary of a report.
+/// A short, readable summary of a report, lengths in "mesh units" (see [`summary_in`]).
 pub fn summary(r: &Report) -> String {
+    summary_in(r, &Unit::default())
+}
+
+/// A short, readable summary of a report whose mesh coordinates are in `unit`: volume, area,
+/// G, axes and points labelled with it, numbers as plain decimals.
+pub fn summary_in(r: &Report, unit: &Unit) -> String {
     let mut s = String::new();
     let g = r.solid.center_of_mass;
+    let n = |x: f64| number(x, 6);
     let _ = writeln!(s, "{}", r.file);
     let _ = writeln!(
         s,
@@ -26,14 +34,29 @@ pub fn summary(r: &Report) -> String {
     );
     let _ = writeln!(
         s,
-        "  solid    volume {:.6e}, area {:.6e}, G = ({:.6e}, {:.6e}, {:.6e})",
-        r.solid.volume, r.solid.area, g.x, g.y, g.z
+        "  solid    volume {} {}, area {} {}, G = ({}, {}, {}) {}",
+        n(r.solid.volume),
+        unit.volume(),
+        n(r.solid.area),
+        unit.area(),
+        n(g.x),
+        n(g.y),
+        n(g.z),
+        unit.length()
     );
     let sh = &r.shape;
     let _ = writeln!(
         s,
-        "  shape    axes a {:.4e} ≥ b {:.4e} ≥ c {:.4e}; c/b {:.3}, b/a {:.3}, c/a {:.3}; Zingg {:?}; 36πV²/A³ = {:.3}",
-        sh.a, sh.b, sh.c, sh.c_over_b, sh.b_over_a, sh.c_over_a, sh.zingg, sh.isoperimetric_ratio
+        "  shape    axes a {} ≥ b {} ≥ c {} {}; c/b {:.3}, b/a {:.3}, c/a {:.3}; Zingg class {}; 36πV²/A³ = {:.3}",
+        number(sh.a, 5),
+        number(sh.b, 5),
+        number(sh.c, 5),
+        unit.length(),
+        sh.c_over_b,
+        sh.b_over_a,
+        sh.c_over_a,
+        sh.zingg,
+        sh.isoperimetric_ratio
     );
     let _ = writeln!(
         s,
@@ -58,9 +81,9 @@ pub fn summary(r: &Report) -> String {
         Some(p) => {
             let _ = writeln!(
                 s,
-                "  plateau  ν ∈ [{:.3e}, {:.3e}), {:.2} decades, {} (clarity {:.2}): S = {}  U = {}  H = {}",
-                p.nu_lo,
-                p.nu_hi,
+                "  plateau  ν ∈ [{}, {}), {:.2} decades, {} (clarity {:.2}): S = {}  U = {}  H = {}",
+                number(p.nu_lo, 4),
+                number(p.nu_hi, 4),
                 p.decades,
                 if p.clear { "clear" } else { "NOT clear — micro and macro scales are not well separated" },
                 p.clarity,
@@ -74,15 +97,14 @@ pub fn summary(r: &Report) -> String {
         }
     }
     let mc = &r.r#macro;
-    let source = match mc.nu_source {
-        NuSource::User => "set by --nu",
-        NuSource::Plateau => "middle of the plateau",
-        NuSource::PaperDefault => "no clear plateau: the paper's hand experimenter",
-    };
     let _ = writeln!(
         s,
-        "  macro    ν = {:.4e} ({source}): S = {}  U = {}  H = {}",
-        mc.nu, mc.stable, mc.unstable, mc.saddle
+        "  macro    ν = {} ({}): S = {}  U = {}  H = {}",
+        number(mc.nu, 5),
+        mc.nu_source,
+        mc.stable,
+        mc.unstable,
+        mc.saddle
     );
     let count = |k: Kind| r.flocks.iter().filter(|f| f.kind == k).count();
     let _ = writeln!(
@@ -97,14 +119,21 @@ pub fn summary(r: &Report) -> String {
     } else {
         let _ = writeln!(
             s,
-            "  rocking  {} rocking equilibria (stable micro-equilibria inside unstable/saddle flocks):",
-            r.rocking.len()
+            "  rocking  {} (stable micro-equilibria inside unstable/saddle flocks):",
+            plural(r.rocking.len() as u64, "rocking equilibrium", "rocking equilibria")
         );
         for q in r.rocking.iter().take(10) {
             let _ = writeln!(
                 s,
-                "           facet {:>6}  R/R_max = {:.5}  in {:?} flock {}  at ({:.4e}, {:.4e}, {:.4e})",
-                q.facet, q.r_normalised, q.flock_type, q.flock, q.point.x, q.point.y, q.point.z
+                "           facet {:>6}  R/R_max = {:.5}  in {} flock {}  at ({}, {}, {}) {}",
+                q.facet,
+                q.r_normalised,
+                q.flock_type,
+                q.flock,
+                n(q.point.x),
+                n(q.point.y),
+                n(q.point.z),
+                unit.length()
             );
         }
         if r.rocking.len() > 10 {
@@ -202,7 +231,7 @@ fn csv_row(r: &Report) -> Vec<String> {
         format!("{:.6}", sh.c_over_b),
         format!("{:.6}", sh.b_over_a),
         format!("{:.6}", sh.c_over_a),
-        format!("{:?}", sh.zingg).to_lowercase(),
+        sh.zingg.name().to_string(),
         format!("{:.6}", sh.isoperimetric_ratio),
         r.hull.facets.to_string(),
         r.hull.edges.to_string(),
@@ -220,17 +249,29 @@ fn csv_row(r: &Report) -> Vec<String> {
     ]
 }
 
-/// Write `report.json`, `n_nu.png/.svg`, `hull.png` and `hull_flocks.ply` into `dir`.
+/// Write `report.json`, `n_nu.png/.svg`, `hull.png/.svg`, `hull_flocks.ply` and `report.html`
+/// into `dir`, lengths in mesh units (see [`write_outputs_in`]).
 pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    write_outputs_in(a, r, &Unit::default(), dir)
+}
+
+/// [`write_outputs`] for a mesh whose coordinates are in `unit` (labels of the summary and the
+/// 3D view of `report.html`).
+pub fn write_outputs_in(a: &Analysis, r: &Report, unit: &Unit, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("report.json", |p| write_json(p, r))?;
     for ext in ["png", "svg"] {
         out.file(&format!("n_nu.{ext}"), |p| plot_n_nu(r, p))?;
     }
-    out.file("hull.png", |p| plot_hull(a, r, p))?;
+    for ext in ["png", "svg"] {
+        out.file(&format!("hull.{ext}"), |p| plot_hull(a, r, p))?;
+    }
     let (mesh, colors) = flock_colored_hull(a, r);
     out.file("hull_flocks.ply", |p| crate::mesh::io::write_colored_ply(p, &mesh, &colors))?;
-    Ok(out.written)
+    let mut written = out.written;
+    let title = format!("rocking analyze: {}", super::short_name(&r.file));
+    super::html::add_page(dir, &mut written, &title, &summary_in(r, unit), Some(&super::html::hull_view(a, r, unit)))?;
+    Ok(written)
 }
 
 /// The log ν – n(ν) staircase (paper Figure 10B) with the plateau and the chosen ν marked.
@@ -249,30 +290,65 @@ where
     let lo = positive.iter().cloned().fold(f64::INFINITY, f64::min).min(r.r#macro.nu).max(1e-12) / 2.0;
     let hi = positive.iter().cloned().fold(0.0, f64::max).max(r.r#macro.nu) * 2.0;
     let name = Path::new(&r.file).file_name().map_or(r.file.clone(), |f| f.to_string_lossy().into_owned());
-    let mut chart = ChartBuilder::on(root)
-        .caption(format!("n(ν) = N(ν)/N(0), {name}"), (FONT_FAMILY, 22))
+    // the legend has its own strip above the chart: it never covers the staircase
+    let (top, rest) = root.split_vertically(36);
+    top.draw(&Text::new(format!("n(ν) = N(ν)/N(0) of {name}"), (16, 8), (FONT_FAMILY, style::TITLE)))
+        .map_err(|e| format!("{e:?}"))?;
+    let (legend, chart_area) = rest.split_vertically(legend_height(2));
+    let mut entries = Vec::new();
+    if let Some(p) = &r.plateau {
+        entries.push((
+            Mark::Box(if p.clear { colors::GREEN } else { colors::ORANGE }, 0.25),
+            format!(
+                "{} plateau: S = {}, U = {}, H = {} over {:.2} decades",
+                if p.clear { "clear" } else { "unclear" },
+                p.counts.stable,
+                p.counts.unstable,
+                p.counts.saddle,
+                p.decades
+            ),
+        ));
+    }
+    entries.push((Mark::Line(colors::BLUE), "n(ν), the staircase of the ν-hierarchy".to_string()));
+    let nu = r.r#macro.nu;
+    entries.push((
+        Mark::Dashed(colors::VERMILLION),
+        format!(
+            "macro scale ν = {} ({}): S = {}, U = {}, H = {}",
+            number(nu, 3),
+            r.r#macro.nu_source,
+            r.r#macro.stable,
+            r.r#macro.unstable,
+            r.r#macro.saddle
+        ),
+    ));
+    draw_legend(&legend, &entries)?;
+    let mut chart = ChartBuilder::on(&chart_area)
         .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(55)
-        .build_cartesian_2d((lo..hi).log_scale(), 0f64..1.05)
+        .x_label_area_size(50)
+        .y_label_area_size(60)
+        .build_cartesian_2d((lo..hi).log_scale(), 0f64..1.03)
         .map_err(|e| format!("{e:?}"))?;
     chart
         .configure_mesh()
-        .x_desc("ν (log scale)")
-        .y_desc("n(ν)")
-        .label_style((FONT_FAMILY, 14))
+        .x_desc("ν = (R − R_min)/R_max cancellation level (log scale)")
+        .y_desc("n(ν): fraction of micro-equilibria left")
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| format!("{y:.1}"))
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
+        .light_line_style(WHITE.mix(0.0))
+        .bold_line_style(BLACK.mix(0.12))
         .draw()
         .map_err(|e| format!("{e:?}"))?;
     if let Some(p) = &r.plateau {
-        let color = if p.clear { RGBColor(200, 235, 200) } else { RGBColor(240, 220, 200) };
+        let color = if p.clear { colors::GREEN.mix(0.25) } else { colors::ORANGE.mix(0.25) };
         chart
             .draw_series(std::iter::once(Rectangle::new(
-                [(p.nu_lo.max(lo), 0.0), (p.nu_hi.min(hi), 1.05)],
+                [(p.nu_lo.max(lo), 0.0), (p.nu_hi.min(hi), 1.0)],
                 color.filled(),
             )))
-            .map_err(|e| format!("{e:?}"))?
-            .label(format!("plateau S={} U={} H={}", p.counts.stable, p.counts.unstable, p.counts.saddle))
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 15, y + 5)], color.filled()));
+            .map_err(|e| format!("{e:?}"))?;
     }
     let mut pts = Vec::new();
     for s in steps {
@@ -281,50 +357,26 @@ where
         pts.push((a, s.n));
         pts.push((b, s.n));
     }
+    chart.draw_series(LineSeries::new(pts, colors::BLUE.stroke_width(style::LINE))).map_err(|e| format!("{e:?}"))?;
     chart
-        .draw_series(LineSeries::new(pts, BLUE.stroke_width(2)))
-        .map_err(|e| format!("{e:?}"))?
-        .label("n(ν)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], BLUE.stroke_width(2)));
-    let nu = r.r#macro.nu;
-    chart
-        .draw_series(LineSeries::new(vec![(nu, 0.0), (nu, 1.05)], RED.stroke_width(1)))
-        .map_err(|e| format!("{e:?}"))?
-        .label(format!("ν = {nu:.3e}: S={} U={} H={}", r.r#macro.stable, r.r#macro.unstable, r.r#macro.saddle))
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], RED));
-    chart
-        .configure_series_labels()
-        .label_font((FONT_FAMILY, 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
+        .draw_series(DashedLineSeries::new(
+            vec![(nu, 0.0), (nu, 1.0)],
+            6,
+            4,
+            colors::VERMILLION.stroke_width(style::LINE),
+        ))
         .map_err(|e| format!("{e:?}"))?;
     Ok(())
 }
 
-/// A colour per flock: reds for stable flocks, blues for unstable, greens for saddle flocks.
-pub fn flock_color(kind: Kind, ordinal: usize) -> RGBColor {
-    let t = (ordinal as f64 * 0.618_033_988_75).fract();
-    let (h, s, l) = match kind {
-        Kind::Stable => (0.0 + 0.12 * t, 0.75, 0.45 + 0.2 * t),
-        Kind::Unstable => (0.55 + 0.12 * t, 0.7, 0.4 + 0.2 * t),
-        Kind::Saddle => (0.25 + 0.1 * t, 0.6, 0.35 + 0.2 * t),
-    };
-    let c = HSLColor(h, s, l).to_rgba();
-    RGBColor(c.0, c.1, c.2)
+/// The colour of flock `id` everywhere (hull picture, coloured PLY, 3D view): Paul Tol's
+/// colour-blind-safe palette ([`crate::plot::flock_color`]), one distinct colour per flock.
+pub fn flock_color(id: usize) -> RGBColor {
+    crate::plot::flock_color(id)
 }
 
 fn flock_colors(r: &Report) -> Vec<RGBColor> {
-    let mut seen = [0usize; 3];
-    r.flocks
-        .iter()
-        .map(|f| {
-            let k = f.kind as usize;
-            seen[k] += 1;
-            flock_color(f.kind, seen[k] - 1)
-        })
-        .collect()
+    r.flocks.iter().map(|f| flock_color(f.id)).collect()
 }
 
 /// The hull triangulated by facets, each facet coloured by the flock of the stable
@@ -345,12 +397,52 @@ pub fn flock_colored_hull(a: &Analysis, r: &Report) -> (TriMesh, Vec<[u8; 3]>) {
 }
 
 /// Two orthographic views of the hull (along −c and +c, the shortest principal axis), facets
-/// shaded and tinted by their basin's flock, micro-equilibria as dots (● stable, ■ unstable,
-/// ◆ saddle) in their flock's colour, Morse–Smale arcs as thin lines (drawn on the visible
-/// side only, approximately: both ends facing the viewer as seen from G).
+/// shaded and tinted by their basin's flock (labelled "F3" on the picture), micro-equilibria as
+/// marks by kind (● stable, ■ unstable, ◆ saddle) filled with their flock's colour, Morse–Smale
+/// arcs as thin lines (drawn on the visible side only, approximately: both ends facing the viewer
+/// as seen from G), and a legend under the views for every mark and colour.
 pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> crate::Result<()> {
-    let (w, h) = (1400u32, 720u32);
-    render!(path, (w, h), |root| draw_hull(&root, a, r, (w, h)))
+    let (w, views) = (1400u32, 680u32);
+    let rows = r.flocks.len().div_ceil(FLOCKS_PER_ROW) as u32;
+    let h = views + 96 + 26 * rows;
+    render!(path, (w, h), |root| draw_hull(&root, a, r, (w, views)))
+}
+
+const FLOCKS_PER_ROW: usize = 5;
+
+/// A kind's mark at pixel (x, y), `size` ≈ its radius, filled with `fill`, black outline.
+fn kind_mark<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    kind: Kind,
+    (x, y): (i32, i32),
+    size: i32,
+    fill: RGBColor,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
+    let outline = BLACK.stroke_width(1);
+    match kind {
+        Kind::Stable => {
+            area.draw(&Circle::new((x, y), size, fill.filled())).map_err(e)?;
+            area.draw(&Circle::new((x, y), size, outline)).map_err(e)?;
+        }
+        Kind::Unstable => {
+            let s = size - 1;
+            area.draw(&Rectangle::new([(x - s, y - s), (x + s, y + s)], fill.filled())).map_err(e)?;
+            area.draw(&Rectangle::new([(x - s, y - s), (x + s, y + s)], outline)).map_err(e)?;
+        }
+        Kind::Saddle => {
+            let s = size + 1;
+            let pts = vec![(x, y - s), (x + s, y), (x, y + s), (x - s, y)];
+            area.draw(&Polygon::new(pts.clone(), fill.filled())).map_err(e)?;
+            let mut closed = pts;
+            closed.push((x, y - s));
+            area.draw(&PathElement::new(closed, outline)).map_err(e)?;
+        }
+    }
+    Ok(())
 }
 
 fn draw_hull<DB: DrawingBackend>(
@@ -362,75 +454,137 @@ fn draw_hull<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-    let panels = root.split_evenly((1, 2));
+    let err = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
+    root.fill(&WHITE).map_err(err)?;
+    let (views, legend) = root.split_vertically(h);
+    let panels = views.split_evenly((1, 2));
     let axes = a.mass.principal_axes;
     // principal moments ascending: axis 0 = long axis a, axis 2 = short axis c
     let (ex, ez) = (axes.column(0).into_owned(), axes.column(2).into_owned());
     let g = a.mass.center_of_mass;
     let colors = flock_colors(r);
     let basin = a.basins();
+    let facet_flock: Vec<Option<usize>> = basin.iter().map(|b| b.map(|s| r.equilibria[s].flock)).collect();
     for (panel, sign) in panels.iter().zip([1.0, -1.0]) {
         let view = ez * sign; // towards the viewer
         let right = ex;
         let up = view.cross(&right);
-        let extent = a.hull.vertices.iter().map(|p| (p - g).norm()).fold(0.0, f64::max) * 1.1;
-        let scale = (h as f64 - 80.0) / (2.0 * extent);
+        let reach = |axis: &crate::Vec3| a.hull.vertices.iter().map(|p| (p - g).dot(axis).abs()).fold(0.0, f64::max);
+        let scale = ((w as f64 / 2.0 - 40.0) / (2.0 * reach(&right))).min((h as f64 - 70.0) / (2.0 * reach(&up)));
         let (cx, cy) = (w as f64 / 4.0, h as f64 / 2.0 + 15.0);
         let project = |p: &Point3| -> (i32, i32) {
             let d = p - g;
             ((cx + d.dot(&right) * scale) as i32, (cy - d.dot(&up) * scale) as i32)
         };
         let light = (view * 0.8 + up * 0.4 + right * 0.2).normalize();
+        // where to write each flock's label: the area-weighted mean of its visible facets
+        let mut label_at = vec![(0.0f64, 0.0f64, 0.0f64); r.flocks.len()];
         for (f, facet) in a.hull.facets.iter().enumerate() {
-            if facet.normal.dot(&view) <= 0.0 {
+            let facing = facet.normal.dot(&view);
+            if facing <= 0.0 {
                 continue;
             }
-            let base = basin[f].map_or(RGBColor(160, 160, 160), |s| colors[r.equilibria[s].flock]);
-            let shade = 0.35 + 0.65 * facet.normal.dot(&light).max(0.0);
-            let tint = |c: u8| ((c as f64 * 0.55 + 255.0 * 0.45) * shade).min(255.0) as u8;
+            let base = facet_flock[f].map_or(RGBColor(170, 170, 170), |k| colors[k]);
+            let shade = 0.6 + 0.4 * facet.normal.dot(&light).max(0.0);
+            let tint = |c: u8| ((c as f64 * 0.75 + 255.0 * 0.25) * shade).min(255.0) as u8;
             let poly: Vec<(i32, i32)> = facet.vertices.iter().map(|&v| project(&a.hull.vertices[v as usize])).collect();
+            if let Some(k) = facet_flock[f] {
+                let weight = facet.area * facing;
+                let c = poly.iter().fold((0.0, 0.0), |s, p| (s.0 + p.0 as f64, s.1 + p.1 as f64));
+                let n = poly.len() as f64;
+                label_at[k].0 += weight * c.0 / n;
+                label_at[k].1 += weight * c.1 / n;
+                label_at[k].2 += weight;
+            }
             panel
                 .draw(&Polygon::new(poly, RGBColor(tint(base.0), tint(base.1), tint(base.2)).filled()))
-                .map_err(|e| format!("{e:?}"))?;
+                .map_err(err)?;
         }
         let visible = |p: &Point3| (p - g).dot(&view) > 0.0;
         for arc in &a.graph.arcs {
             for seg in arc.path.windows(2) {
                 if visible(&seg[0]) && visible(&seg[1]) {
                     panel
-                        .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.55)))
-                        .map_err(|e| format!("{e:?}"))?;
+                        .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.6)))
+                        .map_err(err)?;
                 }
             }
         }
         for e in &r.equilibria {
-            if !visible(&e.point) {
+            if visible(&e.point) {
+                kind_mark(panel, e.kind, project(&e.point), 6, colors[e.flock])?;
+            }
+        }
+        for (k, (x, y, wsum)) in label_at.iter().enumerate() {
+            if *wsum <= 0.0 {
                 continue;
             }
-            let c = colors[e.flock];
-            let (x, y) = project(&e.point);
-            let el: DynElement<_, _> = match e.kind {
-                Kind::Stable => Circle::new((x, y), 5, c.filled()).into_dyn(),
-                Kind::Unstable => Rectangle::new([(x - 4, y - 4), (x + 4, y + 4)], c.filled()).into_dyn(),
-                Kind::Saddle => {
-                    Polygon::new(vec![(x, y - 5), (x + 5, y), (x, y + 5), (x - 5, y)], c.filled()).into_dyn()
-                }
-            };
-            panel.draw(&el).map_err(|e| format!("{e:?}"))?;
+            let (x, y) = ((x / wsum) as i32, (y / wsum) as i32);
+            let text = format!("F{k}");
+            let half = 7 * text.chars().count() as i32 / 2 + 4;
+            panel
+                .draw(&Rectangle::new([(x - half, y - 10), (x + half, y + 10)], WHITE.mix(0.85).filled()))
+                .map_err(err)?;
+            panel
+                .draw(&Rectangle::new([(x - half, y - 10), (x + half, y + 10)], BLACK.stroke_width(1)))
+                .map_err(err)?;
+            panel
+                .draw(&Text::new(
+                    text,
+                    (x, y),
+                    (FONT_FAMILY, style::LEGEND).into_font().color(&BLACK).pos(plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Center,
+                        plotters::style::text_anchor::VPos::Center,
+                    )),
+                ))
+                .map_err(err)?;
         }
         let title = format!(
-            "{} side (view along {}c): micro S={} U={} H={}, macro S={} U={} H={}",
-            if sign > 0.0 { "front" } else { "back" },
+            "{} (looking along {}c, the shortest axis)",
+            if sign > 0.0 { "Front" } else { "Back" },
             if sign > 0.0 { "−" } else { "+" },
-            r.micro.stable,
-            r.micro.unstable,
-            r.micro.saddle,
-            r.r#macro.stable,
-            r.r#macro.unstable,
-            r.r#macro.saddle
         );
-        panel.draw(&Text::new(title, (10, 10), (FONT_FAMILY, 16))).map_err(|e| format!("{e:?}"))?;
+        panel.draw(&Text::new(title, (12, 10), (FONT_FAMILY, style::PANEL_TITLE))).map_err(err)?;
+    }
+    // the legend: marks by kind, arcs, then one swatch per flock
+    let font = (FONT_FAMILY, style::LEGEND);
+    let y0 = 12;
+    let mut x = 14;
+    let items = [
+        (Some(Kind::Stable), format!("stable micro-equilibrium (on a facet), {} in all", r.micro.stable)),
+        (Some(Kind::Unstable), format!("unstable (a vertex), {}", r.micro.unstable)),
+        (Some(Kind::Saddle), format!("saddle (an edge), {}", r.micro.saddle)),
+        (None, "Morse–Smale arc".to_string()),
+    ];
+    for (kind, text) in items {
+        match kind {
+            Some(k) => kind_mark(&legend, k, (x + 8, y0 + 8), 6, RGBColor(200, 200, 200))?,
+            None => legend.draw(&PathElement::new(vec![(x, y0 + 8), (x + 18, y0 + 8)], BLACK.mix(0.6))).map_err(err)?,
+        }
+        legend.draw(&Text::new(text.clone(), (x + 26, y0), font)).map_err(err)?;
+        x += 26 + 8 * text.chars().count() as i32 + 30;
+    }
+    legend
+        .draw(&Text::new(
+            format!(
+                "Facets are tinted by the flock their steepest descent drains to; marks are filled with their flock's \
+                 colour. Flocks at ν = {} ({} stable, {} unstable, {} saddle):",
+                number(r.r#macro.nu, 3),
+                r.r#macro.stable,
+                r.r#macro.unstable,
+                r.r#macro.saddle
+            ),
+            (14, y0 + 30),
+            font,
+        ))
+        .map_err(err)?;
+    let col = (w as i32 - 28) / FLOCKS_PER_ROW as i32;
+    for (i, f) in r.flocks.iter().enumerate() {
+        let (cx, cy) = (14 + col * (i % FLOCKS_PER_ROW) as i32, y0 + 58 + 26 * (i / FLOCKS_PER_ROW) as i32);
+        legend.draw(&Rectangle::new([(cx, cy), (cx + 18, cy + 16)], colors[f.id].filled())).map_err(err)?;
+        legend.draw(&Rectangle::new([(cx, cy), (cx + 18, cy + 16)], BLACK.stroke_width(1))).map_err(err)?;
+        let text = format!("F{}: {} flock ({} S, {} U, {} H)", f.id, f.kind, f.stable, f.unstable, f.saddle);
+        legend.draw(&Text::new(text, (cx + 26, cy), font)).map_err(err)?;
     }
     Ok(())
 }

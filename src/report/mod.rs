@@ -10,13 +10,16 @@
 
 pub mod analysis;
 pub mod drops;
+pub mod html;
+pub mod names;
 pub mod perturb;
 pub mod planar;
 pub mod shake;
 pub mod study;
 
 pub use analysis::{
-    flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, write_batch_csv, write_outputs, CSV_HEADER,
+    flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, summary_in, write_batch_csv, write_outputs,
+    write_outputs_in, CSV_HEADER,
 };
 pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
 
@@ -46,7 +49,7 @@ impl Folder {
 }
 
 /// The file name of a mesh path for captions (the whole string if it has none).
-pub(crate) fn short_name(name: &str) -> String {
+pub fn short_name(name: &str) -> String {
     Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned())
 }
 

@@ -4,7 +4,7 @@
 use super::{short_name, write_json, Folder};
 use crate::dynamics::perturb::{Class, CurvePoint, Outcome, PerturbReport, Threshold, Trial};
 use crate::equilibria::Kind;
-use crate::plot::{render, DrawResult, FONT_FAMILY};
+use crate::plot::{colors, draw_legend, legend_height, log_tick, plain, render, style, DrawResult, Mark, FONT_FAMILY};
 use std::path::{Path, PathBuf};
 
 fn fmt_threshold(t: &Option<Threshold>) -> String {
@@ -79,6 +79,14 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
             e.dynamic_class.map_or("?", cls),
         );
     }
+    let _ = writeln!(
+        s,
+        "  (flock: its number and type, S stable, U unstable, H saddle; static class: regular in a stable flock, \
+         rocking in an unstable or saddle one;\n   barrier basin / flock: the static energy barrier ε to leave the \
+         micro-equilibrium's basin / its flock (merge tree);\n   ε50: the energy at which half the trials left; \
+         ×barrier: ε50 flock / flock barrier; no rest: the stone did not stay\n   on the facet when set down; \
+         dynamic class: read at ε* = macro ν)"
+    );
     let b = &r.barrier_check;
     let _ = writeln!(
         s,
@@ -295,20 +303,38 @@ pub struct Panel<'a> {
     pub curve: &'a [CurvePoint],
     /// Vertical markers: x position, label and colour.
     pub markers: Vec<(f64, String, RGBColor)>,
+    /// Written in the panel when there is no curve to draw (why not).
+    pub note: Option<String>,
 }
 
 use plotters::prelude::*;
 
-/// Top of the probability axis: room above 1 for the legend.
-const TOP: f64 = 1.55;
+/// Top of the probability axis (the legend has its own strip, never over the curves).
+const TOP: f64 = 1.04;
+
+/// The three outcome curves: name, colour (Okabe–Ito) and which probability.
+const SERIES: [(&str, RGBColor, usize); 3] = [
+    ("P(same micro-equilibrium)", colors::BLUE, 0),
+    ("P(still in the flock)", colors::GREEN, 1),
+    ("P(toppled out of the flock)", colors::VERMILLION, 2),
+];
 
 /// Outcome probabilities against x (log ε, or PGA) with 95 % intervals, one panel per entry,
-/// side by side (up to three per row; four as 2 × 2). PNG or SVG by extension.
+/// side by side (up to three per row; four as 2 × 2), one legend for all panels in a strip
+/// under the title. A panel without a curve says why (its note). PNG or SVG by extension.
 pub fn plot_curves(path: &Path, caption: &str, x_label: &str, log_x: bool, panels: &[Panel]) -> crate::Result<()> {
     let cols = if panels.len() == 4 { 2 } else { panels.len().clamp(1, 3) };
     let rows = panels.len().div_ceil(cols).max(1);
-    let (w, h) = (560 * cols as u32, 420 * rows as u32 + 40);
+    let (w, h) = (520 * cols as u32, 360 * rows as u32 + 40 + legend_height(legend_lines(cols)));
     render!(path, (w, h), |root| draw_curves(&root, caption, x_label, log_x, panels, rows, cols))
+}
+
+fn legend_lines(cols: usize) -> u32 {
+    match cols {
+        1 => 4,
+        2 => 2,
+        _ => 2,
+    }
 }
 
 type Area<DB> = DrawingArea<DB, plotters::coord::Shift>;
@@ -327,8 +353,19 @@ where
 {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
     root.fill(&WHITE).map_err(e)?;
-    let root = root.titled(caption, (FONT_FAMILY, 22)).map_err(e)?;
-    for (panel, area) in panels.iter().zip(root.split_evenly((rows, cols))) {
+    let root = root.titled(caption, (FONT_FAMILY, style::TITLE)).map_err(e)?;
+    let (legend, grid) = root.split_vertically(legend_height(legend_lines(cols)));
+    let mut entries: Vec<(Mark, String)> =
+        SERIES.iter().map(|(name, c, _)| (Mark::LineDot(*c), format!("{name}, 95 % interval"))).collect();
+    for p in panels {
+        for (_, label, c) in &p.markers {
+            if !entries.iter().any(|(_, l)| l == label) {
+                entries.push((Mark::Dashed(*c), label.clone()));
+            }
+        }
+    }
+    draw_legend(&legend, &entries)?;
+    for (panel, area) in panels.iter().zip(grid.split_evenly((rows, cols))) {
         let xs: Vec<f64> = panel
             .curve
             .iter()
@@ -341,11 +378,6 @@ where
         if !lo.is_finite() {
             (lo, hi) = (1e-3, 1.0);
         }
-        let series = [
-            ("P(same micro-equilibrium)", RGBColor(40, 90, 200), 0usize),
-            ("P(still in the flock)", RGBColor(40, 160, 80), 1),
-            ("P(toppled out of the flock)", RGBColor(210, 50, 40), 2),
-        ];
         let pick = |c: &CurvePoint, k: usize| match k {
             0 => (c.p_same, c.ci_same),
             1 => (c.p_in_flock, c.ci_in_flock),
@@ -358,29 +390,30 @@ where
                     .x_desc(x_label)
                     .y_desc("probability")
                     .x_labels(8)
-                    .x_label_formatter(&|x: &f64| if log_x { format!("{x:.0e}") } else { format!("{x:.2}") })
-                    .y_label_formatter(&|y: &f64| if *y > 1.001 { String::new() } else { format!("{y:.1}") })
-                    .label_style((FONT_FAMILY, 13))
+                    .x_label_formatter(&|x: &f64| if log_x { log_tick(*x) } else { plain(*x) })
+                    .y_label_formatter(&|y: &f64| format!("{y:.1}"))
+                    .label_style((FONT_FAMILY, style::TICK))
+                    .axis_desc_style((FONT_FAMILY, style::TICK))
+                    .light_line_style(WHITE.mix(0.0))
+                    .bold_line_style(BLACK.mix(0.1))
                     .draw()
                     .map_err(e)?;
-                for (x, label, color) in &panel.markers {
+                for (x, _, color) in &panel.markers {
                     if !x.is_finite() || (log_x && *x <= 0.0) {
                         continue;
                     }
-                    let c = *color;
                     $chart
-                        .draw_series(DashedLineSeries::new(vec![(*x, 0.0), (*x, 1.02)], 6, 4, c.stroke_width(2)))
-                        .map_err(e)?
-                        .label(label.clone())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)));
+                        .draw_series(DashedLineSeries::new(
+                            vec![(*x, 0.0), (*x, 1.0)],
+                            6,
+                            4,
+                            color.stroke_width(style::LINE),
+                        ))
+                        .map_err(e)?;
                 }
-                for (name, color, k) in series {
+                for (_, color, k) in SERIES {
                     let pts: Vec<(f64, f64)> = panel.curve.iter().map(|c| (c.x, pick(c, k).0)).collect();
-                    $chart
-                        .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                        .map_err(e)?
-                        .label(name)
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+                    $chart.draw_series(LineSeries::new(pts.clone(), color.stroke_width(style::LINE))).map_err(e)?;
                     $chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(e)?;
                     $chart
                         .draw_series(panel.curve.iter().map(|c| {
@@ -389,19 +422,21 @@ where
                         }))
                         .map_err(e)?;
                 }
-                $chart
-                    .configure_series_labels()
-                    .label_font((FONT_FAMILY, 12))
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(BLACK)
-                    .position(SeriesLabelPosition::UpperLeft)
-                    .draw()
-                    .map_err(e)?;
+                if let Some(note) = &panel.note {
+                    for (i, line) in note.lines().enumerate() {
+                        area.draw(&Text::new(
+                            line.to_string(),
+                            (84, 110 + 20 * i as i32),
+                            (FONT_FAMILY, style::LEGEND),
+                        ))
+                        .map_err(e)?;
+                    }
+                }
             }};
         }
         if log_x {
             let mut chart = ChartBuilder::on(&area)
-                .caption(&panel.title, (FONT_FAMILY, 16))
+                .caption(&panel.title, (FONT_FAMILY, style::PANEL_TITLE))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(50)
@@ -411,7 +446,7 @@ where
         } else {
             let pad = 0.05 * (hi - lo).max(1e-9);
             let mut chart = ChartBuilder::on(&area)
-                .caption(&panel.title, (FONT_FAMILY, 16))
+                .caption(&panel.title, (FONT_FAMILY, style::PANEL_TITLE))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(50)
@@ -427,24 +462,30 @@ where
 pub fn panels(r: &PerturbReport) -> Vec<Panel<'_>> {
     r.equilibria
         .iter()
-        .filter(|e| !e.curve.is_empty())
         .map(|e| {
             let q = &e.equilibrium;
             Panel {
-                title: format!(
-                    "eq {} (facet {}), {:?} in {:?} flock {}",
-                    q.index, q.facet, q.class, q.flock_kind, q.flock
-                )
-                .to_lowercase(),
+                title: format!("eq {} (facet {}): {} in {} flock {}", q.index, q.facet, q.class, q.flock_kind, q.flock),
                 curve: &e.curve,
-                markers: vec![
-                    (q.basin_exit.epsilon, "static barrier: basin".into(), RGBColor(40, 90, 200)),
-                    (q.flock_exit.epsilon, "static barrier: flock".into(), RGBColor(210, 50, 40)),
-                    (r.epsilon_star, "ε* (macro ν)".into(), RGBColor(120, 120, 120)),
-                ],
+                markers: barrier_markers(q.basin_exit.epsilon, q.flock_exit.epsilon, r.epsilon_star),
+                note: e.curve.is_empty().then(|| {
+                    "No curve: set down at rest on this facet, the\nstone did not stay there (it rolled off in the\n\
+                     rest check), so it was never perturbed."
+                        .to_string()
+                }),
             }
         })
         .collect()
+}
+
+/// The vertical markers of a robustness panel, in the house colours: the static basin barrier
+/// (orange), the flock barrier (reddish purple) and ε* of the macro ν (grey).
+pub fn barrier_markers(basin: f64, flock: f64, epsilon_star: f64) -> Vec<(f64, String, RGBColor)> {
+    vec![
+        (basin, "static barrier to leave the basin (micro-equilibrium)".into(), colors::ORANGE),
+        (flock, "static barrier to leave the flock".into(), colors::PURPLE),
+        (epsilon_star, "ε* = macro ν (dynamic class read here)".into(), colors::GREY),
+    ]
 }
 
 /// Dynamic thresholds against static barriers (log–log), per equilibrium: ε₅₀ to leave the
@@ -463,7 +504,7 @@ where
     let hi = finite.iter().cloned().fold(0.0, f64::max).max(1e-2) * 2.0;
     root.fill(&WHITE).map_err(|x| format!("{x:?}"))?;
     let mut chart = ChartBuilder::on(root)
-        .caption(caption, (FONT_FAMILY, 20))
+        .caption(caption, (FONT_FAMILY, style::TITLE))
         .margin(14)
         .x_label_area_size(45)
         .y_label_area_size(60)
@@ -473,9 +514,10 @@ where
         .configure_mesh()
         .x_desc("static barrier (m g ΔR / (m g R_max))")
         .y_desc("dynamic threshold ε₅₀")
-        .x_label_formatter(&|x: &f64| format!("{x:.0e}"))
-        .y_label_formatter(&|y: &f64| format!("{y:.0e}"))
-        .label_style((FONT_FAMILY, 13))
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| log_tick(*y))
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
         .draw()
         .map_err(|x| format!("{x:?}"))?;
     chart
@@ -484,10 +526,10 @@ where
         .label("ε₅₀ = barrier")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
     let styles = [
-        (false, Class::Regular, "leave micro-eq., regular", RGBColor(200, 60, 40)),
-        (false, Class::Rocking, "leave micro-eq., rocking", RGBColor(40, 90, 200)),
-        (true, Class::Regular, "leave flock, regular", RGBColor(200, 60, 40)),
-        (true, Class::Rocking, "leave flock, rocking", RGBColor(40, 90, 200)),
+        (false, Class::Regular, "leave micro-eq., regular", colors::VERMILLION),
+        (false, Class::Rocking, "leave micro-eq., rocking", colors::BLUE),
+        (true, Class::Regular, "leave flock, regular", colors::VERMILLION),
+        (true, Class::Rocking, "leave flock, rocking", colors::BLUE),
     ];
     for (flock, class, label, color) in styles {
         let pts: Vec<(f64, f64)> = points
@@ -511,10 +553,11 @@ where
     }
     chart
         .configure_series_labels()
-        .label_font((FONT_FAMILY, 13))
+        .label_font((FONT_FAMILY, style::LEGEND))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
+        // below the diagonal: no threshold lies there (a stone never leaves below its barrier)
+        .position(SeriesLabelPosition::LowerRight)
         .draw()
         .map_err(|x| format!("{x:?}"))?;
     Ok(())
