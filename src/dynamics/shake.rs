@@ -1050,3 +1050,156 @@ pub fn rock_loop(
     }
     run_loop::RunEnd { steps: steps_max, settled: false, decided: None, state }
 }
+
+impl GroundAcceleration for crate::ground_motion::Record {
+    fn accel_at(&self, t: f64) -> [f64; 3] {
+        self.at(t)
+    }
+    fn duration_s(&self) -> f64 {
+        self.duration()
+    }
+}
+
+/// A field rock and how it is shaken: everything of a run but the record.
+#[derive(Clone, Debug, Serialize)]
+pub struct RockSetup {
+    /// The pose it stands in.
+    pub pose: Pose,
+    /// Metres per mesh unit.
+    pub length_unit_m: f64,
+    /// Real R_max of the rock (m): the body's R_max (mesh units) times `length_unit_m`.
+    pub r_max_m: f64,
+    /// Azimuth (rad, world frame) of the records' x axis.
+    pub azimuth: f64,
+    /// Simulation parameters (scaled frame, see [`shake_record`]).
+    pub params: PerturbParams,
+}
+
+impl RockSetup {
+    /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres on `surface`.
+    pub fn new(
+        stone: &Stone,
+        pose: Pose,
+        length_unit_m: f64,
+        surface: super::params::Surface,
+        azimuth: f64,
+    ) -> Result<RockSetup> {
+        let r_max_m = stone.body.r_max * length_unit_m;
+        Ok(RockSetup { pose, length_unit_m, r_max_m, azimuth, params: rock_params(surface, r_max_m)? })
+    }
+
+    /// Real time step of the simulation (s): dt·√(R_max / 1 m).
+    pub fn real_dt(&self) -> f64 {
+        self.params.sim.dt * self.r_max_m.sqrt()
+    }
+}
+
+/// One record × scale factor on a field rock: the record's intensity measures and the outcome.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RecordRun {
+    /// Name of the record.
+    pub record: String,
+    /// Scale factor applied to the record.
+    pub scale: f64,
+    /// Peak horizontal ground acceleration of the scaled record (g).
+    pub pga_g: f64,
+    /// Peak horizontal ground velocity of the scaled record (m/s).
+    pub pgv_m_s: f64,
+    /// PGV/PGA (s).
+    pub pgv_over_pga_s: f64,
+    /// Peak vertical ground acceleration (g).
+    pub pga_vertical_g: f64,
+    /// Outcome of the run.
+    #[serde(flatten)]
+    pub rock: RockRun,
+}
+
+/// Shake the rock of `setup` with `record` × `scale`: the record is scaled, its PGA/PGV measured
+/// ([`crate::ground_motion::Record::measures`], on the record as given: correct its baseline
+/// before), resampled without aliasing to the simulation's real step ([`RockSetup::real_dt`]) when
+/// it is sampled finer, the rock placed ([`place`]) and shaken ([`shake_record`]).
+pub fn run_record(
+    stone: &Stone,
+    setup: &RockSetup,
+    record: &crate::ground_motion::Record,
+    scale: f64,
+) -> Result<RecordRun> {
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
+    }
+    let scaled = record.scaled(scale);
+    let m = scaled.measures();
+    let dt = setup.real_dt();
+    let driven = if scaled.dt < dt { scaled.resampled(dt)? } else { scaled };
+    let placed = place(stone, &setup.pose, &setup.params)?;
+    let rock = shake_record(stone, placed, &setup.params, &driven, setup.azimuth, setup.r_max_m);
+    Ok(RecordRun {
+        record: record.name.clone(),
+        scale,
+        pga_g: m.pga_g,
+        pgv_m_s: m.pgv_m_s,
+        pgv_over_pga_s: m.pgv_over_pga_s,
+        pga_vertical_g: m.pga_vertical_g,
+        rock,
+    })
+}
+
+/// Every record × every scale factor on one rock, with the fragility surface fitted to them.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShakeBatch {
+    /// The rock and how it was shaken.
+    pub setup: RockSetup,
+    /// Settling tilt (degrees) when the rock was put down.
+    pub settling_tilt_deg: f64,
+    /// Analysis index of the stable micro-equilibrium it stands on.
+    pub start_equilibrium: usize,
+    /// One run per (record, scale), records in the given order, scales within a record.
+    pub runs: Vec<RecordRun>,
+    /// P(overturn | PGA, PGV/PGA) fitted to the runs ([`crate::ground_motion::surface`]).
+    pub surface: Option<crate::ground_motion::surface::FragilitySurface>,
+    /// Why the surface could not be fitted (e.g. every run had the same outcome).
+    pub surface_error: Option<String>,
+}
+
+/// Run every record × scale in parallel (rayon; each run is deterministic and independent, so the
+/// result does not depend on the thread count), calling `done` with each finished run (from any
+/// thread, in completion order: for appending to a file as the runs finish). The pose is checked
+/// once before any run.
+pub fn run_batch(
+    stone: &Stone,
+    setup: &RockSetup,
+    records: &[crate::ground_motion::Record],
+    scales: &[f64],
+    done: &(dyn Fn(&RecordRun) + Sync),
+) -> Result<ShakeBatch> {
+    use rayon::prelude::*;
+    if records.is_empty() || scales.is_empty() {
+        return Err(Error::Usage("a batch needs at least one record and one scale factor".into()));
+    }
+    let placed = place(stone, &setup.pose, &setup.params)?;
+    let s = &stone.stable()[placed.start];
+    let (settling_tilt_deg, start_equilibrium) = (placed.settling_tilt.to_degrees(), s.index);
+    drop(placed);
+    let jobs: Vec<(usize, f64)> = (0..records.len()).flat_map(|r| scales.iter().map(move |&k| (r, k))).collect();
+    let runs: Vec<RecordRun> = jobs
+        .par_iter()
+        .map(|&(r, k)| {
+            let run = run_record(stone, setup, &records[r], k)?;
+            done(&run);
+            Ok(run)
+        })
+        .collect::<Result<_>>()?;
+    let points: Vec<crate::ground_motion::surface::Run> = runs
+        .iter()
+        .map(|r| crate::ground_motion::surface::Run {
+            pga_g: r.pga_g,
+            pgv_over_pga_s: r.pgv_over_pga_s,
+            overturned: r.rock.overturned,
+        })
+        .collect();
+    let (surface, surface_error) = match crate::ground_motion::surface::FragilitySurface::fit(&points) {
+        Ok(s) => (Some(s), None),
+        Err(e) => (None, Some(e.to_string())),
+    };
+    Ok(ShakeBatch { setup: setup.clone(), settling_tilt_deg, start_equilibrium, runs, surface, surface_error })
+}
