@@ -1,13 +1,20 @@
 //! `rocking shake`: drive the ground under a resting stone horizontally (sine pulses or a ground
 //! motion from a CSV); fragility curves P(topple out of the flock) against peak ground
-//! acceleration.
+//! acceleration. With `--pose`: a field rock at its true size under recorded 3-component motion
+//! (one record → one result; a folder of records × scale factors → runs.csv and the fragility
+//! surface).
 
 use super::perturb::{select, SimArgs};
 use anyhow::{bail, Result};
+use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::default_pair;
+use rocking_stones::dynamics::shake::RockSetup;
 use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScale};
+use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
+use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
 use std::path::PathBuf;
+use std::sync::Mutex;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -20,9 +27,37 @@ pub struct Args {
     /// Sine pulse: amplitude (g), frequency (Hz, for a stone of --size metres), cycles.
     #[arg(long, value_name = "AMP,FREQ,CYCLES", value_parser = parse_pulse, conflicts_with = "motion")]
     pub pulse: Option<[f64; 3]>,
-    /// Ground motion: CSV of time (s, for a stone of --size metres) and acceleration (g).
-    #[arg(long, value_name = "FILE.csv")]
-    pub motion: Option<PathBuf>,
+    /// Ground motion. Without --pose: a CSV of time (s, for a stone of --size metres) and
+    /// acceleration (g). With --pose: a CSV (columns --columns, unit --accel-unit) or one to three
+    /// PEER .AT2 files (x, y, z components; repeat the option).
+    #[arg(long, value_name = "FILE", num_args = 1..=3)]
+    pub motion: Vec<PathBuf>,
+    /// Field rock: how it stands — as-scanned (mesh frame = world frame, +z up; put down and
+    /// settled), facet:ID (a stable micro-equilibrium) or quat:w,x,y,z.
+    #[arg(long, value_parser = parse_pose)]
+    pub pose: Option<shake::Pose>,
+    /// Field rock: the mesh's length unit (mm, cm, m, km or metres per unit); dynamics at true size.
+    #[arg(long, default_value = "m")]
+    pub length_unit: String,
+    /// Field rock: the contact surface pair (rock-on-concrete, stone-on-stone, rock-on-steel, steel-on-wood).
+    #[arg(long, default_value = "rock-on-concrete")]
+    pub surface: String,
+    /// Field rock: CSV columns time,ax[,ay[,az]] by header name or number from 1.
+    #[arg(long, default_value = "1,2")]
+    pub columns: String,
+    /// Field rock: acceleration unit of CSV records (g, m/s2, gal).
+    #[arg(long, default_value = "g")]
+    pub accel_unit: String,
+    /// Field rock: polynomial baseline correction of the records (order 0–3) before use.
+    #[arg(long, value_name = "ORDER")]
+    pub baseline: Option<usize>,
+    /// Field rock: a folder of records (*.csv read with --columns/--accel-unit; each *.AT2 file
+    /// is one record along x), each run at every --scales factor, in parallel.
+    #[arg(long, value_name = "DIR", conflicts_with = "motion")]
+    pub records: Option<PathBuf>,
+    /// Field rock: scale factors applied to every record.
+    #[arg(long, value_delimiter = ',', default_value = "1")]
+    pub scales: Vec<f64>,
     /// Sweep the peak ground acceleration from PGA_MAX/STEPS to PGA_MAX (g), scaling the motion
     /// to each: fragility curves. Without a motion the default is a sweep of a 2-cycle pulse of
     /// 2 Hz (scaled) up to 1 g; with --pulse or --motion and no --pga-max, the motion is run at
@@ -36,7 +71,8 @@ pub struct Args {
     #[arg(long, default_value_t = 1.0)]
     pub size: f64,
     /// Shake along this azimuth (degrees, in the frame of the resting stone) instead of a
-    /// random azimuth per trial.
+    /// random azimuth per trial. With --pose: the azimuth (degrees, world frame) of the
+    /// records' x axis (default 0).
     #[arg(long)]
     pub azimuth: Option<f64>,
     /// Trials per equilibrium and PGA.
@@ -63,13 +99,26 @@ fn parse_pulse(s: &str) -> Result<[f64; 3], String> {
     }
 }
 
+fn parse_pose(s: &str) -> Result<shake::Pose, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+}
+
 pub fn run(args: Args) -> Result<()> {
+    if let Some(pose) = args.pose {
+        return field(args, pose);
+    }
+    if args.records.is_some() {
+        bail!("--records needs --pose (as-scanned, facet:ID or quat:w,x,y,z)");
+    }
+    if args.motion.len() > 1 {
+        bail!("several --motion files (AT2 components) need --pose");
+    }
     let params = args.sim.params()?;
     if !(args.size > 0.0 && args.size.is_finite()) {
         bail!("--size must be positive");
     }
     let scale = TimeScale { r_max_m: args.size };
-    let (motion, default_sweep) = match (&args.pulse, &args.motion) {
+    let (motion, default_sweep) = match (&args.pulse, &args.motion.first()) {
         (Some([a, f, c]), _) => {
             (Motion::Pulse(Pulse { amplitude: *a, frequency: scale.to_scaled_frequency(*f), cycles: *c }), false)
         }
@@ -123,4 +172,97 @@ pub fn run(args: Args) -> Result<()> {
             Ok(w)
         },
     )
+}
+
+/// Read one record: a CSV, or one to three .AT2 files.
+fn read_motion(paths: &[PathBuf], columns: &Columns, unit: AccelUnit) -> Result<Record> {
+    let at2 = |p: &PathBuf| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2"));
+    if paths.iter().all(at2) {
+        let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
+        return Ok(read::read_at2(&refs)?);
+    }
+    match paths {
+        [one] => Ok(read::read_csv(one, columns, unit)?),
+        _ => bail!("give one CSV record or one to three .AT2 files (x, y, z), not a mix"),
+    }
+}
+
+/// `rocking shake --pose ...`: a field rock at true size under recorded motion.
+fn field(args: Args, pose: shake::Pose) -> Result<()> {
+    let unit = shake::parse_length_unit(&args.length_unit)?;
+    let surface: Surface = args.surface.parse()?;
+    let columns: Columns = args.columns.parse()?;
+    let accel_unit: AccelUnit = args.accel_unit.parse()?;
+    let mut records = match (&args.records, args.motion.is_empty()) {
+        (Some(dir), _) => read_folder(dir, &columns, accel_unit)?,
+        (None, false) => vec![read_motion(&args.motion, &columns, accel_unit)?],
+        (None, true) => bail!("with --pose, give a record (--motion FILE, or up to three .AT2 files) or --records DIR"),
+    };
+    if let Some(order) = args.baseline {
+        records = records.iter().map(|r| r.baseline_corrected(order)).collect::<rocking_stones::Result<_>>()?;
+    }
+    if args.scales.is_empty() || args.scales.iter().any(|k| !(*k >= 0.0 && k.is_finite())) {
+        bail!("--scales must be numbers ≥ 0, e.g. 0.5,1,2");
+    }
+    let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let azimuth = args.azimuth.unwrap_or(0.0).to_radians();
+    let setup = RockSetup::new(&stone, pose, unit, surface, azimuth)?;
+    if records.len() == 1 && args.scales.len() == 1 {
+        let run = shake::run_record(&stone, &setup, &records[0], args.scales[0])?;
+        return super::emit(
+            &run,
+            args.json,
+            || report::shake::rock_run_summary(&run, &name),
+            args.output.as_deref(),
+            |dir| {
+                std::fs::create_dir_all(dir)?;
+                let p = dir.join("runs.csv");
+                report::shake::write_runs_csv(&p, std::slice::from_ref(&run))?;
+                Ok(vec![p])
+            },
+        );
+    }
+    // Many runs: append each finished row to DIR/runs.csv as it comes (never lose finished work);
+    // the file is rewritten in the batch's order at the end.
+    let sink = match &args.output {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)?;
+            let mut w = csv::Writer::from_path(dir.join("runs.csv"))?;
+            w.write_record(report::shake::RUN_CSV_HEADER)?;
+            w.flush()?;
+            Some(Mutex::new(w))
+        }
+        None => None,
+    };
+    let bar = super::progress_bar((records.len() * args.scales.len()) as u64, "runs");
+    let batch = shake::run_batch(&stone, &setup, &records, &args.scales, &|r| {
+        if let Some(w) = &sink {
+            let mut w = w.lock().unwrap_or_else(|e| e.into_inner());
+            let _ = w.write_record(report::shake::run_csv_row(r)).and_then(|_| Ok(w.flush()?));
+        }
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    drop(sink);
+    super::emit(
+        &batch,
+        args.json,
+        || report::shake::batch_summary(&batch, &name),
+        args.output.as_deref(),
+        |dir| Ok(report::shake::write_batch_outputs(&batch, &name, dir)?),
+    )
+}
+
+/// Every record of a folder, by file name: `*.csv` and `*.AT2` (one record along x per file).
+fn read_folder(dir: &std::path::Path, columns: &Columns, unit: AccelUnit) -> Result<Vec<Record>> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv") || e.eq_ignore_ascii_case("at2")))
+        .collect();
+    paths.sort();
+    if paths.is_empty() {
+        bail!("{}: no *.csv or *.AT2 record in this folder", dir.display());
+    }
+    paths.iter().map(|p| read_motion(std::slice::from_ref(p), columns, unit)).collect()
 }

@@ -784,8 +784,9 @@ pub struct Placed<'a> {
 
 /// Rest criterion for placement: the pose's expected micro-equilibrium, else a usage error that
 /// says where the rock went instead.
-fn refuse_pose(stone: &Stone, pose: &Pose, expected: u32, got: u32, settled: bool) -> Error {
+fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32, settled: bool) -> Error {
     let eq = |f: u32| stone.facet_equilibrium[f as usize].map_or("?".to_string(), |e| e.to_string());
+    let off = stone.body.facet_normals[expected as usize].dot(down).clamp(-1.0, 1.0).acos().to_degrees();
     if !settled {
         return Error::Usage(format!(
             "pose {pose:?}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
@@ -793,7 +794,9 @@ fn refuse_pose(stone: &Stone, pose: &Pose, expected: u32, got: u32, settled: boo
     }
     Error::Usage(format!(
         "pose {pose:?}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
-         ({} by the quasi-static descent) but rolled to {}: the scan does not stand stably as given",
+         ({} by the quasi-static descent, whose facet is {off:.2}° from the given down direction) but rolled \
+         to {}: the rock does not stand still in this pose (a scan made standing should be within a fraction of a \
+         degree of its resting facet); choose --pose facet:ID or a quat: that stands",
         eq(expected),
         eq(got)
     ))
@@ -835,7 +838,7 @@ pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Pla
     let end = rock_loop(&mut sim, &p.sim, &mut run_loop::Passive, &mut |_| {});
     let rest = stone.rest(&end.state.down);
     if !end.settled || rest.facet != expected.facet {
-        return Err(refuse_pose(stone, pose, expected.facet, rest.facet, end.settled));
+        return Err(refuse_pose(stone, pose, &down0, expected.facet, rest.facet, end.settled));
     }
     let start = stone.position(rest.equilibrium).expect("a stable micro-equilibrium");
     Ok(Placed { sim, start, settling_tilt: down0.dot(&end.state.down).clamp(-1.0, 1.0).acos() })

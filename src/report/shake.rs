@@ -298,3 +298,232 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
     }
     Ok(out.written)
 }
+
+// --- Field rocks under records (issue 11) ---------------------------------------------------
+
+use crate::dynamics::shake::{RecordRun, ShakeBatch};
+use crate::ground_motion::surface::FragilitySurface;
+
+/// Columns of `runs.csv`: one row per (record, scale) run of a field rock.
+pub const RUN_CSV_HEADER: [&str; 15] = [
+    "record",
+    "scale",
+    "pga_g",
+    "pgv_m_s",
+    "pgv_over_pga_s",
+    "pga_vertical_g",
+    "overturned",
+    "outcome",
+    "max_tilt_deg",
+    "slide_m",
+    "start_equilibrium",
+    "final_equilibrium",
+    "final_flock",
+    "settled",
+    "time_s",
+];
+
+/// The `runs.csv` row of a run (columns [`RUN_CSV_HEADER`]).
+pub fn run_csv_row(r: &RecordRun) -> Vec<String> {
+    vec![
+        r.record.clone(),
+        format!("{}", r.scale),
+        format!("{:.6}", r.pga_g),
+        format!("{:.6}", r.pgv_m_s),
+        format!("{:.6}", r.pgv_over_pga_s),
+        format!("{:.6}", r.pga_vertical_g),
+        r.rock.overturned.to_string(),
+        format!("{:?}", r.rock.outcome).to_lowercase(),
+        format!("{:.4}", r.rock.max_tilt_deg),
+        format!("{:.6}", r.rock.slide_m),
+        r.rock.start_equilibrium.to_string(),
+        r.rock.final_equilibrium.to_string(),
+        r.rock.final_flock.to_string(),
+        r.rock.settled.to_string(),
+        format!("{:.3}", r.rock.time_s),
+    ]
+}
+
+/// Write `runs.csv` (header and one row per run, in the batch's order).
+pub fn write_runs_csv(path: &Path, runs: &[RecordRun]) -> crate::Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record(RUN_CSV_HEADER)?;
+        for r in runs {
+            w.write_record(run_csv_row(r))?;
+        }
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::write(path, e))
+}
+
+/// A readable summary of one field-rock run.
+pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
+    format!(
+        "{} (R_max = {:.3} m) under {} × {}: PGA {:.3} g, PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
+         settled onto equilibrium {} with a tilt of {:.3}°; {} (outcome {:?}, final equilibrium {}, flock {}), \
+         max tilt {:.2}°, slide {:.4} m{}\n",
+        short_name(mesh),
+        r.rock.r_max_m,
+        r.record,
+        r.scale,
+        r.pga_g,
+        r.pgv_m_s,
+        r.pgv_over_pga_s,
+        r.rock.start_equilibrium,
+        r.rock.settling_tilt_deg,
+        if r.rock.overturned { "OVERTURNED" } else { "standing" },
+        r.rock.outcome,
+        r.rock.final_equilibrium,
+        r.rock.final_flock,
+        r.rock.max_tilt_deg,
+        r.rock.slide_m,
+        if r.rock.settled { "" } else { " (still moving at the time cap)" }
+    )
+}
+
+/// A readable summary of a batch of runs and its fragility surface.
+pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
+    let n = b.runs.len();
+    let k = b.runs.iter().filter(|r| r.rock.overturned).count();
+    let mut s = format!(
+        "{} (R_max = {:.3} m), standing on equilibrium {} (settling tilt {:.3}°): {n} runs, {k} overturned\n",
+        short_name(mesh),
+        b.setup.r_max_m,
+        b.start_equilibrium,
+        b.settling_tilt_deg
+    );
+    match (&b.surface, &b.surface_error) {
+        (Some(f), _) => {
+            s += &format!(
+                "fragility surface P = 1/(1+exp(−(β0 + β1 ln PGA + β2 ln PGV/PGA))): β = {:.3} ± {:.3}, {:.3} ± {:.3}, {:.3} ± {:.3}\n",
+                f.beta[0], f.std_err[0], f.beta[1], f.std_err[1], f.beta[2], f.std_err[2]
+            );
+            for ratio in [0.05, 0.1, 0.2, 0.5] {
+                if let Some(a) = f.pga_at(0.5, ratio) {
+                    s += &format!("  P = 0.5 at PGV/PGA = {ratio} s: PGA {a:.3} g\n");
+                }
+            }
+        }
+        (None, Some(e)) => s += &format!("no fragility surface: {e}\n"),
+        (None, None) => {}
+    }
+    s
+}
+
+/// Plot the runs in the (PGA, PGV/PGA) plane on log axes — overturned filled, standing hollow —
+/// with the surface's P = 0.1, 0.5, 0.9 contours (the form of Purvance et al. 2008, Fig. 7).
+pub fn plot_fragility_surface(
+    path: &Path,
+    caption: &str,
+    runs: &[RecordRun],
+    surface: Option<&FragilitySurface>,
+) -> crate::Result<()> {
+    render!(path, (900, 650), |root| draw_surface(&root, caption, runs, surface))
+}
+
+fn draw_surface<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    runs: &[RecordRun],
+    surface: Option<&FragilitySurface>,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let font = crate::plot::FONT_FAMILY;
+    let err = |x: DrawingAreaErrorKind<_>| format!("{x:?}");
+    let pts: Vec<&RecordRun> = runs.iter().filter(|r| r.pga_g > 0.0 && r.pgv_over_pga_s > 0.0).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for r in &pts {
+        x0 = x0.min(r.pga_g);
+        x1 = x1.max(r.pga_g);
+        y0 = y0.min(r.pgv_over_pga_s);
+        y1 = y1.max(r.pgv_over_pga_s);
+    }
+    if pts.is_empty() {
+        (x0, x1, y0, y1) = (0.01, 10.0, 0.01, 1.0);
+    }
+    let (x0, x1, y0, y1) = (x0 / 1.5, x1 * 1.5, y0 / 1.5, y1 * 1.5);
+    root.fill(&WHITE).map_err(err)?;
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, (font, 19))
+        .margin(14)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("PGA (g)")
+        .y_desc("PGV / PGA (s)")
+        .x_label_formatter(&|x| crate::plot::log_tick(*x))
+        .y_label_formatter(&|y| crate::plot::log_tick(*y))
+        .label_style((font, 13))
+        .draw()
+        .map_err(err)?;
+    let (red, blue) = (crate::plot::colors::VERMILLION, crate::plot::colors::BLUE);
+    chart
+        .draw_series(
+            pts.iter().filter(|r| r.rock.overturned).map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, red.filled())),
+        )
+        .map_err(err)?
+        .label("overturned")
+        .legend(move |(x, y)| Circle::new((x + 8, y), 4, red.filled()));
+    chart
+        .draw_series(
+            pts.iter()
+                .filter(|r| !r.rock.overturned)
+                .map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, blue.stroke_width(2))),
+        )
+        .map_err(err)?
+        .label("standing")
+        .legend(move |(x, y)| Circle::new((x + 8, y), 4, blue.stroke_width(2)));
+    if let Some(f) = surface {
+        for (p, dash) in [(0.1, 3), (0.5, 0), (0.9, 8)] {
+            let line: Vec<(f64, f64)> = (0..=100)
+                .map(|i| y0 * (y1 / y0).powf(i as f64 / 100.0))
+                .filter_map(|y| f.pga_at(p, y).map(|x| (x, y)))
+                .filter(|(x, _)| *x >= x0 && *x <= x1)
+                .collect();
+            if line.len() < 2 {
+                continue;
+            }
+            let style = BLACK.stroke_width(if p == 0.5 { 2 } else { 1 });
+            let label = format!("P = {p}");
+            if dash == 0 {
+                chart
+                    .draw_series(LineSeries::new(line, style))
+                    .map_err(err)?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], style));
+            } else {
+                chart
+                    .draw_series(DashedLineSeries::new(line, dash, 4, style))
+                    .map_err(err)?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], style));
+            }
+        }
+    }
+    chart
+        .configure_series_labels()
+        .label_font((font, 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(err)?;
+    Ok(())
+}
+
+/// Write a batch: `shake_batch.json`, `runs.csv` and `fragility_surface.png`.
+pub fn write_batch_outputs(b: &ShakeBatch, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    let mut out = Folder::create(dir)?;
+    out.file("shake_batch.json", |p| write_json(p, b))?;
+    out.file("runs.csv", |p| write_runs_csv(p, &b.runs))?;
+    let caption = format!("{}: P(overturn | PGA, PGV/PGA)", short_name(name));
+    out.file("fragility_surface.png", |p| plot_fragility_surface(p, &caption, &b.runs, b.surface.as_ref()))?;
+    Ok(out.written)
+}
