@@ -13,9 +13,12 @@
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::params::Surface;
+use rocking_stones::dynamics::perturb::default_pair;
 use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
-use rocking_stones::dynamics::shake::{place, rock_params, shake_record, Pose};
+use rocking_stones::dynamics::shake::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
 use rocking_stones::generate;
+use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
+use rocking_stones::ground_motion::Record;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -219,12 +222,192 @@ fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Part B: the synthetic record family: filtered noise (Kanai–Tajimi–Clough–Penzien, envelope,
+/// two horizontal components), four predominant periods × three seeds, 20 s at 200 Hz, scaled to
+/// PGA 1 g (the scale factors then give the PGA in g).
+const PERIODS: [f64; 4] = [0.2, 0.5, 1.0, 2.0];
+const SEEDS: [u64; 3] = [1, 2, 3];
+const SCALES: [f64; 12] = [0.02, 0.03, 0.05, 0.08, 0.12, 0.2, 0.3, 0.5, 0.8, 1.2, 2.0, 3.0];
+
+fn records() -> anyhow::Result<Vec<Record>> {
+    let mut v = Vec::new();
+    for &period in &PERIODS {
+        for &seed in &SEEDS {
+            let noise = Noise { duration: 20.0, period, components: 2, ..Noise::default() };
+            let mut r = filtered_noise(&noise, 1.0, seed)?;
+            r.name = format!("noise_T{period}_s{seed}");
+            v.push(r);
+        }
+    }
+    Ok(v)
+}
+
+struct Case<'a> {
+    name: &'static str,
+    stone: &'a Stone,
+    pose: Pose,
+    length_unit_m: f64,
+}
+
+fn part_b(out: &Path, readme: &mut String) -> anyhow::Result<()> {
+    let recs = records()?;
+    let bundled = Analysis::of_file(
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/default_pebble.ply")),
+        &Options::default(),
+    )?;
+    let (nu, _) = bundled.macro_nu(&Options::default());
+    let pebble = Stone::new(&bundled, nu)?;
+    let quarry_path =
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
+    let quarry_a = Analysis::of_file(quarry_path, &Options::default())?;
+    let (nu_q, _) = quarry_a.macro_nu(&Options::default());
+    let quarry = Stone::new(&quarry_a, nu_q)?;
+    // The bundled stone as a 0.5 m boulder (R_max = 0.5 m); the quarry stone at its scanned size.
+    let unit = 0.5 / pebble.body.r_max;
+    let probe = rock_params(Surface::RockOnConcrete, 0.5)?;
+    let (regular, rocking) = default_pair(&pebble, &probe);
+    let id = |s: &Stone, k: Option<usize>| k.map(|k| s.stable()[k].index);
+    let quarry_probe = rock_params(Surface::RockOnConcrete, quarry.body.r_max)?;
+    let (q_regular, q_rocking) = default_pair(&quarry, &quarry_probe);
+    let mut cases = Vec::new();
+    if let Some(i) = id(&pebble, regular) {
+        cases.push(Case { name: "bundled_regular", stone: &pebble, pose: Pose::Facet { id: i }, length_unit_m: unit });
+    }
+    if let Some(i) = id(&pebble, rocking) {
+        cases.push(Case { name: "bundled_rocking", stone: &pebble, pose: Pose::Facet { id: i }, length_unit_m: unit });
+    }
+    if let Some(i) = id(&quarry, q_rocking.or(q_regular)) {
+        cases.push(Case { name: "quarry_AAA", stone: &quarry, pose: Pose::Facet { id: i }, length_unit_m: 1.0 });
+    }
+    writeln!(
+        readme,
+        "\n## B. Fragility surfaces under filtered noise\n\nRecords: filtered noise (Kanai–Tajimi–Clough–Penzien, \
+         envelope, two horizontal components), predominant periods {PERIODS:?} s × seeds {SEEDS:?}, 20 s at 200 Hz, \
+         scaled to PGA 1 g, then by {SCALES:?} ({} runs per rock). Rock on concrete (μ 0.6, e 0.3, δ 0.1 mm), \
+         azimuth 0. Surface P = 1/(1+exp(−(β0 + β1 ln PGA + β2 ln PGV/PGA))) (Firth-penalised logistic fit).\n\n\
+         | rock | R_max (m) | pose | class | runs | overturned | β0 ± se | β1 ± se | β2 ± se | PGA₅₀ at PGV/PGA 0.05 s | at 0.2 s | time (s) |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|",
+        recs.len() * SCALES.len()
+    )?;
+    for c in &cases {
+        let t0 = Instant::now();
+        let setup = RockSetup::new(c.stone, c.pose, c.length_unit_m, Surface::RockOnConcrete, 0.0)?;
+        let batch = run_batch(c.stone, &setup, &recs, &SCALES, &|_| {})?;
+        let secs = t0.elapsed().as_secs_f64();
+        let dir = out.join(c.name);
+        rocking_stones::report::shake::write_batch_outputs(&batch, c.name, &dir)?;
+        let class = {
+            let k = c.stone.position(batch.start_equilibrium).unwrap();
+            format!("{:?}", c.stone.stable()[k].class).to_lowercase()
+        };
+        let k = batch.runs.iter().filter(|r| r.rock.overturned).count();
+        let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.3}"));
+        let (b, p05, p2) = match &batch.surface {
+            Some(s) => (
+                format!(
+                    "{:.2} ± {:.2} | {:.2} ± {:.2} | {:.2} ± {:.2}",
+                    s.beta[0], s.std_err[0], s.beta[1], s.std_err[1], s.beta[2], s.std_err[2]
+                ),
+                f(s.pga_at(0.5, 0.05)),
+                f(s.pga_at(0.5, 0.2)),
+            ),
+            None => ("- | - | -".to_string(), "-".into(), "-".into()),
+        };
+        writeln!(
+            readme,
+            "| {} | {:.3} | {:?} | {class} | {} | {k} | {b} | {p05} | {p2} | {secs:.1} |",
+            c.name,
+            setup.r_max_m,
+            c.pose,
+            batch.runs.len()
+        )?;
+        eprintln!("{}: {} runs, {k} overturned, {secs:.1} s", c.name, batch.runs.len());
+    }
+    Ok(())
+}
+
+/// Part C: time per run of a 60 s, 800 Hz, three-component record on the 1 872-vertex quarry stone
+/// (one thread), at its true size and as a 1 m rock.
+fn part_c(readme: &mut String) -> anyhow::Result<()> {
+    let path =
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
+    let a = Analysis::of_file(path, &Options::default())?;
+    let (nu, _) = a.macro_nu(&Options::default());
+    let stone = Stone::new(&a, nu)?;
+    let probe = rock_params(Surface::RockOnConcrete, stone.body.r_max)?;
+    let (regular, _) = default_pair(&stone, &probe);
+    let pose = Pose::Facet { id: stone.stable()[regular.unwrap()].index };
+    let noise = Noise { duration: 60.0, period: 0.5, dt: 1.0 / 800.0, components: 3, ..Noise::default() };
+    let t0 = Instant::now();
+    let rec = filtered_noise(&noise, 0.1, 11)?;
+    let t_make = t0.elapsed().as_secs_f64();
+    writeln!(
+        readme,
+        "\n## C. Speed\n\nOne 60 s three-component record at 800 Hz ({} samples; generated in {t_make:.2} s), \
+         PGA 0.1 g (the rock stays standing, so the run lasts the whole record plus the rest window), on the \
+         quarry stone ({} mesh vertices, {} hull corners), one thread, release build:\n\n\
+         | R_max (m) | simulation dt (s, real) | steps | resampling (s) | run (s) | µs per step |\n|---|---|---|---|---|---|",
+        rec.accel.len(),
+        a.mesh.vertices.len(),
+        stone.body.corners.len()
+    )?;
+    for unit in [1.0, 1.0 / stone.body.r_max] {
+        let setup = RockSetup::new(&stone, pose, unit, Surface::RockOnConcrete, 0.0)?;
+        let t0 = Instant::now();
+        let resampled = rec.resampled(setup.real_dt())?;
+        let t_res = t0.elapsed().as_secs_f64();
+        let t0 = Instant::now();
+        let run = run_record(&stone, &setup, &resampled, 1.0)?;
+        let t_run = t0.elapsed().as_secs_f64();
+        writeln!(
+            readme,
+            "| {:.3} | {:.5} | {} | {t_res:.3} | {t_run:.3} | {:.1} |",
+            setup.r_max_m,
+            setup.real_dt(),
+            run.rock.steps,
+            1e6 * t_run / run.rock.steps as f64
+        )?;
+        eprintln!("speed: R_max {:.3} m: {} steps in {t_run:.3} s", setup.r_max_m, run.rock.steps);
+    }
+    Ok(())
+}
+
+const READING: &str = "
+## Reading
+
+* **A.** The rapier simulation of the block at true size (R = 1.03 m, dt = 1/240 s of the scaled body,
+  contact at 120 Hz scaled) and Housner's rocking equation give the same minimum overturning acceleration of a
+  one-sine pulse to the 0.05 grid at ω_p/p ≤ 3 and within 3 % at ω_p/p = 4 and 6; both show the
+  rise with ω_p/p of the published spectrum (Zhang & Makris 2001, one-sine pulse; Makris & Roussos 2000) —
+  a_p → g tan α for long pulses, several g tan α for short ones. Above the minimum, rapier has narrow
+  'safe islands' (one or a few 0.05 steps at ω_p/p = 2, 3, 4) where the ODE overturns: there the outcome
+  hangs on the details of the impacts, which a soft contact resolves differently from Housner's instantaneous
+  one. The published points themselves were not available here to compare digit by digit; the ODE is the
+  equation those papers integrate, with
+  Housner's impact ratio. The rock-on-concrete contact (μ 0.6, e 0.3) changes the boundary by at most one grid
+  step.
+* **B.** The regular pose of the bundled stone (as a 0.5 m boulder) never overturns up to 3 g: above
+  ~0.6 g the rock slides (μ = 0.6) and the friction force caps what the ground transmits. Its rocking pose
+  overturns at PGA₅₀ ≈ 0.12–0.17 g, and the surface's β₂ > 0 says that longer-period (higher PGV/PGA) motion
+  overturns it at a lower PGA, as for real precariously balanced rocks (Purvance et al. 2008). The quarry stone
+  (at its scanned size, R_max = 0.13 m, in a rocking pose) overturns near 0.08 g whatever PGV/PGA (β₂
+  within one standard error of 0): small rocks have high p = √(3g/4R) and see every record as a slow one.
+  Standard errors are large because the records separate overturned and standing runs almost perfectly
+  (Firth's penalty keeps the fit finite).
+* **C.** A 60 s, 800 Hz record costs 0.1–0.5 s per run on one core (resampling included: 0.06 s), the
+  smaller rock being the dearer one because its real time step dt·√R_max is shorter; a fragility surface of
+  a few hundred runs takes well under a minute on two cores.
+";
+
 fn main() -> anyhow::Result<()> {
     init_fonts();
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_surface");
     std::fs::create_dir_all(&out)?;
     let mut readme = String::from("# Fragility of field rocks under ground motion (issue 11)\n\nRegenerate: `cargo run --release --example fragility_surface`.\n\n");
     part_a(&out, &mut readme)?;
+    part_c(&mut readme)?;
+    part_b(&out, &mut readme)?;
+    readme.push_str(READING);
     std::fs::write(out.join("README.md"), readme)?;
     Ok(())
 }

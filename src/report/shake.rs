@@ -491,7 +491,11 @@ where
                 continue;
             }
             let style = BLACK.stroke_width(if p == 0.5 { 2 } else { 1 });
-            let label = format!("P = {p}");
+            let label = match dash {
+                0 => format!("P = {p}"),
+                3 => format!("P = {p} (short dashes)"),
+                _ => format!("P = {p} (long dashes)"),
+            };
             if dash == 0 {
                 chart
                     .draw_series(LineSeries::new(line, style))
