@@ -373,3 +373,44 @@ fn a_record_as_at2_and_as_csv_gives_identical_runs() {
     assert!(a.rock.max_tilt_deg > 0.1, "the record should rock the block ({}°)", a.rock.max_tilt_deg);
     assert_eq!((a.pga_g, a.pgv_m_s, &a.rock), (b.pga_g, b.pgv_m_s, &b.rock));
 }
+
+/// A batch of records × scales gives the same runs, in the same order, on one and on two threads.
+#[test]
+fn batches_are_independent_of_the_thread_count() {
+    use rocking_stones::dynamics::shake::{run_batch, RockSetup};
+    use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
+    let s = stone(generate::cuboid(1.0, 0.6, 2.0));
+    let recs: Vec<_> = [1u64, 2]
+        .iter()
+        .map(|&seed| filtered_noise(&Noise { duration: 4.0, components: 2, ..Noise::default() }, 1.0, seed).unwrap())
+        .collect();
+    let setup = RockSetup::new(&s, Pose::Facet { id: bottom(&s) }, 0.3, Surface::RockOnConcrete, 0.5).unwrap();
+    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    let scales = [0.2, 0.45, 0.8];
+    let one = pool(1).install(|| run_batch(&s, &setup, &recs, &scales, &|_| {})).unwrap();
+    let two = pool(2).install(|| run_batch(&s, &setup, &recs, &scales, &|_| {})).unwrap();
+    assert_eq!(one.runs, two.runs);
+    assert_eq!(one.runs.len(), 6);
+    assert!(one.runs.iter().any(|r| r.rock.max_tilt_deg > 0.5), "the records should rock the block");
+}
+
+/// Housner's impact ratio r = 1 − (3/2) sin² α still holds with the real-size contact: the
+/// rolling-resistance length of rock on concrete (0.1 mm) divided by R_max = 5 cm (2·10⁻³ R_max,
+/// the largest it gets for a field rock) and by 5 m.
+#[test]
+fn housners_impact_ratio_holds_at_true_size() {
+    use rocking_stones::dynamics::shake::{free_rocking, housner_ratio};
+    let (b, d, h) = (0.5, 0.3, 1.0);
+    let s = stone(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h));
+    let start = s.position(bottom(&s)).unwrap();
+    let r = housner_ratio(b, h);
+    let alpha = (b / h).atan();
+    for r_max_m in [0.05, 5.0] {
+        let cycles = free_rocking(&s, start, &housner(r_max_m), b, h, 0.5 * alpha, 6.0);
+        let ratios: Vec<f64> =
+            cycles.windows(2).filter(|w| w[1].amplitude > 0.02).take(4).map(|w| w[1].omega0 / w[0].omega0).collect();
+        assert!(ratios.len() >= 2, "{r_max_m} m: only {} impacts", ratios.len());
+        let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+        assert!((mean / r - 1.0).abs() < 0.03, "{r_max_m} m: mean ratio {mean:.4} vs Housner {r:.4} ({ratios:?})");
+    }
+}

@@ -33,6 +33,31 @@
 //! So a 2 Hz pulse on the scaled body is a 1 Hz pulse on a 4 m boulder and a 11.5 Hz pulse on a
 //! 3 cm pebble. [`TimeScale`] does this conversion; the CLI takes the real size with `--size`.
 //!
+//! # Field rocks: true size, pose, three components (issue 11)
+//!
+//! [`run_record`] / [`run_batch`] shake a rock as it stands in the field with a recorded
+//! [`crate::ground_motion::Record`] (up to three components, SI, real time):
+//!
+//! * **Pose** ([`Pose`], [`place`]): as scanned (mesh frame = world frame, +z up, put down under
+//!   its lowest point and settled; refused unless it rests on the stable micro-equilibrium of the
+//!   quasi-static descent from the as-scanned down direction), a stable micro-equilibrium, or a
+//!   quaternion. The record's x axis is turned by the azimuth in the world frame.
+//! * **True size, by an exactly equivalent scaled run** (not rapier at true size with
+//!   `length_unit`): time t/√L, accelerations unchanged, every dimensional parameter converted
+//!   (rolling-resistance length δ/L from the surface pair; dt, contact frequency and rapier's length
+//!   unit are the scaled frame's, i.e. dt·√L, f/√L and L at true size) — see [`shake_record`].
+//! * **Three components**: the kinematic ground gets the 3D velocity (midpoint rule, exact ground
+//!   displacement for piecewise-linear a(t)); rapier's contact solver uses the kinematic body's
+//!   velocity, so a vertical ground acceleration a_z changes the effective gravity to g + a_z
+//!   (tested: Housner's threshold drops to 0.7 g tan α under a_z = −0.3 g).
+//! * **Contact** from the surface pairs of [`super::params::Surface`] at the rock's real size
+//!   ([`rock_params`]; rock on concrete by default). The fragility-curve mode above keeps the
+//!   legacy contact of [`super::perturb::legacy_contact`] so that its results stay comparable.
+//! * **Outcome** ([`RockRun`]): overturned = rests on a stable micro-equilibrium of another flock;
+//!   the largest tilt; the residual slide relative to the ground. Rest is judged on positions
+//!   ([`rock_loop`]) because a flat scanned base of near-coplanar micro-facets makes the soft
+//!   contact jitter.
+//!
 //! # Housner's rigid block
 //!
 //! A block of half-width b and half-height h (tan α = b/h, R = √(b² + h²)) on a rigid ground with
