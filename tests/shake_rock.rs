@@ -414,3 +414,75 @@ fn housners_impact_ratio_holds_at_true_size() {
         assert!((mean / r - 1.0).abs() < 0.03, "{r_max_m} m: mean ratio {mean:.4} vs Housner {r:.4} ({ratios:?})");
     }
 }
+
+/// The command line of issue 11: one record → one JSON object with the outcome and the record's
+/// measures; a folder × scales → runs.csv with one row per run; a missing column is a clear error.
+#[test]
+fn the_shake_command_runs_a_field_rock() {
+    use std::process::Command;
+    let dir = tempfile::tempdir().unwrap();
+    // A 20 × 12 × 40 cm block, written in centimetres as OBJ.
+    let m = generate::cuboid(20.0, 12.0, 40.0);
+    let facet = format!("facet:{}", bottom(&stone(m.clone())));
+    let mut obj = String::new();
+    for v in &m.vertices {
+        obj += &format!("v {} {} {}\n", v.x, v.y, v.z);
+    }
+    for t in &m.triangles {
+        obj += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    }
+    let mesh = dir.path().join("block.obj");
+    std::fs::write(&mesh, obj).unwrap();
+    let recs = dir.path().join("records");
+    std::fs::create_dir(&recs).unwrap();
+    // One sine cycle of 0.3 g at 2 Hz: PGV = 2 a_p / ω_p.
+    let mut csv = String::from("time_s,ax_g\n");
+    for k in 0..=200 {
+        let t = k as f64 * 0.005;
+        csv += &format!("{t},{}\n", if t <= 0.5 { 0.3 * (2.0 * PI * 2.0 * t).sin() } else { 0.0 });
+    }
+    std::fs::write(recs.join("pulse.csv"), &csv).unwrap();
+    std::fs::write(recs.join("pulse2.csv"), &csv).unwrap();
+    let rec = recs.join("pulse.csv");
+    let run = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_rocking")).args(args).output().unwrap();
+    let (mesh_s, rec_s) = (mesh.to_str().unwrap(), rec.to_str().unwrap());
+    let base = ["shake", mesh_s, "--pose", "as-scanned", "--length-unit", "cm", "--motion", rec_s];
+    let out =
+        run(&[&base[..], &["--columns", "time_s,ax_g", "--accel-unit", "g", "--azimuth", "0", "--json"]].concat());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["overturned"], serde_json::Value::Bool(false));
+    assert!(j["max_tilt_deg"].as_f64().unwrap() >= 0.0);
+    assert!((j["pga_g"].as_f64().unwrap() - 0.3).abs() < 1e-3);
+    let pgv = 2.0 * 0.3 * GRAVITY / (2.0 * PI * 2.0);
+    assert!((j["pgv_m_s"].as_f64().unwrap() / pgv - 1.0).abs() < 0.01, "PGV {} vs {pgv}", j["pgv_m_s"]);
+    let r_max = (0.1f64 * 0.1 + 0.06 * 0.06 + 0.2 * 0.2).sqrt();
+    assert!((j["r_max_m"].as_f64().unwrap() - r_max).abs() < 1e-9);
+    // A folder × scales.
+    let outdir = dir.path().join("out");
+    let out = run(&[
+        "shake",
+        mesh_s,
+        "--pose",
+        &facet,
+        "--length-unit",
+        "cm",
+        "--records",
+        recs.to_str().unwrap(),
+        "--columns",
+        "time_s,ax_g",
+        "--scales",
+        "0.5,1,4",
+        "-o",
+        outdir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let rows = std::fs::read_to_string(outdir.join("runs.csv")).unwrap();
+    assert_eq!(rows.lines().count(), 1 + 2 * 3, "{rows}");
+    assert!(outdir.join("fragility_surface.png").exists());
+    // Bad column.
+    let out = run(&[&base[..], &["--columns", "time_s,nope"]].concat());
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("pulse.csv") && err.contains("nope"), "{err}");
+}
