@@ -103,6 +103,9 @@ pub const CERTIFICATE_MAX_COMPRESSION: f64 = 1e-3;
 pub struct EnergyCertificate<'a> {
     stone: &'a Stone,
     flock_level: bool,
+    /// [`crate::basins::MergeTree::decision_ceiling`] (mesh units): at or above this energy
+    /// level (with the margin) nothing can be decided, without a descent.
+    ceiling: f64,
 }
 
 impl<'a> EnergyCertificate<'a> {
@@ -110,7 +113,11 @@ impl<'a> EnergyCertificate<'a> {
     pub fn new(stone: &'a Stone, mode: CertificateMode) -> Option<Self> {
         match mode {
             CertificateMode::None => None,
-            _ => Some(EnergyCertificate { stone, flock_level: mode == CertificateMode::Flock }),
+            _ => {
+                let flock_level = mode == CertificateMode::Flock;
+                let ceiling = stone.tree.decision_ceiling(flock_level.then_some(&stone.facet_flock[..]));
+                Some(EnergyCertificate { stone, flock_level, ceiling })
+            }
         }
     }
 
@@ -140,6 +147,10 @@ impl<'a> EnergyCertificate<'a> {
 
 impl Certificate for EnergyCertificate<'_> {
     fn decided(&self, s: &BodyState) -> Option<Decided> {
+        // O(1): too much energy for any decision (exact, see `decision_ceiling`).
+        if (s.level + CERTIFICATE_MARGIN) * self.stone.body.r_max >= self.ceiling {
+            return None;
+        }
         if self.flock_level {
             self.flock(s).map(|k| Decided::Flock(k as u32))
         } else {
