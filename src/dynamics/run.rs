@@ -28,7 +28,7 @@
 //! L ≤ max h = R_max, where later impacts are slower than a drop from 1 R_max, and there no rise
 //! beyond the margin is measured (`tests/contact.rs`); an early injection only delays the decision.
 //! Certified outcomes equal full settling drop by drop on 400 throws (`tests/throws.rs`) and in
-//! every preset of `results/drops_certificate/`.
+//! the `drop` and `throw` presets of `results/drops_certificate/` (3 bodies × 300 drops each).
 
 use super::params::DropParams;
 use super::stone::Stone;
