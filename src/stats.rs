@@ -46,6 +46,36 @@ pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
     (chi2, dof, p)
 }
 
+/// Pearson's χ² test of homogeneity of two samples of counts over the same categories (a 2 × k
+/// contingency table; categories empty in both samples are dropped): statistic, degrees of
+/// freedom k − 1 and p-value. Expected count of cell (s, c): n_s · (a_c + b_c) / (n_a + n_b).
+pub fn chi_square_homogeneity(a: &[u64], b: &[u64]) -> (f64, usize, f64) {
+    let (na, nb) = (a.iter().sum::<u64>() as f64, b.iter().sum::<u64>() as f64);
+    let n = na + nb;
+    let (mut chi2, mut cats) = (0.0, 0usize);
+    for (&x, &y) in a.iter().zip(b) {
+        let col = (x + y) as f64;
+        if col == 0.0 {
+            continue;
+        }
+        cats += 1;
+        for (o, row) in [(x as f64, na), (y as f64, nb)] {
+            let e = row * col / n;
+            if e > 0.0 {
+                chi2 += (o - e).powi(2) / e;
+            }
+        }
+    }
+    let dof = cats.saturating_sub(1);
+    let p = if dof == 0 {
+        1.0
+    } else {
+        use statrs::distribution::{ChiSquared, ContinuousCDF};
+        ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
+    };
+    (chi2, dof, p)
+}
+
 /// Kullback–Leibler divergence D(empirical ‖ static) in nats (categories with zero counts
 /// contribute 0; a count where the static probability is 0 gives ∞).
 pub fn kl_divergence(counts: &[u64], probabilities: &[f64]) -> f64 {
@@ -180,6 +210,19 @@ mod tests {
         // 2 categories, O = (60, 40) vs E = (50, 50): χ² = 4, p = 0.0455.
         let (c, dof, p) = chi_square(&[60, 40], &[0.5, 0.5]);
         assert!((c - 4.0).abs() < 1e-12 && dof == 1 && (p - 0.0455).abs() < 1e-4, "{p}");
+    }
+
+    #[test]
+    fn homogeneity_of_a_two_by_two_table_is_the_closed_form() {
+        // χ² of a 2×2 table = N (ad − bc)² / (row and column products).
+        let (a, b, c, d) = (30u64, 70u64, 45u64, 55u64);
+        let n = (a + b + c + d) as f64;
+        let closed = n * ((a * d) as f64 - (b * c) as f64).powi(2) / ((a + b) * (c + d) * (a + c) * (b + d)) as f64;
+        let (chi2, dof, p) = chi_square_homogeneity(&[a, b, 0], &[c, d, 0]);
+        assert!((chi2 - closed).abs() < 1e-12 && dof == 1, "{chi2} vs {closed}");
+        // χ² = 4.8 on one degree of freedom: p = 0.0285.
+        assert!((closed - 4.8).abs() < 1e-12 && (p - 0.0285).abs() < 1e-4, "{closed} {p}");
+        assert_eq!(chi_square_homogeneity(&[5, 10], &[10, 20]).0, 0.0);
     }
 
     #[test]

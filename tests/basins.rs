@@ -524,6 +524,37 @@ fn flock_certificate_and_barriers_across_flocks() {
     assert!(flock_level >= facet_level);
 }
 
+#[test]
+fn decision_ceiling_is_exact_and_tight() {
+    // Issue 16: above the ceiling nothing decides (from any direction), just below it the facet
+    // that attains it decides from its own normal; at facet and at flock level.
+    let a = analyse(pebble([1.0, 0.7, 0.5], 0.03, 300, 4));
+    let g = a.mass.center_of_mass;
+    let t = MergeTree::new(&a.hull, &g, &a.equilibria);
+    let flocks = a.hierarchy.flocks_at(a.hierarchy.plateau().map_or(0.0035, |p| p.nu()));
+    let facet_flock: Vec<Option<usize>> =
+        a.equilibria.at_facet.iter().map(|s| s.map(|s| flocks.membership[s as usize])).collect();
+    let stable: Vec<usize> = (0..a.hull.facets.len()).filter(|&f| stable(&a, f)).collect();
+    assert!(stable.len() >= 2 && flocks.flocks.len() >= 2);
+    let facet_ceiling = t.decision_ceiling(None);
+    let flock_ceiling = t.decision_ceiling(Some(&facet_flock));
+    // The facet ceiling is the largest unique level (a second, independent formula).
+    let largest_unique = stable.iter().map(|&f| t.unique_level(f as u32)).fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(facet_ceiling, largest_unique);
+    assert!(flock_ceiling >= facet_ceiling && flock_ceiling.is_finite(), "{flock_ceiling} {facet_ceiling}");
+    for d in random_directions(300, 9).iter().chain(stable.iter().map(|&f| &a.hull.facets[f].normal)) {
+        for up in [0.0, 1e-9, 0.1] {
+            assert_eq!(t.decided(d, facet_ceiling * (1.0 + up)), None);
+            assert_eq!(t.decided_flock(d, flock_ceiling * (1.0 + up), &facet_flock), None);
+        }
+    }
+    let below = |c: f64| c * (1.0 - 1e-9);
+    let facet_tight = stable.iter().any(|&f| t.decided(&a.hull.facets[f].normal, below(facet_ceiling)).is_some());
+    let flock_tight =
+        stable.iter().any(|&f| t.decided_flock(&a.hull.facets[f].normal, below(flock_ceiling), &facet_flock).is_some());
+    assert!(facet_tight && flock_tight);
+}
+
 /// Release-mode timing on a pebble with ≈ 500 hull corners:
 /// `cargo test --release --test basins -- --ignored --nocapture`.
 #[test]

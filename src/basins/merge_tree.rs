@@ -196,6 +196,54 @@ impl MergeTree {
             .then_some(own)
     }
 
+    /// The level at and above which [`MergeTree::decided`] (`facet_flock` None) or
+    /// [`MergeTree::decided_flock`] (`facet_flock` given) decides nothing, from any direction: the
+    /// largest, over the stable facets f, of the level of f's lowest ancestor whose stable facets
+    /// are not all f (facet level: f's `unique_level`) or not all in f's flock (flock level); ∞
+    /// if the whole tree is one facet / one flock. A run whose energy level is at or above it
+    /// needs no descent to know that the certificate cannot decide yet (issue 16: the check
+    /// costs O(1) until then). Tight: just below it, the facet that attains it decides from its
+    /// own normal.
+    pub fn decision_ceiling(&self, facet_flock: Option<&[Option<usize>]>) -> f64 {
+        #[derive(Clone, Copy, PartialEq)]
+        enum Key {
+            Empty,
+            Uniform(usize),
+            Mixed,
+        }
+        let key_of = |f: usize| match facet_flock {
+            None => Key::Uniform(f),
+            Some(ff) => ff.get(f).copied().flatten().map_or(Key::Mixed, Key::Uniform),
+        };
+        let nf = self.solo_until.len();
+        let mut keys = vec![Key::Empty; self.nodes.len()];
+        let mut ceiling = f64::NEG_INFINITY;
+        // Children are created before their parents (node order).
+        for (x, node) in self.nodes.iter().enumerate() {
+            keys[x] = match node.children {
+                None if x < nf && node.stable > 0 => key_of(x),
+                None => Key::Empty,
+                Some([a, b]) => {
+                    let (ka, kb) = (keys[a as usize], keys[b as usize]);
+                    let k = match (ka, kb) {
+                        (Key::Empty, k) | (k, Key::Empty) => k,
+                        (Key::Uniform(i), Key::Uniform(j)) if i == j => ka,
+                        _ => Key::Mixed,
+                    };
+                    if k == Key::Mixed && (matches!(ka, Key::Uniform(_)) || matches!(kb, Key::Uniform(_))) {
+                        ceiling = ceiling.max(node.level);
+                    }
+                    k
+                }
+            };
+        }
+        // A uniform root: some facet (or flock) is never joined by another.
+        if self.nodes.iter().enumerate().any(|(x, n)| n.parent.is_none() && matches!(keys[x], Key::Uniform(_))) {
+            return f64::INFINITY;
+        }
+        ceiling
+    }
+
     /// The merge level of two facets (their lowest common ancestor): the lowest energy level at
     /// which a body resting near `from_facet` could reach `to_facet`. h(n_F) for F = F; ∞ if
     /// they are never joined.

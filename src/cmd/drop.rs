@@ -7,7 +7,7 @@ use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
-    certificate, check_outcomes, merge, read_partial, run, summarize, CertificateMode, Checkpoint, DropReport,
+    certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
     RunHeader, Shard, FORMAT,
 };
 use std::collections::BTreeMap;
@@ -82,6 +82,10 @@ pub struct Args {
     /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
     #[arg(long, value_parser = super::parse_point)]
     pub center_of_mass: Option<rocking_stones::Point3>,
+    /// Stones simulated together in one physics world (they touch only the ground; every drop's
+    /// outcome is the same for any value); 1: each drop alone in its own world.
+    #[arg(long, default_value_t = rocking_stones::montecarlo::DEFAULT_BATCH, value_parser = parse_batch)]
+    pub batch: usize,
     /// Run only shard i of n (drops i, i+n, i+2n, …); combine with `rocking merge`.
     #[arg(long)]
     pub shard: Option<String>,
@@ -102,6 +106,13 @@ pub fn parse_preset(s: &str) -> std::result::Result<Preset, String> {
 
 pub fn parse_surface(s: &str) -> std::result::Result<Surface, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+}
+
+pub fn parse_batch(s: &str) -> std::result::Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if (1..=100_000).contains(&n) => Ok(n),
+        _ => Err(format!("--batch must be a whole number of stones from 1 to 100000, got {s:?}")),
+    }
 }
 
 pub fn parse_certificate(s: &str) -> std::result::Result<CertificateMode, String> {
@@ -200,7 +211,7 @@ pub fn run_drop(args: Args) -> Result<()> {
             bar.inc(1);
         });
         let cert = certificate(&stone, args.certificate);
-        run(&stone, &header, shard, &done, cert.as_ref(), &sink)
+        run_batched(&stone, &header, shard, &done, cert.as_ref(), args.batch, &sink)
     };
     bar.finish_and_clear();
     if let Some(e) = write_error {

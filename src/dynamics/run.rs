@@ -16,7 +16,11 @@
 //! of the merge tree, the outcome is decided ([`EnergyCertificate`]). The rolling resistance of
 //! [`super::world`] only dissipates, so the certificate holds with it. It is never asked while a
 //! ground motion drives the stone (that system is not passive), nor while the soft contact is
-//! compressed ([`CERTIFICATE_MAX_COMPRESSION`]).
+//! compressed ([`CERTIFICATE_MAX_COMPRESSION`]). Above the merge tree's decision ceiling
+//! ([`crate::basins::MergeTree::decision_ceiling`]) nothing can be decided and a check costs O(1);
+//! below it, a check is a descent of h (issue 16). Measured in `results/drops_dt/`: between
+//! relaxed states with L ≤ R_max, L never rose by more than 10⁻³ R_max for dt from 1/480 to
+//! 1/80 s, and the rest compression stayed below 8·10⁻⁴ R_max — together under the margin.
 //!
 //! **Measured limit.** Rapier's contact solver (4 iterations) does not conserve energy in the hard
 //! first impact of a `throw` (≈ 10 m/s of the scaled body, 35 rad/s of spin): L can rise by up to
@@ -24,7 +28,7 @@
 //! L ≤ max h = R_max, where later impacts are slower than a drop from 1 R_max, and there no rise
 //! beyond the margin is measured (`tests/contact.rs`); an early injection only delays the decision.
 //! Certified outcomes equal full settling drop by drop on 400 throws (`tests/throws.rs`) and in
-//! every preset of `results/drops_certificate/`.
+//! the `drop` and `throw` presets of `results/drops_certificate/` (3 bodies × 300 drops each).
 
 use super::params::DropParams;
 use super::stone::Stone;
@@ -103,6 +107,9 @@ pub const CERTIFICATE_MAX_COMPRESSION: f64 = 1e-3;
 pub struct EnergyCertificate<'a> {
     stone: &'a Stone,
     flock_level: bool,
+    /// [`crate::basins::MergeTree::decision_ceiling`] (mesh units): at or above this energy
+    /// level (with the margin) nothing can be decided, without a descent.
+    ceiling: f64,
 }
 
 impl<'a> EnergyCertificate<'a> {
@@ -110,7 +117,11 @@ impl<'a> EnergyCertificate<'a> {
     pub fn new(stone: &'a Stone, mode: CertificateMode) -> Option<Self> {
         match mode {
             CertificateMode::None => None,
-            _ => Some(EnergyCertificate { stone, flock_level: mode == CertificateMode::Flock }),
+            _ => {
+                let flock_level = mode == CertificateMode::Flock;
+                let ceiling = stone.tree.decision_ceiling(flock_level.then_some(&stone.facet_flock[..]));
+                Some(EnergyCertificate { stone, flock_level, ceiling })
+            }
         }
     }
 
@@ -140,6 +151,10 @@ impl<'a> EnergyCertificate<'a> {
 
 impl Certificate for EnergyCertificate<'_> {
     fn decided(&self, s: &BodyState) -> Option<Decided> {
+        // O(1): too much energy for any decision (exact, see `decision_ceiling`).
+        if (s.level + CERTIFICATE_MARGIN) * self.stone.body.r_max >= self.ceiling {
+            return None;
+        }
         if self.flock_level {
             self.flock(s).map(|k| Decided::Flock(k as u32))
         } else {
