@@ -387,8 +387,8 @@ fn batches_are_independent_of_the_thread_count() {
     let setup = RockSetup::new(&s, Pose::Facet { id: bottom(&s) }, 0.3, Surface::RockOnConcrete, 0.5).unwrap();
     let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
     let scales = [0.2, 0.45, 0.8];
-    let one = pool(1).install(|| run_batch(&s, &setup, &recs, &scales, &|_| {})).unwrap();
-    let two = pool(2).install(|| run_batch(&s, &setup, &recs, &scales, &|_| {})).unwrap();
+    let one = pool(1).install(|| run_batch(&s, &setup, &recs, &scales, &[], &|_| {})).unwrap();
+    let two = pool(2).install(|| run_batch(&s, &setup, &recs, &scales, &[], &|_| {})).unwrap();
     assert_eq!(one.runs, two.runs);
     assert_eq!(one.runs.len(), 6);
     assert!(one.runs.iter().any(|r| r.rock.max_tilt_deg > 0.5), "the records should rock the block");
@@ -480,6 +480,40 @@ fn the_shake_command_runs_a_field_rock() {
     let rows = std::fs::read_to_string(outdir.join("runs.csv")).unwrap();
     assert_eq!(rows.lines().count(), 1 + 2 * 3, "{rows}");
     assert!(outdir.join("fragility_surface.png").exists());
+    // The journal: a header and one line per run. The same batch again into the same folder is
+    // refused (finished work is never overwritten); a batch killed after two runs and one half-
+    // written line, resumed with one more scale, keeps the two runs and ends with the runs of
+    // one batch run in one go.
+    let args = |out: &std::path::Path, scales: &'static str| -> Vec<String> {
+        let v = ["shake", mesh_s, "--pose", &facet, "--length-unit", "cm", "--records", recs.to_str().unwrap()];
+        let mut v: Vec<String> = v.iter().map(|s| s.to_string()).collect();
+        v.extend(["--columns", "time_s,ax_g", "--scales", scales, "-o", out.to_str().unwrap()].map(String::from));
+        v
+    };
+    let run_s = |v: &[String]| run(&v.iter().map(String::as_str).collect::<Vec<_>>());
+    let journal = std::fs::read_to_string(outdir.join("runs.jsonl")).unwrap();
+    assert_eq!(journal.lines().count(), 1 + 6);
+    let again = run_s(&args(&outdir, "0.5,1,4"));
+    assert!(!again.status.success() && String::from_utf8_lossy(&again.stderr).contains("--resume"));
+    let cut = dir.path().join("cut");
+    std::fs::create_dir(&cut).unwrap();
+    let lines: Vec<&str> = journal.lines().collect();
+    let partial = format!("{}\n{}\n{}\n{}", lines[0], lines[1], lines[2], &lines[3][..lines[3].len() / 2]);
+    std::fs::write(cut.join("runs.jsonl"), partial).unwrap();
+    let resumed = run_s(&[args(&cut, "0.5,1,4,8"), vec!["--resume".into()]].concat());
+    assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
+    assert!(String::from_utf8_lossy(&resumed.stderr).contains("2 finished run(s)"));
+    let whole = dir.path().join("whole");
+    assert!(run_s(&args(&whole, "0.5,1,4,8")).status.success());
+    let csv = |d: &std::path::Path| std::fs::read_to_string(d.join("runs.csv")).unwrap();
+    assert_eq!(csv(&cut), csv(&whole));
+    assert_eq!(csv(&whole).lines().count(), 1 + 2 * 4);
+    let journal = std::fs::read_to_string(cut.join("runs.jsonl")).unwrap();
+    assert_eq!(journal.lines().count(), 1 + 8, "the cut line is gone, every run once");
+    // Another rock's journal is refused.
+    let other =
+        run_s(&[args(&cut, "0.5"), vec!["--resume".into(), "--surface".into(), "rock-on-steel".into()]].concat());
+    assert!(!other.status.success() && String::from_utf8_lossy(&other.stderr).contains("another batch"));
     // Bad column.
     let out = run(&[&base[..], &["--columns", "time_s,nope"]].concat());
     assert!(!out.status.success());

@@ -13,6 +13,7 @@ use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScal
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
+use std::io::Write;
 use std::path::PathBuf;
 use std::sync::Mutex;
 
@@ -58,6 +59,10 @@ pub struct Args {
     /// Field rock: scale factors applied to every record.
     #[arg(long, value_delimiter = ',', default_value = "1")]
     pub scales: Vec<f64>,
+    /// Field rock batch: continue the batch journalled in -o DIR (DIR/runs.jsonl): the runs it
+    /// holds are kept, only the others run (records and scale factors may be added).
+    #[arg(long, requires = "output")]
+    pub resume: bool,
     /// Sweep the peak ground acceleration from PGA_MAX/STEPS to PGA_MAX (g), scaling the motion
     /// to each: fragility curves. Without a motion the default is a sweep of a 2-cycle pulse of
     /// 2 Hz (scaled) up to 1 g; with --pulse or --motion and no --pga-max, the motion is run at
@@ -222,26 +227,64 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
             },
         );
     }
-    // Many runs: append each finished row to DIR/runs.csv as it comes (never lose finished work);
-    // the file is rewritten in the batch's order at the end.
-    let sink = match &args.output {
+    // Many runs: every finished run is appended to DIR/runs.jsonl (the journal `--resume` reads)
+    // and DIR/runs.csv as it comes (never lose finished work); runs.csv is rewritten in the
+    // batch's order at the end.
+    let mesh_id = match &args.mesh {
+        Some(p) => format!("{} fnv1a {:016x}", p.display(), rocking_stones::rng::fnv1a(std::fs::read(p)?)),
+        None => "bundled stone".to_string(),
+    };
+    let header = serde_json::json!({ "format": JOURNAL_FORMAT, "mesh": mesh_id, "setup": setup });
+    let (previous, sink) = match &args.output {
         Some(dir) => {
             std::fs::create_dir_all(dir)?;
+            let journal = dir.join("runs.jsonl");
+            if !args.resume && journal.exists() {
+                bail!(
+                    "{}: a batch journal is already there: pass --resume to continue it, or remove it",
+                    journal.display()
+                );
+            }
+            let (previous, valid) = if args.resume { read_journal(&journal, &header)? } else { (Vec::new(), 0) };
+            let mut j = std::fs::OpenOptions::new().create(true).append(true).open(&journal)?;
+            // Drop a line cut off when the batch was killed: it is run again.
+            j.set_len(valid)?;
+            if valid == 0 {
+                writeln!(j, "{header}")?;
+            }
             let mut w = csv::Writer::from_path(dir.join("runs.csv"))?;
             w.write_record(report::shake::RUN_CSV_HEADER)?;
+            for r in &previous {
+                w.write_record(report::shake::run_csv_row(r))?;
+            }
             w.flush()?;
-            Some(Mutex::new(w))
+            (previous, Some(Mutex::new((j, w))))
         }
-        None => None,
+        None => (Vec::new(), None),
     };
+    if !previous.is_empty() {
+        eprintln!("resuming: {} finished run(s) in the journal are kept", previous.len());
+    }
     let bar = super::progress_bar((records.len() * args.scales.len()) as u64, "runs");
-    let batch = shake::run_batch(&stone, &setup, &records, &args.scales, &|r| {
+    let failed = std::sync::atomic::AtomicBool::new(false);
+    let batch = shake::run_batch(&stone, &setup, &records, &args.scales, &previous, &|r| {
         if let Some(w) = &sink {
             let mut w = w.lock().unwrap_or_else(|e| e.into_inner());
-            let _ = w.write_record(report::shake::run_csv_row(r)).and_then(|_| Ok(w.flush()?));
+            let (j, c) = &mut *w;
+            let line = serde_json::to_string(r).map_err(std::io::Error::other);
+            let ok = line.and_then(|l| writeln!(j, "{l}")).and_then(|_| j.flush()).is_ok()
+                && c.write_record(report::shake::run_csv_row(r)).and_then(|_| Ok(c.flush()?)).is_ok();
+            if !ok {
+                failed.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
         }
         bar.inc(1);
     })?;
+    if failed.into_inner() {
+        bail!(
+            "writing runs.jsonl / runs.csv failed during the batch; the runs finished before the failure are in them"
+        );
+    }
     bar.finish_and_clear();
     drop(sink);
     super::emit(
@@ -251,6 +294,44 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
         args.output.as_deref(),
         |dir| Ok(report::shake::write_batch_outputs(&batch, &name, dir)?),
     )
+}
+
+/// Format tag of the first line of a batch journal (`runs.jsonl`).
+const JOURNAL_FORMAT: &str = "rocking-shake-runs/1";
+
+/// The runs of a batch journal, after checking that its header (format, mesh, setup) is this
+/// batch's, and the length in bytes of its complete lines (a last line cut off by a kill is not).
+fn read_journal(path: &std::path::Path, header: &serde_json::Value) -> Result<(Vec<shake::RecordRun>, u64)> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
+        Err(e) => bail!("{}: {e}", path.display()),
+    };
+    let Some(first) = text.split_inclusive('\n').next().filter(|l| l.ends_with('\n')) else {
+        return Ok((Vec::new(), 0));
+    };
+    let found: serde_json::Value = serde_json::from_str(first)
+        .map_err(|e| anyhow::anyhow!("{}: line 1 is not a batch journal header: {e}", path.display()))?;
+    if &found != header {
+        bail!(
+            "{}: this journal is of another batch (its mesh, pose, size, surface, azimuth or simulation parameters differ); use another -o folder",
+            path.display()
+        );
+    }
+    let (mut runs, mut valid) = (Vec::new(), first.len() as u64);
+    for (k, line) in text.split_inclusive('\n').enumerate().skip(1) {
+        if !line.ends_with('\n') {
+            break; // the last line, cut off while it was being written (a kill): run it again
+        }
+        match serde_json::from_str::<shake::RecordRun>(line) {
+            Ok(r) => {
+                runs.push(r);
+                valid += line.len() as u64;
+            }
+            Err(e) => bail!("{}: line {}: not a finished run: {e}", path.display(), k + 1),
+        }
+    }
+    Ok((runs, valid))
 }
 
 /// Every record of a folder, by file name: `*.csv` and `*.AT2` (one record along x per file).

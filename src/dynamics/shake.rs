@@ -908,7 +908,7 @@ impl Drive for GroundMotion3<'_> {
 }
 
 /// The outcome of one rock under one ground motion ([`shake_record`]), real units.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct RockRun {
     /// Overturned: came to rest on a stable micro-equilibrium of another flock than the one it
     /// stood on ([`Outcome::Toppled`]; a run still moving at the time cap is classified by the
@@ -1123,7 +1123,7 @@ impl RockSetup {
 }
 
 /// One record × scale factor on a field rock: the record's intensity measures and the outcome.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct RecordRun {
     /// Name of the record.
     pub record: String,
@@ -1192,12 +1192,15 @@ pub struct ShakeBatch {
 /// Run every record × scale in parallel (rayon; each run is deterministic and independent, so the
 /// result does not depend on the thread count), calling `done` with each finished run (from any
 /// thread, in completion order: for appending to a file as the runs finish). The pose is checked
-/// once before any run.
+/// once before any run. Runs already in `previous` (same record name and scale, from an
+/// interrupted batch) are taken as they are and not run again: a run is a deterministic function
+/// of the rock, the setup, the record and the scale, so the batch is the same as one run in one go.
 pub fn run_batch(
     stone: &Stone,
     setup: &RockSetup,
     records: &[crate::ground_motion::Record],
     scales: &[f64],
+    previous: &[RecordRun],
     done: &(dyn Fn(&RecordRun) + Sync),
 ) -> Result<ShakeBatch> {
     use rayon::prelude::*;
@@ -1212,6 +1215,10 @@ pub fn run_batch(
     let runs: Vec<RecordRun> = jobs
         .par_iter()
         .map(|&(r, k)| {
+            let same = |p: &&RecordRun| p.record == records[r].name && p.scale.to_bits() == k.to_bits();
+            if let Some(p) = previous.iter().find(same) {
+                return Ok(p.clone());
+            }
             let run = run_record(stone, setup, &records[r], k)?;
             done(&run);
             Ok(run)
