@@ -520,3 +520,16 @@ fn the_shake_command_runs_a_field_rock() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("pulse.csv") && err.contains("nope"), "{err}");
 }
+
+/// The pose prints as the command line spells it, and reads back.
+#[test]
+fn poses_print_as_the_command_line_spells_them() {
+    for text in ["as-scanned", "facet:12", "quat:1,0,0.5,0"] {
+        let pose: Pose = text.parse().unwrap();
+        assert_eq!(pose.to_string(), text);
+        assert_eq!(pose.to_string().parse::<Pose>().unwrap(), pose);
+    }
+    let e = "quat:0,0,0,0".parse::<Pose>().unwrap_err().to_string();
+    assert!(e.contains("not all zero"), "{e}");
+    assert!("facet:x".parse::<Pose>().is_err() && "upright".parse::<Pose>().is_err());
+}

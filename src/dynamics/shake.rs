@@ -745,6 +745,18 @@ pub enum Pose {
     },
 }
 
+impl std::fmt::Display for Pose {
+    /// The command line's spelling (`as-scanned`, `facet:ID`, `quat:w,x,y,z`), which
+    /// [`Pose::from_str`](std::str::FromStr) reads back.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Pose::AsScanned => write!(f, "as-scanned"),
+            Pose::Facet { id } => write!(f, "facet:{id}"),
+            Pose::Quat { q } => write!(f, "quat:{},{},{},{}", q[0], q[1], q[2], q[3]),
+        }
+    }
+}
+
 impl std::str::FromStr for Pose {
     type Err = Error;
     fn from_str(s: &str) -> Result<Pose> {
@@ -814,11 +826,11 @@ fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32,
     let off = stone.body.facet_normals[expected as usize].dot(down).clamp(-1.0, 1.0).acos().to_degrees();
     if !settled {
         return Error::Usage(format!(
-            "pose {pose:?}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
+            "pose {pose}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
         ));
     }
     Error::Usage(format!(
-        "pose {pose:?}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
+        "pose {pose}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
          ({} by the quasi-static descent, whose facet is {off:.2}° from the given down direction) but rolled \
          to {}: the rock does not stand still in this pose (a scan made standing should be within a fraction of a \
          degree of its resting facet); choose --pose facet:ID or a quat: that stands",
