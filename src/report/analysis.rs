@@ -81,12 +81,12 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
         Some(p) => {
             let _ = writeln!(
                 s,
-                "  plateau  ν ∈ [{}, {}), {:.2} decades, {} (clarity {:.2}): S = {}  U = {}  H = {}",
+                "  plateau  ν ∈ [{}, {}), {} decades, {} (clarity {}): S = {}  U = {}  H = {}",
                 number(p.nu_lo, 4),
                 number(p.nu_hi, 4),
-                p.decades,
+                if p.decades.is_finite() { format!("{:.2}", p.decades) } else { "∞".into() },
                 if p.clear { "clear" } else { "NOT clear — micro and macro scales are not well separated" },
-                p.clarity,
+                if p.clarity.is_finite() { format!("{:.2}", p.clarity) } else { "∞".into() },
                 p.counts.stable,
                 p.counts.unstable,
                 p.counts.saddle

@@ -75,7 +75,7 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
             s,
             "    {:>5} {:<9} {:>7} {:>9.4} {:>18} {:>9.4}",
             f.id,
-            format!("{:?}", f.kind).to_lowercase(),
+            f.kind.name(),
             f.count,
             f.fraction,
             format!("[{:.4}, {:.4}]", f.ci95.0, f.ci95.1),
@@ -138,7 +138,7 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
         .flocks
         .iter()
         .map(|f| Bar {
-            label: format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()),
+            label: format!("F{} {}", f.id, f.kind),
             fraction: f.fraction,
             ci: f.ci95,
             reference: f.static_probability,

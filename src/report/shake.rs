@@ -54,7 +54,7 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
         Some(Threshold::At(x)) => format!("{x:.3}"),
         Some(Threshold::Above(x)) => format!(">{x:.3}"),
     };
-    let class = |q: &StableEquilibrium| format!("{:?}", q.class).to_lowercase();
+    let class = |q: &StableEquilibrium| q.class.name().to_string();
     if r.pgas.len() == 1 {
         let _ = writeln!(
             s,
@@ -140,7 +140,7 @@ pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
                 w.write_record([
                     q.index.to_string(),
                     q.facet.to_string(),
-                    format!("{:?}", q.class).to_lowercase(),
+                    q.class.name().to_string(),
                     format!("{:.4}", c.x),
                     c.n.to_string(),
                     c.same.to_string(),
@@ -257,7 +257,7 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
                 format!("{:.4}", t.pga),
                 format!("{:.2}", t.azimuth.to_degrees()),
                 t.trial.to_string(),
-                format!("{:?}", t.outcome).to_lowercase(),
+                t.outcome.name().to_string(),
                 t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
                 t.final_flock.to_string(),
                 t.settled.to_string(),
