@@ -11,6 +11,7 @@ use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, table1, FlockContents, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL,
 };
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{log_tick, series_color};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -252,9 +253,16 @@ fn plot(path: &Path, series: &[(f64, Vec<(usize, usize)>)]) -> Result<()> {
         .x_label_area_size(45)
         .y_label_area_size(55)
         .build_cartesian_2d((2f64..K_SCAN as f64).log_scale(), (1f64..ymax * 1.2).log_scale())?;
-    chart.configure_mesh().x_desc("k").y_desc("S (micro)").label_style((FONT_FAMILY, 15)).draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("k")
+        .y_desc("S (micro)")
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| log_tick(*y))
+        .label_style((FONT_FAMILY, 15))
+        .draw()?;
     for (i, (a, s)) in series.iter().enumerate() {
-        let colour = Palette99::pick(i).to_rgba();
+        let colour = series_color(i);
         chart
             .draw_series(LineSeries::new(s.iter().map(|&(k, st)| (k as f64, st as f64)), colour.stroke_width(2)))?
             .label(format!("a = {a}"))

@@ -331,7 +331,7 @@ where
         .map_err(|e| format!("{e:?}"))?;
     chart
         .configure_mesh()
-        .x_desc("ν = (R − R_min)/R_max cancellation level (log scale)")
+        .x_desc("ν: cancel arcs with |R_i − R_j|/R_max below ν (log scale)")
         .y_desc("n(ν): fraction of micro-equilibria left")
         .x_label_formatter(&|x: &f64| log_tick(*x))
         .y_label_formatter(&|y: &f64| format!("{y:.1}"))
@@ -402,7 +402,7 @@ pub fn flock_colored_hull(a: &Analysis, r: &Report) -> (TriMesh, Vec<[u8; 3]>) {
 /// arcs as thin lines (drawn on the visible side only, approximately: both ends facing the viewer
 /// as seen from G), and a legend under the views for every mark and colour.
 pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> crate::Result<()> {
-    let (w, views) = (1400u32, 680u32);
+    let (w, views) = (1400u32, 580u32);
     let rows = r.flocks.len().div_ceil(FLOCKS_PER_ROW) as u32;
     let h = views + 96 + 26 * rows;
     render!(path, (w, h), |root| draw_hull(&root, a, r, (w, views)))
@@ -500,26 +500,12 @@ where
                 .draw(&Polygon::new(poly, RGBColor(tint(base.0), tint(base.1), tint(base.2)).filled()))
                 .map_err(err)?;
         }
-        let visible = |p: &Point3| (p - g).dot(&view) > 0.0;
-        for arc in &a.graph.arcs {
-            for seg in arc.path.windows(2) {
-                if visible(&seg[0]) && visible(&seg[1]) {
-                    panel
-                        .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.6)))
-                        .map_err(err)?;
-                }
-            }
-        }
-        for e in &r.equilibria {
-            if visible(&e.point) {
-                kind_mark(panel, e.kind, project(&e.point), 6, colors[e.flock])?;
-            }
-        }
         for (k, (x, y, wsum)) in label_at.iter().enumerate() {
             if *wsum <= 0.0 {
                 continue;
             }
-            let (x, y) = ((x / wsum) as i32, (y / wsum) as i32);
+            // beside the centre of the flock's facets, not on the mark that is often there
+            let (x, y) = ((x / wsum) as i32 + 22, (y / wsum) as i32 - 20);
             let text = format!("F{k}");
             let half = 7 * text.chars().count() as i32 / 2 + 4;
             panel
@@ -538,6 +524,21 @@ where
                     )),
                 ))
                 .map_err(err)?;
+        }
+        let visible = |p: &Point3| (p - g).dot(&view) > 0.0;
+        for arc in &a.graph.arcs {
+            for seg in arc.path.windows(2) {
+                if visible(&seg[0]) && visible(&seg[1]) {
+                    panel
+                        .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.6)))
+                        .map_err(err)?;
+                }
+            }
+        }
+        for e in &r.equilibria {
+            if visible(&e.point) {
+                kind_mark(panel, e.kind, project(&e.point), 6, colors[e.flock])?;
+            }
         }
         let title = format!(
             "{} (looking along {}c, the shortest axis)",

@@ -190,7 +190,7 @@ where
     let top = bars.iter().map(|b| b.ci.1.max(b.reference)).fold(0.0, f64::max).max(0.05) * 1.15;
     let n = bars.len().max(1);
     let mut chart = ChartBuilder::on(root)
-        .caption(title, (FONT_FAMILY, 20))
+        .caption(title, (FONT_FAMILY, crate::plot::style::TITLE))
         .margin(12)
         .x_label_area_size(50)
         .y_label_area_size(60)
@@ -210,11 +210,11 @@ where
             }
         })
         .y_desc("probability")
-        .label_style((FONT_FAMILY, 12))
+        .label_style((FONT_FAMILY, crate::plot::style::TICK))
         .draw()
         .map_err(e)?;
-    let drops = RGBColor(70, 110, 200);
-    let stat = RGBColor(230, 140, 40);
+    let drops = crate::plot::colors::BLUE;
+    let stat = crate::plot::colors::ORANGE;
     chart
         .draw_series(
             bars.iter()
@@ -240,7 +240,7 @@ where
         .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], stat.filled()));
     chart
         .configure_series_labels()
-        .label_font((FONT_FAMILY, 13))
+        .label_font((FONT_FAMILY, crate::plot::style::LEGEND))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .position(SeriesLabelPosition::UpperRight)

@@ -187,7 +187,7 @@ where
     let hi = lines.iter().flat_map(|l| l.1.iter().map(|c| c.x)).fold(0.0, f64::max).max(1e-3) * 1.05;
     root.fill(&WHITE).map_err(err)?;
     let mut chart = ChartBuilder::on(root)
-        .caption(caption, (font, 20))
+        .caption(caption, (font, crate::plot::style::TITLE))
         .margin(14)
         .x_label_area_size(45)
         .y_label_area_size(55)
@@ -197,7 +197,7 @@ where
         .configure_mesh()
         .x_desc("peak ground acceleration (g)")
         .y_desc("P(toppled out of the flock)")
-        .label_style((font, 13))
+        .label_style((font, crate::plot::style::TICK))
         .draw()
         .map_err(err)?;
     for (x, label, color) in markers {
@@ -227,7 +227,7 @@ where
     }
     chart
         .configure_series_labels()
-        .label_font((font, 13))
+        .label_font((font, crate::plot::style::LEGEND))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .position(SeriesLabelPosition::LowerRight)
@@ -277,7 +277,6 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
     out.file("shake.json", |p| write_json(p, r))?;
     out.file("fragility.csv", |p| write_fragility_csv(p, r))?;
     out.file("trials.csv", |p| write_trials_csv(p, &r.trials))?;
-    let colors = [RGBColor(200, 60, 40), RGBColor(40, 90, 200), RGBColor(40, 150, 70), RGBColor(150, 60, 170)];
     let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
         .fragility
         .iter()
@@ -289,7 +288,7 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
                 Class::Regular => "regular",
                 Class::Rocking => "rocking",
             };
-            (format!("eq {} ({class}, facet {})", q.index, q.facet), f.curve.as_slice(), colors[i % colors.len()])
+            (format!("eq {} ({class}, facet {})", q.index, q.facet), f.curve.as_slice(), crate::plot::series_color(i))
         })
         .collect();
     if !lines.is_empty() {
