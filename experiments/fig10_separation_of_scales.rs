@@ -9,7 +9,7 @@ use rocking_stones::analysis::{Analysis, Options, Report};
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::plot::{log_tick, series_color};
-use rocking_stones::report::write_outputs;
+use rocking_stones::report::analysis::write_files;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -34,7 +34,7 @@ fn main() -> anyhow::Result<()> {
     for (name, a) in &runs {
         let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
         let r = a.report(name, &opts);
-        write_outputs(a, &r, &out.join(&slug))?;
+        write_files(a, &r, &out.join(&slug))?;
         reports.push((slug, r));
     }
     overlay(&out.join("n_nu_all.png"), &reports)?;

@@ -258,6 +258,15 @@ pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<
 /// [`write_outputs`] for a mesh whose coordinates are in `unit` (labels of the summary and the
 /// 3D view of `report.html`).
 pub fn write_outputs_in(a: &Analysis, r: &Report, unit: &Unit, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    let mut written = write_files(a, r, dir)?;
+    let title = format!("rocking analyze: {}", super::short_name(&r.file));
+    super::html::add_page(dir, &mut written, &title, &summary_in(r, unit), Some(&super::html::hull_view(a, r, unit)))?;
+    Ok(written)
+}
+
+/// The files of [`write_outputs`] without `report.html` (for experiments that keep many stones'
+/// pictures side by side).
+pub fn write_files(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("report.json", |p| write_json(p, r))?;
     for ext in ["png", "svg"] {
@@ -268,10 +277,7 @@ pub fn write_outputs_in(a: &Analysis, r: &Report, unit: &Unit, dir: &Path) -> cr
     }
     let (mesh, colors) = flock_colored_hull(a, r);
     out.file("hull_flocks.ply", |p| crate::mesh::io::write_colored_ply(p, &mesh, &colors))?;
-    let mut written = out.written;
-    let title = format!("rocking analyze: {}", super::short_name(&r.file));
-    super::html::add_page(dir, &mut written, &title, &summary_in(r, unit), Some(&super::html::hull_view(a, r, unit)))?;
-    Ok(written)
+    Ok(out.written)
 }
 
 /// The log ν – n(ν) staircase (paper Figure 10B) with the plateau and the chosen ν marked.
@@ -500,8 +506,10 @@ where
                 .draw(&Polygon::new(poly, RGBColor(tint(base.0), tint(base.1), tint(base.2)).filled()))
                 .map_err(err)?;
         }
+        // label only the flocks seen over ≥ 3 % of the view (not slivers at the rim)
+        let seen: f64 = label_at.iter().map(|l| l.2).sum();
         for (k, (x, y, wsum)) in label_at.iter().enumerate() {
-            if *wsum <= 0.0 {
+            if *wsum <= 0.03 * seen {
                 continue;
             }
             // beside the centre of the flock's facets, not on the mark that is often there
