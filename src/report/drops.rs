@@ -130,7 +130,7 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     s
 }
 
-/// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png` into `dir`.
+/// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png/.svg` into `dir`.
 pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("drops.json", |p| write_json(p, r))?;
@@ -155,7 +155,11 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
         .take(30)
         .map(|f| Bar { label: f.facet.to_string(), fraction: f.fraction, ci: f.ci95, reference: f.static_probability })
         .collect();
-    out.file("drops_facets.png", |p| bar_plot(p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars))?;
+    for ext in ["png", "svg"] {
+        out.file(&format!("drops_facets.{ext}"), |p| {
+            bar_plot(p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars)
+        })?;
+    }
     Ok(out.written)
 }
 

@@ -570,7 +570,7 @@ pub fn threshold_points(r: &PerturbReport) -> Vec<(f64, f64, bool, Class)> {
 }
 
 /// Write `perturb.json`, `curves.csv`, `thresholds.csv`, `trials.csv` and (if any curve)
-/// `robustness.png/.svg` and `thresholds.png` into `dir`; `name` is the mesh named in captions.
+/// `robustness.png/.svg` and `thresholds.png/.svg` into `dir`; `name` is the mesh named in captions.
 pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("perturb.json", |p| write_json(p, r))?;
@@ -585,7 +585,9 @@ pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result
             out.file(&format!("robustness.{ext}"), |p| plot_curves(p, &caption, "ε (log scale)", true, &panels))?;
         }
         let caption = format!("{short}: dynamic thresholds vs static barriers");
-        out.file("thresholds.png", |p| plot_thresholds(p, &caption, &threshold_points(r)))?;
+        for ext in ["png", "svg"] {
+            out.file(&format!("thresholds.{ext}"), |p| plot_thresholds(p, &caption, &threshold_points(r)))?;
+        }
     }
     Ok(out.written)
 }

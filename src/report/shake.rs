@@ -270,7 +270,7 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
     .map_err(|e| crate::Error::write(path, e))
 }
 
-/// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png` into
+/// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png/.svg` into
 /// `dir`; `name` is the mesh named in the caption.
 pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
@@ -293,7 +293,9 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
         .collect();
     if !lines.is_empty() {
         let caption = format!("{}: fragility, {}", short_name(name), r.motion.describe());
-        out.file("fragility.png", |p| plot_fragility(p, &caption, &lines, &[]))?;
+        for ext in ["png", "svg"] {
+            out.file(&format!("fragility.{ext}"), |p| plot_fragility(p, &caption, &lines, &[]))?;
+        }
     }
     Ok(out.written)
 }
