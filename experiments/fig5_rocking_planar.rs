@@ -101,7 +101,7 @@ fn main() -> Result<()> {
     root.fill(&WHITE)?;
     let (head, body) = root.split_vertically(50);
     head.titled(
-        &format!("Discretised ellipse 1 : {A}, N = {n}: stable, rocking and unstable equilibrium (dots: vermillion = stable side, orange = rocking side, blue = unstable vertex)"),
+        &format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable"),
         (FONT_FAMILY, 24),
     )?;
     let panels = body.split_evenly((1, 3));
