@@ -157,7 +157,8 @@ fn main() -> Result<()> {
         .label("rocking (stable in unstable flock)")
         .legend(|(x, y)| Circle::new((x + 10, y), 6, colors::ORANGE.stroke_width(3)));
         c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperMiddle)
+            // the curve's empty side: above a stable flock's valley, below an unstable flock's peak
+            .position(if centre == 0.0 { SeriesLabelPosition::LowerMiddle } else { SeriesLabelPosition::UpperMiddle })
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
             .label_font((FONT_FAMILY, 14))
