@@ -2,8 +2,9 @@
 # Headless-browser test of report.html (issue 14): `rocking analyze -o DIR` on the bundled stone,
 # then Debian's Chromium opens DIR/report.html with no network and
 #  * --dump-dom: the page's own check must have run (#status data-status="drawn", set after the
-#    3D canvas is drawn; "error" if window.onerror fired), #errors must be empty, and the canvas
-#    must have non-blank pixels (data-nonblank, counted by the page with getImageData);
+#    3D canvas is drawn; "error" if window.onerror fired), #errors must be empty, the canvas
+#    must have non-blank pixels (data-nonblank, counted by the page with getImageData), and a
+#    synthetic hover on a mark must show its kind, R and flock (data-tooltip);
 #  * --screenshot: written to results/report_html/report_screenshot.png.
 # Usage: .ci/report_html.sh [path/to/rocking] (default target/debug/rocking).
 set -euo pipefail
@@ -31,6 +32,12 @@ if ! echo "$status" | grep -q 'data-status="drawn"'; then
 fi
 if [ -n "$errors" ]; then
   echo "report_html: FAILED: script errors: $errors" >&2
+  exit 1
+fi
+# hovering a mark (the page dispatches a mouse event on the first visible one) shows its kind,
+# R with the unit, and its flock
+if ! echo "$status" | grep -Eq 'data-tooltip="(stable|unstable|saddle) micro-equilibrium [^"]*R = [0-9.]+ mm [^"]*flock F[0-9]+'; then
+  echo "report_html: FAILED: no tooltip with kind, R and flock on hovering a mark" >&2
   exit 1
 fi
 # the 760 × 620 canvas: the stone covers well over 5 % of it

@@ -14,6 +14,7 @@ use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{log_tick, series_color};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -205,12 +206,14 @@ fn plot(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
         .configure_mesh()
         .x_desc("drop height / R_max")
         .y_desc("KL(drops ‖ static), nats")
-        .label_style((FONT_FAMILY, 13))
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| log_tick(*y))
+        .label_style((FONT_FAMILY, 14))
         .draw()?;
     let mut k = 0;
     for body in ["box 2x1.4x1", "pebble 1:0.72:0.5"] {
         for &e in &RESTITUTIONS {
-            let color = Palette99::pick(k).to_rgba();
+            let color = series_color(k);
             k += 1;
             let pts: Vec<(f64, f64)> = rows
                 .iter()

@@ -8,7 +8,8 @@ use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options, Report};
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
-use rocking_stones::report::write_outputs;
+use rocking_stones::plot::{log_tick, series_color};
+use rocking_stones::report::analysis::write_files;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -33,7 +34,7 @@ fn main() -> anyhow::Result<()> {
     for (name, a) in &runs {
         let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
         let r = a.report(name, &opts);
-        write_outputs(a, &r, &out.join(&slug))?;
+        write_files(a, &r, &out.join(&slug))?;
         reports.push((slug, r));
     }
     overlay(&out.join("n_nu_all.png"), &reports)?;
@@ -51,9 +52,15 @@ fn overlay(path: &Path, reports: &[(String, Report)]) -> anyhow::Result<()> {
         .x_label_area_size(45)
         .y_label_area_size(55)
         .build_cartesian_2d((1e-7f64..1.0).log_scale(), 0f64..1.05)?;
-    chart.configure_mesh().x_desc("ν (log scale)").y_desc("n(ν)").label_style((FONT_FAMILY, 14)).draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("ν (log scale)")
+        .y_desc("n(ν)")
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .label_style((FONT_FAMILY, 14))
+        .draw()?;
     for (k, (_, r)) in reports.iter().enumerate() {
-        let color = Palette99::pick(k).to_rgba();
+        let color = series_color(k);
         let mut pts = Vec::new();
         for s in &r.staircase {
             pts.push((s.nu_lo.max(1e-7), s.n));

@@ -10,7 +10,7 @@ use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{
     ellipse_polygon, ellipse_radius, FlockContents, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, init_fonts, FONT_FAMILY};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -88,12 +88,15 @@ fn main() -> Result<()> {
         (PI / 2.0, 1.0, Kind::Stable),
         (PI, A, Kind::Unstable),
     ];
-    let colour = |k: Kind| if k == Kind::Stable { RED } else { BLUE };
+    let colour = |k: Kind| if k == Kind::Stable { colors::VERMILLION } else { colors::BLUE };
     let s = report.stable;
     // A: smooth ellipse.
     {
         let mut c = ChartBuilder::on(&panels[0])
-            .caption(format!("A. smooth ellipse 1 : {A}: S = U = 2"), (FONT_FAMILY, 22))
+            .caption(
+                format!("A. smooth ellipse 1 : {A}: S = U = 2 (vermillion: stable, blue: unstable)"),
+                (FONT_FAMILY, 22),
+            )
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(60)
@@ -149,12 +152,13 @@ fn main() -> Result<()> {
         c.draw_series(
             eqs.iter()
                 .filter(|e| inside(e.phi) && e.kind == Kind::Stable && e.flock_kind != Kind::Stable)
-                .map(|e| Circle::new((e.phi, e.r), 11, RGBColor(255, 140, 0).stroke_width(3))),
+                .map(|e| Circle::new((e.phi, e.r), 11, colors::ORANGE.stroke_width(3))),
         )?
         .label("rocking (stable in unstable flock)")
-        .legend(|(x, y)| Circle::new((x + 10, y), 6, RGBColor(255, 140, 0).stroke_width(3)));
+        .legend(|(x, y)| Circle::new((x + 10, y), 6, colors::ORANGE.stroke_width(3)));
         c.configure_series_labels()
-            .position(SeriesLabelPosition::UpperMiddle)
+            // the curve's empty side: above a stable flock's valley, below an unstable flock's peak
+            .position(if centre == 0.0 { SeriesLabelPosition::LowerMiddle } else { SeriesLabelPosition::UpperMiddle })
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
             .label_font((FONT_FAMILY, 14))

@@ -8,7 +8,7 @@ use anyhow::Result;
 use plotters::prelude::*;
 use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{ellipse_polygon, sides_for_k, table1, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL};
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, init_fonts, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -25,7 +25,7 @@ fn main() -> Result<()> {
     root.fill(&WHITE)?;
     let (head, body) = root.split_vertically(60);
     head.titled(
-        "Arc-length discretised ellipses: rows k (N = 4k − 2), columns a; red: stable, blue: unstable",
+        "Arc-length discretised ellipses: rows k (N = 4k − 2), columns a; dots: vermillion = stable, blue = unstable",
         (FONT_FAMILY, 22),
     )?;
     let (left, grid) = body.split_horizontally(70);
@@ -64,7 +64,7 @@ fn main() -> Result<()> {
             v.push(v[0]);
             c.draw_series(std::iter::once(PathElement::new(v, BLACK.stroke_width(1))))?;
             c.draw_series(an.equilibria.points.iter().map(|p| {
-                let col = if p.kind == Kind::Stable { RED } else { BLUE };
+                let col = if p.kind == Kind::Stable { colors::VERMILLION } else { colors::BLUE };
                 Circle::new((p.point.x, p.point.y), 4, col.filled())
             }))?;
         }

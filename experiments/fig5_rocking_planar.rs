@@ -11,7 +11,7 @@ use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, FlockContents, PlanarAnalysis, PlanarEquilibrium, PlanarSite, Point2, Sampling,
     DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, init_fonts, FONT_FAMILY};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -101,14 +101,14 @@ fn main() -> Result<()> {
     root.fill(&WHITE)?;
     let (head, body) = root.split_vertically(50);
     head.titled(
-        &format!("Discretised ellipse 1 : {A}, N = {n}: stable, rocking and unstable equilibrium"),
+        &format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable"),
         (FONT_FAMILY, 24),
     )?;
     let panels = body.split_evenly((1, 3));
     let items = [
-        (regular, "stable (stable flock)", RED),
-        (rocking, "rocking (stable in unstable flock)", RGBColor(255, 140, 0)),
-        (unstable, "unstable (unstable flock)", BLUE),
+        (regular, "stable (stable flock)", colors::VERMILLION),
+        (rocking, "rocking (stable in unstable flock)", colors::ORANGE),
+        (unstable, "unstable (unstable flock)", colors::BLUE),
     ];
     for (panel, &(i, title, colour)) in panels.iter().zip(&items) {
         draw_resting(panel, &an, &eq[i], title, colour, &an.equilibria.points, &|j| flock_kind(j))?;
@@ -189,9 +189,9 @@ where
     // Micro-equilibria: stable in stable flocks red, rocking orange, unstable blue.
     c.draw_series(eqs.iter().enumerate().map(|(i, p)| {
         let col = match (p.kind, flock_kind(i)) {
-            (Kind::Stable, Kind::Stable) => RED,
-            (Kind::Stable, _) => RGBColor(255, 140, 0),
-            _ => BLUE,
+            (Kind::Stable, Kind::Stable) => colors::VERMILLION,
+            (Kind::Stable, _) => colors::ORANGE,
+            _ => colors::BLUE,
         };
         Circle::new(place(&p.point), 4, col.filled())
     }))

@@ -298,7 +298,7 @@ fn part_b(out: &Path, readme: &mut String) -> anyhow::Result<()> {
         rocking_stones::report::shake::write_batch_outputs(&batch, c.name, &dir)?;
         let class = {
             let k = c.stone.position(batch.start_equilibrium).unwrap();
-            format!("{:?}", c.stone.stable()[k].class).to_lowercase()
+            c.stone.stable()[k].class.to_string()
         };
         let k = batch.runs.iter().filter(|r| r.rock.overturned).count();
         let f = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.3}"));
@@ -315,7 +315,7 @@ fn part_b(out: &Path, readme: &mut String) -> anyhow::Result<()> {
         };
         writeln!(
             readme,
-            "| {} | {:.3} | {:?} | {class} | {} | {k} | {b} | {p05} | {p2} | {secs:.1} |",
+            "| {} | {:.3} | {} | {class} | {} | {k} | {b} | {p05} | {p2} | {secs:.1} |",
             c.name,
             setup.r_max_m,
             c.pose,

@@ -14,6 +14,7 @@ use rocking_stones::hull::{convex_hull, Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::mesh::io;
 use rocking_stones::morse_smale::{cancellation_hierarchy, MorseSmaleGraph};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{log_tick, series_color};
 use rocking_stones::solid::MassProperties;
 use rocking_stones::stats::log_fit;
 use std::fmt::Write as _;
@@ -200,12 +201,19 @@ fn plot(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
         .x_label_area_size(45)
         .y_label_area_size(60)
         .build_cartesian_2d((5e2f64..2e6).log_scale(), (1e-5f64..2e1).log_scale())?;
-    chart.configure_mesh().x_desc("mesh vertices").y_desc("seconds").label_style((FONT_FAMILY, 14)).draw()?;
+    chart
+        .configure_mesh()
+        .x_desc("mesh vertices")
+        .y_desc("seconds")
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| log_tick(*y))
+        .label_style((FONT_FAMILY, 14))
+        .draw()?;
     for (k, st) in STAGES.iter().enumerate() {
         if k == 0 || k == 1 {
             continue;
         }
-        let color = Palette99::pick(k).to_rgba();
+        let color = series_color(k);
         chart
             .draw_series(LineSeries::new(
                 peb.iter().map(|r| (r.vertices as f64, r.seconds[k].max(1e-5))),

@@ -16,6 +16,7 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::PAPER_NU;
+use rocking_stones::plot::log_tick;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::report;
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
@@ -222,6 +223,8 @@ where
         .configure_mesh()
         .x_desc("roughness amplitude (log scale)")
         .y_desc("fitted ν (log scale)")
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| log_tick(*y))
         .label_style((FONT_FAMILY, 14))
         .draw()?;
     chart

@@ -122,7 +122,7 @@ impl RunHeader {
         );
         field("seed", self.seed == other.seed, self.seed.to_string(), other.seed.to_string());
         field("drops", self.drops == other.drops, self.drops.to_string(), other.drops.to_string());
-        field("parameters", self.params == other.params, format!("{:?}", self.params), format!("{:?}", other.params));
+        field("parameters", self.params == other.params, params_text(&self.params), params_text(&other.params));
         field(
             "certificate",
             self.certificate == other.certificate,
@@ -132,11 +132,21 @@ impl RunHeader {
         field(
             "centre of mass",
             self.center_of_mass == other.center_of_mass,
-            format!("{:?}", self.center_of_mass),
-            format!("{:?}", other.center_of_mass),
+            centre_text(self.center_of_mass),
+            centre_text(other.center_of_mass),
         );
         d
     }
+}
+
+/// Parameters as a person compares them: their JSON.
+fn params_text(p: &DropParams) -> String {
+    serde_json::to_string(p).unwrap_or_default()
+}
+
+/// A centre of mass as given by `--center-of-mass`, or the homogeneous solid's.
+fn centre_text(c: Option<[f64; 3]>) -> String {
+    c.map_or("the homogeneous solid's G".into(), |[x, y, z]| format!("({x}, {y}, {z})"))
 }
 
 /// Header format tag of checkpoint files (2: launches with horizontal speed and Gaussian spin,

@@ -114,6 +114,13 @@ pub mod colors {
     pub const GREY: RGBColor = RGBColor(110, 110, 110);
 }
 
+/// The colour of data series `k` of a plot (several stones, stages, parameters): Okabe–Ito
+/// blue, vermillion, bluish green, orange, reddish purple, sky blue, black, yellow, repeating.
+pub fn series_color(k: usize) -> RGBColor {
+    const ORDER: [usize; 8] = [5, 6, 3, 1, 7, 2, 0, 4];
+    OKABE_ITO[ORDER[k % 8]]
+}
+
 /// Paul Tol's colour-blind-safe qualitative palettes (P. Tol, *Colour Schemes*, SRON technical
 /// note SRON/EPS/TN/09-002, 2021): the nine "muted" colours, then the eight "light" ones (without
 /// their pale grey): up to 17 flocks get distinct colours; beyond that they repeat and the flock

@@ -119,7 +119,7 @@ pub struct Args {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
-    /// Write perturb.json, CSVs (curves, thresholds, trials) and plots into this folder.
+    /// Write perturb.json, CSVs (curves, thresholds, trials), plots and report.html into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }

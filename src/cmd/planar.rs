@@ -56,8 +56,8 @@ pub struct EllipseArgs {
 
 #[derive(clap::Args)]
 pub struct RegularArgs {
-    /// Number of sides.
-    #[arg(long)]
+    /// Number of sides (at least 3).
+    #[arg(short = 'n', long = "sides", alias = "n")]
     pub n: usize,
     #[command(flatten)]
     pub common: Common,
@@ -91,7 +91,8 @@ pub fn run(args: Args) -> Result<()> {
             let sides = match (e.k, e.sides) {
                 (Some(k), _) if k >= 1 => sides_for_k(k),
                 (Some(k), _) => anyhow::bail!("--k must be ≥ 1, got {k}"),
-                (None, Some(n)) => n,
+                (None, Some(n)) if n >= 3 => n,
+                (None, Some(n)) => anyhow::bail!("--sides must be at least 3 for a polygon, got {n}"),
                 (None, None) => anyhow::bail!("give --k or --sides"),
             };
             let sampling = match e.sampling {
@@ -102,6 +103,7 @@ pub fn run(args: Args) -> Result<()> {
             let p = ellipse_polygon(e.a, sides, sampling)?;
             (p, ShapeInfo::Ellipse { a: e.a, k: e.k, sides, sampling }, &e.common)
         }
+        Shape::Regular(r) if r.n < 3 => anyhow::bail!("-n (sides) must be at least 3 for a polygon, got {}", r.n),
         Shape::Regular(r) => (Polygon::regular(r.n, 1.0, 0.0)?, ShapeInfo::Regular { n: r.n }, &r.common),
     };
     if let Some(nu) = common.nu {

@@ -90,7 +90,7 @@ pub struct Args {
     pub sim: SimArgs,
     #[arg(long)]
     pub json: bool,
-    /// Write shake.json, fragility.csv, trials.csv and fragility.png into this folder.
+    /// Write shake.json, fragility.csv, trials.csv, fragility.png/.svg and report.html into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }

@@ -232,7 +232,7 @@ fn write_study(study: &Study, dir: &Path, title: &str) -> Result<()> {
     }
     print!("{}", report::study::samples_table(study, &summaries));
     println!("σ: sample standard deviation (n − 1), the convention of the paper's hand columns");
-    println!("wrote {}, {}, zingg.png/.svg", p.display(), s.display());
+    println!("wrote {}, {}, {}/zingg.png and .svg", p.display(), s.display(), dir.display());
     Ok(())
 }
 
@@ -240,8 +240,11 @@ fn batch(args: BatchArgs) -> Result<()> {
     let folder = args.folder.as_ref().context(
         "give a FOLDER of scans (rocking study FOLDER [--meta META.csv]) or a subcommand (synthetic, fit-nu)",
     )?;
+    if !folder.exists() {
+        anyhow::bail!("{}: does not exist", folder.display());
+    }
     if !folder.is_dir() {
-        anyhow::bail!("{}: not a folder", folder.display());
+        anyhow::bail!("{}: is a file, not a folder of scans", folder.display());
     }
     let files = study::mesh_files(folder)?;
     let meta = args.meta.as_deref().map(Metadata::read).transpose()?;

@@ -81,12 +81,12 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
         Some(p) => {
             let _ = writeln!(
                 s,
-                "  plateau  ν ∈ [{}, {}), {:.2} decades, {} (clarity {:.2}): S = {}  U = {}  H = {}",
+                "  plateau  ν ∈ [{}, {}), {} decades, {} (clarity {}): S = {}  U = {}  H = {}",
                 number(p.nu_lo, 4),
                 number(p.nu_hi, 4),
-                p.decades,
+                if p.decades.is_finite() { format!("{:.2}", p.decades) } else { "∞".into() },
                 if p.clear { "clear" } else { "NOT clear — micro and macro scales are not well separated" },
-                p.clarity,
+                if p.clarity.is_finite() { format!("{:.2}", p.clarity) } else { "∞".into() },
                 p.counts.stable,
                 p.counts.unstable,
                 p.counts.saddle
@@ -258,6 +258,15 @@ pub fn write_outputs(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<
 /// [`write_outputs`] for a mesh whose coordinates are in `unit` (labels of the summary and the
 /// 3D view of `report.html`).
 pub fn write_outputs_in(a: &Analysis, r: &Report, unit: &Unit, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    let mut written = write_files(a, r, dir)?;
+    let title = format!("rocking analyze: {}", super::short_name(&r.file));
+    super::html::add_page(dir, &mut written, &title, &summary_in(r, unit), Some(&super::html::hull_view(a, r, unit)))?;
+    Ok(written)
+}
+
+/// The files of [`write_outputs`] without `report.html` (for experiments that keep many stones'
+/// pictures side by side).
+pub fn write_files(a: &Analysis, r: &Report, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("report.json", |p| write_json(p, r))?;
     for ext in ["png", "svg"] {
@@ -268,10 +277,7 @@ pub fn write_outputs_in(a: &Analysis, r: &Report, unit: &Unit, dir: &Path) -> cr
     }
     let (mesh, colors) = flock_colored_hull(a, r);
     out.file("hull_flocks.ply", |p| crate::mesh::io::write_colored_ply(p, &mesh, &colors))?;
-    let mut written = out.written;
-    let title = format!("rocking analyze: {}", super::short_name(&r.file));
-    super::html::add_page(dir, &mut written, &title, &summary_in(r, unit), Some(&super::html::hull_view(a, r, unit)))?;
-    Ok(written)
+    Ok(out.written)
 }
 
 /// The log ν – n(ν) staircase (paper Figure 10B) with the plateau and the chosen ν marked.
@@ -331,7 +337,7 @@ where
         .map_err(|e| format!("{e:?}"))?;
     chart
         .configure_mesh()
-        .x_desc("ν = (R − R_min)/R_max cancellation level (log scale)")
+        .x_desc("ν: cancel arcs with |R_i − R_j|/R_max below ν (log scale)")
         .y_desc("n(ν): fraction of micro-equilibria left")
         .x_label_formatter(&|x: &f64| log_tick(*x))
         .y_label_formatter(&|y: &f64| format!("{y:.1}"))
@@ -402,7 +408,7 @@ pub fn flock_colored_hull(a: &Analysis, r: &Report) -> (TriMesh, Vec<[u8; 3]>) {
 /// arcs as thin lines (drawn on the visible side only, approximately: both ends facing the viewer
 /// as seen from G), and a legend under the views for every mark and colour.
 pub fn plot_hull(a: &Analysis, r: &Report, path: &Path) -> crate::Result<()> {
-    let (w, views) = (1400u32, 680u32);
+    let (w, views) = (1400u32, 580u32);
     let rows = r.flocks.len().div_ceil(FLOCKS_PER_ROW) as u32;
     let h = views + 96 + 26 * rows;
     render!(path, (w, h), |root| draw_hull(&root, a, r, (w, views)))
@@ -500,26 +506,14 @@ where
                 .draw(&Polygon::new(poly, RGBColor(tint(base.0), tint(base.1), tint(base.2)).filled()))
                 .map_err(err)?;
         }
-        let visible = |p: &Point3| (p - g).dot(&view) > 0.0;
-        for arc in &a.graph.arcs {
-            for seg in arc.path.windows(2) {
-                if visible(&seg[0]) && visible(&seg[1]) {
-                    panel
-                        .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.6)))
-                        .map_err(err)?;
-                }
-            }
-        }
-        for e in &r.equilibria {
-            if visible(&e.point) {
-                kind_mark(panel, e.kind, project(&e.point), 6, colors[e.flock])?;
-            }
-        }
+        // label only the flocks seen over ≥ 3 % of the view (not slivers at the rim)
+        let seen: f64 = label_at.iter().map(|l| l.2).sum();
         for (k, (x, y, wsum)) in label_at.iter().enumerate() {
-            if *wsum <= 0.0 {
+            if *wsum <= 0.03 * seen {
                 continue;
             }
-            let (x, y) = ((x / wsum) as i32, (y / wsum) as i32);
+            // beside the centre of the flock's facets, not on the mark that is often there
+            let (x, y) = ((x / wsum) as i32 + 22, (y / wsum) as i32 - 20);
             let text = format!("F{k}");
             let half = 7 * text.chars().count() as i32 / 2 + 4;
             panel
@@ -538,6 +532,21 @@ where
                     )),
                 ))
                 .map_err(err)?;
+        }
+        let visible = |p: &Point3| (p - g).dot(&view) > 0.0;
+        for arc in &a.graph.arcs {
+            for seg in arc.path.windows(2) {
+                if visible(&seg[0]) && visible(&seg[1]) {
+                    panel
+                        .draw(&PathElement::new(vec![project(&seg[0]), project(&seg[1])], BLACK.mix(0.6)))
+                        .map_err(err)?;
+                }
+            }
+        }
+        for e in &r.equilibria {
+            if visible(&e.point) {
+                kind_mark(panel, e.kind, project(&e.point), 6, colors[e.flock])?;
+            }
         }
         let title = format!(
             "{} (looking along {}c, the shortest axis)",

@@ -75,7 +75,7 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
             s,
             "    {:>5} {:<9} {:>7} {:>9.4} {:>18} {:>9.4}",
             f.id,
-            format!("{:?}", f.kind).to_lowercase(),
+            f.kind.name(),
             f.count,
             f.fraction,
             format!("[{:.4}, {:.4}]", f.ci95.0, f.ci95.1),
@@ -130,7 +130,7 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     s
 }
 
-/// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png` into `dir`.
+/// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png/.svg` into `dir`.
 pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("drops.json", |p| write_json(p, r))?;
@@ -138,7 +138,7 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
         .flocks
         .iter()
         .map(|f| Bar {
-            label: format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()),
+            label: format!("F{} {}", f.id, f.kind),
             fraction: f.fraction,
             ci: f.ci95,
             reference: f.static_probability,
@@ -155,7 +155,11 @@ pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crat
         .take(30)
         .map(|f| Bar { label: f.facet.to_string(), fraction: f.fraction, ci: f.ci95, reference: f.static_probability })
         .collect();
-    out.file("drops_facets.png", |p| bar_plot(p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars))?;
+    for ext in ["png", "svg"] {
+        out.file(&format!("drops_facets.{ext}"), |p| {
+            bar_plot(p, "Resting facet (micro-equilibrium): drops vs quasi-static", &bars)
+        })?;
+    }
     Ok(out.written)
 }
 
@@ -190,7 +194,7 @@ where
     let top = bars.iter().map(|b| b.ci.1.max(b.reference)).fold(0.0, f64::max).max(0.05) * 1.15;
     let n = bars.len().max(1);
     let mut chart = ChartBuilder::on(root)
-        .caption(title, (FONT_FAMILY, 20))
+        .caption(title, (FONT_FAMILY, crate::plot::style::TITLE))
         .margin(12)
         .x_label_area_size(50)
         .y_label_area_size(60)
@@ -210,11 +214,11 @@ where
             }
         })
         .y_desc("probability")
-        .label_style((FONT_FAMILY, 12))
+        .label_style((FONT_FAMILY, crate::plot::style::TICK))
         .draw()
         .map_err(e)?;
-    let drops = RGBColor(70, 110, 200);
-    let stat = RGBColor(230, 140, 40);
+    let drops = crate::plot::colors::BLUE;
+    let stat = crate::plot::colors::ORANGE;
     chart
         .draw_series(
             bars.iter()
@@ -240,7 +244,7 @@ where
         .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 12, y + 5)], stat.filled()));
     chart
         .configure_series_labels()
-        .label_font((FONT_FAMILY, 13))
+        .label_font((FONT_FAMILY, crate::plot::style::LEGEND))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .position(SeriesLabelPosition::UpperRight)

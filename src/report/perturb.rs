@@ -2,8 +2,7 @@
 //! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
 
 use super::{short_name, write_json, Folder};
-use crate::dynamics::perturb::{Class, CurvePoint, Outcome, PerturbReport, Threshold, Trial};
-use crate::equilibria::Kind;
+use crate::dynamics::perturb::{Class, CurvePoint, PerturbReport, Threshold, Trial};
 use crate::plot::{colors, draw_legend, legend_height, log_tick, plain, render, style, DrawResult, Mark, FONT_FAMILY};
 use std::path::{Path, PathBuf};
 
@@ -65,11 +64,7 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
             q.index,
             q.facet,
             q.flock,
-            match q.flock_kind {
-                Kind::Stable => "S",
-                Kind::Unstable => "U",
-                Kind::Saddle => "H",
-            },
+            q.flock_kind.letter(),
             cls(q.class),
             fmt_eps(q.basin_exit.epsilon),
             if e.rest.stays { fmt_threshold(&e.eps50_micro) } else { "no rest".into() },
@@ -145,8 +140,8 @@ pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
                     q.index.to_string(),
                     q.facet.to_string(),
                     q.flock.to_string(),
-                    format!("{:?}", q.flock_kind).to_lowercase(),
-                    format!("{:?}", q.class).to_lowercase(),
+                    q.flock_kind.name().to_string(),
+                    q.class.name().to_string(),
                     r.family.name().into(),
                     format!("{:.6e}", c.x),
                     c.n.to_string(),
@@ -223,8 +218,8 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
                 q.facet.to_string(),
                 format!("{:.6}", q.r_normalised),
                 q.flock.to_string(),
-                format!("{:?}", q.flock_kind).to_lowercase(),
-                format!("{:?}", q.class).to_lowercase(),
+                q.flock_kind.name().to_string(),
+                q.class.name().to_string(),
                 e.rest.stays.to_string(),
                 format!("{:.6e}", q.basin_exit.epsilon),
                 q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
@@ -239,7 +234,7 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
                 opt(e.ratio_micro),
                 opt(e.ratio_flock),
                 format!("{:.6e}", q.uplift_acceleration),
-                e.dynamic_class.map_or(String::new(), |c| format!("{c:?}").to_lowercase()),
+                e.dynamic_class.map_or(String::new(), |c| c.name().to_string()),
             ])?;
         }
         w.flush()?;
@@ -273,12 +268,7 @@ pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
                 t.family.name().into(),
                 format!("{:.6e}", t.epsilon),
                 t.trial.to_string(),
-                match t.outcome {
-                    Outcome::Same => "same",
-                    Outcome::SameFlock => "same-flock",
-                    Outcome::Toppled => "toppled",
-                }
-                .into(),
+                t.outcome.name().into(),
                 t.final_facet.map_or(String::new(), |x| x.to_string()),
                 t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
                 t.final_flock.to_string(),
@@ -580,7 +570,7 @@ pub fn threshold_points(r: &PerturbReport) -> Vec<(f64, f64, bool, Class)> {
 }
 
 /// Write `perturb.json`, `curves.csv`, `thresholds.csv`, `trials.csv` and (if any curve)
-/// `robustness.png/.svg` and `thresholds.png` into `dir`; `name` is the mesh named in captions.
+/// `robustness.png/.svg` and `thresholds.png/.svg` into `dir`; `name` is the mesh named in captions.
 pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("perturb.json", |p| write_json(p, r))?;
@@ -595,7 +585,9 @@ pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result
             out.file(&format!("robustness.{ext}"), |p| plot_curves(p, &caption, "ε (log scale)", true, &panels))?;
         }
         let caption = format!("{short}: dynamic thresholds vs static barriers");
-        out.file("thresholds.png", |p| plot_thresholds(p, &caption, &threshold_points(r)))?;
+        for ext in ["png", "svg"] {
+            out.file(&format!("thresholds.{ext}"), |p| plot_thresholds(p, &caption, &threshold_points(r)))?;
+        }
     }
     Ok(out.written)
 }

@@ -1,6 +1,6 @@
 //! What a person reads of a planar analysis ([`crate::planar`]): the summary of `rocking planar`.
 
-use crate::hierarchy::Kind;
+use super::names::{number, plural};
 use crate::planar::{PlanarReport, Sampling, Table1};
 use serde::Serialize;
 
@@ -32,7 +32,7 @@ pub fn summary(info: &ShapeInfo, r: &PlanarReport, limit: Option<&Table1>) -> St
     let mut s = String::new();
     match info {
         ShapeInfo::Ellipse { a, sides, sampling, .. } => {
-            let _ = writeln!(s, "ellipse 1 : {a} (major axis x), {sides} sides, sampling {sampling:?}");
+            let _ = writeln!(s, "ellipse 1 : {a} (major axis x), {sides} sides, sampling: {sampling}");
         }
         ShapeInfo::Regular { n } => {
             let _ = writeln!(s, "regular {n}-gon");
@@ -40,16 +40,16 @@ pub fn summary(info: &ShapeInfo, r: &PlanarReport, limit: Option<&Table1>) -> St
     }
     let _ = writeln!(
         s,
-        "micro-equilibria: S = {}, U = {}   (R_min = {:.6}, R_max = {:.6}, v_max = {:.4e}, degenerate decisions: {})",
+        "micro-equilibria: S = {}, U = {}   (R_min = {:.6}, R_max = {:.6}, v_max = {:.4}, degenerate decisions: {})",
         r.stable, r.unstable, r.r_min, r.r_max, r.v_max, r.degenerate_decisions
     );
     match &r.plateau {
         Some(p) => {
             let _ = writeln!(
                 s,
-                "plateau: ν ∈ [{:.3e}, {:.3e}], {} decades, clarity {}, {} → S = {}, U = {}",
-                p.nu_lo,
-                p.nu_hi,
+                "plateau: ν ∈ [{}, {}], {} decades, clarity {}, {} → S = {}, U = {}",
+                number(p.nu_lo, 4),
+                number(p.nu_hi, 4),
                 fmt_inf(p.decades),
                 fmt_inf(p.clarity),
                 if p.clear { "clear" } else { "NOT clear" },
@@ -63,22 +63,25 @@ pub fn summary(info: &ShapeInfo, r: &PlanarReport, limit: Option<&Table1>) -> St
     }
     let _ = writeln!(
         s,
-        "macro scale ν = {:.4e} ({:?}): S = {}, U = {}",
-        r.nu, r.nu_source, r.macro_counts.stable, r.macro_counts.unstable
+        "macro scale ν = {} ({}): S = {}, U = {}",
+        number(r.nu, 5),
+        r.nu_source,
+        r.macro_counts.stable,
+        r.macro_counts.unstable
     );
     for f in &r.flocks {
-        let kind = match f.kind {
-            Kind::Stable => "stable",
-            Kind::Unstable => "unstable",
-            Kind::Saddle => "saddle",
-        };
+        let kind = f.kind.name();
         let _ = writeln!(
             s,
             "  flock {:>3} {:<8} root {:>5}: {} stable + {} unstable",
             f.id, kind, f.root, f.stable, f.unstable
         );
     }
-    let _ = writeln!(s, "rocking equilibria (stable sides in unstable flocks): {}", r.rocking.len());
+    let _ = writeln!(
+        s,
+        "{} (stable sides in unstable flocks)",
+        plural(r.rocking.len() as u64, "rocking equilibrium", "rocking equilibria")
+    );
     for x in r.rocking.iter().take(20) {
         let _ = writeln!(s, "  side {:>5}  φ = {:+.4}  R = {:.6}  flock {}", x.side, x.phi, x.r, x.flock);
     }

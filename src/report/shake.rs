@@ -54,7 +54,7 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
         Some(Threshold::At(x)) => format!("{x:.3}"),
         Some(Threshold::Above(x)) => format!(">{x:.3}"),
     };
-    let class = |q: &StableEquilibrium| format!("{:?}", q.class).to_lowercase();
+    let class = |q: &StableEquilibrium| q.class.name().to_string();
     if r.pgas.len() == 1 {
         let _ = writeln!(
             s,
@@ -140,7 +140,7 @@ pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
                 w.write_record([
                     q.index.to_string(),
                     q.facet.to_string(),
-                    format!("{:?}", q.class).to_lowercase(),
+                    q.class.name().to_string(),
                     format!("{:.4}", c.x),
                     c.n.to_string(),
                     c.same.to_string(),
@@ -187,7 +187,7 @@ where
     let hi = lines.iter().flat_map(|l| l.1.iter().map(|c| c.x)).fold(0.0, f64::max).max(1e-3) * 1.05;
     root.fill(&WHITE).map_err(err)?;
     let mut chart = ChartBuilder::on(root)
-        .caption(caption, (font, 20))
+        .caption(caption, (font, crate::plot::style::TITLE))
         .margin(14)
         .x_label_area_size(45)
         .y_label_area_size(55)
@@ -197,7 +197,7 @@ where
         .configure_mesh()
         .x_desc("peak ground acceleration (g)")
         .y_desc("P(toppled out of the flock)")
-        .label_style((font, 13))
+        .label_style((font, crate::plot::style::TICK))
         .draw()
         .map_err(err)?;
     for (x, label, color) in markers {
@@ -227,7 +227,7 @@ where
     }
     chart
         .configure_series_labels()
-        .label_font((font, 13))
+        .label_font((font, crate::plot::style::LEGEND))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .position(SeriesLabelPosition::LowerRight)
@@ -257,7 +257,7 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
                 format!("{:.4}", t.pga),
                 format!("{:.2}", t.azimuth.to_degrees()),
                 t.trial.to_string(),
-                format!("{:?}", t.outcome).to_lowercase(),
+                t.outcome.name().to_string(),
                 t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
                 t.final_flock.to_string(),
                 t.settled.to_string(),
@@ -270,14 +270,13 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
     .map_err(|e| crate::Error::write(path, e))
 }
 
-/// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png` into
+/// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png/.svg` into
 /// `dir`; `name` is the mesh named in the caption.
 pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("shake.json", |p| write_json(p, r))?;
     out.file("fragility.csv", |p| write_fragility_csv(p, r))?;
     out.file("trials.csv", |p| write_trials_csv(p, &r.trials))?;
-    let colors = [RGBColor(200, 60, 40), RGBColor(40, 90, 200), RGBColor(40, 150, 70), RGBColor(150, 60, 170)];
     let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
         .fragility
         .iter()
@@ -289,12 +288,14 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
                 Class::Regular => "regular",
                 Class::Rocking => "rocking",
             };
-            (format!("eq {} ({class}, facet {})", q.index, q.facet), f.curve.as_slice(), colors[i % colors.len()])
+            (format!("eq {} ({class}, facet {})", q.index, q.facet), f.curve.as_slice(), crate::plot::series_color(i))
         })
         .collect();
     if !lines.is_empty() {
         let caption = format!("{}: fragility, {}", short_name(name), r.motion.describe());
-        out.file("fragility.png", |p| plot_fragility(p, &caption, &lines, &[]))?;
+        for ext in ["png", "svg"] {
+            out.file(&format!("fragility.{ext}"), |p| plot_fragility(p, &caption, &lines, &[]))?;
+        }
     }
     Ok(out.written)
 }
@@ -333,7 +334,7 @@ pub fn run_csv_row(r: &RecordRun) -> Vec<String> {
         format!("{:.6}", r.pgv_over_pga_s),
         format!("{:.6}", r.pga_vertical_g),
         r.rock.overturned.to_string(),
-        format!("{:?}", r.rock.outcome).to_lowercase(),
+        r.rock.outcome.name().to_string(),
         format!("{:.4}", r.rock.max_tilt_deg),
         format!("{:.6}", r.rock.slide_m),
         r.rock.start_equilibrium.to_string(),
@@ -362,7 +363,7 @@ pub fn write_runs_csv(path: &Path, runs: &[RecordRun]) -> crate::Result<()> {
 pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
     format!(
         "{} (R_max = {:.3} m) under {} × {}: PGA {:.3} g, PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
-         settled onto equilibrium {} with a tilt of {:.3}°; {} (outcome {:?}, final equilibrium {}, flock {}), \
+         settled onto equilibrium {} with a tilt of {:.3}°; {} (outcome {}, final equilibrium {}, flock {}), \
          max tilt {:.2}°, slide {:.4} m{}\n",
         short_name(mesh),
         r.rock.r_max_m,

@@ -266,7 +266,7 @@ where
             .legend(move |(x, y)| Circle::new((x + 6, y), 3, grey.filled()));
     }
     for (k, ((s, u), pts)) in classes.iter().filter(|(k, _)| shown.contains(k)).enumerate() {
-        let color = Palette99::pick(k).to_rgba();
+        let color = crate::plot::series_color(k);
         chart
             .draw_series(pts.iter().map(|&(x, y)| Circle::new((x, y), 4, color.filled())))
             .map_err(perr)?
@@ -414,6 +414,8 @@ where
         .configure_mesh()
         .x_desc("ν (log scale)")
         .y_desc("χ² (log scale)")
+        .x_label_formatter(&|x: &f64| crate::plot::log_tick(*x))
+        .y_label_formatter(&|y: &f64| crate::plot::log_tick(*y))
         .label_style((FONT_FAMILY, 14))
         .draw()
         .map_err(perr)?;
@@ -423,7 +425,7 @@ where
         .label("paper: ν = 0.0035")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
     for (k, (label, f)) in fits.iter().enumerate() {
-        let color = Palette99::pick(k).to_rgba();
+        let color = crate::plot::series_color(k);
         let pts: Vec<(f64, f64)> = f.grid.iter().zip(&f.chi2).map(|(x, y)| (*x, y.max(y0))).collect();
         chart
             .draw_series(LineSeries::new(pts, color.stroke_width(2)))

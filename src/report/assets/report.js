@@ -158,5 +158,13 @@
   var px = ctx.getImageData(0, 0, W, H).data, nonblank = 0;
   for (var i = 0; i < px.length; i += 4) if (px[i] < 250 || px[i + 1] < 250 || px[i + 2] < 250) nonblank++;
   status.setAttribute('data-nonblank', String(nonblank));
+  // and the tooltip: hover the first visible mark (a synthetic mouse event) and read the tip
+  if (marks.length > 0) {
+    var m = marks[0], b = canvas.getBoundingClientRect();
+    canvas.dispatchEvent(new MouseEvent('mousemove', { clientX: b.left + m.x * b.width / W, clientY: b.top + m.y * b.height / H }));
+    var text = tip.style.display === 'block' ? tip.textContent : '';
+    status.setAttribute('data-tooltip', text.split('\n').join(' | '));
+    tip.style.display = 'none';
+  }
   if (status.getAttribute('data-status') !== 'error') status.setAttribute('data-status', 'drawn');
 })();
