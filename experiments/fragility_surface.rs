@@ -169,7 +169,9 @@ fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     let mut curve = Vec::new();
     for &x in &RATIOS {
         let (o, i, c) = (min_of(x, &|r| r.ode), min_of(x, &|r| r.rapier_ideal), min_of(x, &|r| r.rapier_concrete));
-        writeln!(readme, "| {x} | {o:.2} | {i:.2} | {c:.2} | {:.3} |", i / o)?;
+        let cell = |v: f64| if v.is_finite() { format!("{v:.2}") } else { "∞".to_string() };
+        let ratio = if o.is_finite() && i.is_finite() { format!("{:.3}", i / o) } else { "–".to_string() };
+        writeln!(readme, "| {x} | {} | {} | {} | {ratio} |", cell(o), cell(i), cell(c))?;
         curve.push((x, o, i, c));
     }
     // Plot: the overturning region in (ω_p/p, a_p/(g tan α)) for the ODE and the rapier run.
