@@ -199,23 +199,30 @@ fn plot(path: &Path, curves: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn
         .x_label_area_size(50)
         .y_label_area_size(60)
         .caption("Per-flock statistics vs dt: χ² homogeneity p-value against 1/dt = 240", (FONT_FAMILY, 20))
-        .build_cartesian_2d(60.0f64..500.0, (1e-6f64..1.0).log_scale())?;
+        .build_cartesian_2d(60.0f64..500.0, (1e-3f64..1.0).log_scale())?;
     chart
         .configure_mesh()
         .x_desc("1/dt (steps per s of the scaled body)")
-        .y_desc("p-value")
+        .y_desc("p-value (log scale)")
+        .x_label_formatter(&|x| rocking_stones::plot::plain(*x))
+        .y_label_formatter(&|y| rocking_stones::plot::log_tick(*y))
         .label_style((FONT_FAMILY, 14))
         .draw()?;
     for (k, (label, c)) in curves.iter().enumerate() {
-        let colour = Palette99::pick(k).to_rgba();
-        let pts: Vec<(f64, f64)> = c.iter().map(|&(x, p)| (x, p.max(1e-6))).collect();
+        let colour = rocking_stones::plot::series_color(k).to_rgba();
+        // The reference dt itself (p = 1 against itself) is not a comparison: leave it out.
+        let pts: Vec<(f64, f64)> =
+            c.iter().filter(|&&(x, _)| (x - 240.0).abs() > 1e-6).map(|&(x, p)| (x, p.max(1e-3))).collect();
         chart
             .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?
             .label(label.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], colour.stroke_width(2)));
         chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
     }
-    chart.draw_series(std::iter::once(PathElement::new(vec![(60.0, 0.01), (500.0, 0.01)], BLACK)))?.label("p = 0.01");
+    chart
+        .draw_series(std::iter::once(PathElement::new(vec![(60.0, 0.01), (500.0, 0.01)], BLACK)))?
+        .label("p = 0.01")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK));
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::LowerRight)
