@@ -32,6 +32,7 @@ from ._native import (
     num_threads,
     perturb,
     shake,
+    shake_rock,
     study,
 )
 
@@ -52,5 +53,6 @@ __all__ = [
     "num_threads",
     "perturb",
     "shake",
+    "shake_rock",
     "study",
 ]

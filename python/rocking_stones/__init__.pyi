@@ -367,6 +367,28 @@ def shake(
     """Shake the ground under the resting stone, as ``rocking shake``: fragility curves.
     ``pulse=(amplitude g, frequency Hz, cycles)`` or ``motion=`` a time/acceleration CSV."""
 
+def shake_rock(
+    mesh: Union[_MeshLike, Analysis, None] = None,
+    *,
+    pose: str,
+    length_unit: Union[str, float, None] = None,
+    motion: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]], None] = None,
+    accel: Optional[Any] = None,
+    dt: Optional[float] = None,
+    columns: str = "1,2",
+    accel_unit: Literal["g", "m/s2", "gal"] = "g",
+    baseline: Optional[int] = None,
+    azimuth: float = 0.0,
+    surface: Literal["rock-on-concrete", "stone-on-stone", "rock-on-steel", "steel-on-wood"] = "rock-on-concrete",
+    scale: float = 1.0,
+    nu: Optional[float] = None,
+    name: Optional[str] = None,
+) -> Dict[str, Any]:
+    """A field rock at true size under one ground motion, as ``rocking shake --pose ... --json``:
+    ``pose`` "as-scanned", "facet:ID" or "quat:w,x,y,z"; ``motion`` a CSV or 1–3 .AT2 files, or
+    ``accel`` an (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s. Returns overturned, max_tilt_deg,
+    slide_m, pga_g, pgv_m_s, pgv_over_pga_s, ..."""
+
 def study(
     folder: Union[str, "os.PathLike[str]"],
     meta: Optional[Union[str, "os.PathLike[str]"]] = None,

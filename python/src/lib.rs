@@ -1344,6 +1344,98 @@ fn shake(
     dynamics_result("shake", &report, &report.trials, rocking_stones::report::shake::summary(&report, &s.name))
 }
 
+/// A field rock at its true size under one recorded ground motion, as
+/// `rocking shake MESH --pose POSE --length-unit UNIT --motion ... --json`: the same dict.
+/// The motion is `motion=` a CSV path (read with `columns` and `accel_unit`) or a list of one to
+/// three PEER `.AT2` paths (x, y, z), or `accel=` an array of shape (n,) or (n, k ≤ 3) in m/s²
+/// (x, y horizontal, z up) sampled every `dt` seconds. `length_unit`: "mm", "cm", "m" (default),
+/// "km" or metres per mesh unit.
+#[pyfunction]
+#[pyo3(signature = (mesh = None, *, pose, length_unit = None, motion = None, accel = None, dt = None, columns = "1,2", accel_unit = "g", baseline = None, azimuth = 0.0, surface = "rock-on-concrete", scale = 1.0, nu = None, name = None))]
+#[allow(clippy::too_many_arguments)]
+fn shake_rock<'py>(
+    py: Python<'py>,
+    mesh: Option<&Bound<'py, PyAny>>,
+    pose: &str,
+    length_unit: Option<&Bound<'py, PyAny>>,
+    motion: Option<&Bound<'py, PyAny>>,
+    accel: Option<&Bound<'py, PyAny>>,
+    dt: Option<f64>,
+    columns: &str,
+    accel_unit: &str,
+    baseline: Option<usize>,
+    azimuth: f64,
+    surface: &str,
+    scale: f64,
+    nu: Option<f64>,
+    name: Option<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use rocking_stones::dynamics::params::Surface;
+    use rocking_stones::dynamics::perturb as pt;
+    use rocking_stones::dynamics::shake::{self as sh, Pose, RockSetup};
+    use rocking_stones::ground_motion::read::{read_at2, read_csv, AccelUnit, Columns};
+    use rocking_stones::ground_motion::Record;
+    let pose: Pose = pose.parse().map_err(py_err)?;
+    let unit = match length_unit {
+        None => 1.0,
+        Some(u) => match u.extract::<f64>() {
+            Ok(x) => sh::parse_length_unit(&x.to_string()).map_err(py_err)?,
+            Err(_) => sh::parse_length_unit(&u.extract::<String>()?).map_err(py_err)?,
+        },
+    };
+    let surface: Surface = surface.parse().map_err(py_err)?;
+    let record = match (motion, accel) {
+        (Some(_), Some(_)) => return Err(PyValueError::new_err("give motion= (files) or accel= (an array), not both")),
+        (None, None) => return Err(PyValueError::new_err("give motion= (a CSV or .AT2 files) or accel= with dt=")),
+        (Some(m), None) => {
+            let paths: Vec<PathBuf> = match m.extract::<PathBuf>() {
+                Ok(p) => vec![p],
+                Err(_) => m.extract::<Vec<PathBuf>>()?,
+            };
+            let at2 = |p: &PathBuf| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2"));
+            if paths.len() == 1 && !at2(&paths[0]) {
+                let columns: Columns = columns.parse().map_err(py_err)?;
+                let unit: AccelUnit = accel_unit.parse().map_err(py_err)?;
+                read_csv(&paths[0], &columns, unit).map_err(py_err)?
+            } else {
+                let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
+                read_at2(&refs).map_err(py_err)?
+            }
+        }
+        (None, Some(a)) => {
+            let dt = dt.ok_or_else(|| PyValueError::new_err("accel= needs dt= (seconds between samples)"))?;
+            let np = py.import("numpy")?;
+            let arr = np.call_method1("asarray", (a, "float64"))?;
+            let arr = if arr.getattr("ndim")?.extract::<usize>()? == 1 {
+                arr.call_method1("reshape", ((-1i64, 1i64),))?
+            } else {
+                arr
+            };
+            let arr: PyReadonlyArray2<f64> = arr.extract()?;
+            let view = arr.as_array();
+            if view.ncols() == 0 || view.ncols() > 3 {
+                return Err(PyValueError::new_err(format!(
+                    "accel= must have 1 to 3 columns (x, y, z), got {}",
+                    view.ncols()
+                )));
+            }
+            let rows = view.rows().into_iter().map(|r| [0, 1, 2].map(|c| r.get(c).copied().unwrap_or(0.0))).collect();
+            Record::new(name.clone().unwrap_or_else(|| "accel".into()), dt, rows).map_err(py_err)?
+        }
+    };
+    let record = match baseline {
+        Some(order) => record.baseline_corrected(order).map_err(py_err)?,
+        None => record,
+    };
+    let s = analysed(py, mesh, name, nu)?;
+    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let run = py.detach(|| -> rocking_stones::Result<sh::RecordRun> {
+        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth.to_radians())?;
+        sh::run_record(&stone, &setup, &record, scale)
+    });
+    to_py(py, &run.map_err(py_err)?)
+}
+
 // ---------------------------------------------------------------------------------------------
 // study
 
@@ -1552,6 +1644,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drop_stone, m)?)?;
     m.add_function(wrap_pyfunction!(perturb, m)?)?;
     m.add_function(wrap_pyfunction!(shake, m)?)?;
+    m.add_function(wrap_pyfunction!(shake_rock, m)?)?;
     m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(num_threads, m)?)?;
