@@ -1250,3 +1250,66 @@ pub fn run_batch(
     };
     Ok(ShakeBatch { setup: setup.clone(), settling_tilt_deg, start_equilibrium, runs, surface, surface_error })
 }
+
+/// Housner's rocking equation for a rigid rectangular block (Housner 1963; the form integrated by
+/// Makris & Roussos 2000 and Zhang & Makris 2001), integrated independently of rapier — the
+/// reference the rapier block is checked against (`tests/shake_rock.rs`,
+/// `experiments/fragility_surface.rs`). `alpha` = atan(b/h), `p` = √(3g/4R) (rad/s), `accel` the
+/// ground acceleration ü_g(t) (m/s²) for 0 ≤ t ≤ `duration` (s), `r` the impact ratio. Returns
+/// whether the block overturns:
+///
+/// θ̈ = −p² [sin(α sgn θ − θ) + (ü_g/g) cos(α sgn θ − θ)],   p² = 3g/(4R),
+///
+/// rocking starts when |ü_g| > g tan α (θ takes the sign of −ü_g), at every impact (θ crossing 0)
+/// the angular velocity is multiplied by r = 1 − (3/2) sin² α, and the block returns to rest when
+/// an impact leaves it slower than 10⁻⁶ p while |ü_g| ≤ g tan α. It overturns when |θ| passes
+/// π/2, or passes α after the ground motion has ended (gravity alone then tips it over).
+/// RK4 with 4000 steps per 2π/p.
+pub fn housner_overturns(alpha: f64, p: f64, accel: &dyn Fn(f64) -> f64, duration: f64, r: f64) -> bool {
+    let g = GRAVITY;
+    let h = 2.0 * std::f64::consts::PI / p / 4000.0;
+    let rhs = |t: f64, th: f64, side: f64| {
+        let a = if t <= duration { accel(t) } else { 0.0 };
+        -p * p * ((alpha * side - th).sin() + a / g * (alpha * side - th).cos())
+    };
+    let (mut t, mut th, mut w, mut side, mut resting) = (0.0f64, 0.0f64, 0.0f64, 1.0f64, true);
+    let t_end = duration + 40.0 / p;
+    while t < t_end {
+        let a = if t <= duration { accel(t) } else { 0.0 };
+        if resting {
+            if a.abs() > g * alpha.tan() {
+                resting = false;
+                side = -a.signum();
+            } else {
+                t += h;
+                continue;
+            }
+        }
+        // RK4 on (θ, ω) on the current corner.
+        let k1 = (w, rhs(t, th, side));
+        let k2 = (w + 0.5 * h * k1.1, rhs(t + 0.5 * h, th + 0.5 * h * k1.0, side));
+        let k3 = (w + 0.5 * h * k2.1, rhs(t + 0.5 * h, th + 0.5 * h * k2.0, side));
+        let k4 = (w + h * k3.1, rhs(t + h, th + h * k3.0, side));
+        let th_new = th + h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+        let w_new = w + h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        t += h;
+        if th_new * side < 0.0 {
+            // Impact: onto the other corner, angular velocity × r.
+            th = 0.0;
+            w = r * w_new;
+            side = -side;
+            let a = if t <= duration { accel(t) } else { 0.0 };
+            if w.abs() < 1e-6 * p && a.abs() <= g * alpha.tan() {
+                resting = true;
+                w = 0.0;
+            }
+            continue;
+        }
+        th = th_new;
+        w = w_new;
+        if th.abs() > std::f64::consts::FRAC_PI_2 || (t > duration && th.abs() > alpha) {
+            return true;
+        }
+    }
+    false
+}
