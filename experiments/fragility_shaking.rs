@@ -75,7 +75,7 @@ fn main() -> anyhow::Result<()> {
                     Class::Regular => ("regular", RGBColor(200, 60, 40)),
                     Class::Rocking => ("rocking", RGBColor(40, 90, 200)),
                 };
-                (format!("{label}: eq {} ({:?} flock {})", q.index, q.flock_kind, q.flock), f.curve.as_slice(), color)
+                (format!("{label}: eq {} ({} flock {})", q.index, q.flock_kind, q.flock), f.curve.as_slice(), color)
             })
             .collect();
         let markers: Vec<(f64, String, RGBColor)> = r
@@ -156,7 +156,7 @@ fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)])
             let left = below.iter().filter(|t| t.outcome != rocking_stones::dynamics::perturb::Outcome::Same).count();
             writeln!(
                 s,
-                "| {name} | {} (facet {}) | {:?} | {:.3} | {} | {} | {} | {left} / {} |",
+                "| {name} | {} (facet {}) | {} | {:.3} | {} | {} | {} | {left} / {} |",
                 q.index,
                 q.facet,
                 q.class,
