@@ -1373,7 +1373,7 @@ fn shake_rock<'py>(
     use rocking_stones::dynamics::params::Surface;
     use rocking_stones::dynamics::perturb as pt;
     use rocking_stones::dynamics::shake::{self as sh, Pose, RockSetup};
-    use rocking_stones::ground_motion::read::{read_at2, read_csv, AccelUnit, Columns};
+    use rocking_stones::ground_motion::read::{read_record, AccelUnit, Columns};
     use rocking_stones::ground_motion::Record;
     let pose: Pose = pose.parse().map_err(py_err)?;
     let unit = match length_unit {
@@ -1392,15 +1392,10 @@ fn shake_rock<'py>(
                 Ok(p) => vec![p],
                 Err(_) => m.extract::<Vec<PathBuf>>()?,
             };
-            let at2 = |p: &PathBuf| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2"));
-            if paths.len() == 1 && !at2(&paths[0]) {
-                let columns: Columns = columns.parse().map_err(py_err)?;
-                let unit: AccelUnit = accel_unit.parse().map_err(py_err)?;
-                read_csv(&paths[0], &columns, unit).map_err(py_err)?
-            } else {
-                let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
-                read_at2(&refs).map_err(py_err)?
-            }
+            let columns: Columns = columns.parse().map_err(py_err)?;
+            let unit: AccelUnit = accel_unit.parse().map_err(py_err)?;
+            let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
+            read_record(&refs, &columns, unit).map_err(py_err)?
         }
         (None, Some(a)) => {
             let dt = dt.ok_or_else(|| PyValueError::new_err("accel= needs dt= (seconds between samples)"))?;

@@ -181,15 +181,8 @@ pub fn run(args: Args) -> Result<()> {
 
 /// Read one record: a CSV, or one to three .AT2 files.
 fn read_motion(paths: &[PathBuf], columns: &Columns, unit: AccelUnit) -> Result<Record> {
-    let at2 = |p: &PathBuf| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2"));
-    if paths.iter().all(at2) {
-        let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
-        return Ok(read::read_at2(&refs)?);
-    }
-    match paths {
-        [one] => Ok(read::read_csv(one, columns, unit)?),
-        _ => bail!("give one CSV record or one to three .AT2 files (x, y, z), not a mix"),
-    }
+    let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
+    Ok(read::read_record(&refs, columns, unit)?)
 }
 
 /// `rocking shake --pose ...`: a field rock at true size under recorded motion.

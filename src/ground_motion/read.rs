@@ -322,3 +322,16 @@ pub fn at2_text(record: &Record, component: usize, event: &str) -> String {
     }
     s
 }
+
+/// A record from files as the command line names them: one to three `.AT2` files (x, y, z), or
+/// one CSV file read with `columns` and `unit`.
+pub fn read_record(paths: &[&Path], columns: &Columns, unit: AccelUnit) -> Result<Record> {
+    let at2 = |p: &&Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("at2"));
+    if !paths.is_empty() && paths.iter().all(at2) {
+        return read_at2(paths);
+    }
+    match paths {
+        [one] => read_csv(one, columns, unit),
+        _ => Err(Error::Usage("give one CSV record or one to three .AT2 files (x, y, z), not a mix".into())),
+    }
+}
