@@ -314,7 +314,9 @@ def drop(
     stone in metres, scaling the contact like ``--size``); ``**params`` override single ones, as
     the CLI's options: height, horizontal_speed, spin, spin_distribution, friction, restitution,
     rolling_resistance, torsional_friction, linear_damping, angular_damping, dt,
-    solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time.
+    solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time, flight
+    (``"rapier"``, the reference, or ``"free"``: flight between contacts outside rapier, faster,
+    the CLI's ``--flight``).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
     ``progress``: ``callable(done, total)`` called about every 0.1 s (a tqdm bar's ``update``).

@@ -1036,7 +1036,8 @@ impl PyDropResult {
 /// **params override single parameters, as the CLI's options: height, horizontal_speed, spin,
 /// spin_distribution, friction, restitution, rolling_resistance, torsional_friction,
 /// linear_damping, angular_damping, dt, solver_iterations, max_time, rest_linear_speed,
-/// rest_angular_speed, rest_time.
+/// rest_angular_speed, rest_time, flight ("rapier", the reference, or "free": the flight between
+/// contacts integrated outside rapier, the CLI's --flight).
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
 /// threads: threads of this run (default:
 /// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s

@@ -34,6 +34,15 @@ def test_drop_parameters_map_to_the_cli_options(cli, box_file):
     assert d.certified == 0
 
 
+def test_free_flight_is_the_cli_flight_option(cli, box_file):
+    d = rs.drop(box_file, 16, 4, flight="free")
+    expected = cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--flight", "free"])
+    assert d.to_dict() == expected
+    assert expected["params"]["flight"] == "free"
+    reference = rs.drop(box_file, 16, 4)
+    assert reference.to_dict()["params"]["flight"] == "rapier"
+
+
 def test_presets_and_surfaces_are_the_cli_ones(cli, box_file):
     d = rs.drop(box_file, 10, 2, preset="drop", surface="stone-on-stone", size=0.05, spin=3.0)
     expected = cli.json(["drop", str(box_file), "-n", "10", "--seed", "2", "--preset", "drop",

@@ -4,7 +4,7 @@ use super::analyze::load_analysis;
 use anyhow::{bail, Context, Result};
 use rocking_stones::analysis::{check_nu, Options};
 use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
     certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
@@ -71,6 +71,11 @@ pub struct Args {
     /// Time cap per drop (s of the scaled body).
     #[arg(long)]
     pub max_time: Option<f64>,
+    /// How the flight between contacts is integrated: rapier (every step in the physics engine,
+    /// the reference) or free (outside it, exactly as a free rigid body, until just before the
+    /// stone can touch down: the same statistics, 1.2–2.5× faster on throws).
+    #[arg(long, default_value = "rapier", value_parser = parse_flight)]
+    pub flight: Flight,
     /// End drops early once the energy certificate decides the facet (facet), the flock (flock),
     /// or never (none).
     #[arg(long, default_value = "facet", value_parser = parse_certificate)]
@@ -113,6 +118,10 @@ pub fn parse_batch(s: &str) -> std::result::Result<usize, String> {
         Ok(n) if (1..=100_000).contains(&n) => Ok(n),
         _ => Err(format!("--batch must be a whole number of stones from 1 to 100000, got {s:?}")),
     }
+}
+
+pub fn parse_flight(s: &str) -> std::result::Result<Flight, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
 }
 
 pub fn parse_certificate(s: &str) -> std::result::Result<CertificateMode, String> {
@@ -162,6 +171,7 @@ fn params(a: &Args) -> Result<DropParams> {
     set(&mut p.angular_damping, a.angular_damping);
     set(&mut p.dt, a.dt);
     set(&mut p.max_time, a.max_time);
+    p.flight = a.flight;
     p.check()?;
     Ok(p)
 }

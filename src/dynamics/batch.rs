@@ -18,25 +18,37 @@
 //! inserted, so the batch stays full until the queue runs dry.
 
 use super::drop::{outcome, release_height, DropOutcome, Release};
+use super::flight::{self, FreeBody};
 use super::params::DropParams;
 use super::run::{Certificate, Progress};
-use super::stone::Stone;
-use super::world::{body_state, ground_world, insert_stone, ContactLaw};
+use super::stone::{Body, Stone};
+use super::world::{body_state, ground_world, insert_stone, normal_impulse, BodyState, ContactLaw, GRAVITY};
 use crate::Vec3;
-use rapier3d::prelude::{ColliderHandle, RigidBodyHandle};
+use nalgebra::Matrix3;
+use rapier3d::prelude::{ColliderHandle, PhysicsWorld, RigidBodyHandle};
+
+/// Where a stone of the batch is.
+#[derive(Clone, Copy)]
+enum Place {
+    /// A body of the rapier world.
+    World { handle: RigidBodyHandle, collider: ColliderHandle },
+    /// Clear of the ground, in free flight outside rapier ([`super::flight`]).
+    Air(FreeBody),
+}
 
 /// One stone in flight in a batch.
 struct Slot {
     index: u64,
-    handle: RigidBodyHandle,
-    collider: ColliderHandle,
+    place: Place,
     progress: Progress,
 }
 
 /// Simulate the drops of `queue` (drop index and release, in the order given) with at most
 /// `capacity` stones in one world at a time, calling `on_done` with each outcome as its drop
 /// finishes (in the order they finish). Every outcome equals that of [`super::drop::simulate`]
-/// for the same drop (module docs).
+/// for the same drop (module docs). With [`super::params::Flight::Free`] a stone clear of the
+/// ground leaves the world and flies outside rapier ([`super::flight`]) until it is about to
+/// land.
 pub fn simulate_batch(
     stone: &Stone,
     p: &DropParams,
@@ -46,6 +58,9 @@ pub fn simulate_batch(
     on_done: &mut dyn FnMut(DropOutcome),
 ) {
     let capacity = capacity.max(1);
+    let free_flight = flight::applies(p);
+    let inertia = stone.body.inertia;
+    let inertia_inv = inertia.try_inverse().unwrap_or_else(Matrix3::identity);
     let (mut world, _ground, ground_collider) = ground_world(p);
     let law = ContactLaw::of(p);
     let mut slots: Vec<Slot> = Vec::with_capacity(capacity);
@@ -54,30 +69,104 @@ pub fn simulate_batch(
         while slots.len() < capacity {
             let Some((index, release)) = queue.next() else { break };
             let z0 = release_height(stone, p, &release);
-            let (handle, collider) =
-                insert_stone(&mut world, &stone.body, p, &release.orientation, z0, &release.linvel, &release.angvel);
-            let progress = Progress::new(p, 0);
-            slots.push(Slot { index, handle, collider, progress });
+            let free = FreeBody::new(z0, release.linvel, release.orientation, &release.angvel);
+            let place = if free_flight {
+                land_if_due(&mut world, &stone.body, p, free)
+            } else {
+                enter_world(&mut world, &stone.body, p, &free)
+            };
+            slots.push(Slot { index, place, progress: Progress::new(p, 0) });
         }
         if slots.is_empty() {
             return;
         }
-        world.step();
+        if slots.iter().any(|s| matches!(s.place, Place::World { .. })) {
+            world.step();
+        }
         let mut k = 0;
         while k < slots.len() {
             let s = &mut slots[k];
-            if law.acts() {
-                law.apply(&mut world, &stone.body, s.handle, s.collider, ground_collider);
-            }
-            let state = body_state(&world.bodies[s.handle], &stone.body);
+            let state = match &mut s.place {
+                Place::World { handle, collider } => {
+                    if law.acts() {
+                        law.apply(&mut world, &stone.body, *handle, *collider, ground_collider);
+                    }
+                    body_state(&world.bodies[*handle], &stone.body)
+                }
+                Place::Air(b) => {
+                    b.step(p.dt, &inertia, &inertia_inv);
+                    air_state(b, &stone.body)
+                }
+            };
             match s.progress.after_step(&state, &Vec3::zeros(), cert) {
-                None => k += 1,
+                None => {
+                    if free_flight {
+                        s.place = match s.place {
+                            Place::World { handle, collider } => {
+                                take_off_if_clear(&mut world, &stone.body, handle, collider, ground_collider, &state)
+                            }
+                            Place::Air(b) => land_if_due(&mut world, &stone.body, p, b),
+                        };
+                    }
+                    k += 1;
+                }
                 Some(end) => {
                     let s = slots.swap_remove(k);
-                    world.remove_body(s.handle);
+                    if let Place::World { handle, .. } = s.place {
+                        world.remove_body(handle);
+                    }
                     on_done(outcome(stone, p, &end, s.index));
                 }
             }
         }
     }
+}
+
+/// Insert the stone in the state `b` into the world.
+fn enter_world(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: &FreeBody) -> Place {
+    let (handle, collider) = insert_stone(world, body, p, &b.orientation, b.z, &b.linvel, &b.angvel());
+    Place::World { handle, collider }
+}
+
+/// Keep `b` in the air while it is clear of the ground ([`flight::in_flight`]); else insert it.
+fn land_if_due(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: FreeBody) -> Place {
+    // h ≤ 1 (R_max) in every direction: high up, no support query is needed.
+    let clear = flight::in_flight(b.z - 1.0, false) || {
+        let down = b.orientation.inverse() * -Vec3::z();
+        flight::in_flight(flight::clearance(b.z, body.support_climb(&down)), false)
+    };
+    if clear {
+        Place::Air(b)
+    } else {
+        enter_world(world, body, p, &b)
+    }
+}
+
+/// Take the stone out of the world into free flight if the ground gave it no impulse in the
+/// last step and it ended clear of the ground ([`flight::in_flight`]).
+fn take_off_if_clear(
+    world: &mut PhysicsWorld,
+    body: &Body,
+    handle: RigidBodyHandle,
+    collider: ColliderHandle,
+    ground: ColliderHandle,
+    state: &BodyState,
+) -> Place {
+    let clear = flight::in_flight(flight::clearance(state.z, body.support_climb(&state.down)), true);
+    if clear && normal_impulse(world, ground, collider) == 0.0 {
+        let rb = &world.bodies[handle];
+        let q = super::world::convert::quat_back(rb.rotation());
+        let b = FreeBody::new(state.z, state.linvel, q, &state.angvel);
+        world.remove_body(handle);
+        Place::Air(b)
+    } else {
+        Place::World { handle, collider }
+    }
+}
+
+/// The state of a stone in free flight (as [`body_state`] reads it off a rapier body).
+fn air_state(b: &FreeBody, body: &Body) -> BodyState {
+    let down = b.orientation.inverse() * -Vec3::z();
+    let level = b.z + b.kinetic_energy(&body.inertia) / GRAVITY;
+    BodyState { down, z: b.z, linvel: b.linvel, angvel: b.angvel(), level }
 }

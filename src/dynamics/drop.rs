@@ -79,8 +79,16 @@ pub fn release_height(stone: &Stone, p: &DropParams, release: &Release) -> f64 {
     p.height + stone.body.support(&down_body)
 }
 
-/// Simulate one drop to rest (or to the certificate, or to the time cap), alone in its world.
+/// Simulate one drop to rest (or to the certificate, or to the time cap), alone in its world
+/// (with [`super::params::Flight::Free`]: a batch of one, [`super::batch`], where the flight is).
 pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, cert: &dyn Certificate) -> DropOutcome {
+    if super::flight::applies(p) {
+        let mut out = None;
+        super::batch::simulate_batch(stone, p, cert, 1, &mut std::iter::once((index, *release)), &mut |o| {
+            out = Some(o)
+        });
+        return out.expect("a batch of one drop finishes it");
+    }
     let z0 = release_height(stone, p, release);
     let mut sim = Simulation::new(&stone.body, p, &release.orientation, z0, &release.linvel, &release.angvel);
     let end = run(&mut sim, p, &mut Passive, cert, &mut |_| {});

@@ -10,10 +10,12 @@
 //!   friction).
 //! * [`run`] — the one run loop and the energy certificate.
 //! * [`batch`] — many independent drops in one rapier world (the same outcomes, drop by drop).
+//! * [`flight`] — free flight between contacts outside rapier (`--flight free`).
 //! * [`drop`], [`perturb`], [`shake`] — what drives a run: a launch, a push, a ground motion.
 
 pub mod batch;
 pub mod drop;
+pub mod flight;
 pub mod hull_shape;
 pub mod params;
 pub mod perturb;

@@ -77,6 +77,18 @@ impl Body {
         self.corners.iter().map(|c| c.dot(d)).fold(f64::NEG_INFINITY, f64::max)
     }
 
+    /// h(d) by hill climbing on the collider's vertex graph
+    /// ([`super::hull_shape::HullShape::support_vertex`]): O(1) in the hull size, where
+    /// [`Body::support`] scans every corner. The climb runs on the collider's f32 corners, so the
+    /// corner found may differ from the exact maximiser when two corners are within f32 rounding
+    /// (10⁻⁷ R_max) of each other in direction `d`, and so may the value by as much.
+    pub fn support_climb(&self, d: &Vec3) -> f64 {
+        match self.shape.as_shape::<super::hull_shape::HullShape>() {
+            Some(h) => self.corners[h.support_vertex(super::world::convert::vec(d)) as usize].dot(d),
+            None => self.support(d),
+        }
+    }
+
     /// The facet whose outward normal is closest to the down direction `d` (body frame). Not an
     /// outcome rule (see [`Stone::rest`]); used to measure tilts.
     pub fn facet_towards(&self, d: &Vec3) -> u32 {

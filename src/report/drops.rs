@@ -37,8 +37,15 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     );
     let _ = writeln!(
         s,
-        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max, damping {}/{} 1/s; dt {:.5} s",
-        p.friction, p.restitution, p.rolling_resistance, p.torsional_friction, p.linear_damping, p.angular_damping, p.dt
+        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max, damping {}/{} 1/s; dt {:.5} s, flight {}",
+        p.friction,
+        p.restitution,
+        p.rolling_resistance,
+        p.torsional_friction,
+        p.linear_damping,
+        p.angular_damping,
+        p.dt,
+        p.flight
     );
     let mean = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.2} s"));
     let _ = writeln!(
