@@ -128,3 +128,24 @@ fn free_flight_has_the_statistics_of_the_reference() {
     let differ = reference.iter().zip(&free).filter(|(a, b)| a.facet != b.facet).count();
     assert!(differ > n as usize / 10, "only {differ} of {n} throws end differently");
 }
+
+/// `rocking drop … --json` on the bundled stone with `extra` options: the parameters it ran with.
+fn cli_params(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["drop", "-n", "2", "--json"];
+    args.extend_from_slice(extra);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rocking")).args(&args).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()["params"].clone()
+}
+
+#[test]
+fn fast_numerics_are_free_flight_at_the_presets_longest_stable_step_and_options_override_them() {
+    let reference = cli_params(&[]);
+    assert_eq!((reference["flight"].as_str(), reference["dt"].as_f64()), (Some("rapier"), Some(1.0 / 240.0)));
+    let fast = cli_params(&["--fast"]);
+    assert_eq!(fast["flight"].as_str(), Some("free"));
+    assert_eq!(fast["dt"].as_f64(), Some(Preset::Throw.largest_stable_dt()));
+    assert!(Preset::Throw.largest_stable_dt() > 1.0 / 240.0);
+    let pinned = cli_params(&["--fast", "--flight", "rapier", "--dt", "0.005"]);
+    assert_eq!((pinned["flight"].as_str(), pinned["dt"].as_f64()), (Some("rapier"), Some(0.005)));
+}

@@ -301,6 +301,7 @@ def drop(
     surface: Literal["steel-on-wood", "stone-on-stone", "rock-on-concrete", "rock-on-steel"] = "steel-on-wood",
     size: Optional[float] = None,
     certificate: Literal["none", "facet", "flock"] = "facet",
+    fast: bool = False,
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
@@ -316,7 +317,8 @@ def drop(
     rolling_resistance, torsional_friction, linear_damping, angular_damping, dt,
     solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time, flight
     (``"rapier"``, the reference, or ``"free"``: flight between contacts outside rapier, faster,
-    the CLI's ``--flight``).
+    the CLI's ``--flight``). ``fast=True`` is the CLI's ``--fast``: free flight at the preset's
+    longest stable time step (``**params`` still override it).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
     ``progress``: ``callable(done, total)`` called about every 0.1 s (a tqdm bar's ``update``).

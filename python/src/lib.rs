@@ -1039,11 +1039,13 @@ impl PyDropResult {
 /// rest_angular_speed, rest_time, flight ("rapier", the reference, or "free": the flight between
 /// contacts integrated outside rapier, the CLI's --flight).
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
+/// fast: the CLI's --fast (free flight at the preset's longest stable time step; **params still
+/// override it).
 /// threads: threads of this run (default:
 /// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
 /// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", fast = false, nu = None, name = None, threads = None, progress = None, **params))]
 #[pyo3(name = "drop")]
 #[allow(clippy::too_many_arguments)]
 fn drop_stone(
@@ -1055,6 +1057,7 @@ fn drop_stone(
     surface: &str,
     size: Option<f64>,
     certificate: &str,
+    fast: bool,
     nu: Option<f64>,
     name: Option<String>,
     threads: Option<usize>,
@@ -1066,7 +1069,11 @@ fn drop_stone(
     }
     let preset: Preset = preset.parse().map_err(py_err)?;
     let surface: Surface = surface.parse().map_err(py_err)?;
-    let p: DropParams = with_params("drop", &preset_params(preset, surface, size)?, params)?;
+    let mut base = preset_params(preset, surface, size)?;
+    if fast {
+        preset.fast(&mut base);
+    }
+    let p: DropParams = with_params("drop", &base, params)?;
     p.check().map_err(py_err)?;
     let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
     let stone = analysed(py, mesh, name, nu)?;

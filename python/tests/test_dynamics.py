@@ -41,6 +41,9 @@ def test_free_flight_is_the_cli_flight_option(cli, box_file):
     assert expected["params"]["flight"] == "free"
     reference = rs.drop(box_file, 16, 4)
     assert reference.to_dict()["params"]["flight"] == "rapier"
+    fast = rs.drop(box_file, 16, 4, fast=True)
+    assert fast.to_dict() == cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--fast"])
+    assert fast.to_dict()["params"]["dt"] == pytest.approx(1 / 120)
 
 
 def test_presets_and_surfaces_are_the_cli_ones(cli, box_file):

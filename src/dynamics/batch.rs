@@ -16,6 +16,12 @@
 //! A finished stone (at rest, decided by the certificate, or at the time cap, by the same
 //! [`Progress`] rule as a single run) is removed at once and the next drop of the queue is
 //! inserted, so the batch stays full until the queue runs dry.
+//!
+//! With [`super::params::Flight::Free`] a stone clear of the ground leaves the world and flies
+//! outside rapier ([`super::flight`]) until it is about to land; the world is stepped only while
+//! some stone is in it. Its step count, certificate checks and rest rule are those of a stone in
+//! the world (the same [`Progress`]), and its flight depends on nothing but its own state, so the
+//! outcomes are again the same for any batch size and thread count (`tests/flight.rs`).
 
 use super::drop::{outcome, release_height, DropOutcome, Release};
 use super::flight::{self, FreeBody};

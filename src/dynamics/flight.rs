@@ -21,7 +21,7 @@
 //! Euler's equations are integrated with the classical Runge–Kutta method (RK4) on (q, ω), in
 //! sub-steps that turn the body by at most [`MAX_SUBSTEP_ANGLE`] each, q renormalised after every
 //! sub-step. Checked against what holds exactly (tests below): the kinetic energy and the world
-//! angular momentum R(q) I ω are conserved to 10⁻⁷ relative over a second of a 50 rad/s tumble,
+//! angular momentum R(q) I ω are conserved to 10⁻⁶ relative over a second of a 50 rad/s tumble,
 //! and the precession of a symmetric top has its closed-form rate. Rapier's own flight (f32,
 //! one linearised gyroscopic step per sub-step) loses 0.5 % of the angular momentum and 1 % of
 //! the energy over 1.5 s of a 40 rad/s tumble at dt = 1/240 s and converges to this flight as
@@ -46,8 +46,10 @@ use super::params::{DropParams, Flight};
 use crate::Vec3;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion};
 
-/// Largest rotation (rad) of one RK4 sub-step: local error ~ (0.1)⁵/120 ≈ 10⁻⁷ of the motion.
-pub const MAX_SUBSTEP_ANGLE: f64 = 0.1;
+/// Largest rotation (rad) of one RK4 sub-step: local error ~ (0.2)⁵/120 ≈ 3·10⁻⁶ of the motion;
+/// measured, the energy of a 50 rad/s tumble drifts by 4·10⁻⁸ and its angular momentum by 10⁻⁷
+/// in a second (rapier's own flight: 10⁻² and 5·10⁻³), at two sub-steps per step of 1/240 s.
+pub const MAX_SUBSTEP_ANGLE: f64 = 0.2;
 
 /// Clearance (R_max) at or below which a stone in free flight is handed back to rapier: twice
 /// rapier's contact prediction distance (module docs; checked against the world's own parameter
@@ -182,9 +184,9 @@ mod tests {
             b.step(dt, &inertia, &inv);
         }
         let e1 = b.omega_body.dot(&(inertia * b.omega_body));
-        assert!(((e1 - e0) / e0).abs() < 1e-7, "rotational energy drifts by {:e}", (e1 - e0) / e0);
+        assert!(((e1 - e0) / e0).abs() < 1e-6, "rotational energy drifts by {:e}", (e1 - e0) / e0);
         let dl = (b.angular_momentum(&inertia) - l0).norm() / l0.norm();
-        assert!(dl < 1e-7, "angular momentum drifts by {dl:e}");
+        assert!(dl < 1e-6, "angular momentum drifts by {dl:e}");
         // G exactly on its parabola.
         assert!((b.z - (3.0 + vz0 - 0.5 * G)).abs() < 1e-12);
         assert!((b.linvel.z - (vz0 - G)).abs() < 1e-12);
