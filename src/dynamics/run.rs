@@ -88,10 +88,13 @@ impl CertificateMode {
 /// body sinks into the ground by the contact's penetration, so z_G can be below h(d) by that much.
 /// Measured with the project's collider: at most 8·10⁻⁴ R_max over 300 drops up to 2 R_max high
 /// with restitution 0.6 (the certificate is validated drop by drop against full settling in
-/// `tests/drops.rs` and `results/drops_certificate/`).
+/// `tests/drops.rs` and `results/drops_certificate/`). Without it the tree decides wrongly (5
+/// facet-level decisions of 6000 drops in `results/certificate_margin/`); a sharper margin would
+/// save at most 11 % of the simulated time there at the facet level and 8 % at the flock level.
 pub const CERTIFICATE_MARGIN: f64 = 3e-3;
 
-/// Steps between two certificate checks.
+/// Steps between two certificate checks (a check every step would save at most 6 ms of
+/// simulated time per drop, `results/certificate_margin/`).
 pub const CERTIFICATE_EVERY: u64 = 4;
 
 /// The certificate is asked only while the contact is nearly relaxed: G at most this far (R_max)
