@@ -18,22 +18,24 @@
 //! Run: `cargo run --release --example certificate_margin [-- N]` (N = 200 drops per body and
 //! preset) → `results/certificate_margin/`.
 
+#[path = "shared/benchmark_bodies.rs"]
+mod benchmark_bodies;
+use benchmark_bodies::benchmark_bodies;
 use rayon::prelude::*;
-use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::{launch, release_height};
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::run::{
-    run as run_one, NoCertificate, Passive, CERTIFICATE_EVERY, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
+    run as run_one, Certificate, CertificateMode, Decided, EnergyCertificate, NoCertificate, Passive,
+    CERTIFICATE_EVERY, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::world::Simulation;
-use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// The margins swept (R_max), the default last.
 const READING: &str = r"* **Why so little.** Most of the time a certificate needs is the time the stone takes to come
   down from its release energy (of the order of R_max) to the barrier of the basin or flock it
   ends in; the margin only moves the end of that descent. It matters where the barrier itself is
@@ -51,6 +53,7 @@ const READING: &str = r"* **Why so little.** Most of the time a certificate need
   at most a step or two per drop.
 ";
 
+/// The margins swept (R_max), the default last.
 const MARGINS: [f64; 6] = [0.0, 1e-4, 3e-4, 1e-3, 2e-3, CERTIFICATE_MARGIN];
 
 /// A margin as the tables print it.
@@ -82,35 +85,36 @@ struct Observed {
     first: [[First; MARGINS.len()]; 2],
 }
 
-fn observe(stone: &Stone, p: &DropParams, i: u64) -> Observed {
+/// The certificates asked at every step: per margin, the facet and the flock level.
+type Certificates<'a> = Vec<[EnergyCertificate<'a>; 2]>;
+
+fn certificates(stone: &Stone) -> Certificates<'_> {
+    let at = |mode, m| EnergyCertificate::with_margin(stone, mode, m).expect("a certificate");
+    MARGINS.iter().map(|&m| [at(CertificateMode::Facet, m), at(CertificateMode::Flock, m)]).collect()
+}
+
+fn observe(stone: &Stone, certs: &Certificates, p: &DropParams, i: u64) -> Observed {
     let r = launch(&mut item_rng(SEED, i), p);
     let z0 = release_height(stone, p, &r);
     let mut sim = Simulation::new(&stone.body, p, &r.orientation, z0, &r.linvel, &r.angvel);
     let mut first = [[First::default(); MARGINS.len()]; 2];
-    let r_max = stone.body.r_max;
     let mut step = 0u64;
     let end = run_one(&mut sim, p, &mut Passive, &NoCertificate, &mut |s| {
         step += 1;
-        if stone.body.support(&s.down) - s.z > CERTIFICATE_MAX_COMPRESSION {
-            return;
-        }
-        for (k, &m) in MARGINS.iter().enumerate() {
-            let level = (s.level + m) * r_max;
-            for (lvl, slot) in first.iter_mut().enumerate() {
-                let f = &mut slot[k];
+        for (k, pair) in certs.iter().enumerate() {
+            for (lvl, cert) in pair.iter().enumerate() {
+                let f = &mut first[lvl][k];
                 if f.every_k.is_some() {
                     continue;
                 }
-                let d = if lvl == 0 {
-                    stone.tree.decided(&s.down, level).map(|f| f as usize)
-                } else {
-                    stone.tree.decided_flock(&s.down, level, &stone.facet_flock)
+                let d = match cert.decided(s) {
+                    Some(Decided::Facet(f)) => f as usize,
+                    Some(Decided::Flock(k)) => k as usize,
+                    None => continue,
                 };
-                if let Some(d) = d {
-                    f.every_step.get_or_insert((step, d));
-                    if step % CERTIFICATE_EVERY == 0 {
-                        f.every_k = Some((step, d));
-                    }
+                f.every_step.get_or_insert((step, d));
+                if step % CERTIFICATE_EVERY == 0 {
+                    f.every_k = Some((step, d));
                 }
             }
         }
@@ -166,17 +170,7 @@ fn main() -> anyhow::Result<()> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/certificate_margin");
     std::fs::create_dir_all(&out)?;
-    let bodies: Vec<(String, Analysis)> = vec![
-        ("bundled stone".into(), Analysis::of_file(&root.join("data/default_pebble.ply"), &Options::default())?),
-        ("pebble n = 500".into(), {
-            let (mesh, rep) = generate::pebble([1.0, 0.72, 0.5], 0.02, 500, 3).into_solid_boundary()?;
-            Analysis::of_solid(mesh, rep, &Options::default())?
-        }),
-        ("box 1 × 0.8 × 0.5".into(), {
-            let (mesh, rep) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary()?;
-            Analysis::of_solid(mesh, rep, &Options::default())?
-        }),
-    ];
+    let bodies = benchmark_bodies(&root, false)?;
     let mut md = String::new();
     let mut csv = String::from(
         "body,preset,level,margin_rmax,drops,decided,wrong,mean_time_every_step_s,mean_time_every_k_s,mean_time_to_rest_s\n",
@@ -203,9 +197,10 @@ fn main() -> anyhow::Result<()> {
     let mut stats: Vec<Saving> = Vec::new();
     for (name, a) in &bodies {
         let stone = Stone::new(a, a.macro_nu(&Options::default()).0)?;
+        let certs = certificates(&stone);
         for preset in [Preset::Drop, Preset::Throw] {
             let p = preset.params(Surface::SteelOnWood);
-            let obs: Vec<Observed> = (0..n).into_par_iter().map(|i| observe(&stone, &p, i)).collect();
+            let obs: Vec<Observed> = (0..n).into_par_iter().map(|i| observe(&stone, &certs, &p, i)).collect();
             let rest = obs.iter().map(|o| o.steps as f64 * p.dt).sum::<f64>() / n as f64;
             eprintln!("{name} {preset}: {n} drops observed");
             for (lvl, level) in ["facet", "flock"].into_iter().enumerate() {

@@ -9,11 +9,13 @@
 //! Run: `cargo run --release --example drops_certificate_speed [-- N]` (N = 300 drops per mode;
 //! one thread, so the figures are per core) → `results/drops_certificate/`.
 
-use rocking_stones::analysis::{Analysis, Options};
+#[path = "shared/benchmark_bodies.rs"]
+mod benchmark_bodies;
+use benchmark_bodies::benchmark_bodies;
+use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::params::{Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::generate;
 use rocking_stones::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
@@ -148,20 +150,7 @@ fn main() -> anyhow::Result<()> {
     let out = root.join("results/drops_certificate");
     std::fs::create_dir_all(&out)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-    let bodies: Vec<(String, Analysis)> = vec![
-        (
-            "bundled stone E34 (581 hull vertices)".into(),
-            Analysis::of_file(&root.join("data/default_pebble.ply"), &Options::default())?,
-        ),
-        ("synthetic pebble 1:0.72:0.5 (n = 500)".into(), {
-            let (m, r) = generate::pebble([1.0, 0.72, 0.5], 0.02, 500, 3).into_solid_boundary()?;
-            Analysis::of_solid(m, r, &Options::default())?
-        }),
-        ("box 1 × 0.8 × 0.5".into(), {
-            let (m, r) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary()?;
-            Analysis::of_solid(m, r, &Options::default())?
-        }),
-    ];
+    let bodies = benchmark_bodies(&root, true)?;
     let mut s = String::new();
     let mut csv = String::from(
         "body,preset,mode,batch,certificate,flight,dt,drops,seconds,drops_per_s,speedup_vs_plain,mean_sim_time_s,\

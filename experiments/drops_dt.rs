@@ -14,7 +14,10 @@
 //!
 //! Run: `cargo run --release --example drops_dt [-- N M]` (N = 400, M = 60) → `results/drops_dt/`.
 
-use rocking_stones::analysis::{Analysis, Options};
+#[path = "shared/benchmark_bodies.rs"]
+mod benchmark_bodies;
+use benchmark_bodies::benchmark_bodies;
+use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::{launch, release_height, DropOutcome};
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::run::{
@@ -22,7 +25,6 @@ use rocking_stones::dynamics::run::{
 };
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::world::Simulation;
-use rocking_stones::generate;
 use rocking_stones::montecarlo::{run_batched, summarize, CertificateMode, RunHeader, Shard, DEFAULT_BATCH, FORMAT};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
@@ -89,17 +91,7 @@ fn main() -> anyhow::Result<()> {
     let out = root.join("results/drops_dt");
     std::fs::create_dir_all(&out)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-    let bodies: Vec<(String, Analysis)> = vec![
-        ("bundled stone".into(), Analysis::of_file(&root.join("data/default_pebble.ply"), &Options::default())?),
-        ("pebble n = 500".into(), {
-            let (mesh, rep) = generate::pebble([1.0, 0.72, 0.5], 0.02, 500, 3).into_solid_boundary()?;
-            Analysis::of_solid(mesh, rep, &Options::default())?
-        }),
-        ("box 1 × 0.8 × 0.5".into(), {
-            let (mesh, rep) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary()?;
-            Analysis::of_solid(mesh, rep, &Options::default())?
-        }),
-    ];
+    let bodies = benchmark_bodies(&root, false)?;
     let mut md = String::new();
     let mut csv = String::from(
         "body,preset,dt,drops,unsettled,off_equilibrium,mean_time_to_rest_s,drops_per_s,chi2_vs_1_240,dof,p_value,\

@@ -113,17 +113,25 @@ pub struct EnergyCertificate<'a> {
     /// [`crate::basins::MergeTree::decision_ceiling`] (mesh units): at or above this energy
     /// level (with the margin) nothing can be decided, without a descent.
     ceiling: f64,
+    /// Added to the energy level before asking the merge tree (R_max).
+    margin: f64,
 }
 
 impl<'a> EnergyCertificate<'a> {
     /// The certificate of `mode` for `stone` (None for [`CertificateMode::None`]).
     pub fn new(stone: &'a Stone, mode: CertificateMode) -> Option<Self> {
+        Self::with_margin(stone, mode, CERTIFICATE_MARGIN)
+    }
+
+    /// The certificate of `mode` with another `margin` (R_max) than [`CERTIFICATE_MARGIN`]: for
+    /// measuring what the margin does (`experiments/certificate_margin.rs`), not for runs.
+    pub fn with_margin(stone: &'a Stone, mode: CertificateMode, margin: f64) -> Option<Self> {
         match mode {
             CertificateMode::None => None,
             _ => {
                 let flock_level = mode == CertificateMode::Flock;
                 let ceiling = stone.tree.decision_ceiling(flock_level.then_some(&stone.facet_flock[..]));
-                Some(EnergyCertificate { stone, flock_level, ceiling })
+                Some(EnergyCertificate { stone, flock_level, ceiling, margin })
             }
         }
     }
@@ -139,7 +147,7 @@ impl<'a> EnergyCertificate<'a> {
         if !self.relaxed(s) {
             return None;
         }
-        self.stone.tree.decided(&s.down, (s.level + CERTIFICATE_MARGIN) * self.stone.body.r_max)
+        self.stone.tree.decided(&s.down, (s.level + self.margin) * self.stone.body.r_max)
     }
 
     /// The flock that is certain in state `s`, if any.
@@ -147,7 +155,7 @@ impl<'a> EnergyCertificate<'a> {
         if !self.relaxed(s) {
             return None;
         }
-        let level = (s.level + CERTIFICATE_MARGIN) * self.stone.body.r_max;
+        let level = (s.level + self.margin) * self.stone.body.r_max;
         self.stone.tree.decided_flock(&s.down, level, &self.stone.facet_flock)
     }
 }
@@ -155,7 +163,7 @@ impl<'a> EnergyCertificate<'a> {
 impl Certificate for EnergyCertificate<'_> {
     fn decided(&self, s: &BodyState) -> Option<Decided> {
         // O(1): too much energy for any decision (exact, see `decision_ceiling`).
-        if (s.level + CERTIFICATE_MARGIN) * self.stone.body.r_max >= self.ceiling {
+        if (s.level + self.margin) * self.stone.body.r_max >= self.ceiling {
             return None;
         }
         if self.flock_level {
