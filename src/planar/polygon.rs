@@ -1,0 +1,162 @@
+//! The convex polygon (a homogeneous plate) with its area centroid G: construction and checks,
+//! regular polygons, the convex hull of a point set, and R(φ), the distance from G to the
+//! boundary.
+
+use super::{cross, Point2, Rotate, Vec2};
+use crate::{Error, Result};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// A convex polygon (a homogeneous plate) with its area centroid.
+#[derive(Clone, Debug, Serialize)]
+pub struct Polygon {
+    /// Counter-clockwise.
+    pub vertices: Vec<Point2>,
+    /// G: the area centroid.
+    pub centroid: Point2,
+    /// Area of the polygon.
+    pub area: f64,
+    /// D: the diagonal of the bounding box (scale of the tolerances).
+    pub size: f64,
+}
+
+impl Polygon {
+    /// A convex polygon from its vertices in order (either orientation; stored
+    /// counter-clockwise). Collinear consecutive vertices are allowed (a degenerate case the
+    /// equilibria decide by perturbation); repeated vertices, reflex vertices, self-overlap and
+    /// zero area are errors.
+    pub fn new(mut vertices: Vec<Point2>) -> Result<Self> {
+        let n = vertices.len();
+        if n < 3 {
+            return Err(Error::degenerate(format!("a polygon needs at least 3 vertices, got {n}")));
+        }
+        if vertices.iter().any(|p| !p.x.is_finite() || !p.y.is_finite()) {
+            return Err(Error::invalid("non-finite polygon vertex"));
+        }
+        let (mut lo, mut hi) = (vertices[0], vertices[0]);
+        for p in &vertices {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let size = (hi - lo).norm();
+        let o = vertices[0];
+        let (mut a2, mut m) = (0.0, Vec2::zeros());
+        for i in 0..n {
+            let (p, q) = (vertices[i] - o, vertices[(i + 1) % n] - o);
+            let c = cross(&p, &q);
+            a2 += c;
+            m += (p + q) * c;
+        }
+        if a2.abs() <= 1e-12 * size * size {
+            return Err(Error::degenerate("polygon of zero area"));
+        }
+        if a2 < 0.0 {
+            vertices.reverse();
+            return Self::new(vertices);
+        }
+        let tol = 1e-12;
+        let mut turning = 0.0;
+        for i in 0..n {
+            let e0 = vertices[i] - vertices[(i + n - 1) % n];
+            let e1 = vertices[(i + 1) % n] - vertices[i];
+            let (l0, l1) = (e0.norm(), e1.norm());
+            if l1 <= tol * size {
+                return Err(Error::degenerate(format!("vertices {i} and {} coincide", (i + 1) % n)));
+            }
+            let c = cross(&e0, &e1);
+            if c < -tol * l0 * l1 {
+                return Err(Error::invalid(format!("polygon is not convex at vertex {i}")));
+            }
+            turning += c.atan2(e0.dot(&e1));
+        }
+        if (turning - 2.0 * PI).abs() > 1e-6 {
+            return Err(Error::invalid(format!("polygon winds {:.3} times around itself", turning / (2.0 * PI))));
+        }
+        let centroid = o + m / (3.0 * a2);
+        Ok(Polygon { vertices, centroid, area: a2 / 2.0, size })
+    }
+
+    /// The regular n-gon of circumradius `radius` centred at the origin, vertex 0 at angle
+    /// `phase`.
+    pub fn regular(n: usize, radius: f64, phase: f64) -> Result<Self> {
+        Self::new(
+            (0..n)
+                .map(|i| {
+                    let t = phase + 2.0 * PI * i as f64 / n as f64;
+                    Point2::new(radius * t.cos(), radius * t.sin())
+                })
+                .collect(),
+        )
+    }
+
+    /// The convex hull of a point set (Andrew's monotone chain with exact orientation tests;
+    /// collinear points dropped).
+    pub fn convex_hull(points: &[Point2]) -> Result<Self> {
+        let mut p: Vec<Point2> = points.to_vec();
+        p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        p.dedup();
+        if p.len() < 3 {
+            return Err(Error::degenerate("fewer than 3 distinct points"));
+        }
+        let orient = |a: &Point2, b: &Point2, c: &Point2| {
+            robust::orient2d(
+                robust::Coord { x: a.x, y: a.y },
+                robust::Coord { x: b.x, y: b.y },
+                robust::Coord { x: c.x, y: c.y },
+            )
+        };
+        let mut hull: Vec<Point2> = Vec::with_capacity(2 * p.len());
+        for pass in 0..2 {
+            let start = hull.len();
+            let iter: Box<dyn Iterator<Item = &Point2>> =
+                if pass == 0 { Box::new(p.iter()) } else { Box::new(p.iter().rev()) };
+            for q in iter {
+                while hull.len() >= start + 2 && orient(&hull[hull.len() - 2], &hull[hull.len() - 1], q) <= 0.0 {
+                    hull.pop();
+                }
+                hull.push(*q);
+            }
+            hull.pop();
+        }
+        Self::new(hull)
+    }
+
+    /// Number of sides (= vertices).
+    pub fn len(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// Always false: a polygon has at least 3 vertices.
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+    }
+
+    /// R_max: the largest distance from G to a vertex.
+    pub fn r_max(&self) -> f64 {
+        self.vertices.iter().map(|p| (p - self.centroid).norm()).fold(0.0, f64::max)
+    }
+
+    /// R(φ): distance from G to the boundary along the polar angle φ (measured at G from +x).
+    pub fn radius_at(&self, phi: f64) -> f64 {
+        let d = Vec2::new(phi.cos(), phi.sin());
+        let n = self.len();
+        let g = self.centroid;
+        for i in 0..n {
+            let a = self.vertices[i] - g;
+            let b = self.vertices[(i + 1) % n] - g;
+            if cross(&a, &d) >= 0.0 && cross(&d, &b) >= 0.0 {
+                let e = b - a;
+                let den = cross(&d, &e);
+                if den > 0.0 {
+                    return cross(&a, &e) / den;
+                }
+            }
+        }
+        f64::NAN
+    }
+
+    /// The polygon rotated about G by `angle` and translated so that G is at `g`.
+    pub fn placed(&self, angle: f64, g: Point2) -> Vec<Point2> {
+        self.vertices.iter().map(|p| g + (p - self.centroid).rotate_by(angle)).collect()
+    }
+}
