@@ -26,7 +26,7 @@ use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::{launch, release_height};
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::run::{
-    run as run_one, Certificate, CertificateMode, Decided, EnergyCertificate, NoCertificate, Passive,
+    run as run_one, Certificate, CertificateMode, Decided, EnergyCertificate, NoCertificate, Passive, RestKind,
     CERTIFICATE_EVERY, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
 use rocking_stones::dynamics::stone::Stone;
@@ -99,7 +99,7 @@ fn observe(stone: &Stone, certs: &Certificates, p: &DropParams, i: u64) -> Obser
     let mut sim = Simulation::new(&stone.body, p, &r.orientation, z0, &r.linvel, &r.angvel);
     let mut first = [[First::default(); MARGINS.len()]; 2];
     let mut step = 0u64;
-    let end = run_one(&mut sim, p, &mut Passive, &NoCertificate, &mut |s| {
+    let end = run_one(&mut sim, p, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |s| {
         step += 1;
         for (k, pair) in certs.iter().enumerate() {
             for (lvl, cert) in pair.iter().enumerate() {

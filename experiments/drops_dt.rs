@@ -21,7 +21,7 @@ use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::{launch, release_height, DropOutcome};
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::run::{
-    run as run_one, NoCertificate, Passive, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
+    run as run_one, NoCertificate, Passive, RestKind, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::world::Simulation;
@@ -71,7 +71,7 @@ fn observe(stone: &Stone, p: &DropParams, seed: u64, i: u64) -> Observed {
     let z0 = release_height(stone, p, &r);
     let mut sim = Simulation::new(&stone.body, p, &r.orientation, z0, &r.linvel, &r.angvel);
     let (mut compression, mut low, mut rise) = (0.0f64, f64::INFINITY, 0.0f64);
-    let end = run_one(&mut sim, p, &mut Passive, &NoCertificate, &mut |s| {
+    let end = run_one(&mut sim, p, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |s| {
         let c = stone.body.support(&s.down) - s.z;
         compression = compression.max(c);
         if c <= CERTIFICATE_MAX_COMPRESSION && s.level <= 1.0 {

@@ -50,7 +50,7 @@ fn main() -> anyhow::Result<()> {
                     height: hgt,
                     restitution: e,
                     spin: 0.0,
-                    ..rocking_stones::dynamics::perturb::legacy_contact()
+                    ..rocking_stones::dynamics::perturb::PerturbParams::damped().sim
                 };
                 let header = RunHeader {
                     format: FORMAT.into(),
@@ -99,7 +99,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             linear_damping: d,
             angular_damping: d,
             max_time: 60.0,
-            ..rocking_stones::dynamics::perturb::legacy_contact()
+            ..rocking_stones::dynamics::perturb::PerturbParams::damped().sim
         };
         let header = RunHeader {
             format: FORMAT.into(),

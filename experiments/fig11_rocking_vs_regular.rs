@@ -12,6 +12,7 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{
     self, default_pair, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
     Threshold,
@@ -27,11 +28,15 @@ use std::path::{Path, PathBuf};
 
 const TRIALS: u32 = 200;
 const SEED: u64 = 2011;
+/// R_max of the pebble (m): a 10 cm pebble, the size of the paper's hand experiments.
+const R_MAX_M: f64 = 0.05;
+/// The surface pair: a pebble on rock.
+const SURFACE: Surface = Surface::StoneOnStone;
 
 fn main() -> anyhow::Result<()> {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fig11_rocking_vs_regular");
     std::fs::create_dir_all(&out)?;
-    let params = PerturbParams::default();
+    let params = PerturbParams::on_surface(SURFACE, R_MAX_M)?;
     let mut search = String::new();
     let (seed, analysis, stone, regular, rocking) = (0..50u64)
         .find_map(|seed| {
@@ -221,6 +226,14 @@ fn readme(path: &Path, seed: u64, stone: &Stone, reports: &[PerturbReport], sear
          95 % Wilson intervals; ε = kinetic energy given / (m g R_max). Static barriers from the merge tree of the \
          support function (m g ΔR, ΔR = saddle height − R_F): the lowest energy at which the stone could leave the \
          basin of its micro-equilibrium, and its flock.\n"
+    )?;
+    let p = &reports[0].params.sim;
+    writeln!(
+        s,
+        "Contact: the one of every resting run — a pebble of R_max = {R_MAX_M} m on rock ({SURFACE}: friction {}, \
+         restitution {}, rolling resistance and torsional friction δ = 0.1 mm = {:.1e} R_max through the contact, no \
+         global damping), 120 Hz contacts, dt 1/240 s (scaled), rest by speeds held {} s, cap {} s after the push.\n",
+        p.friction, p.restitution, p.rolling_resistance, p.rest_time, p.max_time
     )?;
     writeln!(s, "![robustness](fig11_robustness.png)\n\n![poses](fig11_poses.png)\n")?;
     writeln!(

@@ -4,20 +4,23 @@
 //!
 //! The pebble and its two equilibria are those of `fig11_rocking_vs_regular` (the first seed of
 //! `generate::pebble([1, 0.75, 0.5], 0.02, 600, seed)` with a convincingly balanced rocking
-//! equilibrium; `default_pair`). Each trial shakes along a uniformly random azimuth. The
-//! recorded-style motion is a synthetic accelerogram (Kanai–Tajimi filtered noise, 2.5 Hz
-//! ground frequency, Saragoni–Hart envelope, 10 s; `shake::synthetic_record`), written to
-//! `motion.csv` and read back through the same CSV reader as the CLI's `--motion`.
+//! equilibrium; `default_pair`), here a boulder of R_max = 1 m on rock (`Surface::StoneOnStone`:
+//! the contact of every resting run at its real size). Each trial shakes along a uniformly random
+//! azimuth. The recorded-style motion is a synthetic accelerogram (Kanai–Tajimi / Clough–Penzien
+//! filtered noise, predominant period 0.4 s, 10 s; `ground_motion::synthetic::filtered_noise`),
+//! written to `motion.csv` and read back through the same reader as the CLI's `--motion`.
 //!
 //! Run: `cargo run --release --example fragility_shaking` → `results/fragility_shaking/`.
 
 use plotters::style::RGBColor;
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{default_pair, Class, CurvePoint, PerturbParams, Stone, Threshold};
-use rocking_stones::dynamics::shake::{
-    self, read_record, synthetic_record, Motion, Pulse, ShakeConfig, ShakeReport, TimeScale,
-};
+use rocking_stones::dynamics::shake::{self, sine_pulse, ShakeConfig, ShakeReport};
 use rocking_stones::generate;
+use rocking_stones::ground_motion::read::{read_record, AccelUnit};
+use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
+use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -25,11 +28,15 @@ use std::path::{Path, PathBuf};
 const TRIALS: u32 = 40;
 const SEED: u64 = 1963;
 const FREQUENCIES: [f64; 4] = [0.5, 1.0, 2.0, 4.0];
+/// R_max of the boulder (m): real and scaled time agree.
+const R_MAX_M: f64 = 1.0;
+/// The surface pair.
+const SURFACE: Surface = Surface::StoneOnStone;
 
 fn main() -> anyhow::Result<()> {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_shaking");
     std::fs::create_dir_all(&out)?;
-    let params = PerturbParams::default();
+    let params = PerturbParams::on_surface(SURFACE, R_MAX_M)?;
     let (seed, stone, regular, rocking) = (0..50u64)
         .find_map(|seed| {
             let (mesh, rep) = generate::pebble([1.0, 0.75, 0.5], 0.02, 600, seed).into_solid_boundary().ok()?;
@@ -42,14 +49,17 @@ fn main() -> anyhow::Result<()> {
         })
         .expect("a pebble with a rocking equilibrium");
     eprintln!("pebble seed {seed}: regular {regular}, rocking {rocking}");
-    let record = synthetic_record("synthetic Kanai–Tajimi, 2.5 Hz, 10 s", 10.0, 2.5, 1.0, SEED);
+    let noise = Noise { duration: 10.0, period: 0.4, ..Noise::default() };
+    let record = filtered_noise(&noise, 1.0, SEED)?;
     let csv = out.join("motion.csv");
-    report::shake::write_record(&csv, &record, TimeScale::UNIT)?;
-    let mut motions: Vec<(String, Motion)> = FREQUENCIES
+    report::shake::write_record(&csv, &record)?;
+    let dt = params.sim.dt * R_MAX_M.sqrt();
+    let mut motions: Vec<(String, Record)> = FREQUENCIES
         .iter()
-        .map(|&f| (format!("pulse_{f}Hz"), Motion::Pulse(Pulse { amplitude: 1.0, frequency: f, cycles: 2.0 })))
-        .collect();
-    motions.push(("record".into(), Motion::Record(read_record(&csv, TimeScale::UNIT)?)));
+        .map(|&f| Ok((format!("pulse_{f}Hz"), sine_pulse(1.0, f, 2.0, dt)?)))
+        .collect::<rocking_stones::Result<_>>()?;
+    let columns = "time_s,ax_g,ay_g,az_g".parse()?;
+    motions.push(("record".into(), read_record(&[csv.as_path()], &columns, AccelUnit::G)?));
     let pgas: Vec<f64> = (1..=40).map(|i| 0.025 * i as f64).collect();
     let mut runs: Vec<(String, ShakeReport)> = Vec::new();
     for (name, motion) in motions {
@@ -60,10 +70,10 @@ fn main() -> anyhow::Result<()> {
             trials: TRIALS,
             seed: SEED,
             azimuth: None,
-            scale: TimeScale::UNIT,
+            r_max_m: R_MAX_M,
         };
         let t = std::time::Instant::now();
-        let r = shake::run(&stone, &[regular, rocking], &cfg);
+        let r = shake::run(&stone, &[regular, rocking], &cfg)?;
         eprintln!("{name}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
         eprint!("{}", report::shake::summary(&r, "pebble"));
         let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
@@ -92,7 +102,7 @@ fn main() -> anyhow::Result<()> {
             .collect();
         report::shake::plot_fragility(
             &out.join(format!("fragility_{name}.png")),
-            &format!("Fragility: {}", r.motion.describe()),
+            &format!("Fragility: {}", r.motion.name),
             &lines,
             &markers,
         )?;
@@ -114,26 +124,29 @@ fn th(t: &Option<Threshold>) -> String {
 
 fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)]) -> anyhow::Result<()> {
     let mut s = String::new();
+    let params = &runs[0].1.params;
     writeln!(s, "# Fragility under ground shaking: rocking vs regular equilibrium\n")?;
     writeln!(
         s,
         "Pebble `generate::pebble([1, 0.75, 0.5], 0.02, 600, seed {seed})` (the one of `fig11_rocking_vs_regular`), \
          flocks at ν = {:.3e}. The ground is driven horizontally along a uniformly random azimuth per trial \
          (trial k has the same azimuth at every PGA), {TRIALS} trials per PGA, PGA from 0.025 g to 1 g in steps of \
-         0.025 g, seed {SEED}; default contacts (friction 0.6 — the stone slides on the ground above ≈ 0.6 g —, \
-         restitution 0.2, angular damping 1/s). Outcome after the motion, once the stone rests relative to the \
-         ground: same micro-equilibrium, another of its flock, or toppled out of the flock (plotted).\n",
-        stone.nu
+         0.025 g, seed {SEED}. The stone is a boulder of R_max = {R_MAX_M} m on rock: the contact of every resting \
+         run ({SURFACE}: friction {}, restitution {}, rolling resistance δ = {:.1e} R_max through the contact, no \
+         global damping; 120 Hz contacts, dt 1/240 s scaled), rest by positions over 0.5 s windows. Outcome after \
+         the motion, once the stone rests relative to the ground: same micro-equilibrium, another of its flock, or \
+         toppled out of the flock (plotted).\n",
+        stone.nu, params.sim.friction, params.sim.restitution, params.sim.rolling_resistance,
     )?;
     writeln!(
         s,
-        "**Units.** The simulation runs on the stone scaled to R_max = 1 m with g = 9.81 m/s². Accelerations are in \
-         g and hold for any size. Times and frequencies scale with √(R_max/1 m) (Froude similarity): a pulse of \
-         f Hz here is f/√L Hz for a stone of R_max = L m.\n"
+        "**Units.** Accelerations are in g and hold for any size. Times and frequencies scale with √(R_max/1 m) \
+         (Froude similarity; only the rolling-resistance length δ/R_max breaks it, and it is 10⁻⁴ here): a pulse \
+         of f Hz on this 1 m boulder is f/√L Hz for a stone of R_max = L m.\n"
     )?;
     writeln!(s, "| scaled (1 m) | 3 cm pebble | 10 cm cobble | 2 m boulder | 5 m rock |\n|---|---|---|---|---|")?;
     for f in [0.5, 1.0, 2.0, 4.0] {
-        let real = |l: f64| TimeScale { r_max_m: l }.to_real_frequency(f);
+        let real = |l: f64| f / l.sqrt();
         writeln!(
             s,
             "| {f} Hz | {:.2} Hz | {:.2} Hz | {:.2} Hz | {:.2} Hz |",
@@ -178,7 +191,7 @@ fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)])
          most fragile direction, (distance from the stable point to the nearest side of the facet) / R_F — Housner's \
          tan α for a block. Below it a rigid stone on a rigid ground does not move at all.\n\nFiles: \
          `fragility_<motion>.csv` (per PGA: counts, P(topple) with 95 % Wilson intervals), `motion.csv` (the \
-         accelerogram: time in s for a 1 m stone, acceleration in g; scaled to each PGA)."
+         accelerogram: time in s, acceleration in g; scaled to each PGA)."
     )?;
     std::fs::write(path, s)?;
     Ok(())

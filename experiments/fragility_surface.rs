@@ -12,21 +12,20 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::housner::housner_overturns;
 use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::default_pair;
 use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
-use rocking_stones::dynamics::shake::{
-    housner_overturns, place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup,
-};
+use rocking_stones::dynamics::shake::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
 use rocking_stones::generate;
-use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
+use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-const G: f64 = 9.81;
+use rocking_stones::GRAVITY as G;
 
 fn analysed(mesh: rocking_stones::mesh::TriMesh) -> Stone {
     let (mesh, rep) = mesh.into_solid_boundary().unwrap();
@@ -66,7 +65,9 @@ fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     let concrete = rock_params(Surface::RockOnConcrete, r_max_m)?;
     let sim = |q: &PerturbParams, ap: f64, wp: f64| {
         let placed = place(&stone, &Pose::Facet { id: bottom }, q).unwrap();
-        let m = (move |t: f64| [ap * (wp * t).sin(), 0.0, 0.0], 2.0 * std::f64::consts::PI / wp);
+        // The pulse as every motion is, a record: sampled 2000 times per period.
+        let tp = 2.0 * std::f64::consts::PI / wp;
+        let m = one_sine_pulse(ap / G, tp, tp / 2000.0).unwrap();
         let run = shake_record(&stone, placed, q, &m, 0.0, r_max_m);
         run.overturned || run.final_equilibrium != bottom
     };

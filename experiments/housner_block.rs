@@ -4,18 +4,19 @@
 //! contact settings.
 //!
 //! Blocks: `generate::cuboid(2b, 0.6, 2h)` with h = 1, resting on the face with normal −z,
-//! shaken / rocking in the x–z plane (tan α = b/h). Friction 1 (no sliding below 1 g),
-//! no damping.
+//! shaken / rocking in the x–z plane (tan α = b/h), on the contact of every resting run (rock on
+//! concrete at R_max = 1 m) with friction 1 (no sliding below 1 g).
 //!
 //! Run: `cargo run --release --example housner_block` → `results/housner_block/`.
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::DropParams;
-use rocking_stones::dynamics::perturb::{PerturbParams, Stone, GRAVITY};
-use rocking_stones::dynamics::shake::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::params::Surface;
+use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::GRAVITY;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -40,19 +41,16 @@ struct Setting {
     tipping: bool,
 }
 
+/// The contact of every resting run (rock on concrete, a block of R_max = 1 m: rolling resistance
+/// δ = 10⁻⁴ R_max through the contact), with friction 1 and the setting's restitution, contact
+/// frequency and step.
 fn params(s: &Setting) -> PerturbParams {
-    PerturbParams {
-        sim: DropParams {
-            friction: 1.0,
-            restitution: s.restitution,
-            linear_damping: 0.0,
-            angular_damping: 0.0,
-            dt: s.dt,
-            ..rocking_stones::dynamics::perturb::legacy_contact()
-        },
-        contact_frequency: s.contact_frequency,
-        ..PerturbParams::default()
-    }
+    let mut p = PerturbParams::on_surface(Surface::RockOnConcrete, 1.0).expect("a valid size");
+    p.sim.friction = 1.0;
+    p.sim.restitution = s.restitution;
+    p.sim.dt = s.dt;
+    p.contact_frequency = s.contact_frequency;
+    p
 }
 
 struct Tip {
@@ -111,8 +109,8 @@ fn main() -> anyhow::Result<()> {
             tipping: false,
         },
         Setting {
-            name: "e=0.2 (drop default), 120 Hz, dt=1/240",
-            restitution: 0.2,
+            name: "e=0.3 (rock on concrete), 120 Hz, dt=1/240",
+            restitution: 0.3,
             contact_frequency: 120.0,
             dt: 1.0 / 240.0,
             tipping: true,
@@ -284,11 +282,12 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
     writeln!(
         s,
         "Blocks `generate::cuboid(2b, 0.6, 2h)`, h = 1, tan α = b/h, resting on the face with normal −z; friction 1 \
-         (sliding needs a > 1 g), no damping. Rapier 0.36, the project's `HullShape` collider on a half-space ground \
+         (sliding needs a > 1 g), on the contact of every resting run (rock on concrete at R_max = 1 m: rolling \
+         resistance δ = 10⁻⁴ R_max through the contact, no global damping). Rapier 0.36, the project's `HullShape` collider on a half-space ground \
          (a kinematic body). `cargo run --release --example housner_block`.\n"
     )?;
     writeln!(s, "![housner](housner.png)\n")?;
-    writeln!(s, "## Tipping threshold (`shake::ramp_tipping`)\n")?;
+    writeln!(s, "## Tipping threshold (`housner::ramp_tipping`)\n")?;
     writeln!(
         s,
         "The ground accelerates along x with a(t) = rate·t; the reading is the ground acceleration when the resting \
@@ -317,7 +316,7 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
          `tipping.csv`) read later, as the lag formula says.\n",
         100.0 * errs.iter().cloned().fold(0.0, f64::max)
     )?;
-    writeln!(s, "## Free rocking (`shake::free_rocking`)\n")?;
+    writeln!(s, "## Free rocking (`housner::free_rocking`)\n")?;
     writeln!(
         s,
         "Released from rest tilted by α/2 about its +x bottom edge. For each half-cycle between zero crossings of the \
@@ -348,23 +347,22 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
         s,
         "\nReading. Housner's law assumes a perfectly plastic impulse at the new corner alone (the old corner lifts \
          off, no bounce, no slip). With restitution 0 and friction 1 the engine's impacts satisfy the same angular \
-         momentum balance about the new corner, and the measured ratios agree with 1 − (3/2) sin² α within 1–3 % \
-         for α ≤ 34° at the default dt = 1/240 s, always slightly *below* it (a little more dissipative): the soft \
-         contact spreads the impact over a few steps while gravity and the old contact still act; at dt = 1/960 s the \
-         deviation drops to ≈ 0.3 % for the slender blocks, and at 1/3840 s to ≤ 0.4 % for every α ≤ 34°: the \
-         engine converges to Housner's law as the step shrinks. The squat block (α = 38.7°, Housner 0.415) is the \
-         exception: its first impacts come out between 0.40 and 0.48 depending on the contact stiffness and the \
-         step, mostly *above* Housner, with no convergence as dt shrinks (0.477 at 1/240 s, 0.437 at 1/960 s, 0.482 \
-         at 1/3840 s with 120 Hz contacts; 0.419 at 1/960 s with 30 Hz). Its impacts are the fastest (normal speed \
-         2bω of the impacting corner) and are resolved over several steps of a soft, heavily damped spring whose \
-         compression is partly given back — a small pseudo-restitution that Housner's plastic impact lacks. (Only \
-         one impact per run has an amplitude above 0.02 rad there, so its column is a single impact.) \
-         Restitution: rapier applies it only to contact points \
-         that are new in this step (`is_bouncy`), so with the drop default e = 0.2 the slender blocks, whose impacting \
-         corner is already within the contact prediction distance before the impact, behave as with e = 0, while the \
-         squatter ones (tan α = 0.5 and 0.667) bounce and lose 17–24 % more than Housner. Robustness and fragility results \
-         therefore depend on the restitution chosen; Housner's law is the e = 0 limit. Small amplitudes (corner lift \
-         b·θ comparable to the contact's static compression, ~10⁻⁴ R_max) scatter more (every impact down to an amplitude of 10⁻⁵ rad in `rocking_impacts.csv`)."
+         momentum balance about the new corner, and the measured ratios agree with 1 − (3/2) sin² α within about \
+         1.5 % for α ≤ 34° at the default dt = 1/240 s, mostly slightly *below* it (a little more dissipative): the \
+         soft contact spreads the impact over a few steps while gravity and the old contact still act; at \
+         dt = 1/960 s and 1/3840 s the deviation drops below about 1 %: the engine converges to Housner's law as the \
+         step shrinks. The squat block (α = 38.7°, Housner 0.415) is the exception at the default step: its \
+         impacts are the fastest (normal speed 2bω of the impacting corner) and are resolved over several steps of a \
+         soft, heavily damped spring whose compression is partly given back — a pseudo-restitution that Housner's \
+         plastic impact lacks — so it comes out 10–14 % *above* Housner at 1/240 s, and within 1 % at 1/960 s and \
+         1/3840 s. (Only one impact per run has an amplitude above 0.02 rad there, so its column is a single impact.) \
+         Restitution: rapier applies it only to contact points that are new in this step (`is_bouncy`), so with \
+         rock on concrete's e = 0.3 the slender blocks, whose impacting corner is already within the contact \
+         prediction distance before the impact, behave almost as with e = 0, while the squatter ones bounce and \
+         lose more than Housner (see the last column). Robustness and fragility results therefore depend on the \
+         restitution chosen; Housner's law is the e = 0 limit. Small amplitudes (corner lift b·θ comparable to the \
+         contact's static compression, ~10⁻⁴ R_max) scatter more (every impact down to an amplitude of 10⁻⁵ rad in \
+         `rocking_impacts.csv`)."
     )?;
     std::fs::write(path, s)?;
     Ok(())

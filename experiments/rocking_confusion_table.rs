@@ -15,6 +15,7 @@
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
 
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{
     self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
 };
@@ -25,6 +26,10 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 const TRIALS: u32 = 30;
+/// R_max of the synthetic pebbles (m), as in `fig11_rocking_vs_regular`.
+const PEBBLE_R_MAX_M: f64 = 0.05;
+/// The surface pair: stones on rock.
+const SURFACE: Surface = Surface::StoneOnStone;
 const SEED: u64 = 77;
 const MESHES: &str = "/work/shared/meshes";
 
@@ -32,6 +37,7 @@ struct StoneRun {
     name: String,
     kind: &'static str,
     stone: Stone,
+    r_max_m: f64,
     reports: Vec<PerturbReport>,
 }
 
@@ -70,11 +76,18 @@ fn main() -> anyhow::Result<()> {
         let name = p.file_name().unwrap().to_string_lossy().into_owned();
         inputs.push((name, "real", Analysis::of_file(&p, &Options::default())?));
     }
-    let params = PerturbParams::default();
     let mut runs = Vec::new();
     for (name, kind, a) in inputs {
         let (nu, _) = a.macro_nu(&Options::default());
         let stone = Stone::new(&a, nu)?;
+        // Real stones at their true size: the files in millimetres (A0, E34) are the ones whose
+        // R_max exceeds 10 units, the others are in metres (`meshes/SOURCES.md`).
+        let r_max_m = match kind {
+            "real" if stone.body.r_max > 10.0 => stone.body.r_max * 1e-3,
+            "real" => stone.body.r_max,
+            _ => PEBBLE_R_MAX_M,
+        };
+        let params = PerturbParams::on_surface(SURFACE, r_max_m)?;
         let all: Vec<usize> = (0..stone.stable().len()).collect();
         let mut reports = Vec::new();
         for family in [Family::Push, Family::Spin] {
@@ -97,7 +110,7 @@ fn main() -> anyhow::Result<()> {
             );
             reports.push(r);
         }
-        runs.push(StoneRun { name, kind, stone, reports });
+        runs.push(StoneRun { name, kind, stone, r_max_m, reports });
     }
     write_csv(&out.join("equilibria.csv"), &runs)?;
     let points: Vec<_> = runs.iter().flat_map(|r| report::perturb::threshold_points(&r.reports[0])).collect();
@@ -271,15 +284,20 @@ fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
         s,
         "Every stable micro-equilibrium of {} stones ({} synthetic pebbles, {} real quarry stones from \
          `/work/shared/meshes`, IBOIS/EPFL, MIT licence), flocks at each stone's automatic ν. Perturbations: \
-         {TRIALS} trials per ε on 13 ε from 10⁻⁶ to 1 (half-decade steps), pushes and spins, seed {SEED}, default \
-         contact parameters (friction 0.6, restitution 0.2, angular damping 1/s, 120 Hz contacts). Static class: the \
+         {TRIALS} trials per ε on 13 ε from 10⁻⁶ to 1 (half-decade steps), pushes and spins, seed {SEED}, on the \
+         contact of every resting run: stones on rock ({SURFACE}: friction 0.6, restitution 0.3, rolling resistance \
+         and torsional friction δ = 0.1 mm through the contact, no global damping), the synthetic pebbles at \
+         R_max = {PEBBLE_R_MAX_M} m, the real stones at their true size (R_max {:.3}–{:.3} m), 120 Hz contacts, \
+         dt 1/240 s (scaled), rest by speeds held 0.5 s. Static class: the \
          paper's (stable micro-equilibrium in a stable flock = regular, in an unstable or saddle flock = rocking). \
          Dynamic class: rocking if ε₅₀(topple out of the flock) ≤ ε*, regular otherwise; ε* = ν (the energy m g ν \
          R_max the hand experimenter cannot resolve), and 10 ν. Equilibria that do not stay at rest in the simulation \
          (G within ~10⁻³ R_F of the edge of a tiny facet) are counted as undecided.\n",
         runs.len(),
         runs.iter().filter(|r| r.kind == "synthetic").count(),
-        runs.iter().filter(|r| r.kind == "real").count()
+        runs.iter().filter(|r| r.kind == "real").count(),
+        runs.iter().filter(|r| r.kind == "real").map(|r| r.r_max_m).fold(f64::INFINITY, f64::min),
+        runs.iter().filter(|r| r.kind == "real").map(|r| r.r_max_m).fold(0.0, f64::max),
     )?;
     for (fi, fname) in [(0, "pushes"), (1, "spins about the contact")] {
         writeln!(s, "## {fname}\n")?;

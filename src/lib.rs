@@ -53,6 +53,7 @@
 
 pub mod analysis;
 pub mod basins;
+pub mod bundled;
 pub mod dynamics;
 pub mod equilibria;
 pub mod error;
@@ -76,5 +77,10 @@ pub use error::{Error, Result};
 
 /// 3-vectors of the static geometry (always f64).
 pub type Vec3 = nalgebra::Vector3<f64>;
+
+/// Acceleration of gravity (m/s²): the one value of the project — the simulations' gravity (of the
+/// scaled body and of a stone at true size alike) and the conversion of records given in g, so
+/// that a record of peak 0.3 g pushes a simulated stone with 0.3 of its own weight.
+pub const GRAVITY: f64 = 9.81;
 /// Points of the static geometry (always f64).
 pub type Point3 = nalgebra::Point3<f64>;

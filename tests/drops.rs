@@ -31,7 +31,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         mesh_fingerprint: "0".into(),
         seed,
         drops,
-        params: rocking_stones::dynamics::perturb::legacy_contact(),
+        params: rocking_stones::dynamics::perturb::PerturbParams::damped().sim,
         certificate,
         preset: None,
         center_of_mass: None,
@@ -139,7 +139,7 @@ fn certified_drops_end_where_full_settling_ends() {
 #[test]
 fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
     let (a, s) = setup(generate::pebble([1.0, 0.7, 0.45], 0.04, 500, 8));
-    let p = DropParams { height: 0.05, ..rocking_stones::dynamics::perturb::legacy_contact() };
+    let p = DropParams { height: 0.05, ..rocking_stones::dynamics::perturb::PerturbParams::damped().sim };
     let g = a.mass.center_of_mass;
     for i in 0..40 {
         let mut rng = item_rng(21, i);

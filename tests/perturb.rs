@@ -4,17 +4,16 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{
-    self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone,
-    Threshold, GRAVITY,
+    self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone, Threshold,
 };
-use rocking_stones::dynamics::shake::{
-    self, free_rocking, housner_ratio, ramp_tipping, read_record, shake_trial, Motion, Pulse, ShakeConfig, TimeScale,
-};
+use rocking_stones::dynamics::shake::{self, shake_trial, sine_pulse, ShakeConfig};
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::stats::{log_grid, GridSize};
+use rocking_stones::GRAVITY;
 
 fn stone(mesh: TriMesh) -> Stone {
     let (mesh, rep) = mesh.into_solid_boundary().unwrap();
@@ -31,18 +30,13 @@ fn block(b: f64, d: f64, h: f64) -> (Stone, usize) {
     (s, start)
 }
 
-/// Housner's conditions: no sliding (μ > tan α), perfectly plastic impacts, no damping.
+/// Housner's conditions on the contact of every resting run (rock on concrete, a 1 m block, so
+/// rolling resistance δ = 10⁻⁴ R_max): no sliding (μ > tan α), perfectly plastic impacts.
 fn housner_params() -> PerturbParams {
-    PerturbParams {
-        sim: DropParams {
-            friction: 1.0,
-            restitution: 0.0,
-            linear_damping: 0.0,
-            angular_damping: 0.0,
-            ..rocking_stones::dynamics::perturb::legacy_contact()
-        },
-        ..PerturbParams::default()
-    }
+    let mut p = PerturbParams::on_surface(Surface::RockOnConcrete, 1.0).unwrap();
+    p.sim.friction = 1.0;
+    p.sim.restitution = 0.0;
+    p
 }
 
 /// The pebble of the perturbation tests: 6 flocks, regular and rocking equilibria.
@@ -111,12 +105,14 @@ fn free_rocking_loses_housners_factor_at_each_impact() {
 fn a_pulse_below_g_tan_alpha_does_not_rock_a_block() {
     let (s, start) = block(0.5, 0.3, 1.0);
     let p = housner_params();
-    let weak = Motion::Pulse(Pulse { amplitude: 0.4, frequency: 2.0, cycles: 2.0 });
-    let t = shake_trial(&s, start, &p, &weak, 0.0, 0);
+    // The block at R_max = 1 m: real and scaled time agree.
+    let r_max_m = s.body.r_max;
+    let weak = sine_pulse(0.4, 2.0 / r_max_m.sqrt(), 2.0, 1e-3).unwrap();
+    let t = shake_trial(&s, start, &p, &weak, r_max_m, 0.0, 0);
     assert_eq!(t.outcome, Outcome::Same);
     assert!(t.max_tilt < 5e-3, "0.4 g tilted the block by {} rad", t.max_tilt);
-    let strong = Motion::Pulse(Pulse { amplitude: 0.8, frequency: 1.0, cycles: 1.0 });
-    let t = shake_trial(&s, start, &p, &strong, 0.0, 0);
+    let strong = sine_pulse(0.8, 1.0 / r_max_m.sqrt(), 1.0, 1e-3).unwrap();
+    let t = shake_trial(&s, start, &p, &strong, r_max_m, 0.0, 0);
     assert!(t.max_tilt > 0.05, "0.8 g only tilted the block by {} rad", t.max_tilt);
 }
 
@@ -223,44 +219,35 @@ fn runs_are_reproducible_and_independent_of_threads() {
     assert_ne!(one.trials, other.trials);
     let shake_cfg = ShakeConfig {
         params: PerturbParams::default(),
-        motion: Motion::Pulse(Pulse { amplitude: 1.0, frequency: 2.0, cycles: 1.0 }),
+        motion: sine_pulse(1.0, 2.0, 1.0, 1e-3).unwrap(),
         pgas: vec![0.2, 0.6],
         trials: 3,
         seed: 4,
         azimuth: None,
-        scale: TimeScale::UNIT,
+        r_max_m: 1.0,
     };
-    let one = pool(1).install(|| shake::run(&s, &starts[..2], &shake_cfg));
-    let two = pool(2).install(|| shake::run(&s, &starts[..2], &shake_cfg));
+    let one = pool(1).install(|| shake::run(&s, &starts[..2], &shake_cfg)).unwrap();
+    let two = pool(2).install(|| shake::run(&s, &starts[..2], &shake_cfg)).unwrap();
     assert_eq!(one.trials, two.trials);
     assert_eq!(one.trials.len(), 12);
 }
 
+/// The sweep's sine pulse against its closed form: A sin(2π f t) for `cycles` cycles, PGA = A,
+/// duration cycles/f, PGV = 2A/(2π f) (the ground velocity (A/ω)(1 − cos ωt) peaks at half a
+/// cycle), zero after its end; a bad frequency is refused.
 #[test]
-fn ground_motions_read_scale_and_interpolate() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("motion.csv");
-    std::fs::write(&path, "time_s,accel_g\n# a comment\n0,0\n0.2,0.1\n0.4,-0.3\n0.6,0\n").unwrap();
-    // A 4 m stone: real times are twice the scaled ones.
-    let r = read_record(&path, TimeScale { r_max_m: 4.0 }).unwrap();
-    assert_eq!(r.times, vec![0.0, 0.1, 0.2, 0.3]);
-    let m = Motion::Record(r);
-    assert!((m.peak() - 0.3).abs() < 1e-12);
-    assert!((m.duration() - 0.3).abs() < 1e-12);
-    assert!((m.accel(0.05) - 0.05).abs() < 1e-12);
-    assert!((m.accel(0.15) + 0.1).abs() < 1e-12);
-    assert_eq!(m.accel(0.5), 0.0);
-    let m2 = m.scaled_to(0.6);
-    assert!((m2.accel(0.2) + 0.6).abs() < 1e-12);
-    let p = Motion::Pulse(Pulse { amplitude: 0.5, frequency: 2.0, cycles: 3.0 });
-    assert_eq!(p.duration(), 1.5);
-    assert!((p.accel(0.125) - 0.5).abs() < 1e-12);
-    assert_eq!(p.accel(1.6), 0.0);
-    assert_eq!(TimeScale { r_max_m: 4.0 }.to_scaled_frequency(1.0), 2.0);
-    std::fs::write(&path, "0,0\n0.2,x\n").unwrap();
-    assert!(read_record(&path, TimeScale::UNIT).is_err());
-    std::fs::write(&path, "0,0\n0,1\n").unwrap();
-    assert!(read_record(&path, TimeScale::UNIT).is_err(), "times must increase");
+fn the_sine_pulse_is_its_closed_form() {
+    let (a, f, cycles) = (0.5, 2.0, 3.0);
+    let r = sine_pulse(a, f, cycles, 1e-4).unwrap();
+    let m = r.measures();
+    assert!((m.pga_g - a).abs() < 1e-9, "PGA {}", m.pga_g);
+    assert!((r.duration() - cycles / f).abs() < 1e-12);
+    assert!((r.at(0.125)[0] - a * GRAVITY).abs() < 1e-9);
+    assert_eq!(r.at(1.6), [0.0; 3]);
+    let pgv = 2.0 * a * GRAVITY / (2.0 * std::f64::consts::PI * f);
+    assert!((m.pgv_m_s / pgv - 1.0).abs() < 1e-4, "PGV {} vs {pgv}", m.pgv_m_s);
+    assert!(sine_pulse(a, 0.0, 1.0, 1e-3).is_err());
+    assert!(sine_pulse(a, f, 0.0, 1e-3).is_err());
 }
 
 #[test]

@@ -3,15 +3,16 @@
 //! Housner's rocking equation.
 
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::housner::housner_overturns;
 use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{Outcome, PerturbParams, Stone, GRAVITY};
-use rocking_stones::dynamics::shake::{
-    housner_overturns, place, rock_params, shake_record, shake_trial, GroundAcceleration, Motion, Pose, Pulse, RockRun,
-};
+use rocking_stones::dynamics::perturb::{Outcome, PerturbParams, Stone};
+use rocking_stones::dynamics::shake::{place, rock_params, shake_record, shake_trial, sine_pulse, Pose, RockRun};
 use rocking_stones::generate;
+use rocking_stones::ground_motion::Record;
 use rocking_stones::hull::convex_hull;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::Point3;
+use rocking_stones::GRAVITY;
 use std::f64::consts::PI;
 
 fn stone(mesh: TriMesh) -> Stone {
@@ -27,9 +28,22 @@ fn bottom(s: &Stone) -> usize {
 }
 
 /// Shake `s` (R_max = `r_max_m` metres) standing on its bottom face with `motion`.
-fn shake(s: &Stone, p: &PerturbParams, motion: &dyn GroundAcceleration, r_max_m: f64) -> RockRun {
+fn shake(s: &Stone, p: &PerturbParams, motion: &Record, r_max_m: f64) -> RockRun {
     let placed = place(s, &Pose::Facet { id: bottom(s) }, p).unwrap();
     shake_record(s, placed, p, motion, 0.0, r_max_m)
+}
+
+/// The motion `f` (m/s², real time t in s) on 0 ≤ t ≤ `duration`, sampled every millisecond: a
+/// record, as every motion is.
+fn sampled(f: impl Fn(f64) -> [f64; 3], duration: f64) -> Record {
+    let dt = 1e-3;
+    let n = (duration / dt).ceil() as usize + 1;
+    Record::new(
+        "test motion",
+        duration / (n - 1) as f64,
+        (0..n).map(|k| f(k as f64 * duration / (n - 1) as f64)).collect(),
+    )
+    .unwrap()
 }
 
 /// Housner's conditions on a real surface pair: no sliding, plastic impacts.
@@ -40,33 +54,35 @@ fn housner(r_max_m: f64) -> PerturbParams {
     p
 }
 
-/// A motion along x only gives the same run as the one-component shake of issue 6 (same pose,
-/// same contact, the rock at R_max = 1 m so that real and scaled time agree).
+/// A trial of the fragility sweep is a field-rock run of the stone standing on the same
+/// micro-equilibrium (one drive, one contact, one rest rule): the same outcome, tilt and time to
+/// the last bit; and a record along x turned by 90° is the same record along y.
 #[test]
-fn motion_along_x_only_equals_the_one_component_shake() {
+fn a_sweep_trial_is_the_field_run_of_the_same_stone() {
     let s = stone(generate::cuboid(1.0, 0.6, 2.0));
-    let p = PerturbParams::default();
+    let r_max_m = 0.3;
+    let p = rock_params(Surface::StoneOnStone, r_max_m).unwrap();
     let start = s.position(bottom(&s)).unwrap();
-    for (amp, f) in [(0.4, 2.0), (0.8, 1.0)] {
-        let pulse = Pulse { amplitude: amp, frequency: f, cycles: 1.0 };
-        let old = shake_trial(&s, start, &p, &Motion::Pulse(pulse), 0.0, 0);
-        let m = Motion::Pulse(pulse);
-        let rec = (|t: f64| [m.accel(t) * GRAVITY, 0.0, 0.0], pulse.cycles / f);
-        let new = shake(&s, &p, &rec, s.body.r_max);
-        assert_eq!(new.outcome, old.outcome, "{amp} g, {f} Hz");
-        assert!(
-            (new.max_tilt_deg.to_radians() - old.max_tilt).abs() <= 1e-3 * old.max_tilt.max(1e-3),
-            "{amp} g: max tilt {} vs {} rad",
-            new.max_tilt_deg.to_radians(),
-            old.max_tilt
-        );
+    for (amp, f) in [(0.4, 4.0), (0.8, 2.0)] {
+        let m = sine_pulse(amp, f, 1.0, 1e-3).unwrap();
+        let trial = shake_trial(&s, start, &p, &m, r_max_m, 0.0, 0);
+        let run = shake(&s, &p, &m, r_max_m);
+        assert_eq!(trial.outcome, run.outcome, "{amp} g, {f} Hz");
+        assert_eq!(trial.max_tilt.to_bits(), run.max_tilt_deg.to_radians().to_bits(), "{amp} g");
+        assert_eq!(trial.time * r_max_m.sqrt(), run.time_s, "{amp} g");
+        let along_y = Record::new("y", m.dt, m.accel.iter().map(|a| [0.0, a[0], 0.0]).collect()).unwrap();
+        let turned =
+            shake_record(&s, place(&s, &Pose::Facet { id: bottom(&s) }, &p).unwrap(), &p, &m, PI / 2.0, r_max_m);
+        let y = shake_record(&s, place(&s, &Pose::Facet { id: bottom(&s) }, &p).unwrap(), &p, &along_y, 0.0, r_max_m);
+        assert_eq!(turned.outcome, y.outcome);
+        assert!((turned.max_tilt_deg - y.max_tilt_deg).abs() <= 1e-6 * y.max_tilt_deg.max(1e-3), "{amp} g");
     }
 }
 
 /// A ramp a(t) = rate·g·t along x up to `a_max`·g, held there for as long again (plus a constant
 /// vertical ground acceleration `az_g`·g).
-fn ramp(rate: f64, a_max: f64, az_g: f64) -> (impl Fn(f64) -> [f64; 3] + Sync, f64) {
-    (move |t: f64| [(rate * t).min(a_max) * GRAVITY, 0.0, az_g * GRAVITY], 2.0 * a_max / rate)
+fn ramp(rate: f64, a_max: f64, az_g: f64) -> Record {
+    sampled(move |t: f64| [(rate * t).min(a_max) * GRAVITY, 0.0, az_g * GRAVITY], 2.0 * a_max / rate)
 }
 
 /// Housner (1963) at true size: a block of b/h = 0.5 does not tip under a quasi-static horizontal
@@ -105,7 +121,7 @@ fn vertical_motion_below_one_g_leaves_a_block_in_place() {
     let s = stone(generate::cuboid(1.0, 0.6, 2.0));
     let r_max_m = 0.5;
     let p = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
-    let m = (|t: f64| [0.0, 0.0, 0.8 * GRAVITY * (2.0 * PI * 3.0 * t).sin()], 2.0);
+    let m = sampled(|t: f64| [0.0, 0.0, 0.8 * GRAVITY * (2.0 * PI * 3.0 * t).sin()], 2.0);
     let run = shake(&s, &p, &m, r_max_m);
     assert_eq!(run.outcome, Outcome::Same);
     assert!(run.max_tilt_deg < 0.05, "tilt {}°", run.max_tilt_deg);
@@ -143,7 +159,7 @@ fn low_friction_slides_instead_of_rocking() {
     let s = stone(generate::cuboid(1.0, 0.6, 2.0));
     let r_max_m = 0.5;
     let a_g = |t: f64| 0.7 * GRAVITY * (2.0 * PI * 2.0 * t).sin();
-    let m = (move |t: f64| [a_g(t), 0.0, 0.0], 0.25);
+    let m = sampled(move |t: f64| [a_g(t), 0.0, 0.0], 0.25);
     let mut p = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
     p.sim.friction = 0.3;
     let slid = shake(&s, &p, &m, r_max_m);
@@ -269,7 +285,7 @@ fn one_sine_pulse_overturning_boundary_matches_housners_equation() {
         .expect("the ODE overturns below 3 g tan α");
         let sim = first(&|amp| {
             let ap = amp * GRAVITY * alpha.tan();
-            let run = shake(&s, &q, &(move |t: f64| [ap * (wp * t).sin(), 0.0, 0.0], 2.0 * PI / wp), r_max_m);
+            let run = shake(&s, &q, &sampled(move |t: f64| [ap * (wp * t).sin(), 0.0, 0.0], 2.0 * PI / wp), r_max_m);
             run.overturned
         })
         .expect("rapier overturns below 3 g tan α");
@@ -298,7 +314,7 @@ fn a_record_as_at2_and_as_csv_gives_identical_runs() {
     }
     let mut csv = String::from("time_s,ax_g,ay_g,az_g\n");
     for (k, a) in rec.accel.iter().enumerate() {
-        let g = |x: f64| format!("{:.8E}", x / rocking_stones::ground_motion::G);
+        let g = |x: f64| format!("{:.8E}", x / rocking_stones::GRAVITY);
         csv += &format!("{},{},{},{}\n", k as f64 * rec.dt, g(a[0]), g(a[1]), g(a[2]));
     }
     let csv_path = dir.path().join("rec.csv");
@@ -340,7 +356,7 @@ fn batches_are_independent_of_the_thread_count() {
 /// the largest it gets for a field rock) and by 5 m.
 #[test]
 fn housners_impact_ratio_holds_at_true_size() {
-    use rocking_stones::dynamics::shake::{free_rocking, housner_ratio};
+    use rocking_stones::dynamics::housner::{free_rocking, housner_ratio};
     let (b, d, h) = (0.5, 0.3, 1.0);
     let s = stone(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h));
     let start = s.position(bottom(&s)).unwrap();

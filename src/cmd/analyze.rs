@@ -3,14 +3,10 @@
 use anyhow::{Context, Result};
 use rayon::prelude::*;
 use rocking_stones::analysis::{check_coplanar_tol, check_nu, Analysis, Options, Report};
-use rocking_stones::mesh::io;
+use rocking_stones::bundled;
 use rocking_stones::report;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-/// The bundled default pebble (see `data/README.md` for its provenance).
-const DEFAULT_PEBBLE: &[u8] = include_bytes!("../../data/default_pebble.ply");
-const DEFAULT_NAME: &str = "default_pebble.ply (bundled)";
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -108,18 +104,11 @@ fn expand(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
 pub fn load_analysis(path: Option<&Path>, opts: &Options) -> Result<(Analysis, String)> {
     Ok(match path {
         Some(p) => (Analysis::of_file(p, opts)?, p.display().to_string()),
-        None => {
-            let mesh = io::read_bytes(DEFAULT_PEBBLE, Path::new(DEFAULT_NAME))?;
-            let (mesh, repairs) = mesh.into_solid_boundary().map_err(|e| e.with_path(DEFAULT_NAME))?;
-            (Analysis::of_solid(mesh, repairs, opts).map_err(|e| e.with_path(DEFAULT_NAME))?, DEFAULT_NAME.to_string())
-        }
+        None => (bundled::analysis(opts)?, bundled::NAME.to_string()),
     })
 }
 
-/// Is this the report name of the bundled default stone?
-pub fn is_bundled(name: &str) -> bool {
-    name == DEFAULT_NAME
-}
+pub use rocking_stones::bundled::is_bundled;
 
 /// Say on standard error what was accepted although not clean (shallow self-intersections).
 fn warn(name: &str, r: &rocking_stones::mesh::Repairs) {

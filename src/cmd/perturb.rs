@@ -4,37 +4,55 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::dynamics::params::DropParams;
-use rocking_stones::dynamics::perturb::{self, legacy_contact, Family, PerturbConfig, PerturbParams, Stone};
+use rocking_stones::bundled::default_length_unit_m;
+use rocking_stones::dynamics::params::Surface;
+use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, RestingPreset, Stone};
+use rocking_stones::dynamics::resting::Size;
+use rocking_stones::dynamics::shake::parse_length_unit;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
 
-/// Simulation parameters shared by `rocking perturb` and `rocking shake`.
+/// Simulation parameters shared by `rocking perturb` and `rocking shake`: the contact of every
+/// run that starts at rest (the surface pair at the stone's real size) and its overrides.
 #[derive(clap::Args, Clone)]
 pub struct SimArgs {
-    /// Coulomb friction coefficient of stone and ground.
-    #[arg(long, default_value_t = legacy_contact().friction)]
-    pub friction: f64,
-    /// Restitution coefficient.
-    #[arg(long, default_value_t = legacy_contact().restitution)]
-    pub restitution: f64,
-    /// Angular velocity damping (1/s): stands in for rolling resistance in perturbation and
-    /// shaking runs (the contact of their results in `results/`).
-    #[arg(long, default_value_t = legacy_contact().angular_damping)]
-    pub angular_damping: f64,
-    /// Linear velocity damping (1/s).
-    #[arg(long, default_value_t = legacy_contact().linear_damping)]
-    pub linear_damping: f64,
-    /// Time step (s of the scaled 1 m body).
-    #[arg(long, default_value_t = legacy_contact().dt)]
-    pub dt: f64,
-    /// Time cap per trial after the perturbation / the motion (s, scaled).
-    #[arg(long, default_value_t = legacy_contact().max_time)]
-    pub max_time: f64,
-    /// Natural frequency (Hz) of the soft contact constraints.
-    #[arg(long, default_value_t = rocking_stones::dynamics::perturb::CONTACT_FREQUENCY)]
-    pub contact_frequency: f64,
+    /// Contact: `surface` (the surface pair of --surface at the stone's real size, with rolling
+    /// resistance through the contact: the physics of drops and field rocks) or `damped` (the
+    /// overdamped reference of the results before issue 23: friction 0.6, restitution 0.2, global
+    /// angular damping 1 s⁻¹; ignores --surface and the size).
+    #[arg(long, default_value = "surface", value_parser = parse_resting_preset)]
+    pub preset: RestingPreset,
+    /// Surface pair: stone-on-stone, rock-on-concrete, rock-on-steel, steel-on-wood. Default:
+    /// stone-on-stone (a stone on rock); with `shake --pose`, rock-on-concrete (a shake table).
+    #[arg(long, value_parser = parse_surface)]
+    pub surface: Option<Surface>,
+    /// The mesh's length unit (mm, cm, m, km or metres per unit): the stone's real size. Default:
+    /// mm for the bundled stone (a 30 cm quarry stone, R_max = 178 mm), m for any other mesh.
+    #[arg(long, conflicts_with = "size")]
+    pub length_unit: Option<String>,
+    /// The stone's real size as R_max in metres (the largest distance from G to the hull),
+    /// instead of --length-unit.
+    #[arg(long)]
+    pub size: Option<f64>,
+    /// Coulomb friction coefficient (default: the surface pair's).
+    #[arg(long)]
+    pub friction: Option<f64>,
+    /// Restitution coefficient (default: the surface pair's).
+    #[arg(long)]
+    pub restitution: Option<f64>,
+    /// Rolling-resistance length δ_r / R_max (default: the surface pair's δ over the real size).
+    #[arg(long)]
+    pub rolling_resistance: Option<f64>,
+    /// Time step (s of the scaled 1 m body). Default 1/240 s.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Time cap per trial after the perturbation / the motion (s, scaled). Default 20 s.
+    #[arg(long)]
+    pub max_time: Option<f64>,
+    /// Natural frequency (Hz, scaled) of the soft contact constraints. Default 120 Hz.
+    #[arg(long)]
+    pub contact_frequency: Option<f64>,
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
     #[arg(long)]
     pub nu: Option<f64>,
@@ -45,20 +63,34 @@ pub struct SimArgs {
 }
 
 impl SimArgs {
-    pub fn params(&self) -> Result<PerturbParams> {
-        let p = PerturbParams {
-            sim: DropParams {
-                friction: self.friction,
-                restitution: self.restitution,
-                angular_damping: self.angular_damping,
-                linear_damping: self.linear_damping,
-                dt: self.dt,
-                max_time: self.max_time,
-                ..legacy_contact()
-            },
-            contact_frequency: self.contact_frequency,
-            ..PerturbParams::default()
+    /// Metres per mesh unit: --size / R_max, --length-unit, else mm for the bundled stone and m
+    /// otherwise.
+    pub fn length_unit_m(&self, stone: &Stone, name: &str) -> Result<f64> {
+        let size = match (self.size, &self.length_unit) {
+            (Some(r), _) => Size::RMax(r),
+            (None, Some(u)) => Size::Unit(parse_length_unit(u)?),
+            (None, None) => Size::Unit(default_length_unit_m(name)),
         };
+        Ok(size.length_unit_m(stone.body.r_max)?)
+    }
+
+    /// The stone's real R_max (m): its R_max in mesh units times [`SimArgs::length_unit_m`].
+    pub fn r_max_m(&self, stone: &Stone, name: &str) -> Result<f64> {
+        Ok(stone.body.r_max * self.length_unit_m(stone, name)?)
+    }
+
+    /// The parameters of the run for `stone` (named `name`), the surface defaulting to
+    /// `default_surface`, with every override given.
+    pub fn params(&self, stone: &Stone, name: &str, default_surface: Surface) -> Result<PerturbParams> {
+        let surface = self.surface.unwrap_or(default_surface);
+        let mut p = PerturbParams::of(self.preset, surface, self.r_max_m(stone, name)?)?;
+        let sim = &mut p.sim;
+        sim.friction = self.friction.unwrap_or(sim.friction);
+        sim.restitution = self.restitution.unwrap_or(sim.restitution);
+        sim.rolling_resistance = self.rolling_resistance.unwrap_or(sim.rolling_resistance);
+        sim.dt = self.dt.unwrap_or(sim.dt);
+        sim.max_time = self.max_time.unwrap_or(sim.max_time);
+        p.contact_frequency = self.contact_frequency.unwrap_or(p.contact_frequency);
         p.check()?;
         Ok(p)
     }
@@ -152,12 +184,13 @@ pub fn select(stone: &Stone, equilibria: &[usize], flock: Option<usize>) -> Resu
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let params = PerturbParams { certificate: args.certificate, ..args.sim.params()? };
     if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
         bail!("need 0 < --eps-min ≤ --eps-max and --eps-steps ≥ 1");
     }
+    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let params = args.sim.params(&stone, &name, Surface::StoneOnStone)?;
     let cfg = PerturbConfig {
-        params,
+        params: PerturbParams { certificate: args.certificate, ..params },
         family: args.family,
         epsilons: log_grid(args.eps_min, args.eps_max, GridSize::Points(args.eps_steps)),
         trials: args.trials,
@@ -165,7 +198,6 @@ pub fn run(args: Args) -> Result<()> {
         epsilon_star: args.epsilon_star,
     };
     cfg.check()?;
-    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = select(&stone, &args.equilibria, args.flock)?;
     let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
@@ -186,5 +218,13 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 fn parse_family(s: &str) -> std::result::Result<Family, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+}
+
+fn parse_resting_preset(s: &str) -> std::result::Result<RestingPreset, String> {
+    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+}
+
+fn parse_surface(s: &str) -> std::result::Result<Surface, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.to_string())
 }

@@ -8,8 +8,7 @@ use super::perturb::{select, SimArgs};
 use anyhow::{bail, Result};
 use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::default_pair;
-use rocking_stones::dynamics::shake::RockSetup;
-use rocking_stones::dynamics::shake::{self, Motion, Pulse, ShakeConfig, TimeScale};
+use rocking_stones::dynamics::shake::{self, RockSetup, ShakeConfig};
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
@@ -23,13 +22,12 @@ pub struct Args {
     pub mesh: Option<PathBuf>,
     /// Shake the stone resting on these stable micro-equilibria (repeatable). Default: the
     /// deepest regular one and the rocking one with the highest basin barrier.
-    #[arg(long = "equilibrium", value_name = "ID")]
+    #[arg(long = "equilibrium", value_name = "ID", conflicts_with = "pose")]
     pub equilibria: Vec<usize>,
-    /// Sine pulse: amplitude (g), frequency (Hz, for a stone of --size metres), cycles.
-    #[arg(long, value_name = "AMP,FREQ,CYCLES", value_parser = parse_pulse, conflicts_with = "motion")]
+    /// Sine pulse: amplitude (g), frequency (Hz, real: for the stone at its real size), cycles.
+    #[arg(long, value_name = "AMP,FREQ,CYCLES", value_parser = parse_pulse, conflicts_with_all = ["motion", "pose"])]
     pub pulse: Option<[f64; 3]>,
-    /// Ground motion. Without --pose: a CSV of time (s, for a stone of --size metres) and
-    /// acceleration (g). With --pose: a CSV (columns --columns, unit --accel-unit) or one to three
+    /// Ground motion: a CSV (columns --columns, unit --accel-unit; real time) or one to three
     /// PEER .AT2 files (x, y, z components; repeat the option).
     #[arg(long, value_name = "FILE", num_args = 1..=3)]
     pub motion: Vec<PathBuf>,
@@ -37,54 +35,45 @@ pub struct Args {
     /// settled), facet:ID (a stable micro-equilibrium) or quat:w,x,y,z.
     #[arg(long, value_parser = parse_pose)]
     pub pose: Option<shake::Pose>,
-    /// Field rock: the mesh's length unit (mm, cm, m, km or metres per unit); dynamics at true size.
-    #[arg(long, default_value = "m")]
-    pub length_unit: String,
-    /// Field rock: the contact surface pair (rock-on-concrete, stone-on-stone, rock-on-steel, steel-on-wood).
-    #[arg(long, default_value = "rock-on-concrete")]
-    pub surface: String,
-    /// Field rock: CSV columns time,ax[,ay[,az]] by header name or number from 1.
+    /// CSV records: columns time,ax[,ay[,az]] by header name or number from 1.
     #[arg(long, default_value = "1,2")]
     pub columns: String,
-    /// Field rock: acceleration unit of CSV records (g, m/s2, gal).
+    /// CSV records: acceleration unit (g, m/s2, gal).
     #[arg(long, default_value = "g")]
     pub accel_unit: String,
-    /// Field rock: polynomial baseline correction of the records (order 0–3) before use.
+    /// Polynomial baseline correction of the records (order 0–3) before use.
     #[arg(long, value_name = "ORDER")]
     pub baseline: Option<usize>,
     /// Field rock: a folder of records (*.csv read with --columns/--accel-unit; each *.AT2 file
     /// is one record along x), each run at every --scales factor, in parallel.
-    #[arg(long, value_name = "DIR", conflicts_with = "motion")]
+    #[arg(long, value_name = "DIR", conflicts_with = "motion", requires = "pose")]
     pub records: Option<PathBuf>,
     /// Field rock: scale factors applied to every record.
-    #[arg(long, value_delimiter = ',', default_value = "1")]
+    #[arg(long, value_delimiter = ',', default_value = "1", requires = "pose")]
     pub scales: Vec<f64>,
     /// Field rock batch: continue the batch journalled in -o DIR (DIR/runs.jsonl): the runs it
     /// holds are kept, only the others run (records and scale factors may be added).
-    #[arg(long, requires = "output")]
+    #[arg(long, requires_all = ["output", "pose"])]
     pub resume: bool,
     /// Sweep the peak ground acceleration from PGA_MAX/STEPS to PGA_MAX (g), scaling the motion
-    /// to each: fragility curves. Without a motion the default is a sweep of a 2-cycle pulse of
-    /// 2 Hz (scaled) up to 1 g; with --pulse or --motion and no --pga-max, the motion is run at
-    /// its own amplitude only.
-    #[arg(long)]
+    /// to each: fragility curves. Without a motion the default is a sweep up to 1 g of 2 sine
+    /// cycles at 2/√R_max Hz (R_max in metres; 2 Hz of the scaled 1 m body); with --pulse or
+    /// --motion and no --pga-max, the motion is run at its own amplitude only.
+    #[arg(long, conflicts_with = "pose")]
     pub pga_max: Option<f64>,
-    #[arg(long, default_value_t = 20)]
+    /// Number of PGAs of the sweep.
+    #[arg(long, default_value_t = 20, conflicts_with = "pose")]
     pub pga_steps: usize,
-    /// Size of the real stone, R_max in metres: frequencies and record times are real and are
-    /// converted to the scaled 1 m body (f_scaled = f_real·√size).
-    #[arg(long, default_value_t = 1.0)]
-    pub size: f64,
     /// Shake along this azimuth (degrees, in the frame of the resting stone) instead of a
     /// random azimuth per trial. With --pose: the azimuth (degrees, world frame) of the
     /// records' x axis (default 0).
     #[arg(long)]
     pub azimuth: Option<f64>,
     /// Trials per equilibrium and PGA.
-    #[arg(short = 'n', long, default_value_t = 40)]
+    #[arg(short = 'n', long, default_value_t = 40, conflicts_with = "pose")]
     pub trials: u32,
     /// Seed of the random azimuths.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, conflicts_with = "pose")]
     pub seed: u64,
     #[command(flatten)]
     pub sim: SimArgs,
@@ -112,23 +101,14 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(pose) = args.pose {
         return field(args, pose);
     }
-    if args.records.is_some() {
-        bail!("--records needs --pose (as-scanned, facet:ID or quat:w,x,y,z)");
-    }
-    if args.motion.len() > 1 {
-        bail!("several --motion files (AT2 components) need --pose");
-    }
-    let params = args.sim.params()?;
-    if !(args.size > 0.0 && args.size.is_finite()) {
-        bail!("--size must be positive");
-    }
-    let scale = TimeScale { r_max_m: args.size };
-    let (motion, default_sweep) = match (&args.pulse, &args.motion.first()) {
-        (Some([a, f, c]), _) => {
-            (Motion::Pulse(Pulse { amplitude: *a, frequency: scale.to_scaled_frequency(*f), cycles: *c }), false)
-        }
-        (None, Some(path)) => (Motion::Record(shake::read_record(path, scale)?), false),
-        (None, None) => (Motion::Pulse(Pulse { amplitude: 1.0, frequency: 2.0, cycles: 2.0 }), true),
+    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let params = args.sim.params(&stone, &name, Surface::StoneOnStone)?;
+    let r_max_m = args.sim.r_max_m(&stone, &name)?;
+    let real_dt = params.sim.dt * r_max_m.sqrt();
+    let (motion, default_sweep) = match (&args.pulse, args.motion.is_empty()) {
+        (Some([a, f, c]), _) => (shake::sine_pulse(*a, *f, *c, real_dt)?, false),
+        (None, false) => (read_records(&args)?.remove(0), false),
+        (None, true) => (shake::default_pulse(r_max_m, params.sim.dt)?, true),
     };
     let pga_max = args.pga_max.or(default_sweep.then_some(1.0));
     let pgas = match pga_max {
@@ -138,9 +118,8 @@ pub fn run(args: Args) -> Result<()> {
             }
             (1..=args.pga_steps).map(|i| m * i as f64 / args.pga_steps as f64).collect()
         }
-        None => vec![motion.peak()],
+        None => vec![motion.measures().pga_g],
     };
-    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let starts = if args.equilibria.is_empty() {
         let (regular, rocking) = default_pair(&stone, &params);
         let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
@@ -158,11 +137,11 @@ pub fn run(args: Args) -> Result<()> {
         trials: args.trials,
         seed: args.seed,
         azimuth: args.azimuth.map(f64::to_radians),
-        scale,
+        r_max_m,
     };
     cfg.check()?;
     let bar = super::progress_bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64, "trials");
-    let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
+    let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     super::emit(
         &report,
@@ -179,6 +158,24 @@ pub fn run(args: Args) -> Result<()> {
     )
 }
 
+/// The records of the command line (one --motion, or the --records folder), each baseline
+/// corrected if asked.
+fn read_records(args: &Args) -> Result<Vec<Record>> {
+    let columns: Columns = args.columns.parse()?;
+    let accel_unit: AccelUnit = args.accel_unit.parse()?;
+    let records = match (&args.records, args.motion.is_empty()) {
+        (Some(dir), _) => read_folder(dir, &columns, accel_unit)?,
+        (None, false) => vec![read_motion(&args.motion, &columns, accel_unit)?],
+        (None, true) => bail!("with --pose, give a record (--motion FILE, or up to three .AT2 files) or --records DIR"),
+    };
+    match args.baseline {
+        Some(order) => {
+            Ok(records.iter().map(|r| r.baseline_corrected(order)).collect::<rocking_stones::Result<_>>()?)
+        }
+        None => Ok(records),
+    }
+}
+
 /// Read one record: a CSV, or one to three .AT2 files.
 fn read_motion(paths: &[PathBuf], columns: &Columns, unit: AccelUnit) -> Result<Record> {
     let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
@@ -187,24 +184,14 @@ fn read_motion(paths: &[PathBuf], columns: &Columns, unit: AccelUnit) -> Result<
 
 /// `rocking shake --pose ...`: a field rock at true size under recorded motion.
 fn field(args: Args, pose: shake::Pose) -> Result<()> {
-    let unit = shake::parse_length_unit(&args.length_unit)?;
-    let surface: Surface = args.surface.parse()?;
-    let columns: Columns = args.columns.parse()?;
-    let accel_unit: AccelUnit = args.accel_unit.parse()?;
-    let mut records = match (&args.records, args.motion.is_empty()) {
-        (Some(dir), _) => read_folder(dir, &columns, accel_unit)?,
-        (None, false) => vec![read_motion(&args.motion, &columns, accel_unit)?],
-        (None, true) => bail!("with --pose, give a record (--motion FILE, or up to three .AT2 files) or --records DIR"),
-    };
-    if let Some(order) = args.baseline {
-        records = records.iter().map(|r| r.baseline_corrected(order)).collect::<rocking_stones::Result<_>>()?;
-    }
+    let records = read_records(&args)?;
     if args.scales.is_empty() || args.scales.iter().any(|k| !(*k >= 0.0 && k.is_finite())) {
         bail!("--scales must be numbers ≥ 0, e.g. 0.5,1,2");
     }
     let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let azimuth = args.azimuth.unwrap_or(0.0).to_radians();
-    let setup = RockSetup::new(&stone, pose, unit, surface, azimuth)?;
+    let params = args.sim.params(&stone, &name, Surface::RockOnConcrete)?;
+    let setup = RockSetup::with_params(&stone, pose, args.sim.length_unit_m(&stone, &name)?, azimuth, params);
     if records.len() == 1 && args.scales.len() == 1 {
         let run = shake::run_record(&stone, &setup, &records[0], args.scales[0])?;
         return super::emit(

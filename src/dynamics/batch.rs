@@ -23,13 +23,14 @@
 //! the world (the same [`Progress`]), and its flight depends on nothing but its own state, so the
 //! outcomes are again the same for any batch size and thread count (`tests/flight.rs`).
 
-use super::drop::{outcome, release_height, DropOutcome, Release};
 use super::flight::{self, FreeBody};
+use super::launch::{outcome, release_height, DropOutcome, Release};
 use super::params::DropParams;
-use super::run::{Certificate, Progress};
+use super::run::{Certificate, Progress, RestKind, RestSample};
 use super::stone::{Body, Stone};
-use super::world::{body_state, ground_world, insert_stone, normal_impulse, BodyState, ContactLaw, GRAVITY};
+use super::world::{body_state, ground_world, insert_stone, normal_impulse, step_world, BodyState, ContactLaw};
 use crate::Vec3;
+use crate::GRAVITY;
 use nalgebra::Matrix3;
 use rapier3d::prelude::{ColliderHandle, PhysicsWorld, RigidBodyHandle};
 
@@ -81,30 +82,34 @@ pub fn simulate_batch(
             } else {
                 enter_world(&mut world, &stone.body, p, &free)
             };
-            slots.push(Slot { index, place, progress: Progress::new(p, 0) });
+            slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds) });
         }
         if slots.is_empty() {
             return;
         }
-        if slots.iter().any(|s| matches!(s.place, Place::World { .. })) {
-            world.step();
+        let in_world: Vec<(RigidBodyHandle, ColliderHandle)> = slots
+            .iter()
+            .filter_map(|s| match s.place {
+                Place::World { handle, collider } => Some((handle, collider)),
+                Place::Air(_) => None,
+            })
+            .collect();
+        if !in_world.is_empty() {
+            step_world(&mut world, &law, &stone.body, ground_collider, &in_world);
         }
         let mut k = 0;
         while k < slots.len() {
             let s = &mut slots[k];
             let state = match &mut s.place {
-                Place::World { handle, collider } => {
-                    if law.acts() {
-                        law.apply(&mut world, &stone.body, *handle, *collider, ground_collider);
-                    }
-                    body_state(&world.bodies[*handle], &stone.body)
-                }
+                Place::World { handle, .. } => body_state(&world.bodies[*handle], &stone.body),
                 Place::Air(b) => {
                     b.step(p.dt, &inertia, &inertia_inv);
                     air_state(b, &stone.body)
                 }
             };
-            match s.progress.after_step(&state, &Vec3::zeros(), cert) {
+            // The ground never moves here and the speed rule reads no position.
+            let sample = RestSample { state: &state, ground_velocity: Vec3::zeros(), offset: Vec3::zeros() };
+            match s.progress.after_step(&sample, cert) {
                 None => {
                     if free_flight {
                         s.place = match s.place {
@@ -161,7 +166,7 @@ fn take_off_if_clear(
     let clear = flight::in_flight(flight::clearance(state.z, body.support_climb(&state.down)), true);
     if clear && normal_impulse(world, ground, collider) == 0.0 {
         let rb = &world.bodies[handle];
-        let q = super::world::convert::quat_back(rb.rotation());
+        let q = super::convert::quat_back(rb.rotation());
         let b = FreeBody::new(state.z, state.linvel, q, &state.angvel);
         world.remove_body(handle);
         Place::Air(b)

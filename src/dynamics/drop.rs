@@ -1,83 +1,14 @@
 //! One drop or throw of a stone onto flat ground, from release to rest (SPEC §6).
 //!
-//! The launch ([`launch`]) draws from the drop's own random stream: a Haar-uniform orientation,
-//! an angular velocity (exact or Gaussian, [`super::params::SpinDistribution`]) and a horizontal
-//! velocity along a uniformly random azimuth; the lowest hull point starts `height` above the
-//! ground. The run itself is the one loop of [`super::run`]; where the stone came to rest is
-//! decided by the static theory ([`Stone::rest`]: the quasi-static descent of the support
-//! function from the final down direction), never by the facet whose normal is closest to down.
+//! The launch and the outcome rule are [`super::launch`]'s; the run itself is the one loop of
+//! [`super::run`] (speed rest rule, [`RestKind::Speeds`]), or a batch of one
+//! ([`super::batch`]) when the flight between contacts leaves rapier.
 
-use super::params::{DropParams, SpinDistribution};
-use super::run::{run, Certificate, Decided, Passive, RunEnd};
+pub use super::launch::{launch, outcome, release_height, DropOutcome, Release};
+use super::params::DropParams;
+use super::run::{run, Certificate, Passive, RestKind};
 use super::stone::Stone;
 use super::world::Simulation;
-use crate::rng::{random_rotation, random_unit, Stream};
-use crate::Vec3;
-use nalgebra::UnitQuaternion;
-use rand::RngExt;
-use rand_distr::StandardNormal;
-use serde::{Deserialize, Serialize};
-
-/// What happened to one drop (one line of a checkpoint).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct DropOutcome {
-    /// Index of the drop in its run (determines its random stream).
-    pub index: u64,
-    /// Whether the rest criterion was met (or a certificate decided the drop) before `max_time`.
-    pub settled: bool,
-    /// The stable facet the drop ended on (by [`Stone::rest`]; None when a flock-level
-    /// certificate ended the drop before the facet was decided).
-    pub facet: Option<u32>,
-    /// The flock decided by a flock-level certificate (otherwise read it off `facet`).
-    pub flock: Option<u32>,
-    /// Simulated time (s, scaled) until rest, until the certificate's decision, or the cap.
-    pub time: f64,
-    /// The drop was ended early by the energy certificate.
-    pub certified: bool,
-    /// For a drop that was simulated to its end (rest or cap): how far above its rest on the
-    /// facet G stopped, in R_max ([`super::stone::Rest::height_above`]); None when certified.
-    #[serde(default)]
-    pub height_above: Option<f64>,
-}
-
-impl DropOutcome {
-    /// Settled, but stopped above its stable facet by more than the contact tolerance.
-    pub fn off_equilibrium(&self) -> bool {
-        self.settled && self.height_above.is_some_and(|h| h > super::stone::REST_TOLERANCE)
-    }
-}
-
-/// Initial state of a drop: orientation (body → world), velocity and angular velocity (world).
-#[derive(Clone, Copy, Debug)]
-pub struct Release {
-    /// Body → world.
-    pub orientation: UnitQuaternion<f64>,
-    /// Velocity of G (world frame).
-    pub linvel: Vec3,
-    /// Angular velocity (world frame).
-    pub angvel: Vec3,
-}
-
-/// Draw the launch of `p` from a drop's random stream: orientation (4 normals), angular velocity
-/// (3 normals), then the azimuth of the horizontal velocity (one uniform).
-pub fn launch(rng: &mut Stream, p: &DropParams) -> Release {
-    let orientation = random_rotation(rng);
-    let angvel = match p.spin_distribution {
-        SpinDistribution::Fixed => random_unit(rng) * p.spin,
-        SpinDistribution::Gaussian => {
-            Vec3::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal)) * (p.spin / 3f64.sqrt())
-        }
-    };
-    let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-    let linvel = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0) * p.horizontal_speed;
-    Release { orientation, linvel, angvel }
-}
-
-/// Height of G at release: the lowest hull point `p.height` above the ground.
-pub fn release_height(stone: &Stone, p: &DropParams, release: &Release) -> f64 {
-    let down_body = release.orientation.inverse() * -Vec3::z();
-    p.height + stone.body.support(&down_body)
-}
 
 /// Simulate one drop to rest (or to the certificate, or to the time cap), alone in its world
 /// (with [`super::params::Flight::Free`]: a batch of one, [`super::batch`], where the flight is).
@@ -91,29 +22,6 @@ pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, ce
     }
     let z0 = release_height(stone, p, release);
     let mut sim = Simulation::new(&stone.body, p, &release.orientation, z0, &release.linvel, &release.angvel);
-    let end = run(&mut sim, p, &mut Passive, cert, &mut |_| {});
+    let end = run(&mut sim, p, &mut Passive, cert, RestKind::Speeds, &mut |_| {});
     outcome(stone, p, &end, index)
-}
-
-/// The outcome of drop `index` from how its run ended: the certificate's decision, or where the
-/// stone rests by [`Stone::rest`].
-pub fn outcome(stone: &Stone, p: &DropParams, end: &RunEnd, index: u64) -> DropOutcome {
-    let time = end.steps as f64 * p.dt;
-    let outcome = |facet, flock, height_above| DropOutcome {
-        index,
-        settled: end.settled,
-        facet,
-        flock,
-        time,
-        certified: end.decided.is_some(),
-        height_above,
-    };
-    match end.decided {
-        Some(Decided::Facet(f)) => outcome(Some(f), None, None),
-        Some(Decided::Flock(k)) => outcome(None, Some(k), None),
-        None => {
-            let rest = stone.rest(&end.state.down);
-            outcome(Some(rest.facet), None, Some(rest.height_above))
-        }
-    }
 }

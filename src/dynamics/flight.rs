@@ -63,7 +63,7 @@ pub const TAKE_OFF_CLEARANCE: f64 = 0.08;
 const _: () = assert!(TAKE_OFF_CLEARANCE > LANDING_CLEARANCE);
 
 /// Gravity (m/s², scaled frame) — the world's.
-const G: f64 = super::world::GRAVITY;
+use crate::GRAVITY as G;
 
 /// Whether the runs of `p` fly outside rapier: [`Flight::Free`] and no global damping (which
 /// rapier applies in flight too).

@@ -186,7 +186,7 @@ impl DropParams {
 
     /// Speed of G when the body first touches the ground (m/s, scaled): √(v_h² + 2 g h).
     pub fn impact_speed(&self) -> f64 {
-        (self.horizontal_speed.powi(2) + 2.0 * super::world::GRAVITY * self.height).sqrt()
+        (self.horizontal_speed.powi(2) + 2.0 * crate::GRAVITY * self.height).sqrt()
     }
 }
 

@@ -10,9 +10,12 @@
 //! ε = kinetic energy / (m g R_max)
 //! ```
 //!
-//! and simulated to rest (the project's [`RestDetector`], with a time cap; a stone still moving
-//! at the cap, or at rest on a facet that is not stable, is classified by the quasi-static descent
-//! from its last down direction and counted). The outcome is one of
+//! and simulated to rest (the speed rest rule of drops, [`SpeedRest`](super::run::SpeedRest),
+//! with a time cap; a stone still moving at the cap, or at rest on a facet that is not stable, is
+//! classified by the quasi-static descent from its last down direction and counted). The contact
+//! is the one of every run that starts at rest ([`super::resting`]: the surface pair at the
+//! stone's real size, rolling resistance through the contact, no global damping), the physics of
+//! drops and field rocks. The outcome is one of
 //! [`Outcome::Same`] (back on F), [`Outcome::SameFlock`] (rocked onto another stable
 //! micro-equilibrium of F's flock) or [`Outcome::Toppled`] (left the flock), with the final
 //! facet, equilibrium and flock ("where to").
@@ -51,10 +54,10 @@
 //! sublevel set {h ≤ L} ([`crate::basins`]). With L = R_F + ε R_max:
 //!
 //! * **leaving the micro-equilibrium** needs ε > ε_basin = (U_F − R_F)/R_max with U_F
-//!   = [`MergeTree::unique_level`] (the lowest level at which F's component holds another
+//!   = [`MergeTree::unique_level`](crate::basins::MergeTree::unique_level) (the lowest level at which F's component holds another
 //!   stable facet), the cheapest way out being the stable facet it is joined to there;
 //! * **leaving the flock** needs ε > ε_flock = (min over stable facets F' of other flocks of the
-//!   merge level of F and F' − R_F)/R_max ([`MergeTree::entry_barrier`]).
+//!   merge level of F and F' − R_F)/R_max ([`MergeTree::entry_barrier`](crate::basins::MergeTree::entry_barrier)).
 //!
 //! Both are m g ΔR barriers of the static landscape: h at a saddle minus R_F. The dynamic
 //! thresholds ε₅₀ (the ε at which half of the trials leave, interpolated linearly in P against
@@ -72,25 +75,21 @@
 //! micro-equilibrium in a stable flock = regular, in an unstable or saddle flock = rocking,
 //! [`crate::hierarchy::Hierarchy::rocking_at`]); [`Confusion`] compares the two.
 //!
-//! The module is one file on purpose: the perturbation protocol, its trial loop, the statistics
-//! of the curves and the static–dynamic comparison belong together.
+//! The outcome classes and curve statistics are [`super::outcome`]'s (shared with shaking); the
+//! rest placement, its check and the contact are [`super::resting`]'s.
 
-use super::params::DropParams;
-use super::run::{self as run_loop, Certificate, CertificateMode, Decided, EnergyCertificate, Passive};
+pub use super::outcome::{classify, CurvePoint, Outcome, Threshold};
+pub use super::resting::{
+    check_rest, default_pair, grid_trials, resting_simulation, PerturbParams, RestingPreset, SettleCheck,
+    CONTACT_FREQUENCY,
+};
+use super::run::{self as run_loop, Certificate, CertificateMode, Decided, EnergyCertificate, Passive, RestKind};
 pub use super::stone::{resting_orientation, Class, Exit, StableEquilibrium, Stone};
-use super::world::Simulation;
-pub use super::world::GRAVITY;
 use crate::equilibria::Kind;
 use crate::rng::{item_rng, random_unit, Stream};
-use crate::stats::wilson;
-use crate::{Error, Result, Vec3};
+use crate::{Error, Result, Vec3, GRAVITY};
 use nalgebra::{Matrix3, UnitQuaternion};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-
-/// Default natural frequency (Hz) of the contacts of resting runs; see
-/// [`PerturbParams::contact_frequency`].
-pub const CONTACT_FREQUENCY: f64 = 120.0;
 
 /// How a resting stone is perturbed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -120,158 +119,6 @@ impl std::str::FromStr for Family {
             "spin" => Ok(Family::Spin),
             _ => Err(Error::Usage(format!("unknown perturbation family {s:?}: expected push or spin"))),
         }
-    }
-}
-
-/// What became of a perturbed stone.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Outcome {
-    /// Back on the micro-equilibrium it started from.
-    Same,
-    /// On another stable micro-equilibrium of the same flock (it rocked).
-    SameFlock,
-    /// In another flock (it toppled).
-    Toppled,
-}
-
-/// Simulation parameters of perturbation and shaking runs.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PerturbParams {
-    /// Contact, damping, time step, time cap and rest thresholds (launch fields unused).
-    /// Default: friction 0.6, restitution 0.2, global damping 0.1 s⁻¹ (linear) and 1 s⁻¹
-    /// (angular), no rolling resistance — the contact with which the perturbation and shaking
-    /// results in `results/` were computed ([`legacy_contact`]).
-    pub sim: DropParams,
-    /// Settling time (s) on the equilibrium before the perturbation.
-    pub settle_time: f64,
-    /// Extra time (s) of undisturbed rest in the check that the stone stays on its equilibrium.
-    pub hold_time: f64,
-    /// Natural frequency (Hz) of rapier's soft contact constraints (rapier's default: 30 Hz
-    /// against moving bodies, which the kinematic ground is, 60 Hz against fixed ones; both are
-    /// set to this). A stone on a micro-facet a hundredth of R_max wide stands on a spring
-    /// foundation whose rotational stiffness must beat the overturning m g R_F θ: at 30 Hz it
-    /// does not for the shallowest facets. Measured on the bundled stone (15 stable
-    /// micro-equilibria): 8 stay at rest at 30 Hz, 11 at 60 Hz, 14 at 120 and 240 Hz (the last
-    /// one's G is 0.0013 R_F from its facet's edge), and only 8 at 480 Hz, where the stiff
-    /// contact starts to jitter at dt = 1/240 s.
-    pub contact_frequency: f64,
-    /// End a trial once the energy certificate decides its outcome (final facet, or a flock
-    /// other than the start's). Off by default: the check that no trial crosses a static barrier
-    /// is only meaningful without it.
-    pub certificate: bool,
-}
-
-/// The contact of the perturbation and shaking runs in `results/`: friction 0.6, restitution
-/// 0.2, global damping 0.1 s⁻¹ linear and 1 s⁻¹ angular standing in for rolling resistance, dt
-/// 1/240 s, cap 20 s.
-pub fn legacy_contact() -> DropParams {
-    DropParams {
-        height: 0.5,
-        horizontal_speed: 0.0,
-        spin: 0.0,
-        spin_distribution: super::params::SpinDistribution::Fixed,
-        friction: 0.6,
-        restitution: 0.2,
-        rolling_resistance: 0.0,
-        torsional_friction: 0.0,
-        linear_damping: 0.1,
-        angular_damping: 1.0,
-        max_time: 20.0,
-        ..DropParams::default()
-    }
-}
-
-impl Default for PerturbParams {
-    fn default() -> Self {
-        PerturbParams {
-            sim: legacy_contact(),
-            settle_time: 0.25,
-            hold_time: 1.0,
-            contact_frequency: CONTACT_FREQUENCY,
-            certificate: false,
-        }
-    }
-}
-
-impl PerturbParams {
-    /// Refuse parameters that cannot describe a run.
-    pub fn check(&self) -> Result<()> {
-        self.sim.check()?;
-        let bad = |what: String| Err(Error::Usage(what));
-        if !(self.settle_time >= 0.0 && self.settle_time.is_finite()) {
-            return bad(format!("settle time must be ≥ 0, got {}", self.settle_time));
-        }
-        if !(self.contact_frequency > 0.0 && self.contact_frequency.is_finite()) {
-            return bad(format!("contact frequency must be positive, got {}", self.contact_frequency));
-        }
-        if !(self.hold_time >= 0.0 && self.hold_time.is_finite()) {
-            return bad(format!("hold time must be ≥ 0, got {}", self.hold_time));
-        }
-        Ok(())
-    }
-}
-
-/// A regular and a rocking stable micro-equilibrium to compare (positions in
-/// [`Stone::stable`]): the regular one with the smallest R (the deepest rest of the stone),
-/// and the rocking one with the highest barrier out of its basin (the most convincingly
-/// balanced rocking position), each among those that stay at rest (checked with `p`). Either
-/// may be missing.
-pub fn default_pair(stone: &Stone, p: &PerturbParams) -> (Option<usize>, Option<usize>) {
-    let stable = stone.stable();
-    let pick = |class: Class, key: &dyn Fn(&StableEquilibrium) -> f64| {
-        let mut order: Vec<usize> = (0..stable.len()).filter(|&i| stable[i].class == class).collect();
-        order.sort_by(|&a, &b| key(&stable[a]).total_cmp(&key(&stable[b])));
-        order.into_iter().find(|&i| check_rest(stone, i, p).stays)
-    };
-    (pick(Class::Regular, &|s| s.r), pick(Class::Rocking, &|s| -s.basin_exit.epsilon))
-}
-
-/// Why a stone would not stay on a micro-equilibrium before any perturbation.
-#[derive(Clone, Debug, Serialize)]
-pub struct SettleCheck {
-    /// The stone stayed on its facet, and came to rest, in the settling and holding time.
-    pub stays: bool,
-    /// Angle (rad) between the facet's normal and the down direction at the end of the check.
-    pub tilt: f64,
-    /// Sinking of G below R_F at the end of the check (R_max; the contact's penetration).
-    pub sink: f64,
-    /// Linear speed at the end of the check.
-    pub speed: f64,
-    /// Angular speed at the end of the check.
-    pub angular_speed: f64,
-    /// The facet the quasi-static descent from the final down direction reaches.
-    pub facet_reached: u32,
-}
-
-/// A new simulation with the stone at rest on stable micro-equilibrium `eq` (position in
-/// [`Stone::stable`]), after `time` seconds of settling.
-pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &PerturbParams, time: f64) -> Simulation<'a> {
-    let s = &stone.stable()[eq];
-    let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
-    let mut sim = Simulation::new(&stone.body, &p.sim, &q, s.r_normalised, &Vec3::zeros(), &Vec3::zeros());
-    sim.set_contact_frequency(p.contact_frequency);
-    for _ in 0..(time / p.sim.dt).round() as u64 {
-        sim.step();
-    }
-    sim
-}
-
-/// Put the stone on `eq`, let it settle and hold, and check that it stays.
-pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
-    let s = &stone.stable()[eq];
-    let sim = resting_simulation(stone, eq, p, p.settle_time + p.hold_time);
-    let st = sim.state();
-    let n = stone.body.facet_normals[s.facet as usize];
-    let facet_reached = stone.rest(&st.down).facet;
-    let (speed, angular_speed) = (st.linvel.norm(), st.angvel.norm());
-    SettleCheck {
-        stays: facet_reached == s.facet && speed < p.sim.rest_linear_speed && angular_speed < p.sim.rest_angular_speed,
-        tilt: n.dot(&st.down).clamp(-1.0, 1.0).acos(),
-        sink: s.r_normalised - st.z,
-        speed,
-        angular_speed,
-        facet_reached,
     }
 }
 
@@ -358,18 +205,6 @@ pub fn stream_index(family: Family, start: usize, trial: u32) -> u64 {
     f | ((start as u64) << 32) | trial as u64
 }
 
-/// Classify a final facet (or flock) relative to the start.
-pub fn classify(stone: &Stone, start: usize, facet: Option<u32>, flock: usize) -> Outcome {
-    let s = &stone.stable()[start];
-    if facet == Some(s.facet) {
-        Outcome::Same
-    } else if flock == s.flock {
-        Outcome::SameFlock
-    } else {
-        Outcome::Toppled
-    }
-}
-
 /// The certificate of a trial: the final facet once it is certain, or the flock once a flock
 /// other than the start's is certain (a decided start flock leaves same vs same-flock open).
 struct TrialCertificate<'a> {
@@ -400,7 +235,9 @@ pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, eps
     let cert = TrialCertificate { energy, start_flock: s.flock };
     let none = super::run::NoCertificate;
     let cert: &dyn Certificate = if p.certificate { &cert } else { &none };
-    let end = run_loop::run(&mut sim, &p.sim, &mut Passive, cert, &mut |st| max_rise = max_rise.max(st.level - level0));
+    let end = run_loop::run(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |st| {
+        max_rise = max_rise.max(st.level - level0)
+    });
     let flock_of = |f: u32| stone.facet_flock[f as usize].unwrap_or(usize::MAX);
     let (facet, flock, off) = match end.decided {
         Some(Decided::Facet(f)) => (Some(f), flock_of(f), false),
@@ -425,104 +262,6 @@ pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, eps
         non_stable_facet: off,
         time: end.steps as f64 * p.sim.dt,
         max_level_rise: max_rise,
-    }
-}
-
-/// The ε (or acceleration) at which a probability first reaches ½ on a grid.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(tag = "kind", content = "value", rename_all = "lowercase")]
-pub enum Threshold {
-    /// Already ≥ ½ at the smallest grid value (the threshold is at most this).
-    Below(f64),
-    /// Interpolated between the two grid values around the crossing.
-    At(f64),
-    /// Never reached ½ on the grid (the threshold is above its largest value).
-    Above(f64),
-}
-
-impl Threshold {
-    /// The value (a bound for `Below` / `Above`).
-    pub fn value(&self) -> f64 {
-        match *self {
-            Threshold::Below(x) | Threshold::At(x) | Threshold::Above(x) => x,
-        }
-    }
-
-    /// First crossing of ½ by `p` over the increasing grid `x`, interpolated linearly in p
-    /// against log x (`log`) or x.
-    pub fn crossing(x: &[f64], p: &[f64], log: bool) -> Option<Threshold> {
-        let first = p.iter().position(|&v| v >= 0.5)?;
-        if first == 0 {
-            return Some(Threshold::Below(x[0]));
-        }
-        let (x0, x1, p0, p1) = (x[first - 1], x[first], p[first - 1], p[first]);
-        let t = if p1 > p0 { (0.5 - p0) / (p1 - p0) } else { 1.0 };
-        Some(Threshold::At(if log { (x0.ln() + t * (x1.ln() - x0.ln())).exp() } else { x0 + t * (x1 - x0) }))
-    }
-
-    /// As [`Threshold::crossing`], `Above(max x)` if it never crosses (None on an empty grid).
-    pub fn of(x: &[f64], p: &[f64], log: bool) -> Option<Threshold> {
-        Self::crossing(x, p, log).or_else(|| x.last().map(|&m| Threshold::Above(m)))
-    }
-}
-
-/// Outcome counts at one grid value, with 95 % Wilson intervals.
-#[derive(Clone, Debug, Serialize)]
-pub struct CurvePoint {
-    /// ε (perturbations) or peak ground acceleration in g (shaking).
-    pub x: f64,
-    /// Number of trials.
-    pub n: u64,
-    /// Trials that came back to the starting micro-equilibrium.
-    pub same: u64,
-    /// Trials that ended on another micro-equilibrium of the same flock.
-    pub same_flock: u64,
-    /// Trials that left the flock.
-    pub toppled: u64,
-    /// Trials that hit the time cap (classified from where they were).
-    pub unsettled: u64,
-    /// P(same): fraction of trials back on the starting micro-equilibrium.
-    pub p_same: f64,
-    /// 95 % Wilson interval of `p_same`.
-    pub ci_same: (f64, f64),
-    /// P(still in the flock) = P(same) + P(another micro-equilibrium of the flock).
-    pub p_in_flock: f64,
-    /// 95 % Wilson interval of `p_in_flock`.
-    pub ci_in_flock: (f64, f64),
-    /// P(toppled): fraction of trials that left the flock.
-    pub p_toppled: f64,
-    /// 95 % Wilson interval of `p_toppled`.
-    pub ci_toppled: (f64, f64),
-}
-
-impl CurvePoint {
-    /// Count the outcomes of trials at grid value `x`.
-    pub fn count(x: f64, outcomes: impl Iterator<Item = (Outcome, bool)>) -> CurvePoint {
-        let (mut n, mut same, mut same_flock, mut toppled, mut unsettled) = (0, 0, 0, 0, 0);
-        for (o, settled) in outcomes {
-            n += 1;
-            unsettled += u64::from(!settled);
-            match o {
-                Outcome::Same => same += 1,
-                Outcome::SameFlock => same_flock += 1,
-                Outcome::Toppled => toppled += 1,
-            }
-        }
-        let p = |k: u64| if n > 0 { k as f64 / n as f64 } else { f64::NAN };
-        CurvePoint {
-            x,
-            n,
-            same,
-            same_flock,
-            toppled,
-            unsettled,
-            p_same: p(same),
-            ci_same: wilson(same, n, 1.96),
-            p_in_flock: p(same + same_flock),
-            ci_in_flock: wilson(same + same_flock, n, 1.96),
-            p_toppled: p(toppled),
-            ci_toppled: wilson(toppled, n, 1.96),
-        }
     }
 }
 
@@ -804,29 +543,6 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &PerturbConfig, progress: 
         t
     });
     report(stone, starts, checks, trials, cfg)
-}
-
-/// The grid of trials of a perturbation or shaking run: check that the stone stays at rest on
-/// every start (in parallel), then run `trial(start, point, k)` for every start that stays, every
-/// grid point and every trial number, in parallel, in a fixed order (so the result does not
-/// depend on the thread count).
-pub fn grid_trials<T: Send>(
-    stone: &Stone,
-    starts: &[usize],
-    p: &PerturbParams,
-    points: usize,
-    trials: u32,
-    trial: impl Fn(usize, usize, u32) -> T + Sync,
-) -> (Vec<SettleCheck>, Vec<T>) {
-    let checks: Vec<SettleCheck> = starts.par_iter().map(|&s| check_rest(stone, s, p)).collect();
-    let tasks: Vec<(usize, usize, u32)> = starts
-        .iter()
-        .zip(&checks)
-        .filter(|(_, c)| c.stays)
-        .flat_map(|(&s, _)| (0..points).flat_map(move |i| (0..trials).map(move |k| (s, i, k))))
-        .collect();
-    let out = tasks.par_iter().map(|&(s, i, k)| trial(s, i, k)).collect();
-    (checks, out)
 }
 
 /// Assemble the report of a run from its rest checks and trials.

@@ -6,7 +6,7 @@
 //! for each step:   drive (ground motion)  →  rapier step + contact law  →  state
 //!                  → observe (tilt, energy)  →  every CERTIFICATE_EVERY steps, while the
 //!                  drive is passive: is the final facet/flock already certain?
-//!                  → rest: speeds relative to the ground below the thresholds for rest_time
+//!                  → rest: a RestRule (speeds, or positions over windows)
 //!                  → cap: max_time (after the drive has ended)
 //! ```
 //!
@@ -174,33 +174,135 @@ impl Certificate for EnergyCertificate<'_> {
     }
 }
 
-/// Counts consecutive calm steps (speeds under the rest thresholds) until `rest_time`.
-pub struct RestDetector {
+/// What a rest rule reads after a step.
+#[derive(Clone, Copy, Debug)]
+pub struct RestSample<'s> {
+    /// The stone's state.
+    pub state: &'s BodyState,
+    /// The ground's velocity during the step (world frame).
+    pub ground_velocity: Vec3,
+    /// Horizontal position of G relative to the ground (scaled frame).
+    pub offset: Vec3,
+}
+
+/// When a stone is at rest. Two implementations, one per kind of contact history:
+///
+/// * [`SpeedRest`]: speeds relative to the ground below thresholds, held over a window — the
+///   rule of drops and pushes, whose stones end on a facet of the hull after rolling;
+/// * [`PositionRest`]: positions that stay put over whole windows — the rule of stones shaken
+///   where they stand, whose flat scanned bases make the soft contact jitter (see there).
+///
+/// Which one a run uses is a [`RestKind`] of its parameters' caller; both read the same
+/// [`RestSample`] and neither is ever asked while a drive acts.
+pub trait RestRule: Send {
+    /// Account for a step taken after the drive ended; true once the stone is at rest.
+    fn at_rest(&mut self, sample: &RestSample) -> bool;
+    /// Account for a step taken while the drive acts (no rest is possible then).
+    fn driven(&mut self, _sample: &RestSample) {}
+}
+
+/// The rest rules of [`RestRule`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RestKind {
+    /// [`SpeedRest`].
+    Speeds,
+    /// [`PositionRest`].
+    Positions,
+}
+
+impl RestKind {
+    /// The rule of this kind for the thresholds and window of `p`.
+    pub fn rule(self, p: &DropParams) -> Box<dyn RestRule> {
+        match self {
+            RestKind::Speeds => Box::new(SpeedRest::new(p)),
+            RestKind::Positions => Box::new(PositionRest::new(p)),
+        }
+    }
+}
+
+/// Rest by speeds: linear and angular speed relative to the ground below
+/// `rest_linear_speed` and `rest_angular_speed` for `rest_time` of consecutive steps.
+pub struct SpeedRest {
     calm: u64,
     needed: u64,
     linear: f64,
     angular: f64,
 }
 
-impl RestDetector {
+impl SpeedRest {
     /// The criterion of `p`.
     pub fn new(p: &DropParams) -> Self {
-        RestDetector {
+        SpeedRest {
             calm: 0,
             needed: (p.rest_time / p.dt).ceil() as u64,
             linear: p.rest_linear_speed,
             angular: p.rest_angular_speed,
         }
     }
+}
 
-    /// Feed the velocities relative to the ground; true once the body has been calm long enough.
-    pub fn at_rest(&mut self, linvel: &Vec3, angvel: &Vec3) -> bool {
-        if linvel.norm() < self.linear && angvel.norm() < self.angular {
+impl RestRule for SpeedRest {
+    fn at_rest(&mut self, s: &RestSample) -> bool {
+        let linvel = s.state.linvel - s.ground_velocity;
+        if linvel.norm() < self.linear && s.state.angvel.norm() < self.angular {
             self.calm += 1;
         } else {
             self.calm = 0;
         }
         self.calm >= self.needed
+    }
+}
+
+/// Largest change of the down direction (rad) over a rest window of [`PositionRest`].
+pub const REST_ANGLE: f64 = 1e-3;
+/// Largest horizontal displacement of G relative to the ground (R_max) over a rest window of
+/// [`PositionRest`].
+pub const REST_DISPLACEMENT: f64 = 1e-3;
+
+/// Rest by positions, over whole windows of `rest_time` after the drive has ended: the stone is
+/// at rest once, over one window, its down direction stayed within [`REST_ANGLE`] and G within
+/// [`REST_DISPLACEMENT`] (relative to the ground) of where they were at the window's start.
+///
+/// A flat scanned base is many near-coplanar micro-facets, and a rock standing on it never comes
+/// to rest by the speed thresholds of drops (2·10⁻³ m/s, 5·10⁻³ rad/s, scaled): the soft
+/// contact switches between micro-facets in a limit cycle of ~10⁻⁵ rad of tilt at up to
+/// 2·10⁻² m/s and rad/s (measured on a block whose base is a 20 × 20 grid pushed down by up to
+/// 10⁻⁴ h, at any contact frequency 30–120 Hz and dt 1/240 s). A stone that still rocks by more
+/// than 0.06° is never at rest; where it rests is decided by the quasi-static descent.
+pub struct PositionRest {
+    window: u64,
+    after: u64,
+    reference: Option<(Vec3, Vec3)>,
+    calm: bool,
+}
+
+impl PositionRest {
+    /// The criterion of `p` (window `rest_time`).
+    pub fn new(p: &DropParams) -> Self {
+        PositionRest { window: ((p.rest_time / p.dt).ceil() as u64).max(1), after: 0, reference: None, calm: true }
+    }
+}
+
+impl RestRule for PositionRest {
+    fn driven(&mut self, s: &RestSample) {
+        self.reference = Some((s.state.down, s.offset));
+    }
+
+    fn at_rest(&mut self, s: &RestSample) -> bool {
+        let (down, offset) = *self.reference.get_or_insert((s.state.down, s.offset));
+        let moved = s.state.down.dot(&down).clamp(-1.0, 1.0).acos() > REST_ANGLE
+            || (s.offset - offset).norm() > REST_DISPLACEMENT;
+        self.calm &= !moved;
+        self.after += 1;
+        if self.after % self.window == 0 {
+            if self.calm {
+                return true;
+            }
+            self.reference = Some((s.state.down, s.offset));
+            self.calm = true;
+        }
+        false
     }
 }
 
@@ -245,16 +347,22 @@ pub struct RunEnd {
 /// drive's end. Shared by [`run`] and the many-body world of [`super::batch`], so that a drop
 /// ends on the same step in both.
 pub struct Progress {
-    rest: RestDetector,
+    rest: Box<dyn RestRule>,
     active: u64,
     steps_max: u64,
     taken: u64,
 }
 
 impl Progress {
-    /// The rule of `p` for a drive that acts during `active` steps.
-    pub fn new(p: &DropParams, active: u64) -> Self {
-        Progress { rest: RestDetector::new(p), active, steps_max: active + (p.max_time / p.dt).ceil() as u64, taken: 0 }
+    /// The rule of `p` for a drive that acts during `active` steps, with rest rule `rest`.
+    pub fn new(p: &DropParams, active: u64, rest: RestKind) -> Self {
+        let steps_max = active + (p.max_time / p.dt).ceil() as u64;
+        Progress { rest: rest.rule(p), active, steps_max, taken: 0 }
+    }
+
+    /// Show the rule the state the run starts from (a rest window's first reference).
+    pub fn start(&mut self, sample: &RestSample) {
+        self.rest.driven(sample);
     }
 
     /// Steps taken so far.
@@ -267,42 +375,53 @@ impl Progress {
         self.taken >= self.steps_max
     }
 
-    /// Account for one more step that ended in `state`, the ground moving at `ground_velocity`:
-    /// the end of the run if it ends here (decided, at rest, or at the cap).
-    pub fn after_step(&mut self, state: &BodyState, ground_velocity: &Vec3, cert: &dyn Certificate) -> Option<RunEnd> {
+    /// Account for one more step that ended in `sample`: the end of the run if it ends here
+    /// (decided, at rest, or at the cap).
+    pub fn after_step(&mut self, sample: &RestSample, cert: &dyn Certificate) -> Option<RunEnd> {
         self.taken += 1;
-        let taken = self.taken;
+        let (taken, state) = (self.taken, sample.state);
         if taken > self.active {
             if taken % CERTIFICATE_EVERY == 0 {
                 if let Some(d) = cert.decided(state) {
                     return Some(RunEnd { steps: taken, settled: true, decided: Some(d), state: *state });
                 }
             }
-            if self.rest.at_rest(&(state.linvel - ground_velocity), &state.angvel) {
+            if self.rest.at_rest(sample) {
                 return Some(RunEnd { steps: taken, settled: true, decided: None, state: *state });
             }
+        } else {
+            self.rest.driven(sample);
         }
         self.capped().then_some(RunEnd { steps: taken, settled: false, decided: None, state: *state })
     }
 }
 
-/// Run `sim` until rest, a certificate's decision or the time cap, with `drive` and `cert`;
-/// `observe` sees the state after every step.
+/// Run `sim` until rest (by the rule `rest`), a certificate's decision or the time cap, with
+/// `drive` and `cert`; `observe` sees the state after every step. The one run loop of every
+/// command; [`super::batch`] runs many stones by the same [`Progress`].
 pub fn run(
     sim: &mut Simulation,
     p: &DropParams,
     drive: &mut dyn Drive,
     cert: &dyn Certificate,
+    rest: RestKind,
     observe: &mut dyn FnMut(&BodyState),
 ) -> RunEnd {
-    let mut progress = Progress::new(p, drive.active_steps());
+    let mut progress = Progress::new(p, drive.active_steps(), rest);
     let mut state = sim.state();
+    progress.start(&RestSample {
+        state: &state,
+        ground_velocity: drive.ground_velocity(),
+        offset: sim.ground_offset(),
+    });
     while !progress.capped() {
         drive.before_step(sim, progress.taken());
         sim.step();
         state = sim.state();
         observe(&state);
-        if let Some(end) = progress.after_step(&state, &drive.ground_velocity(), cert) {
+        let sample =
+            RestSample { state: &state, ground_velocity: drive.ground_velocity(), offset: sim.ground_offset() };
+        if let Some(end) = progress.after_step(&sample, cert) {
             return end;
         }
     }

@@ -84,7 +84,7 @@ impl Body {
     /// (10⁻⁷ R_max) of each other in direction `d`, and so may the value by as much.
     pub fn support_climb(&self, d: &Vec3) -> f64 {
         match self.shape.as_shape::<super::hull_shape::HullShape>() {
-            Some(h) => self.corners[h.support_vertex(super::world::convert::vec(d)) as usize].dot(d),
+            Some(h) => self.corners[h.support_vertex(super::convert::vec(d)) as usize].dot(d),
             None => self.support(d),
         }
     }

@@ -27,49 +27,15 @@
 //! [`super::run`] stays valid (tested in `tests/contact.rs`). A body in flight has N = 0 and
 //! feels nothing.
 
+use super::convert;
 use super::params::DropParams;
 use super::stone::Body;
-use crate::Vec3;
+use crate::{Vec3, GRAVITY};
 use nalgebra::{Matrix3, UnitQuaternion};
 use rapier3d::prelude::*;
 
-/// Gravity of the scaled frame (m/s²).
-pub const GRAVITY: f64 = 9.81;
-
 /// Penetration the contact solver allows, in units of R_max.
 pub const ALLOWED_PENETRATION: f64 = 1e-3;
-
-/// Conversions between the f64 nalgebra geometry and rapier's f32 glam types (the one boundary).
-pub mod convert {
-    use crate::Vec3;
-    use nalgebra::{Matrix3, UnitQuaternion};
-    use rapier3d::math::{Matrix, Rotation, Vector};
-
-    /// nalgebra → glam vector.
-    pub fn vec(v: &Vec3) -> Vector {
-        Vector::new(v.x as f32, v.y as f32, v.z as f32)
-    }
-    /// glam → nalgebra vector.
-    pub fn vec_back(v: Vector) -> Vec3 {
-        Vec3::new(v.x as f64, v.y as f64, v.z as f64)
-    }
-    /// nalgebra → glam rotation.
-    pub fn quat(q: &UnitQuaternion<f64>) -> Rotation {
-        Rotation::from_xyzw(q.i as f32, q.j as f32, q.k as f32, q.w as f32).normalize()
-    }
-    /// glam → nalgebra rotation.
-    pub fn quat_back(q: &Rotation) -> UnitQuaternion<f64> {
-        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w as f64, q.x as f64, q.y as f64, q.z as f64))
-    }
-    /// nalgebra → glam matrix.
-    pub fn mat(m: &Matrix3<f64>) -> Matrix {
-        Matrix::from_cols(
-            Vector::new(m[(0, 0)] as f32, m[(1, 0)] as f32, m[(2, 0)] as f32),
-            Vector::new(m[(0, 1)] as f32, m[(1, 1)] as f32, m[(2, 1)] as f32),
-            Vector::new(m[(0, 2)] as f32, m[(1, 2)] as f32, m[(2, 2)] as f32),
-        )
-    }
-}
 
 /// The state of the stone that the rest criterion and the certificate read (scaled frame).
 #[derive(Clone, Copy, Debug)]
@@ -131,21 +97,30 @@ impl<'a> Simulation<'a> {
     /// Advance one time step: rapier's step, then the contact's rolling resistance and torsional
     /// friction (module docs).
     pub fn step(&mut self) {
-        self.world.step();
-        if self.rolling_resistance > 0.0 || self.torsional_friction > 0.0 {
-            self.resist_rotation();
+        let law =
+            ContactLaw { rolling_resistance: self.rolling_resistance, torsional_friction: self.torsional_friction };
+        let stone = [(self.body_handle, self.body_collider)];
+        step_world(&mut self.world, &law, self.body, self.ground_collider, &stone);
+    }
+
+    /// Advance `steps` time steps with nothing but gravity and the contact (settling).
+    pub fn advance(&mut self, steps: u64) {
+        for _ in 0..steps {
+            self.step();
         }
+    }
+
+    /// Horizontal position of G relative to the ground (scaled frame; the ground moves when it
+    /// is shaken).
+    pub fn ground_offset(&self) -> Vec3 {
+        let b = self.world.bodies[self.body_handle].translation();
+        let g = self.world.bodies[self.ground_handle].translation();
+        Vec3::new((b.x - g.x) as f64, (b.y - g.y) as f64, 0.0)
     }
 
     /// Total normal impulse the ground gave the stone during the last step.
     pub fn normal_impulse(&self) -> f64 {
         normal_impulse(&self.world, self.ground_collider, self.body_collider)
-    }
-
-    fn resist_rotation(&mut self) {
-        let law =
-            ContactLaw { rolling_resistance: self.rolling_resistance, torsional_friction: self.torsional_friction };
-        law.apply(&mut self.world, self.body, self.body_handle, self.body_collider, self.ground_collider);
     }
 
     /// Set the ground's velocity (world frame) for the next steps.
@@ -245,6 +220,25 @@ pub fn insert_stone(
         .build();
     let body_collider = world.colliders.insert_with_parent(collider, body_handle, &mut world.bodies);
     (body_handle, body_collider)
+}
+
+/// One time step of a world whose stones (each a `body`, with its rigid body and collider) lie on
+/// the ground collider `ground`: rapier's step, then the contact law on each stone. The one
+/// place the contact law is applied, for one stone ([`Simulation::step`]) as for a batch
+/// ([`super::batch`]); a stone meets only the ground, so its law reads nothing of the others.
+pub fn step_world(
+    world: &mut PhysicsWorld,
+    law: &ContactLaw,
+    body: &Body,
+    ground: ColliderHandle,
+    stones: &[(RigidBodyHandle, ColliderHandle)],
+) {
+    world.step();
+    if law.acts() {
+        for &(handle, collider) in stones {
+            law.apply(world, body, handle, collider, ground);
+        }
+    }
 }
 
 /// Total normal impulse between two colliders during the last step.

@@ -27,14 +27,9 @@ pub mod read;
 pub mod surface;
 pub mod synthetic;
 
-use crate::{Error, Result};
+use crate::{Error, Result, GRAVITY as G};
 use realfft::RealFftPlanner;
 use serde::Serialize;
-
-/// Acceleration of gravity used to convert records in units of g (m/s²): the same value as the
-/// dynamics' gravity ([`crate::dynamics::world::GRAVITY`]), so that a record of peak 0.3 g
-/// pushes the simulated stone with 0.3 of its own weight.
-pub const G: f64 = 9.81;
 
 /// A ground-acceleration history: uniform sampling from t = 0, three components (m/s²).
 #[derive(Clone, Debug, PartialEq, Serialize)]

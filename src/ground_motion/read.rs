@@ -22,7 +22,8 @@
 //! become x, y, z in that order; they are brought to the smallest of their intervals
 //! ([`Record::resampled`]) and the shorter ones padded with zeros.
 
-use super::{Record, G};
+use super::Record;
+use crate::GRAVITY as G;
 use crate::{Error, Result};
 use std::path::Path;
 use std::str::FromStr;

@@ -11,8 +11,9 @@
 //!   envelope (t/t_p)² e^(2(1 − t/t_p)) peaking at t_p = duration/4, then baseline-corrected
 //!   (order 1). Its predominant period is near T_g; scale it with [`Record::scaled_to_pga`].
 
-use super::{Record, G};
+use super::Record;
 use crate::rng::item_rng;
+use crate::GRAVITY as G;
 use crate::{Error, Result};
 use rand_distr::{Distribution, StandardNormal};
 use std::f64::consts::PI;
@@ -20,13 +21,29 @@ use std::f64::consts::PI;
 /// One full sine cycle of acceleration of peak `ap_g` (g) and period `tp` (s), along x, sampled
 /// at `dt` (s).
 pub fn one_sine_pulse(ap_g: f64, tp: f64, dt: f64) -> Result<Record> {
+    sine_cycles(ap_g, tp, 1.0, dt)
+}
+
+/// `cycles` sine cycles a(t) = a_p sin(2π t / T_p), 0 ≤ t ≤ cycles·T_p, of peak `ap_g` (g) and
+/// period `tp` (s), along x, sampled at about `dt` (s: the nearest interval that divides a
+/// period into a whole number of samples).
+pub fn sine_cycles(ap_g: f64, tp: f64, cycles: f64, dt: f64) -> Result<Record> {
     if !(tp > 0.0 && tp.is_finite() && dt > 0.0 && dt < tp) {
-        return Err(Error::Usage(format!("a one-sine pulse needs 0 < dt < T_p, got T_p = {tp} s, dt = {dt} s")));
+        return Err(Error::Usage(format!("a sine pulse needs 0 < dt < T_p, got T_p = {tp} s, dt = {dt} s")));
+    }
+    if !(cycles > 0.0 && cycles.is_finite() && ap_g.is_finite()) {
+        return Err(Error::Usage(format!("a sine pulse needs a finite peak and cycles > 0, got {ap_g} g, {cycles}")));
     }
     let n = (tp / dt).round() as usize;
     let dt = tp / n as f64;
-    let accel = (0..=n).map(|k| [ap_g * G * (2.0 * PI * k as f64 / n as f64).sin(), 0.0, 0.0]).collect();
-    Record::new(format!("one-sine pulse a_p = {ap_g} g, T_p = {tp} s"), dt, accel)
+    let samples = ((cycles * n as f64).round() as usize).max(1);
+    let accel = (0..=samples).map(|k| [ap_g * G * (2.0 * PI * k as f64 / n as f64).sin(), 0.0, 0.0]).collect();
+    let name = if cycles == 1.0 {
+        format!("one-sine pulse a_p = {ap_g} g, T_p = {tp} s")
+    } else {
+        format!("{cycles} sine cycles a_p = {ap_g} g, T_p = {tp} s")
+    };
+    Record::new(name, dt, accel)
 }
 
 /// The parameters of [`filtered_noise`].

@@ -3,18 +3,21 @@
 
 use super::{short_name, write_json, Folder};
 use crate::dynamics::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
-use crate::dynamics::shake::{Motion, Record, ShakeReport, ShakeTrial, TimeScale};
+use crate::dynamics::shake::{MotionInfo, ShakeReport, ShakeTrial};
+use crate::ground_motion::Record;
 use crate::plot::{render, DrawResult};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
-/// Write a record as CSV (time in real seconds for `scale`, acceleration in g).
-pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> crate::Result<()> {
+/// Write a record as CSV: time (s) and the three components in g (`time_s,ax_g,ay_g,az_g`, what
+/// `--columns time_s,ax_g,ay_g,az_g --accel-unit g` reads back).
+pub fn write_record(path: &Path, r: &Record) -> crate::Result<()> {
     (|| -> std::result::Result<_, crate::error::BoxError> {
         let mut w = csv::Writer::from_path(path)?;
-        w.write_record(["time_s", "accel_g"])?;
-        for (t, a) in r.times.iter().zip(&r.accel) {
-            w.write_record([format!("{:.5}", scale.to_real_time(*t)), format!("{a:.6}")])?;
+        w.write_record(["time_s", "ax_g", "ay_g", "az_g"])?;
+        for (k, a) in r.accel.iter().enumerate() {
+            let g = |x: f64| format!("{:.6}", x / crate::GRAVITY);
+            w.write_record([format!("{:.5}", k as f64 * r.dt), g(a[0]), g(a[1]), g(a[2])])?;
         }
         w.flush()?;
         Ok(())
@@ -22,22 +25,25 @@ pub fn write_record(path: &Path, r: &Record, scale: TimeScale) -> crate::Result<
     .map_err(|e| crate::Error::write(path, e))
 }
 
+/// One line that says what a motion is: its name, PGA, PGV and duration.
+pub fn describe_motion(m: &MotionInfo) -> String {
+    format!(
+        "{} (PGA {:.3} g, PGV {:.3} m/s, {:.2} s)",
+        m.name, m.measures.pga_g, m.measures.pgv_m_s, m.measures.duration_s
+    )
+}
+
 /// A readable summary of a shaking run.
 pub fn summary(r: &ShakeReport, mesh: &str) -> String {
     use std::fmt::Write;
     let mut s = String::new();
-    let _ = writeln!(s, "{mesh}: ground shaking, {}", r.motion.describe());
-    if r.scale.r_max_m != 1.0 {
-        if let Motion::Pulse(p) = &r.motion {
-            let _ = writeln!(
-                s,
-                "  for a stone of R_max = {} m: {:.3} Hz real ({:.3} Hz on the scaled 1 m body)",
-                r.scale.r_max_m,
-                r.scale.to_real_frequency(p.frequency),
-                p.frequency
-            );
-        }
-    }
+    let _ = writeln!(s, "{mesh}: ground shaking, {}, scaled to each PGA", describe_motion(&r.motion));
+    let c = &r.params.sim;
+    let _ = writeln!(
+        s,
+        "  stone of R_max = {} m; contact friction {}, restitution {}, rolling resistance δ = {:.3e} R_max, global damping {} s⁻¹",
+        r.r_max_m, c.friction, c.restitution, c.rolling_resistance, c.angular_damping
+    );
     let _ = writeln!(
         s,
         "{} trials per PGA on {} PGAs from {:.3} g to {:.3} g, seed {}; flocks at ν = {:.3e}",
@@ -292,7 +298,7 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
         })
         .collect();
     if !lines.is_empty() {
-        let caption = format!("{}: fragility, {}", short_name(name), r.motion.describe());
+        let caption = format!("{}: fragility, {}", short_name(name), describe_motion(&r.motion));
         for ext in ["png", "svg"] {
             out.file(&format!("fragility.{ext}"), |p| plot_fragility(p, &caption, &lines, &[]))?;
         }
@@ -409,6 +415,13 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         }
         (None, Some(e)) => s += &format!("no fragility surface: {e}\n"),
         (None, None) => {}
+    }
+    if b.unsettled > 0 {
+        s += &format!(
+            "{} of {n} runs were still moving at the time cap: classified by the quasi-static descent in runs.csv \
+             (settled = false), left out of the fragility surface\n",
+            b.unsettled
+        );
     }
     s
 }

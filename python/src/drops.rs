@@ -1,0 +1,237 @@
+//! `drop` and the `DropResult` class: Monte Carlo drops in rapier3d, as `rocking drop`, run in
+//! chunks so that the caller's Ctrl-C is answered between them.
+
+use crate::convert::{bools, f64s, i64s, kind_name, opt_index, py_err, strs, to_json, to_py};
+use crate::kwargs::{enum_from_str, preset_params, with_params};
+use crate::long_run::{interruptible, Cancelled};
+use crate::mesh_input::analysed;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rocking_stones::dynamics::drop::DropOutcome;
+use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::stone::Stone as Body;
+use rocking_stones::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+/// The result of a drop run: the report `rocking drop --json` prints and every drop's outcome.
+#[pyclass(frozen, module = "rocking_stones", name = "DropResult")]
+pub(crate) struct PyDropResult {
+    report: DropReport,
+    outcomes: Vec<DropOutcome>,
+}
+
+#[pymethods]
+impl PyDropResult {
+    #[getter]
+    fn drops(&self) -> u64 {
+        self.report.drops
+    }
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.report.seed
+    }
+    /// Drops that came to rest (or were decided by the certificate).
+    #[getter]
+    fn settled(&self) -> u64 {
+        self.report.settled
+    }
+    /// Drops still moving at the time cap.
+    #[getter]
+    fn unsettled(&self) -> u64 {
+        self.report.unsettled
+    }
+    /// Drops ended early by the energy certificate.
+    #[getter]
+    fn certified(&self) -> u64 {
+        self.report.certified
+    }
+    /// Settled drops that did not end on a stable micro-equilibrium.
+    #[getter]
+    fn off_equilibrium(&self) -> u64 {
+        self.report.off_equilibrium
+    }
+    /// Mean simulated time per drop (s, scaled 1 m body).
+    #[getter]
+    fn mean_time(&self) -> f64 {
+        self.report.mean_time
+    }
+    /// ν at which flocks were read.
+    #[getter]
+    fn nu(&self) -> f64 {
+        self.report.nu
+    }
+    /// Per facet (reached or with positive static probability) as columns: facet, nx, ny, nz,
+    /// equilibrium, flock (-1: not a stable facet), count, fraction, ci95_lo, ci95_hi,
+    /// static_probability.
+    #[getter]
+    fn facets<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let f = &self.report.facets;
+        let d = PyDict::new(py);
+        d.set_item("facet", i64s(py, f.iter().map(|x| x.facet as i64).collect()))?;
+        for (k, axis) in ["nx", "ny", "nz"].iter().enumerate() {
+            d.set_item(*axis, f64s(py, f.iter().map(|x| x.normal[k]).collect()))?;
+        }
+        d.set_item("equilibrium", i64s(py, f.iter().map(|x| opt_index(x.equilibrium)).collect()))?;
+        d.set_item("flock", i64s(py, f.iter().map(|x| opt_index(x.flock)).collect()))?;
+        d.set_item("count", i64s(py, f.iter().map(|x| x.count as i64).collect()))?;
+        d.set_item("fraction", f64s(py, f.iter().map(|x| x.fraction).collect()))?;
+        d.set_item("ci95_lo", f64s(py, f.iter().map(|x| x.ci95.0).collect()))?;
+        d.set_item("ci95_hi", f64s(py, f.iter().map(|x| x.ci95.1).collect()))?;
+        d.set_item("static_probability", f64s(py, f.iter().map(|x| x.static_probability).collect()))?;
+        Ok(d)
+    }
+    /// Per flock as columns: id, type, count, fraction, ci95_lo, ci95_hi, static_probability.
+    #[getter]
+    fn flocks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let f = &self.report.flocks;
+        let d = PyDict::new(py);
+        d.set_item("id", i64s(py, f.iter().map(|x| x.id as i64).collect()))?;
+        d.set_item("type", strs(py, f.iter().map(|x| kind_name(x.kind)).collect())?)?;
+        d.set_item("count", i64s(py, f.iter().map(|x| x.count as i64).collect()))?;
+        d.set_item("fraction", f64s(py, f.iter().map(|x| x.fraction).collect()))?;
+        d.set_item("ci95_lo", f64s(py, f.iter().map(|x| x.ci95.0).collect()))?;
+        d.set_item("ci95_hi", f64s(py, f.iter().map(|x| x.ci95.1).collect()))?;
+        d.set_item("static_probability", f64s(py, f.iter().map(|x| x.static_probability).collect()))?;
+        Ok(d)
+    }
+    /// Every drop as columns: index, settled, facet, flock (-1: none), time, certified.
+    #[getter]
+    fn outcomes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let o = &self.outcomes;
+        let d = PyDict::new(py);
+        d.set_item("index", i64s(py, o.iter().map(|x| x.index as i64).collect()))?;
+        d.set_item("settled", bools(py, o.iter().map(|x| x.settled).collect()))?;
+        d.set_item("facet", i64s(py, o.iter().map(|x| opt_index(x.facet)).collect()))?;
+        d.set_item("flock", i64s(py, o.iter().map(|x| opt_index(x.flock)).collect()))?;
+        d.set_item("time", f64s(py, o.iter().map(|x| x.time).collect()))?;
+        d.set_item("certified", bools(py, o.iter().map(|x| x.certified).collect()))?;
+        Ok(d)
+    }
+    /// χ² and KL of the facet counts against the static probabilities (dict, or None in flock
+    /// certificate mode).
+    #[getter]
+    fn fit_facets<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.report.fit_facets)
+    }
+    /// χ² and KL of the flock counts.
+    #[getter]
+    fn fit_flocks<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.report.fit_flocks)
+    }
+    /// The report as a dict: equal to `json.loads` of `rocking drop MESH -n N --seed S --json`.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.report)
+    }
+    /// The report as JSON text (`pretty=True`: as `rocking drop --json` prints it).
+    #[pyo3(signature = (pretty = true))]
+    fn to_json(&self, pretty: bool) -> PyResult<String> {
+        to_json(&self.report, pretty)
+    }
+    /// The human summary `rocking drop` prints.
+    fn summary(&self) -> String {
+        rocking_stones::report::drop_summary(&self.report)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "<DropResult {}: {} drops, seed {}, {} settled, {} certified>",
+            self.report.mesh, self.report.drops, self.report.seed, self.report.settled, self.report.certified
+        )
+    }
+}
+
+// The one place the binding calls the Monte Carlo loop (to adapt when the dynamics API changes):
+// drops run in chunks through `montecarlo::run` (drop i depends only on (seed, i), so chunks give
+// exactly the outcomes of one run) and the caller's Ctrl-C is checked between chunks.
+/// Drop the stone `n` times from uniformly random orientations in rapier3d, as
+/// `rocking drop MESH -n N --seed S`; returns a `DropResult` whose to_dict() is the CLI's --json.
+///
+/// preset: "quasi-static", "drop" or "throw" (the CLI's default); surface: "steel-on-wood" (the
+/// default), "stone-on-stone", "rock-on-concrete", "rock-on-steel"; size: R_max of the real
+/// stone in metres (scales the contact as --size does).
+/// **params override single parameters, as the CLI's options: height, horizontal_speed, spin,
+/// spin_distribution, friction, restitution, rolling_resistance, torsional_friction,
+/// linear_damping, angular_damping, dt, solver_iterations, max_time, rest_linear_speed,
+/// rest_angular_speed, rest_time, flight ("rapier", the reference, or "free": the flight between
+/// contacts integrated outside rapier, the CLI's --flight).
+/// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
+/// fast: the CLI's --fast (free flight at the preset's longest stable time step; **params still
+/// override it).
+/// threads: threads of this run (default:
+/// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
+/// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", fast = false, nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(name = "drop")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn drop_stone(
+    py: Python<'_>,
+    mesh: Option<&Bound<'_, PyAny>>,
+    n: u64,
+    seed: u64,
+    preset: &str,
+    surface: &str,
+    size: Option<f64>,
+    certificate: &str,
+    fast: bool,
+    nu: Option<f64>,
+    name: Option<String>,
+    threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyDropResult> {
+    if n == 0 {
+        return Err(PyValueError::new_err("n must be at least 1"));
+    }
+    let preset: Preset = preset.parse().map_err(py_err)?;
+    let surface: Surface = surface.parse().map_err(py_err)?;
+    let mut base = preset_params(preset, surface, size)?;
+    if fast {
+        preset.fast(&mut base);
+    }
+    let p: DropParams = with_params("drop", &base, params)?;
+    p.check().map_err(py_err)?;
+    let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
+    let stone = analysed(py, mesh, name, nu)?;
+    let body = py.detach(|| Body::new(&stone.analysis, stone.nu())).map_err(py_err)?;
+    let header = RunHeader {
+        format: montecarlo::FORMAT.into(),
+        mesh: stone.name.clone(),
+        mesh_fingerprint: montecarlo::fingerprint(&stone.analysis.mesh),
+        seed,
+        drops: n,
+        params: p,
+        certificate,
+        preset: Some(format!("{preset} on {surface}")),
+        center_of_mass: None,
+        shard: rocking_stones::montecarlo::Shard::ALL,
+    };
+    let progress = progress.map(|f| (f, n));
+    let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
+        let cert = montecarlo::certificate(&body, header.certificate);
+        let sink = std::sync::Mutex::new(|_: &DropOutcome| control.advance());
+        let mut done = BTreeMap::new();
+        // Chunks of about a quarter of a second, so that Ctrl-C is answered quickly.
+        let mut chunk = rayon::current_num_threads() as u64;
+        while (done.len() as u64) < n {
+            if control.stopped() {
+                return Err(Cancelled);
+            }
+            let start = Instant::now();
+            let before = done.len() as u64;
+            let upto = (before + chunk).min(n);
+            let part = RunHeader { drops: upto, ..header.clone() };
+            for o in montecarlo::run(&body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
+                done.insert(o.index, o);
+            }
+            let per_drop = start.elapsed().as_secs_f64() / (upto - before) as f64;
+            let threads = rayon::current_num_threads() as u64;
+            chunk = ((0.25 / per_drop.max(1e-6)) as u64).clamp(threads, 64 * threads.max(4));
+        }
+        Ok(done)
+    })?
+    .map_err(|_| PyKeyboardInterrupt::new_err("interrupted"))?;
+    let report = montecarlo::summarize(&body.model(), &header, &outcomes);
+    Ok(PyDropResult { report, outcomes: outcomes.into_values().collect() })
+}

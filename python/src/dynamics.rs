@@ -1,0 +1,373 @@
+//! The resting stone under loads: `perturb` (pushes and spins, as `rocking perturb`), `shake`
+//! (fragility curves under ground shaking, as `rocking shake`) and `shake_rock` (a field rock at
+//! its true size under one recorded motion), with the `DynamicsResult` class and the parameters,
+//! real size and starting equilibria they share.
+
+use crate::convert::{columns, py_err, to_json, to_py};
+use crate::kwargs::{enum_from_str, with_params};
+use crate::long_run::interruptible;
+use crate::mesh_input::analysed;
+use numpy::PyReadonlyArray2;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rocking_stones::dynamics::params::Surface;
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// A perturbation or shaking run: its report (as the CLI's `--json`) and every trial.
+#[pyclass(frozen, module = "rocking_stones", name = "DynamicsResult")]
+pub(crate) struct PyDynamicsResult {
+    kind: &'static str,
+    json: serde_json::Value,
+    trials: serde_json::Value,
+    summary: String,
+}
+
+#[pymethods]
+impl PyDynamicsResult {
+    /// The report as a dict: equal to `json.loads` of the CLI's `--json` output.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.json)
+    }
+    /// The report as JSON text.
+    #[pyo3(signature = (pretty = true))]
+    fn to_json(&self, pretty: bool) -> PyResult<String> {
+        to_json(&self.json, pretty)
+    }
+    /// Every trial as columns (pandas-ready; nested values flattened with `_`, points and
+    /// intervals split into `_x/_y/_z` and `_lo/_hi`, missing numbers as NaN).
+    #[getter]
+    fn trials<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        columns(py, &self.trials)
+    }
+    /// The human summary the CLI prints.
+    fn summary(&self) -> String {
+        self.summary.clone()
+    }
+    fn __getitem__<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match self.json.get(key) {
+            Some(v) => to_py(py, v),
+            None => Err(pyo3::exceptions::PyKeyError::new_err(key.to_string())),
+        }
+    }
+    fn __repr__(&self) -> String {
+        format!("<{} result: {} trials>", self.kind, self.trials.as_array().map_or(0, |t| t.len()))
+    }
+}
+
+fn dynamics_result(
+    kind: &'static str,
+    report: &impl Serialize,
+    trials: &impl Serialize,
+    summary: String,
+) -> PyResult<PyDynamicsResult> {
+    let e = |e: serde_json::Error| PyRuntimeError::new_err(e.to_string());
+    Ok(PyDynamicsResult {
+        kind,
+        json: serde_json::to_value(report).map_err(e)?,
+        trials: serde_json::to_value(trials).map_err(e)?,
+        summary,
+    })
+}
+
+/// The parameters of a resting run as the CLI makes them (`--preset`, `--surface`,
+/// `--length-unit` / `--size`), then the keyword overrides (DropParams fields go into `sim`).
+#[allow(clippy::too_many_arguments)]
+fn resting_params(
+    what: &str,
+    stone: &rocking_stones::dynamics::perturb::Stone,
+    preset: Option<&str>,
+    surface: Option<&str>,
+    default_surface: Surface,
+    size: rocking_stones::dynamics::resting::Size,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<rocking_stones::dynamics::perturb::PerturbParams> {
+    use rocking_stones::dynamics::perturb::{PerturbParams, RestingPreset};
+    let preset: RestingPreset = preset.unwrap_or("surface").parse().map_err(py_err)?;
+    let surface: Surface = surface.map_or(Ok(default_surface), str::parse).map_err(py_err)?;
+    let unit = size.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    let base = PerturbParams::of(preset, surface, stone.body.r_max * unit).map_err(py_err)?;
+    let p: PerturbParams = with_params(what, &base, params)?;
+    p.check().map_err(py_err)?;
+    Ok(p)
+}
+
+/// The real size of a stone from `length_unit=` (a name or metres per unit) or `size=` (R_max in
+/// metres), as the CLI's `--length-unit` / `--size`; by default mm for the bundled stone, m
+/// otherwise.
+fn real_size(
+    name: &str,
+    length_unit: Option<&Bound<'_, PyAny>>,
+    size: Option<f64>,
+) -> PyResult<rocking_stones::dynamics::resting::Size> {
+    use rocking_stones::dynamics::resting::Size;
+    use rocking_stones::dynamics::shake::parse_length_unit;
+    match (length_unit, size) {
+        (Some(_), Some(_)) => Err(PyValueError::new_err("give length_unit= or size=, not both")),
+        (None, Some(r)) => Ok(Size::RMax(r)),
+        (Some(u), None) => Ok(Size::Unit(match u.extract::<f64>() {
+            Ok(x) => parse_length_unit(&x.to_string()).map_err(py_err)?,
+            Err(_) => parse_length_unit(&u.extract::<String>()?).map_err(py_err)?,
+        })),
+        (None, None) => Ok(Size::Unit(rocking_stones::bundled::default_length_unit_m(name))),
+    }
+}
+
+/// Positions in `stone.stable` of the equilibria asked for (None: all).
+fn select_starts(
+    stone: &rocking_stones::dynamics::perturb::Stone,
+    equilibria: Option<Vec<usize>>,
+    flock: Option<usize>,
+) -> PyResult<Vec<usize>> {
+    let list =
+        || stone.stable().iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
+    if let Some(k) = flock {
+        if k >= stone.flock_kinds.len() {
+            return Err(PyValueError::new_err(format!(
+                "there is no flock {k} (the stone has {} flocks at ν = {:.3e})",
+                stone.flock_kinds.len(),
+                stone.nu
+            )));
+        }
+        let v: Vec<usize> = (0..stone.stable().len()).filter(|&i| stone.stable()[i].flock == k).collect();
+        if v.is_empty() {
+            return Err(PyValueError::new_err(format!(
+                "flock {k} has no stable micro-equilibrium; stable ones: {}",
+                list()
+            )));
+        }
+        return Ok(v);
+    }
+    match equilibria {
+        None => Ok((0..stone.stable().len()).collect()),
+        Some(ids) => ids
+            .iter()
+            .map(|&id| {
+                stone.position(id).ok_or_else(|| {
+                    PyValueError::new_err(format!("{id} is not a stable micro-equilibrium; stable ones: {}", list()))
+                })
+            })
+            .collect(),
+    }
+}
+
+/// Push or spin the stone resting on its stable micro-equilibria, as `rocking perturb`;
+/// returns a `DynamicsResult` whose to_dict() is the CLI's --json. preset: "surface" (default)
+/// or "damped"; surface: the pair (default "stone-on-stone"); length_unit= or size=: the real
+/// size (default mm for the bundled stone, m otherwise). **params: friction, restitution,
+/// rolling_resistance, dt, max_time, contact_frequency, settle_time, hold_time, rest thresholds.
+#[pyfunction]
+#[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = false, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn perturb(
+    py: Python<'_>,
+    mesh: Option<&Bound<'_, PyAny>>,
+    equilibria: Option<Vec<usize>>,
+    flock: Option<usize>,
+    family: &str,
+    trials: u32,
+    seed: u64,
+    eps_min: f64,
+    eps_max: f64,
+    eps_steps: usize,
+    epsilon_star: Option<f64>,
+    certificate: bool,
+    preset: Option<&str>,
+    surface: Option<&str>,
+    length_unit: Option<&Bound<'_, PyAny>>,
+    size: Option<f64>,
+    nu: Option<f64>,
+    name: Option<String>,
+    threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyDynamicsResult> {
+    use rocking_stones::dynamics::perturb::{self as pt, PerturbConfig};
+    if !(eps_min > 0.0 && eps_max >= eps_min && eps_steps > 0) {
+        return Err(PyValueError::new_err("need 0 < eps_min ≤ eps_max and eps_steps ≥ 1"));
+    }
+    let s = analysed(py, mesh, name, nu)?;
+    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let size = real_size(&s.name, length_unit, size)?;
+    let params = resting_params("perturb", &stone, preset, surface, Surface::StoneOnStone, size, params)?;
+    let params = pt::PerturbParams { certificate, ..params };
+    let cfg = PerturbConfig {
+        params,
+        family: enum_from_str("family", family, "'push', 'spin'")?,
+        epsilons: rocking_stones::stats::log_grid(eps_min, eps_max, rocking_stones::stats::GridSize::Points(eps_steps)),
+        trials,
+        seed,
+        epsilon_star,
+    };
+    cfg.check().map_err(py_err)?;
+    let starts = select_starts(&stone, equilibria, flock)?;
+    let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
+    let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
+    dynamics_result("perturb", &report, &report.trials, rocking_stones::report::perturb::summary(&report, &s.name))
+}
+
+/// Shake the ground under the resting stone, as `rocking shake`: fragility curves; returns a
+/// `DynamicsResult`. pulse=(amplitude in g, frequency in Hz of the real stone, cycles) or
+/// motion= a CSV (read with `columns` and `accel_unit`) or one to three .AT2 paths; the default
+/// sweeps 2 sine cycles at 2/√R_max Hz up to 1 g. preset, surface, length_unit / size and
+/// **params as for `perturb`.
+#[pyfunction]
+#[pyo3(signature = (mesh = None, *, equilibria = None, pulse = None, motion = None, columns = "1,2", accel_unit = "g", pga_max = None, pga_steps = 20, azimuth = None, trials = 40, seed = 1, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn shake(
+    py: Python<'_>,
+    mesh: Option<&Bound<'_, PyAny>>,
+    equilibria: Option<Vec<usize>>,
+    pulse: Option<(f64, f64, f64)>,
+    motion: Option<&Bound<'_, PyAny>>,
+    columns: &str,
+    accel_unit: &str,
+    pga_max: Option<f64>,
+    pga_steps: usize,
+    azimuth: Option<f64>,
+    trials: u32,
+    seed: u64,
+    preset: Option<&str>,
+    surface: Option<&str>,
+    length_unit: Option<&Bound<'_, PyAny>>,
+    size: Option<f64>,
+    nu: Option<f64>,
+    name: Option<String>,
+    threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
+    params: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyDynamicsResult> {
+    use rocking_stones::dynamics::perturb::{self as pt, default_pair};
+    use rocking_stones::dynamics::shake::{self as sh, ShakeConfig};
+    if pulse.is_some() && motion.is_some() {
+        return Err(PyValueError::new_err("give a pulse or a motion, not both"));
+    }
+    let s = analysed(py, mesh, name, nu)?;
+    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let size = real_size(&s.name, length_unit, size)?;
+    let params = resting_params("shake", &stone, preset, surface, Surface::StoneOnStone, size, params)?;
+    let r_max_m = stone.body.r_max * size.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    let real_dt = params.sim.dt * r_max_m.sqrt();
+    let (motion, default_sweep) = match (pulse, motion) {
+        (Some((a, f, c)), _) => (sh::sine_pulse(a, f, c, real_dt).map_err(py_err)?, false),
+        (None, Some(m)) => (read_motion_arg(m, columns, accel_unit)?, false),
+        (None, None) => (sh::default_pulse(r_max_m, params.sim.dt).map_err(py_err)?, true),
+    };
+    let pgas = match pga_max.or(default_sweep.then_some(1.0)) {
+        Some(m) => {
+            if !(m > 0.0) || pga_steps == 0 {
+                return Err(PyValueError::new_err("need pga_max > 0 and pga_steps ≥ 1"));
+            }
+            (1..=pga_steps).map(|i| m * i as f64 / pga_steps as f64).collect()
+        }
+        None => vec![motion.measures().pga_g],
+    };
+    let cfg = ShakeConfig { params, motion, pgas, trials, seed, azimuth: azimuth.map(f64::to_radians), r_max_m };
+    cfg.check().map_err(py_err)?;
+    let starts = match equilibria {
+        None => {
+            let (regular, rocking) = py.detach(|| default_pair(&stone, &cfg.params));
+            let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
+            if v.is_empty() {
+                return Err(PyValueError::new_err(
+                    "no stable micro-equilibrium of this stone stays at rest in the simulation",
+                ));
+            }
+            v
+        }
+        Some(ids) => select_starts(&stone, Some(ids), None)?,
+    };
+    let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
+    let report =
+        interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, &|| c.tick()))?.map_err(py_err)?;
+    dynamics_result("shake", &report, &report.trials, rocking_stones::report::shake::summary(&report, &s.name))
+}
+
+/// `motion=`: a CSV path (read with `columns` and `accel_unit`) or a list of one to three PEER
+/// `.AT2` paths (x, y, z), read by the CLI's reader.
+fn read_motion_arg(
+    m: &Bound<'_, PyAny>,
+    columns: &str,
+    accel_unit: &str,
+) -> PyResult<rocking_stones::ground_motion::Record> {
+    use rocking_stones::ground_motion::read::{read_record, AccelUnit, Columns};
+    let paths: Vec<PathBuf> = match m.extract::<PathBuf>() {
+        Ok(p) => vec![p],
+        Err(_) => m.extract::<Vec<PathBuf>>()?,
+    };
+    let columns: Columns = columns.parse().map_err(py_err)?;
+    let unit: AccelUnit = accel_unit.parse().map_err(py_err)?;
+    let refs: Vec<&std::path::Path> = paths.iter().map(|p| p.as_path()).collect();
+    read_record(&refs, &columns, unit).map_err(py_err)
+}
+
+/// A field rock at its true size under one recorded ground motion, as
+/// `rocking shake MESH --pose POSE --length-unit UNIT --motion ... --json`: the same dict.
+/// The motion is `motion=` a CSV path (read with `columns` and `accel_unit`) or a list of one to
+/// three PEER `.AT2` paths (x, y, z), or `accel=` an array of shape (n,) or (n, k ≤ 3) in m/s²
+/// (x, y horizontal, z up) sampled every `dt` seconds. `length_unit`: "mm", "cm", "m", "km" or
+/// metres per mesh unit (default mm for the bundled stone, m otherwise, as the CLI).
+#[pyfunction]
+#[pyo3(signature = (mesh = None, *, pose, length_unit = None, motion = None, accel = None, dt = None, columns = "1,2", accel_unit = "g", baseline = None, azimuth = 0.0, surface = "rock-on-concrete", scale = 1.0, nu = None, name = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn shake_rock<'py>(
+    py: Python<'py>,
+    mesh: Option<&Bound<'py, PyAny>>,
+    pose: &str,
+    length_unit: Option<&Bound<'py, PyAny>>,
+    motion: Option<&Bound<'py, PyAny>>,
+    accel: Option<&Bound<'py, PyAny>>,
+    dt: Option<f64>,
+    columns: &str,
+    accel_unit: &str,
+    baseline: Option<usize>,
+    azimuth: f64,
+    surface: &str,
+    scale: f64,
+    nu: Option<f64>,
+    name: Option<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use rocking_stones::dynamics::perturb as pt;
+    use rocking_stones::dynamics::shake::{self as sh, Pose, RockSetup};
+    use rocking_stones::ground_motion::Record;
+    let pose: Pose = pose.parse().map_err(py_err)?;
+    let surface: Surface = surface.parse().map_err(py_err)?;
+    let record = match (motion, accel) {
+        (Some(_), Some(_)) => return Err(PyValueError::new_err("give motion= (files) or accel= (an array), not both")),
+        (None, None) => return Err(PyValueError::new_err("give motion= (a CSV or .AT2 files) or accel= with dt=")),
+        (Some(m), None) => read_motion_arg(m, columns, accel_unit)?,
+        (None, Some(a)) => {
+            let dt = dt.ok_or_else(|| PyValueError::new_err("accel= needs dt= (seconds between samples)"))?;
+            let np = py.import("numpy")?;
+            let arr = np.call_method1("asarray", (a, "float64"))?;
+            let arr = if arr.getattr("ndim")?.extract::<usize>()? == 1 {
+                arr.call_method1("reshape", ((-1i64, 1i64),))?
+            } else {
+                arr
+            };
+            let arr: PyReadonlyArray2<f64> = arr.extract()?;
+            let view = arr.as_array();
+            if view.ncols() == 0 || view.ncols() > 3 {
+                return Err(PyValueError::new_err(format!(
+                    "accel= must have 1 to 3 columns (x, y, z), got {}",
+                    view.ncols()
+                )));
+            }
+            let rows = view.rows().into_iter().map(|r| [0, 1, 2].map(|c| r.get(c).copied().unwrap_or(0.0))).collect();
+            Record::new(name.clone().unwrap_or_else(|| "accel".into()), dt, rows).map_err(py_err)?
+        }
+    };
+    let record = match baseline {
+        Some(order) => record.baseline_corrected(order).map_err(py_err)?,
+        None => record,
+    };
+    let s = analysed(py, mesh, name, nu)?;
+    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let unit = real_size(&s.name, length_unit, None)?.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    let run = py.detach(|| -> rocking_stones::Result<sh::RecordRun> {
+        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth.to_radians())?;
+        sh::run_record(&stone, &setup, &record, scale)
+    });
+    to_py(py, &run.map_err(py_err)?)
+}

@@ -1,0 +1,152 @@
+//! `study` and the `Study` class: a field study over a folder of scans, as `rocking study`, with
+//! its `pebbles.csv` and `samples.csv` as text and as rows.
+
+use crate::convert::{py_err, to_py};
+use crate::long_run::interruptible;
+use crate::mesh_input::options;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rocking_stones::analysis::{check_nu, Report, PAPER_NU};
+use rocking_stones::dynamics::params::DropParams;
+use std::path::PathBuf;
+
+/// A field study: one row per scan with the columns of `pebbles.csv`.
+#[pyclass(frozen, module = "rocking_stones", name = "Study")]
+pub(crate) struct PyStudy {
+    study: rocking_stones::study::Study,
+    pebbles_csv: String,
+    samples_csv: String,
+}
+
+/// CSV text as a list of rows (dicts): empty cells are None, numbers are int or float.
+fn csv_rows<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, pyo3::types::PyList>> {
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> =
+        r.headers().map_err(|e| PyRuntimeError::new_err(e.to_string()))?.iter().map(String::from).collect();
+    let rows = pyo3::types::PyList::empty(py);
+    for rec in r.records() {
+        let rec = rec.map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let d = PyDict::new(py);
+        for (k, cell) in header.iter().zip(rec.iter()) {
+            if cell.is_empty() {
+                d.set_item(k, py.None())?;
+            } else if let Ok(i) = cell.parse::<i64>() {
+                d.set_item(k, i)?;
+            } else if let Ok(x) = cell.parse::<f64>() {
+                d.set_item(k, x)?;
+            } else {
+                d.set_item(k, cell)?;
+            }
+        }
+        rows.append(d)?;
+    }
+    Ok(rows)
+}
+
+#[pymethods]
+impl PyStudy {
+    /// One dict per pebble, the columns of `pebbles.csv` (id, sample, metadata, the `rocking
+    /// analyze` columns, hand_nu/S/U/H at the study's ν, dynamic columns if asked for).
+    #[getter]
+    fn rows<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyList>> {
+        csv_rows(py, &self.pebbles_csv)
+    }
+    /// One dict per sample, the columns of `samples.csv`.
+    #[getter]
+    fn samples<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyList>> {
+        csv_rows(py, &self.samples_csv)
+    }
+    /// The `rocking analyze --json` report of every pebble (None where it failed).
+    #[getter]
+    fn reports<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let r: Vec<Option<&Report>> =
+            self.study.pebbles.iter().map(|p| p.result.as_ref().ok().map(|c| &c.report)).collect();
+        to_py(py, &r)
+    }
+    /// The error of every pebble (None where it was analysed).
+    #[getter]
+    fn errors(&self) -> Vec<Option<String>> {
+        self.study.pebbles.iter().map(|p| p.result.as_ref().err().cloned()).collect()
+    }
+    /// ν of the fixed-ν (hand) columns.
+    #[getter]
+    fn nu(&self) -> f64 {
+        self.study.nu
+    }
+    /// `pebbles.csv` exactly as `rocking study` writes it.
+    fn pebbles_csv(&self) -> &str {
+        &self.pebbles_csv
+    }
+    /// `samples.csv` exactly as `rocking study` writes it.
+    fn samples_csv(&self) -> &str {
+        &self.samples_csv
+    }
+    /// Columns of `rows` (pandas: `pd.DataFrame(study.to_dict())`).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let rows = self.rows(py)?;
+        py.import("rocking_stones._tables")?.getattr("columns")?.call1((rows,))
+    }
+    fn __len__(&self) -> usize {
+        self.study.pebbles.len()
+    }
+    fn __repr__(&self) -> String {
+        let failed = self.study.pebbles.iter().filter(|p| p.result.is_err()).count();
+        format!("<Study: {} pebbles, {} failed, nu = {}>", self.study.pebbles.len(), failed, self.study.nu)
+    }
+}
+
+/// A field study over a folder of scans, as `rocking study FOLDER --meta META`; returns a
+/// `Study` with one row per pebble (the columns of pebbles.csv). dynamic=True adds the
+/// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble).
+#[pyfunction]
+#[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn study(
+    py: Python<'_>,
+    folder: PathBuf,
+    meta: Option<PathBuf>,
+    nu: f64,
+    coplanar_tol: f64,
+    allow_unmatched: bool,
+    dynamic: bool,
+    trials: u64,
+    height: f64,
+    seed: u64,
+    threads: Option<usize>,
+    progress: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PyStudy> {
+    use rocking_stones::study::{self as st, Experimenter, Metadata, StudyOptions};
+    let nu = check_nu(nu).map_err(py_err)?;
+    if !folder.is_dir() {
+        return Err(PyValueError::new_err(format!("{}: not a folder", folder.display())));
+    }
+    let experimenter = if dynamic {
+        let params = DropParams { height, ..st::set_down_params() };
+        params.check().map_err(py_err)?;
+        if trials == 0 {
+            return Err(PyValueError::new_err("trials must be at least 1"));
+        }
+        Some(Experimenter { trials, params, seed })
+    } else {
+        None
+    };
+    let files = st::mesh_files(&folder).map_err(py_err)?;
+    let meta = meta.as_deref().map(Metadata::read).transpose().map_err(py_err)?;
+    let opts = StudyOptions { analysis: options(None, coplanar_tol)?, nu, experimenter, allow_unmatched };
+    let (study, _unmatched) = interruptible(py, threads, progress.map(|f| (f, files.len() as u64)), |c| {
+        st::run_files(&files, meta.as_ref(), &opts, &|| c.tick())
+    })?
+    .map_err(py_err)?;
+    fn text<E: std::fmt::Display>(r: Result<(), E>, buf: Vec<u8>) -> PyResult<String> {
+        r.map_err(|e| PyRuntimeError::new_err(format!("{e:#}")))?;
+        String::from_utf8(buf).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+    let mut p = Vec::new();
+    let r = rocking_stones::report::study::write_pebbles_csv(&study, &mut p);
+    let pebbles_csv = text(r, p)?;
+    let mut s = Vec::new();
+    let r = rocking_stones::report::study::write_samples_csv(&study, &st::summarize(&study), &mut s);
+    let samples_csv = text(r, s)?;
+    Ok(PyStudy { study, pebbles_csv, samples_csv })
+}

@@ -1,0 +1,485 @@
+//! Field rocks: a rock at its true size, in a physical pose, under a recorded three-component
+//! ground motion (issue 11), one record at a time ([`run_record`]) or every record × scale factor
+//! of a batch with its fragility surface ([`run_batch`]).
+//!
+//! * **Pose** ([`Pose`], [`place`]): as scanned (mesh frame = world frame, +z up, put down under
+//!   its lowest point and settled; refused unless it rests on the stable micro-equilibrium of the
+//!   quasi-static descent from the as-scanned down direction), a stable micro-equilibrium, or a
+//!   quaternion.
+//! * **True size and motion**: the Froude-exact scaled run of [`super::drive`].
+//! * **Contact** from the surface pairs of [`Surface`] at the rock's real size ([`rock_params`],
+//!   the contact of every resting run; rock on concrete by default on the command line).
+//! * **Outcome** ([`RockRun`]): overturned = rests on a stable micro-equilibrium of another flock;
+//!   the largest tilt; the residual slide relative to the ground.
+//! * **Fragility surface**: fitted to the runs that came to rest; the others are counted.
+
+use super::drive::{shake_placed, Placed};
+use crate::dynamics::outcome::{classify, Outcome};
+use crate::dynamics::params::Surface;
+use crate::dynamics::resting::PerturbParams;
+use crate::dynamics::run::{self as run_loop, NoCertificate, RestKind};
+use crate::dynamics::stone::Stone;
+use crate::dynamics::world::Simulation;
+use crate::ground_motion::{surface, Record};
+use crate::{Error, Result, Vec3};
+use nalgebra::UnitQuaternion;
+use serde::Serialize;
+
+/// How the rock stands on the ground before the motion starts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Pose {
+    /// The mesh frame is the world frame (+z up, as field scans are stored): the rock is put
+    /// down on a horizontal ground under its lowest point and settles under gravity. It must come
+    /// to rest on the stable micro-equilibrium of the quasi-static descent from the as-scanned
+    /// down direction −z ([`Stone::rest`]).
+    AsScanned,
+    /// Exactly at rest on this stable micro-equilibrium (analysis index), as for pushes.
+    Facet {
+        /// Analysis index of the stable micro-equilibrium.
+        id: usize,
+    },
+    /// The mesh rotated by this unit quaternion (w, x, y, z; mesh → world), put down and settled
+    /// as for [`Pose::AsScanned`].
+    Quat {
+        /// Components w, x, y, z (normalised on use).
+        q: [f64; 4],
+    },
+}
+
+impl std::fmt::Display for Pose {
+    /// The command line's spelling (`as-scanned`, `facet:ID`, `quat:w,x,y,z`), which
+    /// [`Pose::from_str`](std::str::FromStr) reads back.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Pose::AsScanned => write!(f, "as-scanned"),
+            Pose::Facet { id } => write!(f, "facet:{id}"),
+            Pose::Quat { q } => write!(f, "quat:{},{},{},{}", q[0], q[1], q[2], q[3]),
+        }
+    }
+}
+
+impl std::str::FromStr for Pose {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Pose> {
+        let bad = || {
+            Error::Usage(format!(
+                "--pose {s:?}: expected as-scanned, facet:ID (a stable micro-equilibrium) or quat:w,x,y,z"
+            ))
+        };
+        if s == "as-scanned" {
+            return Ok(Pose::AsScanned);
+        }
+        if let Some(id) = s.strip_prefix("facet:") {
+            return Ok(Pose::Facet { id: id.trim().parse().map_err(|_| bad())? });
+        }
+        if let Some(q) = s.strip_prefix("quat:") {
+            let v: Vec<f64> = q
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<std::result::Result<_, _>>()
+                .map_err(|_| bad())?;
+            let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if v.len() != 4 || !(n > 0.0 && n.is_finite()) {
+                return Err(Error::Usage(format!(
+                    "--pose {s:?}: a quaternion needs four finite numbers, not all zero"
+                )));
+            }
+            return Ok(Pose::Quat { q: [v[0], v[1], v[2], v[3]] });
+        }
+        Err(bad())
+    }
+}
+
+/// The length unit of a mesh: how many metres one mesh unit is (`mm`, `cm`, `m`, `km` or a
+/// positive number).
+pub fn parse_length_unit(s: &str) -> Result<f64> {
+    let v = match s {
+        "mm" => 1e-3,
+        "cm" => 1e-2,
+        "m" => 1.0,
+        "km" => 1e3,
+        _ => s.parse::<f64>().map_err(|_| {
+            Error::Usage(format!(
+                "--length-unit {s:?}: expected mm, cm, m, km or a positive number of metres per mesh unit"
+            ))
+        })?,
+    };
+    if !(v > 0.0 && v.is_finite()) {
+        return Err(Error::Usage(format!("--length-unit must be positive, got {s}")));
+    }
+    Ok(v)
+}
+
+/// Rest criterion for placement: the pose's expected micro-equilibrium, else a usage error that
+/// says where the rock went instead.
+fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32, settled: bool) -> Error {
+    let eq = |f: u32| stone.facet_equilibrium[f as usize].map_or("?".to_string(), |e| e.to_string());
+    let off = stone.body.facet_normals[expected as usize].dot(down).clamp(-1.0, 1.0).acos().to_degrees();
+    if !settled {
+        return Error::Usage(format!(
+            "pose {pose}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
+        ));
+    }
+    Error::Usage(format!(
+        "pose {pose}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
+         ({} by the quasi-static descent, whose facet is {off:.2}° from the given down direction) but rolled \
+         to {}: the rock does not stand still in this pose (a scan made standing should be within a fraction of a \
+         degree of its resting facet); choose --pose facet:ID or a quat: that stands",
+        eq(expected),
+        eq(got)
+    ))
+}
+
+/// Put the rock down in `pose` and let it settle under gravity (module docs of the field-rock
+/// docs).
+///
+/// * `Facet`: exactly at rest on the facet, settled for `p.settle_time` (as for pushes).
+/// * `AsScanned` / `Quat`: the body orientation is the pose, G above the ground by the support
+///   function h(d) of the down direction d (the lowest point touches), zero velocity; simulated
+///   without motion until it rests ([`PositionRest`](run_loop::PositionRest) of `p.sim`, at most
+///   `p.sim.max_time`). It must rest on the micro-equilibrium the quasi-static descent of h from
+///   d reaches ([`Stone::rest`]), else the pose is refused.
+pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Placed<'a>> {
+    let q = match *pose {
+        Pose::Facet { id } => {
+            let start = stone.position(id).ok_or_else(|| {
+                let list: Vec<String> = stone.stable().iter().map(|s| s.index.to_string()).collect();
+                Error::Usage(format!("facet:{id} is not a stable micro-equilibrium; stable ones: {}", list.join(", ")))
+            })?;
+            return Ok(Placed::on(stone, start, p));
+        }
+        Pose::AsScanned => UnitQuaternion::identity(),
+        Pose::Quat { q } => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+    };
+    let down0 = q.inverse() * -Vec3::z();
+    let expected = stone.rest(&down0);
+    let z = stone.body.support(&down0);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
+    sim.set_contact_frequency(p.contact_frequency);
+    sim.advance((p.settle_time / p.sim.dt).round() as u64);
+    let end = run_loop::run(&mut sim, &p.sim, &mut run_loop::Passive, &NoCertificate, RestKind::Positions, &mut |_| {});
+    let rest = stone.rest(&end.state.down);
+    if !end.settled || rest.facet != expected.facet {
+        return Err(refuse_pose(stone, pose, &down0, expected.facet, rest.facet, end.settled));
+    }
+    let start = stone.position(rest.equilibrium).expect("a stable micro-equilibrium");
+    Ok(Placed { sim, start, settling_tilt: down0.dot(&end.state.down).clamp(-1.0, 1.0).acos() })
+}
+
+/// The outcome of one rock under one ground motion ([`shake_record`]), real units.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct RockRun {
+    /// Overturned: came to rest on a stable micro-equilibrium of another flock than the one it
+    /// stood on ([`Outcome::Toppled`]; a run still moving at the time cap is classified by the
+    /// quasi-static descent from its last down direction, and `settled` is false).
+    pub overturned: bool,
+    /// Same micro-equilibrium, another one of the same flock (it rocked to a neighbour), or
+    /// overturned.
+    pub outcome: Outcome,
+    /// Largest tilt (degrees) of the start facet's normal away from straight down.
+    pub max_tilt_deg: f64,
+    /// Residual sliding (m): horizontal displacement of G relative to the ground between the start
+    /// and the end of the run (includes the travel of an overturn).
+    pub slide_m: f64,
+    /// Tilt (degrees) of the body while it settled after being put down.
+    pub settling_tilt_deg: f64,
+    /// Analysis index of the stable micro-equilibrium it stood on, and its flock.
+    pub start_equilibrium: usize,
+    /// Flock it stood on.
+    pub start_flock: usize,
+    /// Analysis index of the stable micro-equilibrium it ended on.
+    pub final_equilibrium: usize,
+    /// Flock it ended in.
+    pub final_flock: usize,
+    /// Came to rest (relative to the ground) before the time cap.
+    pub settled: bool,
+    /// Azimuth of the record's x axis in the world frame (degrees).
+    pub azimuth_deg: f64,
+    /// Real R_max of the rock (m).
+    pub r_max_m: f64,
+    /// Real time simulated from the start of the motion (s).
+    pub time_s: f64,
+    /// Steps simulated (placement excluded).
+    pub steps: u64,
+}
+
+/// Shake a placed rock with `record` (real time, SI, x axis turned by `azimuth` rad in the world
+/// frame), the rock of real size `r_max_m` metres, until it rests relative to the ground
+/// ([`shake_placed`]; true size by the Froude-exact scaled run of [`super::drive`]).
+pub fn shake_record(
+    stone: &Stone,
+    placed: Placed,
+    p: &PerturbParams,
+    record: &Record,
+    azimuth: f64,
+    r_max_m: f64,
+) -> RockRun {
+    let run = shake_placed(stone, placed, p, record, azimuth, r_max_m);
+    let s = &stone.stable()[run.start];
+    let rest = stone.rest(&run.end.state.down);
+    let outcome = classify(stone, run.start, Some(rest.facet), rest.flock);
+    RockRun {
+        overturned: outcome == Outcome::Toppled,
+        outcome,
+        max_tilt_deg: run.max_tilt.to_degrees(),
+        slide_m: run.slide * r_max_m,
+        settling_tilt_deg: run.settling_tilt.to_degrees(),
+        start_equilibrium: s.index,
+        start_flock: s.flock,
+        final_equilibrium: rest.equilibrium,
+        final_flock: rest.flock,
+        settled: run.end.settled,
+        azimuth_deg: azimuth.to_degrees(),
+        r_max_m,
+        time_s: run.end.steps as f64 * p.sim.dt * r_max_m.sqrt(),
+        steps: run.end.steps,
+    }
+}
+
+/// Shaking parameters of a rock at true size R_max = `r_max_m` on `surface`: the contact of every
+/// resting run, [`PerturbParams::on_surface`] (the surface pair's friction, restitution and
+/// rolling-resistance length at that size, 120 Hz contacts, dt 1/240 s, a 20 s cap after the
+/// motion, rest windows of 0.5 s).
+pub fn rock_params(surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
+    PerturbParams::on_surface(surface, r_max_m)
+}
+
+/// A field rock and how it is shaken: everything of a run but the record.
+#[derive(Clone, Debug, Serialize)]
+pub struct RockSetup {
+    /// The pose it stands in.
+    pub pose: Pose,
+    /// Metres per mesh unit.
+    pub length_unit_m: f64,
+    /// Real R_max of the rock (m): the body's R_max (mesh units) times `length_unit_m`.
+    pub r_max_m: f64,
+    /// Azimuth (rad, world frame) of the records' x axis.
+    pub azimuth: f64,
+    /// Simulation parameters (scaled frame, see [`shake_record`]).
+    pub params: PerturbParams,
+}
+
+impl RockSetup {
+    /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres on `surface`.
+    pub fn new(stone: &Stone, pose: Pose, length_unit_m: f64, surface: Surface, azimuth: f64) -> Result<RockSetup> {
+        let r_max_m = stone.body.r_max * length_unit_m;
+        Ok(RockSetup { pose, length_unit_m, r_max_m, azimuth, params: rock_params(surface, r_max_m)? })
+    }
+
+    /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres and the simulation
+    /// parameters `params` (e.g. [`rock_params`] with overrides).
+    pub fn with_params(
+        stone: &Stone,
+        pose: Pose,
+        length_unit_m: f64,
+        azimuth: f64,
+        params: PerturbParams,
+    ) -> RockSetup {
+        RockSetup { pose, length_unit_m, r_max_m: stone.body.r_max * length_unit_m, azimuth, params }
+    }
+
+    /// Real time step of the simulation (s): dt·√(R_max / 1 m).
+    pub fn real_dt(&self) -> f64 {
+        self.params.sim.dt * self.r_max_m.sqrt()
+    }
+}
+
+/// `record` as a run with real time step `real_dt` (s) is driven by it: resampled without aliasing
+/// to the step when it is sampled finer ([`Record::resampled`]), as it is otherwise.
+pub fn driven(record: &Record, real_dt: f64) -> Result<Record> {
+    if record.dt < real_dt {
+        record.resampled(real_dt)
+    } else {
+        Ok(record.clone())
+    }
+}
+
+/// One record × scale factor on a field rock: the record's intensity measures and the outcome.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct RecordRun {
+    /// Name of the record.
+    pub record: String,
+    /// Scale factor applied to the record.
+    pub scale: f64,
+    /// Peak horizontal ground acceleration of the scaled record (g).
+    pub pga_g: f64,
+    /// Peak horizontal ground velocity of the scaled record (m/s).
+    pub pgv_m_s: f64,
+    /// PGV/PGA (s).
+    pub pgv_over_pga_s: f64,
+    /// Peak vertical ground acceleration (g).
+    pub pga_vertical_g: f64,
+    /// Outcome of the run.
+    #[serde(flatten)]
+    pub rock: RockRun,
+}
+
+/// Shake the rock of `setup` with `record` × `scale`: the record is scaled, its PGA/PGV measured
+/// ([`Record::measures`], on the record as given: correct its baseline
+/// before), resampled without aliasing to the simulation's real step ([`RockSetup::real_dt`]) when
+/// it is sampled finer, the rock placed ([`place`]) and shaken ([`shake_record`]).
+pub fn run_record(stone: &Stone, setup: &RockSetup, record: &Record, scale: f64) -> Result<RecordRun> {
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
+    }
+    let scaled = record.scaled(scale);
+    let m = scaled.measures();
+    let motion = driven(&scaled, setup.real_dt())?;
+    let placed = place(stone, &setup.pose, &setup.params)?;
+    let rock = shake_record(stone, placed, &setup.params, &motion, setup.azimuth, setup.r_max_m);
+    Ok(RecordRun {
+        record: record.name.clone(),
+        scale,
+        pga_g: m.pga_g,
+        pgv_m_s: m.pgv_m_s,
+        pgv_over_pga_s: m.pgv_over_pga_s,
+        pga_vertical_g: m.pga_vertical_g,
+        rock,
+    })
+}
+
+/// Every record × every scale factor on one rock, with the fragility surface fitted to them.
+#[derive(Clone, Debug, Serialize)]
+pub struct ShakeBatch {
+    /// The rock and how it was shaken.
+    pub setup: RockSetup,
+    /// Settling tilt (degrees) when the rock was put down.
+    pub settling_tilt_deg: f64,
+    /// Analysis index of the stable micro-equilibrium it stands on.
+    pub start_equilibrium: usize,
+    /// One run per (record, scale), records in the given order, scales within a record.
+    pub runs: Vec<RecordRun>,
+    /// P(overturn | PGA, PGV/PGA) fitted to the runs that came to rest ([`surface`]); runs
+    /// still moving at the time cap are left out and counted in `unsettled`.
+    pub surface: Option<surface::FragilitySurface>,
+    /// Why the surface could not be fitted (e.g. every run had the same outcome).
+    pub surface_error: Option<String>,
+    /// Runs still moving at the time cap: classified by the quasi-static descent in `runs`, but
+    /// not used in the fit (their outcome is a guess, not an observation).
+    pub unsettled: usize,
+}
+
+/// The fragility surface of `runs`, fitted to the runs that came to rest (the others' outcome is
+/// the quasi-static descent's guess from where they were at the time cap, not an observation):
+/// the surface, or why it could not be fitted, and how many runs were left out.
+pub fn fit_surface(runs: &[RecordRun]) -> (Option<surface::FragilitySurface>, Option<String>, usize) {
+    let unsettled = runs.iter().filter(|r| !r.rock.settled).count();
+    let points: Vec<surface::Run> = runs
+        .iter()
+        .filter(|r| r.rock.settled)
+        .map(|r| surface::Run { pga_g: r.pga_g, pgv_over_pga_s: r.pgv_over_pga_s, overturned: r.rock.overturned })
+        .collect();
+    match surface::FragilitySurface::fit(&points) {
+        Ok(s) => (Some(s), None, unsettled),
+        Err(e) => (None, Some(e.to_string()), unsettled),
+    }
+}
+
+/// Run every record × scale in parallel (rayon; each run is deterministic and independent, so the
+/// result does not depend on the thread count), calling `done` with each finished run (from any
+/// thread, in completion order: for appending to a file as the runs finish). The pose is checked
+/// once before any run. Runs already in `previous` (same record name and scale, from an
+/// interrupted batch) are taken as they are and not run again: a run is a deterministic function
+/// of the rock, the setup, the record and the scale, so the batch is the same as one run in one go.
+pub fn run_batch(
+    stone: &Stone,
+    setup: &RockSetup,
+    records: &[Record],
+    scales: &[f64],
+    previous: &[RecordRun],
+    done: &(dyn Fn(&RecordRun) + Sync),
+) -> Result<ShakeBatch> {
+    use rayon::prelude::*;
+    if records.is_empty() || scales.is_empty() {
+        return Err(Error::Usage("a batch needs at least one record and one scale factor".into()));
+    }
+    let placed = place(stone, &setup.pose, &setup.params)?;
+    let s = &stone.stable()[placed.start];
+    let (settling_tilt_deg, start_equilibrium) = (placed.settling_tilt.to_degrees(), s.index);
+    drop(placed);
+    let jobs: Vec<(usize, f64)> = (0..records.len()).flat_map(|r| scales.iter().map(move |&k| (r, k))).collect();
+    let runs: Vec<RecordRun> = jobs
+        .par_iter()
+        .map(|&(r, k)| {
+            let same = |p: &&RecordRun| p.record == records[r].name && p.scale.to_bits() == k.to_bits();
+            if let Some(p) = previous.iter().find(same) {
+                return Ok(p.clone());
+            }
+            let run = run_record(stone, setup, &records[r], k)?;
+            done(&run);
+            Ok(run)
+        })
+        .collect::<Result<_>>()?;
+    let (surface, surface_error, unsettled) = fit_surface(&runs);
+    Ok(ShakeBatch {
+        setup: setup.clone(),
+        settling_tilt_deg,
+        start_equilibrium,
+        runs,
+        surface,
+        surface_error,
+        unsettled,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(pga_g: f64, ratio: f64, overturned: bool, settled: bool) -> RecordRun {
+        RecordRun {
+            record: format!("r{pga_g}-{ratio}"),
+            scale: 1.0,
+            pga_g,
+            pgv_m_s: pga_g * ratio * 9.81,
+            pgv_over_pga_s: ratio,
+            pga_vertical_g: 0.0,
+            rock: RockRun {
+                overturned,
+                outcome: if overturned { Outcome::Toppled } else { Outcome::Same },
+                max_tilt_deg: 0.0,
+                slide_m: 0.0,
+                settling_tilt_deg: 0.0,
+                start_equilibrium: 0,
+                start_flock: 0,
+                final_equilibrium: 0,
+                final_flock: 0,
+                settled,
+                azimuth_deg: 0.0,
+                r_max_m: 1.0,
+                time_s: 1.0,
+                steps: 1,
+            },
+        }
+    }
+
+    /// Runs still moving at the cap do not enter the fit: adding unsettled runs that claim the
+    /// opposite outcome changes nothing but the count.
+    #[test]
+    fn the_fragility_fit_uses_settled_runs_only() {
+        let mut settled = Vec::new();
+        for (i, a) in [0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0].iter().enumerate() {
+            for (j, t) in [0.05, 0.1, 0.2].iter().enumerate() {
+                settled.push(run(*a, *t, a * t.sqrt() > 0.1 || (i + j) % 5 == 0, true));
+            }
+        }
+        let (alone, _, none) = fit_surface(&settled);
+        assert_eq!(none, 0);
+        let mut all = settled.clone();
+        all.extend([run(0.1, 0.05, true, false), run(1.0, 0.2, false, false), run(0.12, 0.06, true, false)]);
+        let (with, _, three) = fit_surface(&all);
+        assert_eq!(three, 3);
+        assert_eq!(alone.unwrap().beta, with.unwrap().beta);
+        // The same runs counted as settled would move the fit: the check is not vacuous.
+        let counted: Vec<RecordRun> = all
+            .iter()
+            .cloned()
+            .map(|mut r| {
+                r.rock.settled = true;
+                r
+            })
+            .collect();
+        assert_ne!(fit_surface(&settled).0.unwrap().beta, fit_surface(&counted).0.unwrap().beta);
+    }
+}

@@ -1,0 +1,30 @@
+//! Toppling under ground shaking (SPEC §7): a stone standing on the ground, the ground driven
+//! under it by a recorded or synthetic motion.
+//!
+//! * [`drive`] — the one ground drive: a [`crate::ground_motion::Record`] (real time, SI, up to
+//!   three components) under a stone of real size, by the Froude-exact scaled run, and the shaken
+//!   run every mode makes ([`drive::shake_placed`]).
+//! * [`sweep`] — fragility curves of the stable micro-equilibria: the motion scaled to each PGA of
+//!   a grid, random azimuths, P(toppled) with intervals and PGA₅₀.
+//! * [`field`] — a field rock in a physical pose under records × scale factors, and the fragility
+//!   surface P(overturn | PGA, PGV/PGA) of a batch.
+//!
+//! Both modes run on the contact of every resting run ([`crate::dynamics::resting`]: the surface
+//! pair at the stone's real size), rest by positions over windows
+//! ([`crate::dynamics::run::PositionRest`]) and classify the outcome by the quasi-static descent.
+//! Housner's rigid block, the reference they are checked against, is
+//! [`crate::dynamics::housner`].
+
+pub mod drive;
+pub mod field;
+pub mod sweep;
+
+pub use drive::{shake_placed, GroundDrive, Placed, Shaken};
+pub use field::{
+    driven, parse_length_unit, place, rock_params, run_batch, run_record, shake_record, Pose, RecordRun, RockRun,
+    RockSetup, ShakeBatch,
+};
+pub use sweep::{
+    default_pulse, run, run_with, shake_stream, shake_trial, sine_pulse, Fragility, MotionInfo, ShakeConfig,
+    ShakeReport, ShakeTrial,
+};
