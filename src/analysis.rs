@@ -77,7 +77,7 @@ impl Analysis {
         let mut unit_mass = MassProperties::of_unscaled(&unit)?;
         if let Some(c) = opts.center_of_mass {
             if !c.coords.iter().all(|x| x.is_finite()) {
-                return Err(Error::Usage(format!("--center-of-mass must be three finite numbers, got {c}")));
+                return Err(Error::parameter("center_of_mass", c, "three finite numbers"));
             }
             unit_mass = unit_mass.about(&crate::mesh::scale_point(&c, k));
         }
@@ -431,7 +431,7 @@ impl Options {
     /// and a ν outside (0, 1], each with its own message.
     pub fn check(&self) -> Result<()> {
         check_coplanar_tol(self.coplanar_tol)?;
-        check_tolerance("degeneracy tolerance", self.degeneracy_tol, MAX_DEGENERACY_TOL)?;
+        check_tolerance("degeneracy_tol", self.degeneracy_tol, MAX_DEGENERACY_TOL)?;
         if let Some(nu) = self.nu {
             check_nu(nu)?;
         }
@@ -441,16 +441,14 @@ impl Options {
 
 /// Refuse a relative coplanarity tolerance that is not in (0, [`MAX_COPLANAR_TOL`]].
 pub fn check_coplanar_tol(tol: f64) -> Result<f64> {
-    check_tolerance("coplanar tolerance (--coplanar-tol)", tol, MAX_COPLANAR_TOL)
+    check_tolerance("coplanar_tol", tol, MAX_COPLANAR_TOL)
 }
 
 fn check_tolerance(name: &str, tol: f64, max: f64) -> Result<f64> {
     if tol.is_finite() && tol > 0.0 && tol <= max {
         Ok(tol)
     } else {
-        Err(Error::Usage(format!(
-            "the {name} is relative to the stone's size and must be a finite number in (0, {max:e}], got {tol}"
-        )))
+        Err(Error::parameter(name, tol, format!("a finite number in (0, {max:e}] (relative to the stone's size)")))
     }
 }
 

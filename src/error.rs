@@ -87,6 +87,18 @@ pub enum Error {
         /// What the plotting library reported.
         what: String,
     },
+    /// A parameter outside the range it must lie in, named as the library names it: the field of
+    /// a parameter struct (`dt`, `max_time`, `friction`, `length_unit`…). The command line turns
+    /// the name into its flag (`--max-time`), the Python binding into its keyword (`max_time=`).
+    #[error("{name} must be {expected}, got {value}")]
+    Parameter {
+        /// The parameter's name in the library (a struct field or function argument).
+        name: String,
+        /// The value given, as written.
+        value: String,
+        /// The range or form it must have.
+        expected: String,
+    },
     /// Bad user input that is not a file (an option value, a generator parameter...).
     #[error("{0}")]
     Usage(String),
@@ -111,7 +123,7 @@ impl Error {
                 Error::SelfIntersecting { path: fix(path), first, second, pairs, depth, relative_depth, near }
             }
             Error::CentreOutsideHull { path, g, what } => Error::CentreOutsideHull { path: fix(path), g, what },
-            e @ Error::Usage(_) => e,
+            e @ (Error::Usage(_) | Error::Parameter { .. }) => e,
         }
     }
 
@@ -147,7 +159,22 @@ impl Error {
             Error::CentreOutsideHull { .. } => "centre-outside-hull",
             Error::Check { .. } => "internal-check",
             Error::Plot { .. } => "plot",
-            Error::Usage(_) => "usage",
+            Error::Usage(_) | Error::Parameter { .. } => "usage",
+        }
+    }
+
+    /// A parameter error: `name` (the library's name of the parameter) must be `expected`, and
+    /// was `value`.
+    pub fn parameter(name: &str, value: impl std::fmt::Display, expected: impl Into<String>) -> Self {
+        Error::Parameter { name: name.to_string(), value: value.to_string(), expected: expected.into() }
+    }
+
+    /// The message with the parameter's name spelled by `spell` (a command-line flag, a
+    /// keyword argument); other errors as they are.
+    pub fn spelled(&self, spell: &dyn Fn(&str) -> String) -> String {
+        match self {
+            Error::Parameter { name, value, expected } => format!("{} must be {expected}, got {value}", spell(name)),
+            e => e.to_string(),
         }
     }
 

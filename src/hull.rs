@@ -331,13 +331,13 @@ fn boundary_loop(boundary: &[(u32, u32)], next_of: &mut [u32]) -> Result<Vec<u32
         cur = next_of[cur as usize];
         if loop_pts.len() > boundary.len() {
             return Err(Error::degenerate(
-                "merging nearly coplanar hull triangles gave a facet whose boundary is not a simple loop: the coplanar tolerance is too large for this shape (use a smaller --coplanar-tol)",
+                "merging nearly coplanar hull triangles gave a facet whose boundary is not a simple loop: the coplanar tolerance is too large for this shape (use a smaller coplanar tolerance)",
             ));
         }
     }
     if loop_pts.len() != boundary.len() {
         return Err(Error::degenerate(
-            "merging nearly coplanar hull triangles gave a facet with a hole or a pinched boundary: the coplanar tolerance is too large for this shape (use a smaller --coplanar-tol)",
+            "merging nearly coplanar hull triangles gave a facet with a hole or a pinched boundary: the coplanar tolerance is too large for this shape (use a smaller coplanar tolerance)",
         ));
     }
     Ok(loop_pts)

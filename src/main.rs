@@ -46,7 +46,10 @@ fn main() {
         Command::Study(a) => cmd::study::run(a),
     };
     if let Err(e) = result {
-        eprintln!("error: {e:#}");
+        match e.downcast_ref::<rocking_stones::Error>() {
+            Some(err @ rocking_stones::Error::Parameter { .. }) => eprintln!("error: {}", err.spelled(&cmd::flag)),
+            _ => eprintln!("error: {e:#}"),
+        }
         std::process::exit(1);
     }
 }

@@ -59,7 +59,7 @@ impl Shard {
 
     /// Parse `i/n` (0 ≤ i < n).
     pub fn parse(s: &str) -> Result<Shard> {
-        let bad = || Error::Usage(format!("--shard must be i/n with 0 ≤ i < n, got {s:?}"));
+        let bad = || Error::parameter("shard", format!("{s:?}"), "i/n with 0 ≤ i < n");
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let (index, count) = (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
         if count == 0 || index >= count {
@@ -245,10 +245,11 @@ impl Checkpoint {
         let mut done = BTreeMap::new();
         if path.exists() {
             if !resume {
-                return Err(Error::Usage(format!(
-                    "{}: the checkpoint exists; pass --resume to continue it, or remove it",
-                    path.display()
-                )));
+                return Err(Error::parameter(
+                    "resume",
+                    "not set",
+                    format!("set to continue the checkpoint {}, which exists (or remove that file)", path.display()),
+                ));
             }
             let (h, outcomes) = read_partial(path)?;
             let mut differ = header.differences(&h);

@@ -381,7 +381,7 @@ fn nonsense_options_are_refused_with_a_message() {
         let out = rocking(&["analyze", cube, &format!("--coplanar-tol={bad}")]);
         assert!(!out.status.success(), "--coplanar-tol {bad} accepted");
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(err.contains("coplanar tolerance") && err.contains("finite number in (0, 1e-3]"), "{bad}: {err}");
+        assert!(err.contains("--coplanar-tol must be") && err.contains("finite number in (0, 1e-3]"), "{bad}: {err}");
     }
     for bad in ["nan", "-1", "0", "2"] {
         let out = rocking(&["analyze", cube, &format!("--nu={bad}")]);

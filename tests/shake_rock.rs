@@ -490,3 +490,40 @@ fn poses_print_as_the_command_line_spells_them() {
     assert!(e.contains("not all zero"), "{e}");
     assert!("facet:x".parse::<Pose>().is_err() && "upright".parse::<Pose>().is_err());
 }
+
+/// The command line says what it does not apply (issue 23): options of the PGA sweep are refused
+/// with a field rock, options of field rocks without one, and --length-unit with --size; the
+/// bundled stone knows it is in millimetres (R_max = 178 mm in the JSON of a pushed run).
+#[test]
+fn options_that_do_not_apply_are_refused() {
+    use std::process::Command;
+    let run = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_rocking")).args(args).output().unwrap();
+    let refused = |args: &[&str], word: &str| {
+        let out = run(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} was accepted");
+        assert!(err.contains(word), "{args:?}: {err}");
+    };
+    refused(&["shake", "--pose", "facet:3", "--trials", "5", "--motion", "x.csv"], "--trials");
+    refused(&["shake", "--pose", "facet:3", "--pga-max", "0.5", "--motion", "x.csv"], "--pga-max");
+    refused(&["shake", "--pose", "facet:3", "--equilibrium", "3", "--motion", "x.csv"], "--equilibrium");
+    refused(&["shake", "--records", "dir"], "--pose");
+    refused(&["shake", "--scales", "1,2"], "--pose");
+    refused(&["perturb", "--length-unit", "mm", "--size", "0.2"], "--size");
+    refused(&["perturb", "--preset", "gravel"], "surface or damped");
+    // The library names a parameter by its field; the command line by its flag.
+    refused(&["perturb", "--dt", "1"], "error: --dt must be");
+    refused(&["shake", "--length-unit", "yard"], "error: --length-unit must be mm, cm, m, km");
+    refused(&["perturb", "--size=-2"], "error: --size must be a positive length");
+    refused(&["drop", "-n", "1", "--restitution", "1.5"], "error: --restitution must be in [0, 1], got 1.5");
+    // The bundled stone at its true size, on the default surface pair.
+    let out = run(&["perturb", "--equilibrium", "3", "-n", "1", "--eps-steps", "1", "--eps-min", "0.5", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let sim = &j["params"]["sim"];
+    assert_eq!(sim["friction"].as_f64(), Some(0.6), "stone on stone");
+    let delta = sim["rolling_resistance"].as_f64().unwrap();
+    // δ = 0.1 mm over R_max = 178 mm.
+    assert!((delta - 1e-4 / 0.178).abs() < 2e-6, "δ/R_max = {delta}");
+    assert_eq!(sim["angular_damping"].as_f64(), Some(0.0), "no global damping");
+}

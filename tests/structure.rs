@@ -34,6 +34,38 @@ fn no_source_file_is_over_800_lines() {
     assert!(long.is_empty(), "files over 800 lines: {long:?}");
 }
 
+/// The library speaks in its own words (issue 23): no string in it names a command-line flag
+/// (`--dt`); parameter errors name the parameter as the library does ([`Error::Parameter`]) and the
+/// CLI and Python spell it. `cmd/` and `main.rs` are the command line; `report/` writes its
+/// summaries.
+#[test]
+fn the_library_names_no_command_line_flag() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&root.join("src"), &mut files);
+    let mut found = Vec::new();
+    for f in &files {
+        let rel = f.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+        if rel.starts_with("src/cmd/") || rel == "src/main.rs" || rel.starts_with("src/report/") {
+            continue;
+        }
+        for (k, line) in std::fs::read_to_string(f).unwrap().lines().enumerate() {
+            let code = line.trim_start();
+            if code.starts_with("//") || code.starts_with("#[") {
+                continue;
+            }
+            let in_string = line.split('"').skip(1).step_by(2).any(|lit| {
+                lit.match_indices("--").any(|(i, _)| lit[i + 2..].starts_with(|c: char| c.is_ascii_lowercase()))
+            });
+            if in_string {
+                found.push(format!("{rel}:{}: {}", k + 1, code));
+            }
+        }
+    }
+    assert!(files.len() > 40);
+    assert!(found.is_empty(), "flag names in library strings:\n{}", found.join("\n"));
+}
+
 /// The module of `dynamics/` a file is (`run`, `shake`, `shake/drive`, …).
 fn module_of(dynamics: &Path, file: &Path) -> String {
     let rel = file.strip_prefix(dynamics).unwrap().with_extension("");

@@ -337,7 +337,10 @@ def perturb(
     eps_steps: int = 16,
     epsilon_star: Optional[float] = None,
     certificate: bool = False,
-    preset: Optional[Literal["default"]] = None,
+    preset: Optional[Literal["surface", "damped"]] = None,
+    surface: Optional[Literal["stone-on-stone", "rock-on-concrete", "rock-on-steel", "steel-on-wood"]] = None,
+    length_unit: Union[str, float, None] = None,
+    size: Optional[float] = None,
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
@@ -346,22 +349,29 @@ def perturb(
 ) -> DynamicsResult:
     """Push or spin the stone resting on its stable micro-equilibria, as ``rocking perturb``:
     P(same), P(same flock), P(toppled) against ε = E/(m g R_max), thresholds and static barriers.
-    ``**params``: friction, restitution, linear_damping, angular_damping, dt, max_time,
-    contact_frequency, settle_time, hold_time, rest thresholds."""
+    The contact of drops and field rocks: ``preset`` "surface" (default) or "damped" (the
+    overdamped reference), ``surface`` (default "stone-on-stone"), the real size by
+    ``length_unit`` (mm, cm, m, km or metres per unit; default mm for the bundled stone, m
+    otherwise) or ``size`` (R_max in metres). ``**params``: friction, restitution,
+    rolling_resistance, dt, max_time, contact_frequency, settle_time, hold_time, rest thresholds."""
 
 def shake(
     mesh: Union[_MeshLike, Analysis, None] = None,
     *,
     equilibria: Optional[Sequence[int]] = None,
     pulse: Optional[Tuple[float, float, float]] = None,
-    motion: Optional[Union[str, "os.PathLike[str]"]] = None,
+    motion: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]], None] = None,
+    columns: str = "1,2",
+    accel_unit: Literal["g", "m/s2", "gal"] = "g",
     pga_max: Optional[float] = None,
     pga_steps: int = 20,
-    size: float = 1.0,
     azimuth: Optional[float] = None,
     trials: int = 40,
     seed: int = 1,
-    preset: Optional[Literal["default"]] = None,
+    preset: Optional[Literal["surface", "damped"]] = None,
+    surface: Optional[Literal["stone-on-stone", "rock-on-concrete", "rock-on-steel", "steel-on-wood"]] = None,
+    length_unit: Union[str, float, None] = None,
+    size: Optional[float] = None,
     nu: Optional[float] = None,
     name: Optional[str] = None,
     threads: Optional[int] = None,
@@ -369,7 +379,8 @@ def shake(
     **params: float,
 ) -> DynamicsResult:
     """Shake the ground under the resting stone, as ``rocking shake``: fragility curves.
-    ``pulse=(amplitude g, frequency Hz, cycles)`` or ``motion=`` a time/acceleration CSV."""
+    ``pulse=(amplitude g, frequency Hz of the real stone, cycles)`` or ``motion=`` a CSV (read
+    with ``columns``, ``accel_unit``) or 1–3 .AT2 files; the contact and size as for ``perturb``."""
 
 def shake_rock(
     mesh: Union[_MeshLike, Analysis, None] = None,
@@ -389,7 +400,8 @@ def shake_rock(
     name: Optional[str] = None,
 ) -> Dict[str, Any]:
     """A field rock at true size under one ground motion, as ``rocking shake --pose ... --json``:
-    ``pose`` "as-scanned", "facet:ID" or "quat:w,x,y,z"; ``motion`` a CSV or 1–3 .AT2 files, or
+    ``pose`` "as-scanned", "facet:ID" or "quat:w,x,y,z"; ``length_unit`` default mm for the
+    bundled stone, m otherwise; ``motion`` a CSV or 1–3 .AT2 files, or
     ``accel`` an (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s. Returns overturned, max_tilt_deg,
     slide_m, pga_g, pgv_m_s, pgv_over_pga_s, ..."""
 

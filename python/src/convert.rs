@@ -24,7 +24,8 @@ pub(crate) fn py_err(e: Error) -> PyErr {
     match &e {
         Error::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
         Error::Io { .. } => PyOSError::new_err(msg),
-        Error::Usage(_) => PyValueError::new_err(msg),
+        // A parameter is named by its field name, which is the keyword argument's.
+        Error::Usage(_) | Error::Parameter { .. } => PyValueError::new_err(msg),
         Error::Parse { .. }
         | Error::InvalidMesh { .. }
         | Error::Degenerate { .. }

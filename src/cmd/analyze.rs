@@ -126,7 +126,7 @@ fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
     let (analysis, name) = load_analysis(path.map(|p| p.as_path()), opts)?;
     warn(&name, &analysis.repairs);
     let report = analysis.report(&name, opts);
-    let unit = report::names::Unit(args.unit.clone());
+    let unit = super::default_unit(&name, args.unit.as_ref());
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -59,7 +59,7 @@ pub fn parse_point(s: &str) -> std::result::Result<rocking_stones::Point3, Strin
 }
 
 /// The 3D view of `report.html` for a dynamics run on `analysis` with flocks at `nu` (the
-/// stone's macro scale), lengths in mesh units.
+/// stone's macro scale), lengths in mesh units (millimetres for the bundled stone).
 pub fn hull_view(
     analysis: &rocking_stones::analysis::Analysis,
     name: &str,
@@ -67,5 +67,31 @@ pub fn hull_view(
 ) -> rocking_stones::report::html::HullView {
     let opts = rocking_stones::analysis::Options { nu: Some(nu), ..Default::default() };
     let r = analysis.report(name, &opts);
-    rocking_stones::report::html::hull_view(analysis, &r, &Default::default())
+    rocking_stones::report::html::hull_view(analysis, &r, &default_unit(name, None))
+}
+
+/// The length unit that labels a mesh's lengths: the one given, else millimetres for the bundled
+/// stone (it knows its unit), else "mesh units".
+pub fn default_unit(name: &str, given: Option<&String>) -> rocking_stones::report::names::Unit {
+    let known = rocking_stones::bundled::is_bundled(name).then(|| "mm".to_string());
+    rocking_stones::report::names::Unit(given.cloned().or(known))
+}
+
+/// The command line's spelling of a library parameter (`max_time` → `--max-time`); the
+/// parameters that have no option of their own are named in words.
+pub fn flag(name: &str) -> String {
+    const NO_OPTION: [&str; 7] = [
+        "rest_time",
+        "rest_linear_speed",
+        "rest_angular_speed",
+        "solver_iterations",
+        "settle_time",
+        "hold_time",
+        "degeneracy_tol",
+    ];
+    if NO_OPTION.contains(&name) {
+        format!("the {} (no option)", name.replace('_', " "))
+    } else {
+        format!("--{}", name.replace('_', "-"))
+    }
 }

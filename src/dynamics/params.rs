@@ -137,49 +137,59 @@ impl Default for DropParams {
 }
 
 impl DropParams {
-    /// Refuse parameters that cannot describe a run, naming the parameter (as the CLI spells
-    /// it) and the value.
+    /// Refuse parameters that cannot describe a run, naming the parameter (its field name,
+    /// [`Error::Parameter`]) and the value.
     pub fn check(&self) -> Result<()> {
-        let bad = |what: String| Err(Error::Usage(what));
-        let positive = [("--dt", self.dt), ("--max-time", self.max_time), ("rest time", self.rest_time)];
+        let positive = [("dt", self.dt), ("max_time", self.max_time), ("rest_time", self.rest_time)];
         if let Some((name, v)) = positive.iter().find(|(_, v)| !(*v > 0.0 && v.is_finite())) {
-            return bad(format!("{name} must be positive and finite, got {v}"));
+            return Err(Error::parameter(name, v, "positive and finite"));
         }
         let non_negative = [
-            ("--height", self.height),
-            ("--horizontal-speed", self.horizontal_speed),
-            ("--spin", self.spin),
-            ("--friction", self.friction),
-            ("--rolling-resistance", self.rolling_resistance),
-            ("--torsional-friction", self.torsional_friction),
-            ("--linear-damping", self.linear_damping),
-            ("--angular-damping", self.angular_damping),
-            ("rest linear speed", self.rest_linear_speed),
-            ("rest angular speed", self.rest_angular_speed),
+            ("height", self.height),
+            ("horizontal_speed", self.horizontal_speed),
+            ("spin", self.spin),
+            ("friction", self.friction),
+            ("rolling_resistance", self.rolling_resistance),
+            ("torsional_friction", self.torsional_friction),
+            ("linear_damping", self.linear_damping),
+            ("angular_damping", self.angular_damping),
+            ("rest_linear_speed", self.rest_linear_speed),
+            ("rest_angular_speed", self.rest_angular_speed),
         ];
         if let Some((name, v)) = non_negative.iter().find(|(_, v)| !(*v >= 0.0 && v.is_finite())) {
-            return bad(format!("{name} must be ≥ 0 and finite, got {v}"));
+            return Err(Error::parameter(name, v, "≥ 0 and finite"));
         }
         if !(0.0..=1.0).contains(&self.restitution) {
-            return bad(format!("--restitution must be in [0, 1], got {}", self.restitution));
+            return Err(Error::parameter("restitution", self.restitution, "in [0, 1]"));
         }
         if self.solver_iterations == 0 || self.solver_iterations > 1000 {
-            return bad(format!("solver iterations must be in 1..=1000, got {}", self.solver_iterations));
+            return Err(Error::parameter("solver_iterations", self.solver_iterations, "in 1..=1000"));
         }
         if self.dt > self.max_time {
-            return bad(format!("--dt ({}) is longer than the time cap --max-time ({})", self.dt, self.max_time));
+            return Err(Error::parameter(
+                "dt",
+                self.dt,
+                format!("at most the time cap max_time ({} s)", self.max_time),
+            ));
         }
         // Contact stability: rapier's soft contacts (30–60 Hz) need several steps per
         // oscillation, and a body must not fall through more than a fraction of itself per step.
         if self.dt > MAX_STABLE_DT {
-            return bad(format!(
-                "--dt {} s is too long for the contact solver: at most {MAX_STABLE_DT} s of the scaled body \
-                 (the soft contacts oscillate at 30–60 Hz and need ≥ 4 steps per period); the default is 1/240 s",
-                self.dt
+            return Err(Error::parameter(
+                "dt",
+                self.dt,
+                format!(
+                    "at most {MAX_STABLE_DT} s of the scaled body for the contact solver (the soft contacts oscillate \
+                     at 30–60 Hz and need ≥ 4 steps per period; the default is 1/240 s)"
+                ),
             ));
         }
         if self.max_time / self.dt > 1e8 {
-            return bad(format!("--max-time / --dt = {:.3e} steps is more than 10⁸", self.max_time / self.dt));
+            return Err(Error::parameter(
+                "max_time",
+                self.max_time,
+                format!("at most 10⁸ steps of dt = {} s", self.dt),
+            ));
         }
         Ok(())
     }
@@ -263,7 +273,7 @@ impl Preset {
     /// positive finite length is a usage error.
     pub fn params_at_size(self, surface: Surface, r_max_m: f64) -> Result<DropParams> {
         if !(r_max_m > 0.0 && r_max_m.is_finite()) {
-            return Err(Error::Usage(format!("--size must be a positive length in metres, got {r_max_m}")));
+            return Err(Error::parameter("size", r_max_m, "a positive length in metres (R_max)"));
         }
         Ok(self.params_for_size(surface, r_max_m))
     }
@@ -432,12 +442,17 @@ mod tests {
     }
 
     #[test]
-    fn nonsense_parameters_are_refused_with_their_flag() {
-        let p = DropParams { dt: 1.0, ..DropParams::default() };
-        assert!(p.check().unwrap_err().to_string().contains("--dt"));
-        let p = DropParams { friction: f64::NAN, ..DropParams::default() };
-        assert!(p.check().unwrap_err().to_string().contains("--friction"));
-        let p = DropParams { restitution: 1.5, ..DropParams::default() };
-        assert!(p.check().unwrap_err().to_string().contains("--restitution"));
+    fn nonsense_parameters_are_refused_with_their_name() {
+        let name = |p: DropParams| match p.check().unwrap_err() {
+            Error::Parameter { name, .. } => name,
+            e => panic!("not a parameter error: {e}"),
+        };
+        assert_eq!(name(DropParams { dt: 1.0, ..DropParams::default() }), "dt");
+        assert_eq!(name(DropParams { friction: f64::NAN, ..DropParams::default() }), "friction");
+        assert_eq!(name(DropParams { restitution: 1.5, ..DropParams::default() }), "restitution");
+        assert_eq!(name(DropParams { max_time: 1e-3, dt: 1e-2, ..DropParams::default() }), "dt");
+        let e = DropParams { restitution: 1.5, ..DropParams::default() }.check().unwrap_err();
+        assert_eq!(e.to_string(), "restitution must be in [0, 1], got 1.5");
+        assert_eq!(e.spelled(&|n| format!("{n}=")), "restitution= must be in [0, 1], got 1.5");
     }
 }

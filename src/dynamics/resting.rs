@@ -124,8 +124,14 @@ impl Size {
             Size::Unit(u) => u,
             Size::RMax(r) => r / r_max,
         };
-        if !(unit > 0.0 && unit.is_finite()) {
-            return Err(Error::Usage(format!("the size must be a positive length, got {self:?}")));
+        match self {
+            Size::Unit(u) if !(unit > 0.0 && unit.is_finite()) => {
+                return Err(Error::parameter("length_unit", u, "a positive length in metres per mesh unit"))
+            }
+            Size::RMax(r) if !(unit > 0.0 && unit.is_finite()) => {
+                return Err(Error::parameter("size", r, "a positive length in metres (R_max)"))
+            }
+            _ => {}
         }
         Ok(unit)
     }
@@ -202,15 +208,14 @@ impl PerturbParams {
     /// Refuse parameters that cannot describe a run.
     pub fn check(&self) -> Result<()> {
         self.sim.check()?;
-        let bad = |what: String| Err(Error::Usage(what));
         if !(self.settle_time >= 0.0 && self.settle_time.is_finite()) {
-            return bad(format!("settle time must be ≥ 0, got {}", self.settle_time));
+            return Err(Error::parameter("settle_time", self.settle_time, "≥ 0 and finite"));
         }
         if !(self.contact_frequency > 0.0 && self.contact_frequency.is_finite()) {
-            return bad(format!("contact frequency must be positive, got {}", self.contact_frequency));
+            return Err(Error::parameter("contact_frequency", self.contact_frequency, "positive and finite"));
         }
         if !(self.hold_time >= 0.0 && self.hold_time.is_finite()) {
-            return bad(format!("hold time must be ≥ 0, got {}", self.hold_time));
+            return Err(Error::parameter("hold_time", self.hold_time, "≥ 0 and finite"));
         }
         Ok(())
     }

@@ -63,9 +63,11 @@ impl std::str::FromStr for Pose {
     type Err = Error;
     fn from_str(s: &str) -> Result<Pose> {
         let bad = || {
-            Error::Usage(format!(
-                "--pose {s:?}: expected as-scanned, facet:ID (a stable micro-equilibrium) or quat:w,x,y,z"
-            ))
+            Error::parameter(
+                "pose",
+                format!("{s:?}"),
+                "as-scanned, facet:ID (a stable micro-equilibrium) or quat:w,x,y,z",
+            )
         };
         if s == "as-scanned" {
             return Ok(Pose::AsScanned);
@@ -81,9 +83,11 @@ impl std::str::FromStr for Pose {
                 .map_err(|_| bad())?;
             let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
             if v.len() != 4 || !(n > 0.0 && n.is_finite()) {
-                return Err(Error::Usage(format!(
-                    "--pose {s:?}: a quaternion needs four finite numbers, not all zero"
-                )));
+                return Err(Error::parameter(
+                    "pose",
+                    format!("{s:?}"),
+                    "a quaternion of four finite numbers, not all zero",
+                ));
             }
             return Ok(Pose::Quat { q: [v[0], v[1], v[2], v[3]] });
         }
@@ -100,13 +104,15 @@ pub fn parse_length_unit(s: &str) -> Result<f64> {
         "m" => 1.0,
         "km" => 1e3,
         _ => s.parse::<f64>().map_err(|_| {
-            Error::Usage(format!(
-                "--length-unit {s:?}: expected mm, cm, m, km or a positive number of metres per mesh unit"
-            ))
+            Error::parameter(
+                "length_unit",
+                format!("{s:?}"),
+                "mm, cm, m, km or a positive number of metres per mesh unit",
+            )
         })?,
     };
     if !(v > 0.0 && v.is_finite()) {
-        return Err(Error::Usage(format!("--length-unit must be positive, got {s}")));
+        return Err(Error::parameter("length_unit", s, "a positive number of metres per mesh unit"));
     }
     Ok(v)
 }
