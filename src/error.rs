@@ -102,6 +102,9 @@ pub enum Error {
     /// Bad user input that is not a file (an option value, a generator parameter...).
     #[error("{0}")]
     Usage(String),
+    /// The caller stopped a long run ([`crate::monitor::Monitor::stopped`]).
+    #[error("the run was stopped before it finished")]
+    Cancelled,
 }
 
 /// Any error of a writer's inner steps (CSV, JSON, I/O, plotters), before it is given its file.
@@ -123,7 +126,7 @@ impl Error {
                 Error::SelfIntersecting { path: fix(path), first, second, pairs, depth, relative_depth, near }
             }
             Error::CentreOutsideHull { path, g, what } => Error::CentreOutsideHull { path: fix(path), g, what },
-            e @ (Error::Usage(_) | Error::Parameter { .. }) => e,
+            e @ (Error::Usage(_) | Error::Parameter { .. } | Error::Cancelled) => e,
         }
     }
 
@@ -160,6 +163,7 @@ impl Error {
             Error::Check { .. } => "internal-check",
             Error::Plot { .. } => "plot",
             Error::Usage(_) | Error::Parameter { .. } => "usage",
+            Error::Cancelled => "cancelled",
         }
     }
 

@@ -62,6 +62,7 @@ pub mod ground_motion;
 pub mod hierarchy;
 pub mod hull;
 pub mod mesh;
+pub mod monitor;
 pub mod montecarlo;
 pub mod morse_smale;
 pub mod planar;

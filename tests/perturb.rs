@@ -53,7 +53,8 @@ fn pebble() -> Stone {
 /// heavily damped 120 Hz spring (it sinks ~10⁻⁴ R_max under the block's weight) and the
 /// increasingly loaded leading edge sinks deeper than the trailing one, tilting the block before
 /// lift-off and shortening the lever arm b by a fraction of a per cent. Measured after the lag
-/// correction: −0.6 % at tan α = 0.25, −0.02 % at 0.5 (`results/housner_block`).
+/// correction, on the contact of every resting run: −0.7 % at tan α = 0.25, −0.06 % at 0.5
+/// (`results/housner_block`).
 #[test]
 fn a_block_tips_at_g_tan_alpha() {
     for (b, d, h) in [(0.5, 0.3, 1.0), (0.25, 0.3, 1.0)] {

@@ -33,6 +33,7 @@ pub(crate) fn py_err(e: Error) -> PyErr {
         | Error::CentreOutsideHull { .. }
         | Error::Check { .. } => MeshError::new_err(msg),
         Error::Plot { .. } => PyRuntimeError::new_err(msg),
+        Error::Cancelled => pyo3::exceptions::PyKeyboardInterrupt::new_err(msg),
     }
 }
 

@@ -203,7 +203,7 @@ pub(crate) fn perturb(
     cfg.check().map_err(py_err)?;
     let starts = select_starts(&stone, equilibria, flock)?;
     let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
-    let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, &|| c.tick()))?;
+    let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
     dynamics_result("perturb", &report, &report.trials, rocking_stones::report::perturb::summary(&report, &s.name))
 }
 
@@ -279,8 +279,7 @@ pub(crate) fn shake(
         Some(ids) => select_starts(&stone, Some(ids), None)?,
     };
     let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
-    let report =
-        interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, &|| c.tick()))?.map_err(py_err)?;
+    let report = interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
     dynamics_result("shake", &report, &report.trials, rocking_stones::report::shake::summary(&report, &s.name))
 }
 

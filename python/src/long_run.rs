@@ -2,20 +2,19 @@
 //! GIL released while the calling thread waits, checks for Ctrl-C and reports progress every
 //! 100 ms; the work sees the caller's Ctrl-C through [`Control`].
 
-use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
-/// Payload of the unwinding that stops a cancelled run (raised with `resume_unwind`, so no panic
-/// message is printed).
+/// A drop run that the caller stopped between two chunks.
 pub(crate) struct Cancelled;
 
 /// Run `work` on a worker thread (in a pool of `threads` threads if given, else rayon's global
 /// pool) while this thread, without the GIL, waits for it and checks for signals every 100 ms,
 /// calling `progress(done, total)` then if given. On Ctrl-C (or an exception in `progress`) the
-/// run is told to stop (`stopped()` turns true, `tick()` unwinds at the next trial), the worker
-/// is joined and the exception is raised.
+/// run is told to stop (`stopped()` turns true: the library's runs skip the trials they have not
+/// started, [`rocking_stones::monitor`]), the worker is joined and the exception is raised.
 pub(crate) fn interruptible<T: Send>(
     py: Python<'_>,
     threads: Option<usize>,
@@ -67,13 +66,7 @@ pub(crate) fn interruptible<T: Send>(
         }
         match py.detach(move || worker.join()) {
             Ok(Ok(v)) => report(control).map(|_| v),
-            Ok(Err(payload)) | Err(payload) => {
-                if payload.is::<Cancelled>() {
-                    Err(PyKeyboardInterrupt::new_err("interrupted"))
-                } else {
-                    std::panic::resume_unwind(payload)
-                }
-            }
+            Ok(Err(payload)) | Err(payload) => std::panic::resume_unwind(payload),
         }
     })
 }
@@ -95,13 +88,15 @@ impl Control {
     pub(crate) fn advance(&self) {
         self.done.fetch_add(1, Ordering::Relaxed);
     }
+}
 
-    /// For progress callbacks: count the trial, and stop the run here if the caller asked to.
-    pub(crate) fn tick(&self) {
+/// The caller of a library run: finished trials counted for `progress`, Ctrl-C as a stop.
+impl rocking_stones::monitor::Monitor for Control {
+    fn finished(&self) {
         self.advance();
-        if self.stopped() {
-            std::panic::resume_unwind(Box::new(Cancelled));
-        }
+    }
+    fn stopped(&self) -> bool {
+        Control::stopped(self)
     }
 }
 

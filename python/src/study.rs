@@ -135,7 +135,7 @@ pub(crate) fn study(
     let meta = meta.as_deref().map(Metadata::read).transpose().map_err(py_err)?;
     let opts = StudyOptions { analysis: options(None, coplanar_tol)?, nu, experimenter, allow_unmatched };
     let (study, _unmatched) = interruptible(py, threads, progress.map(|f| (f, files.len() as u64)), |c| {
-        st::run_files(&files, meta.as_ref(), &opts, &|| c.tick())
+        st::run_files(&files, meta.as_ref(), &opts, c)
     })?
     .map_err(py_err)?;
     fn text<E: std::fmt::Display>(r: Result<(), E>, buf: Vec<u8>) -> PyResult<String> {

@@ -200,7 +200,7 @@ pub fn run(args: Args) -> Result<()> {
     cfg.check()?;
     let starts = select(&stone, &args.equilibria, args.flock)?;
     let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
-    let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1));
+    let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     super::emit(
         &report,

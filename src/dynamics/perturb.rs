@@ -86,6 +86,7 @@ pub use super::resting::{
 use super::run::{self as run_loop, Certificate, CertificateMode, Decided, EnergyCertificate, Passive, RestKind};
 pub use super::stone::{resting_orientation, Class, Exit, StableEquilibrium, Stone};
 use crate::equilibria::Kind;
+use crate::monitor::Monitor;
 use crate::rng::{item_rng, random_unit, Stream};
 use crate::{Error, Result, Vec3, GRAVITY};
 use nalgebra::{Matrix3, UnitQuaternion};
@@ -527,7 +528,10 @@ pub fn robustness(
 /// Run `cfg` on the stable micro-equilibria `starts` (positions in [`Stone::stable`]), in
 /// parallel; the result does not depend on the number of threads.
 pub fn run(stone: &Stone, starts: &[usize], cfg: &PerturbConfig) -> PerturbReport {
-    run_with(stone, starts, cfg, &|| {})
+    match run_with(stone, starts, cfg, &|| {}) {
+        Ok(r) => r,
+        Err(_) => unreachable!("a closure monitor never stops a run"),
+    }
 }
 
 /// Number of trials a run of `cfg` on `n` equilibria makes (if all stay at rest).
@@ -535,14 +539,14 @@ pub fn task_count(n: usize, cfg: &PerturbConfig) -> u64 {
     n as u64 * cfg.epsilons.len() as u64 * cfg.trials as u64
 }
 
-/// [`run`], calling `progress` after every trial (from any thread).
-pub fn run_with(stone: &Stone, starts: &[usize], cfg: &PerturbConfig, progress: &(dyn Fn() + Sync)) -> PerturbReport {
-    let (checks, trials) = grid_trials(stone, starts, &cfg.params, cfg.epsilons.len(), cfg.trials, |s, i, k| {
-        let t = trial(stone, s, &cfg.params, cfg.family, cfg.epsilons[i], cfg.seed, k);
-        progress();
-        t
-    });
-    report(stone, starts, checks, trials, cfg)
+/// [`run`], telling `monitor` of every finished trial (from any thread); [`Error::Cancelled`] if
+/// it stops the run.
+pub fn run_with(stone: &Stone, starts: &[usize], cfg: &PerturbConfig, monitor: &dyn Monitor) -> Result<PerturbReport> {
+    let (checks, trials) =
+        grid_trials(stone, starts, &cfg.params, cfg.epsilons.len(), cfg.trials, monitor, |s, i, k| {
+            trial(stone, s, &cfg.params, cfg.family, cfg.epsilons[i], cfg.seed, k)
+        })?;
+    Ok(report(stone, starts, checks, trials, cfg))
 }
 
 /// Assemble the report of a run from its rest checks and trials.

@@ -22,6 +22,7 @@
 use super::params::{DropParams, Preset, SpinDistribution, Surface};
 use super::stone::{resting_orientation, Class, StableEquilibrium, Stone};
 use super::world::Simulation;
+use crate::monitor::{self, Monitor};
 use crate::{Error, Result, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -285,15 +286,17 @@ pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
 /// The grid of trials of a perturbation or shaking run: check that the stone stays at rest on
 /// every start (in parallel), then run `trial(start, point, k)` for every start that stays, every
 /// grid point and every trial number, in parallel, in a fixed order (so the result does not
-/// depend on the thread count).
+/// depend on the thread count), telling `monitor` of each; [`Error::Cancelled`] if it stops the
+/// run.
 pub fn grid_trials<T: Send>(
     stone: &Stone,
     starts: &[usize],
     p: &PerturbParams,
     points: usize,
     trials: u32,
+    monitor: &dyn Monitor,
     trial: impl Fn(usize, usize, u32) -> T + Sync,
-) -> (Vec<SettleCheck>, Vec<T>) {
+) -> Result<(Vec<SettleCheck>, Vec<T>)> {
     let checks: Vec<SettleCheck> = starts.par_iter().map(|&s| check_rest(stone, s, p)).collect();
     let tasks: Vec<(usize, usize, u32)> = starts
         .iter()
@@ -301,6 +304,6 @@ pub fn grid_trials<T: Send>(
         .filter(|(_, c)| c.stays)
         .flat_map(|(&s, _)| (0..points).flat_map(move |i| (0..trials).map(move |k| (s, i, k))))
         .collect();
-    let out = tasks.par_iter().map(|&(s, i, k)| trial(s, i, k)).collect();
-    (checks, out)
+    let out = tasks.par_iter().map(|&(s, i, k)| monitor::item(monitor, || trial(s, i, k))).collect();
+    Ok((checks, monitor::all(out)?))
 }

@@ -115,7 +115,7 @@ pub fn pebble_id(path: &Path) -> String {
     path.file_stem().map_or(String::new(), |s| s.to_string_lossy().into_owned())
 }
 
-/// Analyse `files` in parallel (calling `tick` after each) and join them with `meta` on their
+/// Analyse `files` in parallel (telling `monitor` of each; [`Error::Cancelled`] if it stops) and join them with `meta` on their
 /// ids. Errors: two files with the same id; metadata ids without a scan (unless
 /// `opts.allow_unmatched`, when they are returned as the second value). A file that fails to
 /// load or analyse gets a row with its error, as in `rocking analyze`.
@@ -123,7 +123,7 @@ pub fn run_files(
     files: &[PathBuf],
     meta: Option<&Metadata>,
     opts: &StudyOptions,
-    tick: &(dyn Fn() + Sync),
+    monitor: &dyn crate::monitor::Monitor,
 ) -> Result<(Study, Vec<String>)> {
     let ids: Vec<String> = files.iter().map(|f| pebble_id(f)).collect();
     let mut seen: BTreeMap<&str, &Path> = BTreeMap::new();
@@ -153,26 +153,28 @@ pub fn run_files(
         }
     }
     let ncols = meta.map_or(0, |m| m.columns.len());
-    let pebbles: Vec<Pebble> = files
+    let pebbles: Vec<Option<Pebble>> = files
         .par_iter()
         .zip(ids.par_iter())
         .map(|(f, id)| {
-            let name = f.display().to_string();
-            let seed = opts.experimenter.as_ref().map_or(0, |e| e.seed ^ fnv1a_str(id));
-            let result = Analysis::of_file(f, &opts.analysis)
-                .and_then(|a| Counted::of(&a, &name, &opts.analysis, opts.nu, opts.experimenter.as_ref(), seed))
-                .map_err(|e| e.to_string());
-            tick();
-            let row = meta.and_then(|m| m.rows.get(id));
-            Pebble {
-                id: id.clone(),
-                sample: row.map_or(String::new(), |r| r.sample.clone()),
-                meta: row.map_or_else(|| vec![String::new(); ncols], |r| r.values.clone()),
-                file: name,
-                result,
-            }
+            crate::monitor::item(monitor, || {
+                let name = f.display().to_string();
+                let seed = opts.experimenter.as_ref().map_or(0, |e| e.seed ^ fnv1a_str(id));
+                let result = Analysis::of_file(f, &opts.analysis)
+                    .and_then(|a| Counted::of(&a, &name, &opts.analysis, opts.nu, opts.experimenter.as_ref(), seed))
+                    .map_err(|e| e.to_string());
+                let row = meta.and_then(|m| m.rows.get(id));
+                Pebble {
+                    id: id.clone(),
+                    sample: row.map_or(String::new(), |r| r.sample.clone()),
+                    meta: row.map_or_else(|| vec![String::new(); ncols], |r| r.values.clone()),
+                    file: name,
+                    result,
+                }
+            })
         })
-        .collect();
+        .collect::<Vec<_>>();
+    let pebbles = crate::monitor::all(pebbles)?;
     let study = Study {
         nu: opts.nu,
         meta_columns: meta.map_or_else(Vec::new, |m| m.columns.clone()),

@@ -17,6 +17,7 @@ use crate::dynamics::outcome::{classify, CurvePoint, Outcome, Threshold};
 use crate::dynamics::resting::{grid_trials, PerturbParams, SettleCheck};
 use crate::dynamics::stone::{StableEquilibrium, Stone};
 use crate::ground_motion::{synthetic, Measures, Record};
+use crate::monitor::Monitor;
 use crate::rng::item_rng;
 use crate::{Error, Result};
 use rand::RngExt;
@@ -218,27 +219,22 @@ pub fn run(stone: &Stone, starts: &[usize], cfg: &ShakeConfig) -> Result<ShakeRe
     run_with(stone, starts, cfg, &|| {})
 }
 
-/// [`run`], calling `progress` after every trial (from any thread).
-pub fn run_with(
-    stone: &Stone,
-    starts: &[usize],
-    cfg: &ShakeConfig,
-    progress: &(dyn Fn() + Sync),
-) -> Result<ShakeReport> {
+/// [`run`], telling `monitor` of every finished trial (from any thread); [`Error::Cancelled`] if
+/// it stops the run.
+pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dyn Monitor) -> Result<ShakeReport> {
     cfg.check()?;
     let real_dt = cfg.params.sim.dt * cfg.r_max_m.sqrt();
     let motions: Vec<Record> =
         cfg.pgas.iter().map(|&a| driven(&cfg.motion.scaled_to_pga(a), real_dt)).collect::<Result<_>>()?;
-    let (checks, trials) = grid_trials(stone, starts, &cfg.params, cfg.pgas.len(), cfg.trials, |s, i, k| {
+    let (checks, trials) = grid_trials(stone, starts, &cfg.params, cfg.pgas.len(), cfg.trials, monitor, |s, i, k| {
         let azimuth = cfg.azimuth.unwrap_or_else(|| {
             let mut rng = item_rng(cfg.seed, shake_stream(s, k));
             rng.random_range(0.0..2.0 * std::f64::consts::PI)
         });
         let mut t = shake_trial(stone, s, &cfg.params, &motions[i], cfg.r_max_m, azimuth, k);
         t.pga = cfg.pgas[i];
-        progress();
         t
-    });
+    })?;
     let fragility = starts.iter().zip(checks).map(|(&s, rest)| fragility(stone, s, rest, &cfg.pgas, &trials)).collect();
     Ok(ShakeReport {
         motion: MotionInfo::of(&cfg.motion),
