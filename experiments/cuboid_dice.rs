@@ -228,6 +228,7 @@ fn main() {
     let r_m = 0.5 * 3f64.sqrt() * DIE_Y_M; // a cube of side y
     let mut md = String::new();
     let _ = writeln!(md, "# Calibrating the `throw` preset on seven measured cuboid dice\n");
+    let _ = writeln!(md, "Regenerate: `cargo run --release --example cuboid_dice`.\n");
     let _ = writeln!(
         md,
         "Data: `../shared/data/cuboid_dice_throws.csv` (Mathematical Gazette 97, note 97.16, Table 1; steel dice \

@@ -86,6 +86,7 @@ fn main() {
     let below = rows.iter().filter(|r| r.1 < 0.995).count();
     let mut md = String::new();
     let _ = writeln!(md, "# Do drops settle? {} meshes × {n} throws, certificate off\n", rows.len());
+    let _ = writeln!(md, "Regenerate: `cargo run --release --example drops_settling`.\n");
     let _ = writeln!(
         md,
         "Preset: the default `throw` on steel on wood (height {} R_max, horizontal speed {} m/s, Gaussian spin {} rad/s rms, \

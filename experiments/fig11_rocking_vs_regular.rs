@@ -208,6 +208,7 @@ fn th(t: &Option<Threshold>) -> String {
 fn readme(path: &Path, seed: u64, stone: &Stone, reports: &[PerturbReport], search: &str) -> anyhow::Result<()> {
     let mut s = String::new();
     writeln!(s, "# Figure 11, dynamically: a regular and a rocking equilibrium of one pebble\n")?;
+    writeln!(s, "Regenerate: `cargo run --release --example fig11_rocking_vs_regular`.\n")?;
     writeln!(
         s,
         "Pebble: `generate::pebble([1, 0.75, 0.5], roughness 0.02, n = 600, seed {seed})`, flocks at the automatic \

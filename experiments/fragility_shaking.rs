@@ -59,7 +59,9 @@ fn main() -> anyhow::Result<()> {
         .map(|&f| Ok((format!("pulse_{f}Hz"), sine_pulse(1.0, f, 2.0, dt)?)))
         .collect::<rocking_stones::Result<_>>()?;
     let columns = "time_s,ax_g,ay_g,az_g".parse()?;
-    motions.push(("record".into(), read_record(&[csv.as_path()], &columns, AccelUnit::G)?));
+    let mut read_back = read_record(&[csv.as_path()], &columns, AccelUnit::G)?;
+    read_back.name = format!("{}, read back from motion.csv", record.name);
+    motions.push(("record".into(), read_back));
     let pgas: Vec<f64> = (1..=40).map(|i| 0.025 * i as f64).collect();
     let mut runs: Vec<(String, ShakeReport)> = Vec::new();
     for (name, motion) in motions {
@@ -126,6 +128,7 @@ fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)])
     let mut s = String::new();
     let params = &runs[0].1.params;
     writeln!(s, "# Fragility under ground shaking: rocking vs regular equilibrium\n")?;
+    writeln!(s, "Regenerate: `cargo run --release --example fragility_shaking`.\n")?;
     writeln!(
         s,
         "Pebble `generate::pebble([1, 0.75, 0.5], 0.02, 600, seed {seed})` (the one of `fig11_rocking_vs_regular`), \

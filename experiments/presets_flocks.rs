@@ -26,7 +26,9 @@ fn main() {
             Surface::StoneOnStone,
         ),
     ];
-    let mut md = String::from("# Flock distributions under the three launch presets\n\n");
+    let mut md = String::from(
+        "# Flock distributions under the three launch presets\n\nRegenerate: `cargo run --release --example presets_flocks`.\n\n",
+    );
     let _ = writeln!(
         md,
         "{n} drops per preset (seed 1, flock certificate), surface stone on stone, flocks at the automatic macro ν. \

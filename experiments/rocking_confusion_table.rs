@@ -280,6 +280,7 @@ type Disagreement<'a> = (&'a str, &'static str, f64, f64, String);
 fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
     let mut s = String::new();
     writeln!(s, "# Rocking vs regular: static class against dynamic robustness\n")?;
+    writeln!(s, "Regenerate: `cargo run --release --example rocking_confusion_table`.\n")?;
     writeln!(
         s,
         "Every stable micro-equilibrium of {} stones ({} synthetic pebbles, {} real quarry stones from \

@@ -103,6 +103,7 @@ fn main() {
     let fmt = |x: Option<f64>| x.map_or("not on the grid".to_string(), |v| format!("{v:.3}"));
     let mut md = String::new();
     let _ = writeln!(md, "# The thick coin: P(edge) against h/d\n");
+    let _ = writeln!(md, "Regenerate: `cargo run --release --example thick_coin`.\n");
     let _ = writeln!(md, "A prism over a regular {SIDES}-gon (diameter d = 1, height h), {n} drops per point and preset, steel on wood. `p_edge.png`: the quasi-static basin probability (exact), the `quasi-static` preset (damped creep from contact), the calibrated `throw` with 95 % intervals; vertical lines at the two published fair-coin ratios.\n");
     let _ = writeln!(md, "| h/d where P(edge) = 1/3 | value |\n|---|---|");
     let _ = writeln!(md, "| quasi-static basins (this code) | {} |", fmt(cross(&|r| r.1)));

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Regenerate every result in results/ from the code as it is: each experiment in turn (one
+# program per figure, table or study, each writing its CSV, plots and README.md), release build.
+#
+#   experiments/regenerate.sh            every experiment, in order (about 2–3 hours on 2 cores)
+#   experiments/regenerate.sh NAME...    only these (example names, e.g. fig11_rocking_vs_regular)
+#   experiments/regenerate.sh --quick    smoke test: build every experiment and run the fast ones
+#   experiments/regenerate.sh --list     the experiments, in order
+#
+# A failed experiment is reported and the others still run; the script exits non-zero if any
+# failed. Timings go to results/regenerate.log. results/report_html/ is CI's screenshot
+# (.ci/report_html.sh), results/one_physics/ a hand-written comparison: neither is regenerated here.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+
+# In dependency-free order: static first, then dynamics (the slow ones last).
+ALL=(
+  table1_planar_flocks fig2_planar_r_phi fig4_ellipse_grid fig5_rocking_planar
+  static_scaling fig10_separation_of_scales fuzz_mutations table2_fit_nu fig12_hand_vs_computer
+  housner_block collider_step_cost drops_quasistatic_limit presets_flocks thick_coin cuboid_dice
+  drops_settling drops_dt drops_certificate_speed certificate_margin
+  fig11_rocking_vs_regular fragility_shaking fragility_surface rocking_confusion_table
+)
+# Seconds, not minutes: the static experiments (the smoke test of --quick).
+QUICK=(table1_planar_flocks fig2_planar_r_phi fig4_ellipse_grid fig5_rocking_planar)
+
+case "${1:-}" in
+  --list) printf '%s\n' "${ALL[@]}"; exit 0 ;;
+  --quick)
+    cargo build --release --examples || exit 1
+    run=("${QUICK[@]}") ;;
+  "") run=("${ALL[@]}") ;;
+  *) run=("$@") ;;
+esac
+
+log=results/regenerate.log
+failed=()
+for e in "${run[@]}"; do
+  start=$SECONDS
+  echo "== $e"
+  if cargo run --release --quiet --example "$e"; then
+    echo "$(date -u +%F) $e: $((SECONDS - start)) s" | tee -a "$log"
+  else
+    echo "$(date -u +%F) $e: FAILED after $((SECONDS - start)) s" | tee -a "$log"
+    failed+=("$e")
+  fi
+done
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "failed: ${failed[*]}"
+  exit 1
+fi
