@@ -42,12 +42,12 @@ pub struct Args {
 
 fn parse_nu(s: &str) -> Result<f64, String> {
     let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    check_nu(v).map_err(|e| e.to_string())
+    check_nu(v).map_err(|e| e.spelled(&super::flag))
 }
 
 fn parse_coplanar_tol(s: &str) -> Result<f64, String> {
     let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    check_coplanar_tol(v).map_err(|e| e.to_string())
+    check_coplanar_tol(v).map_err(|e| e.spelled(&super::flag))
 }
 
 pub fn run(args: Args) -> Result<()> {

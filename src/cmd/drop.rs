@@ -111,11 +111,11 @@ pub struct Args {
 }
 
 pub fn parse_preset(s: &str) -> std::result::Result<Preset, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 pub fn parse_surface(s: &str) -> std::result::Result<Surface, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 pub fn parse_batch(s: &str) -> std::result::Result<usize, String> {
@@ -126,7 +126,7 @@ pub fn parse_batch(s: &str) -> std::result::Result<usize, String> {
 }
 
 pub fn parse_flight(s: &str) -> std::result::Result<Flight, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 pub fn parse_certificate(s: &str) -> std::result::Result<CertificateMode, String> {

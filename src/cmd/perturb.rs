@@ -218,13 +218,13 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 fn parse_family(s: &str) -> std::result::Result<Family, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 fn parse_resting_preset(s: &str) -> std::result::Result<RestingPreset, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 fn parse_surface(s: &str) -> std::result::Result<Surface, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }

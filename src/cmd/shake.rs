@@ -94,7 +94,7 @@ fn parse_pulse(s: &str) -> Result<[f64; 3], String> {
 }
 
 fn parse_pose(s: &str) -> Result<shake::Pose, String> {
-    s.parse().map_err(|e: rocking_stones::Error| e.to_string())
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 pub fn run(args: Args) -> Result<()> {

@@ -195,7 +195,7 @@ pub struct FitArgs {
 
 fn parse_nu(s: &str) -> Result<f64, String> {
     let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    check_nu(v).map_err(|e| e.to_string())
+    check_nu(v).map_err(|e| e.spelled(&super::flag))
 }
 
 pub fn run(args: Args) -> Result<()> {

@@ -132,3 +132,31 @@ impl CurvePoint {
         }
     }
 }
+
+/// The outcome curve of one start over a grid of intensities, and its two thresholds.
+#[derive(Clone, Debug)]
+pub struct Curve {
+    /// One point per grid value (empty if the stone does not stay at rest on its start).
+    pub points: Vec<CurvePoint>,
+    /// Where P(left the micro-equilibrium) first reaches ½.
+    pub leave50: Option<Threshold>,
+    /// Where P(toppled out of the flock) first reaches ½.
+    pub topple50: Option<Threshold>,
+}
+
+impl Curve {
+    /// Count `trials` — (grid value, outcome, settled) — at each value of `grid`, unless the stone
+    /// does not stay at rest (`stays` false: no curve); thresholds interpolated in log x (`log`)
+    /// or x ([`Threshold::of`]).
+    pub fn of(grid: &[f64], stays: bool, trials: &[(f64, Outcome, bool)], log: bool) -> Curve {
+        let points: Vec<CurvePoint> = if stays {
+            grid.iter().map(|&x| CurvePoint::count(x, trials.iter().filter(|t| t.0 == x).map(|t| (t.1, t.2)))).collect()
+        } else {
+            Vec::new()
+        };
+        let x: Vec<f64> = points.iter().map(|c| c.x).collect();
+        let leave: Vec<f64> = points.iter().map(|c| 1.0 - c.p_same).collect();
+        let topple: Vec<f64> = points.iter().map(|c| c.p_toppled).collect();
+        Curve { leave50: Threshold::of(&x, &leave, log), topple50: Threshold::of(&x, &topple, log), points }
+    }
+}

@@ -78,7 +78,7 @@
 //! The outcome classes and curve statistics are [`super::outcome`]'s (shared with shaking); the
 //! rest placement, its check and the contact are [`super::resting`]'s.
 
-pub use super::outcome::{classify, CurvePoint, Outcome, Threshold};
+pub use super::outcome::{classify, Curve, CurvePoint, Outcome, Threshold};
 pub use super::resting::{
     check_rest, default_pair, grid_trials, resting_simulation, PerturbParams, RestingPreset, SettleCheck,
     CONTACT_FREQUENCY,
@@ -472,19 +472,9 @@ pub fn robustness(
     epsilon_star: f64,
 ) -> Robustness {
     let eq = stone.stable()[start].clone();
-    let curve: Vec<CurvePoint> = if rest.stays {
-        epsilons
-            .iter()
-            .map(|&e| CurvePoint::count(e, trials.iter().filter(|t| t.epsilon == e).map(|t| (t.outcome, t.settled))))
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let x: Vec<f64> = curve.iter().map(|c| c.x).collect();
-    let leave: Vec<f64> = curve.iter().map(|c| 1.0 - c.p_same).collect();
-    let topple: Vec<f64> = curve.iter().map(|c| c.p_toppled).collect();
-    let eps50_micro = Threshold::of(&x, &leave, true);
-    let eps50_flock = Threshold::of(&x, &topple, true);
+    let outcomes: Vec<(f64, Outcome, bool)> = trials.iter().map(|t| (t.epsilon, t.outcome, t.settled)).collect();
+    let Curve { points: curve, leave50: eps50_micro, topple50: eps50_flock } =
+        Curve::of(epsilons, rest.stays, &outcomes, true);
     let first = |pred: &dyn Fn(&Trial) -> bool| {
         trials
             .iter()

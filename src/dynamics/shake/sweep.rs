@@ -13,7 +13,7 @@
 
 use super::drive::{shake_placed, Placed};
 use super::field::driven;
-use crate::dynamics::outcome::{classify, CurvePoint, Outcome, Threshold};
+use crate::dynamics::outcome::{classify, Curve, CurvePoint, Outcome, Threshold};
 use crate::dynamics::resting::{grid_trials, PerturbParams, SettleCheck};
 use crate::dynamics::stone::{StableEquilibrium, Stone};
 use crate::ground_motion::{synthetic, Measures, Record};
@@ -252,26 +252,18 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dy
 /// The fragility curve of start `s` from the trials.
 fn fragility(stone: &Stone, s: usize, rest: SettleCheck, pgas: &[f64], trials: &[ShakeTrial]) -> Fragility {
     let mine: Vec<&ShakeTrial> = trials.iter().filter(|t| t.start == s).collect();
-    let curve: Vec<CurvePoint> = if rest.stays {
-        pgas.iter()
-            .map(|&a| CurvePoint::count(a, mine.iter().filter(|t| t.pga == a).map(|t| (t.outcome, t.settled))))
-            .collect()
-    } else {
-        Vec::new()
-    };
-    let x: Vec<f64> = curve.iter().map(|c| c.x).collect();
-    let leave: Vec<f64> = curve.iter().map(|c| 1.0 - c.p_same).collect();
-    let topple: Vec<f64> = curve.iter().map(|c| c.p_toppled).collect();
+    let outcomes: Vec<(f64, Outcome, bool)> = mine.iter().map(|t| (t.pga, t.outcome, t.settled)).collect();
+    let curve = Curve::of(pgas, rest.stays, &outcomes, false);
     Fragility {
         equilibrium: stone.stable()[s].clone(),
         rest,
-        pga50_micro: Threshold::of(&x, &leave, false),
-        pga50_flock: Threshold::of(&x, &topple, false),
+        pga50_micro: curve.leave50,
+        pga50_flock: curve.topple50,
         first_topple: mine
             .iter()
             .filter(|t| t.outcome == Outcome::Toppled)
             .map(|t| t.pga)
             .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |y| y.min(x)))),
-        curve,
+        curve: curve.points,
     }
 }
