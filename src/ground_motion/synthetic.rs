@@ -38,10 +38,12 @@ pub fn sine_cycles(ap_g: f64, tp: f64, cycles: f64, dt: f64) -> Result<Record> {
     let dt = tp / n as f64;
     let samples = ((cycles * n as f64).round() as usize).max(1);
     let accel = (0..=samples).map(|k| [ap_g * G * (2.0 * PI * k as f64 / n as f64).sin(), 0.0, 0.0]).collect();
+    // Four decimals of a second, and none where they are zeros (T_p = 2 s, 0.2111 s).
+    let t = (tp * 1e4).round() / 1e4;
     let name = if cycles == 1.0 {
-        format!("one-sine pulse a_p = {ap_g} g, T_p = {tp} s")
+        format!("one-sine pulse a_p = {ap_g} g, T_p = {t} s")
     } else {
-        format!("{cycles} sine cycles a_p = {ap_g} g, T_p = {tp} s")
+        format!("{cycles} sine cycles a_p = {ap_g} g, T_p = {t} s")
     };
     Record::new(name, dt, accel)
 }

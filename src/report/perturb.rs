@@ -23,6 +23,24 @@ fn fmt_eps(x: f64) -> String {
     }
 }
 
+/// One line that says which contact a resting run used (`dynamics::resting`).
+pub fn contact_line(p: &crate::dynamics::perturb::PerturbParams) -> String {
+    let c = &p.sim;
+    let damping = if c.angular_damping > 0.0 || c.linear_damping > 0.0 {
+        format!(
+            "global damping {} s⁻¹ angular, {} s⁻¹ linear (the damped reference)",
+            c.angular_damping, c.linear_damping
+        )
+    } else {
+        "no global damping".to_string()
+    };
+    format!(
+        "contact: friction {}, restitution {}, rolling resistance δ = {:.2e} R_max through the contact, {damping}; \
+         dt {:.5} s, cap {} s (scaled)",
+        c.friction, c.restitution, c.rolling_resistance, c.dt, c.max_time
+    )
+}
+
 /// A readable summary of a run.
 pub fn summary(r: &PerturbReport, mesh: &str) -> String {
     use std::fmt::Write;
@@ -42,6 +60,7 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
         "ε = kinetic energy / (m g R_max); flocks at ν = {:.3e}; dynamic class at ε* = {:.3e}",
         r.nu, r.epsilon_star
     );
+    let _ = writeln!(s, "{}", contact_line(&r.params));
     let _ = writeln!(
         s,
         "{:>5} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",

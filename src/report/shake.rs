@@ -38,12 +38,7 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let _ = writeln!(s, "{mesh}: ground shaking, {}, scaled to each PGA", describe_motion(&r.motion));
-    let c = &r.params.sim;
-    let _ = writeln!(
-        s,
-        "  stone of R_max = {} m; contact friction {}, restitution {}, rolling resistance δ = {:.3e} R_max, global damping {} s⁻¹",
-        r.r_max_m, c.friction, c.restitution, c.rolling_resistance, c.angular_damping
-    );
+    let _ = writeln!(s, "  stone of R_max = {:.3} m; {}", r.r_max_m, super::perturb::contact_line(&r.params));
     let _ = writeln!(
         s,
         "{} trials per PGA on {} PGAs from {:.3} g to {:.3} g, seed {}; flocks at ν = {:.3e}",
