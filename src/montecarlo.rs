@@ -104,6 +104,32 @@ pub struct RunHeader {
 }
 
 impl RunHeader {
+    /// The header of a whole run (shard 0/1) of `drops` drops of `mesh` (named `mesh_name`) with
+    /// `params`, started from `preset` on `surface`, as `rocking drop` and Python's `drop` write
+    /// it; a declared centre of mass and a shard are set on the result.
+    pub fn new(
+        mesh_name: impl Into<String>,
+        mesh: &crate::mesh::TriMesh,
+        seed: u64,
+        drops: u64,
+        params: DropParams,
+        certificate: CertificateMode,
+        preset: (crate::dynamics::params::Preset, crate::dynamics::params::Surface),
+    ) -> RunHeader {
+        RunHeader {
+            format: FORMAT.into(),
+            mesh: mesh_name.into(),
+            mesh_fingerprint: fingerprint(mesh),
+            seed,
+            drops,
+            params,
+            certificate,
+            preset: Some(format!("{} on {}", preset.0, preset.1)),
+            center_of_mass: None,
+            shard: Shard::ALL,
+        }
+    }
+
     /// The fields (other than the shard) in which `other` differs from this header: empty when
     /// both belong to the same run.
     pub fn differences(&self, other: &RunHeader) -> Vec<String> {

@@ -2,7 +2,7 @@
 //! chunks so that the caller's Ctrl-C is answered between them.
 
 use crate::convert::{bools, f64s, i64s, kind_name, opt_index, py_err, strs, to_json, to_py};
-use crate::kwargs::{enum_from_str, preset_params, with_params};
+use crate::kwargs::{enum_from_str, with_params};
 use crate::long_run::{interruptible, Cancelled};
 use crate::mesh_input::analysed;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
@@ -186,7 +186,7 @@ pub(crate) fn drop_stone(
     }
     let preset: Preset = preset.parse().map_err(py_err)?;
     let surface: Surface = surface.parse().map_err(py_err)?;
-    let mut base = preset_params(preset, surface, size)?;
+    let mut base = preset.params_for(surface, size).map_err(py_err)?;
     if fast {
         preset.fast(&mut base);
     }
@@ -195,18 +195,7 @@ pub(crate) fn drop_stone(
     let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
     let stone = analysed(py, mesh, name, nu)?;
     let body = py.detach(|| Body::new(&stone.analysis, stone.nu())).map_err(py_err)?;
-    let header = RunHeader {
-        format: montecarlo::FORMAT.into(),
-        mesh: stone.name.clone(),
-        mesh_fingerprint: montecarlo::fingerprint(&stone.analysis.mesh),
-        seed,
-        drops: n,
-        params: p,
-        certificate,
-        preset: Some(format!("{preset} on {surface}")),
-        center_of_mass: None,
-        shard: rocking_stones::montecarlo::Shard::ALL,
-    };
+    let header = RunHeader::new(&stone.name, &stone.analysis.mesh, seed, n, p, certificate, (preset, surface));
     let progress = progress.map(|f| (f, n));
     let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
         let cert = montecarlo::certificate(&body, header.certificate);

@@ -114,44 +114,6 @@ fn real_size(
     }
 }
 
-/// Positions in `stone.stable` of the equilibria asked for (None: all).
-fn select_starts(
-    stone: &rocking_stones::dynamics::perturb::Stone,
-    equilibria: Option<Vec<usize>>,
-    flock: Option<usize>,
-) -> PyResult<Vec<usize>> {
-    let list =
-        || stone.stable().iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
-    if let Some(k) = flock {
-        if k >= stone.flock_kinds.len() {
-            return Err(PyValueError::new_err(format!(
-                "there is no flock {k} (the stone has {} flocks at ν = {:.3e})",
-                stone.flock_kinds.len(),
-                stone.nu
-            )));
-        }
-        let v: Vec<usize> = (0..stone.stable().len()).filter(|&i| stone.stable()[i].flock == k).collect();
-        if v.is_empty() {
-            return Err(PyValueError::new_err(format!(
-                "flock {k} has no stable micro-equilibrium; stable ones: {}",
-                list()
-            )));
-        }
-        return Ok(v);
-    }
-    match equilibria {
-        None => Ok((0..stone.stable().len()).collect()),
-        Some(ids) => ids
-            .iter()
-            .map(|&id| {
-                stone.position(id).ok_or_else(|| {
-                    PyValueError::new_err(format!("{id} is not a stable micro-equilibrium; stable ones: {}", list()))
-                })
-            })
-            .collect(),
-    }
-}
-
 /// Push or spin the stone resting on its stable micro-equilibria, as `rocking perturb`;
 /// returns a `DynamicsResult` whose to_dict() is the CLI's --json. preset: "surface" (default)
 /// or "damped"; surface: the pair (default "stone-on-stone"); length_unit= or size=: the real
@@ -201,7 +163,7 @@ pub(crate) fn perturb(
         epsilon_star,
     };
     cfg.check().map_err(py_err)?;
-    let starts = select_starts(&stone, equilibria, flock)?;
+    let starts = stone.select(&equilibria.unwrap_or_default(), flock).map_err(py_err)?;
     let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
     let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
     dynamics_result("perturb", &report, &report.trials, rocking_stones::report::perturb::summary(&report, &s.name))
@@ -238,7 +200,7 @@ pub(crate) fn shake(
     progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
-    use rocking_stones::dynamics::perturb::{self as pt, default_pair};
+    use rocking_stones::dynamics::perturb as pt;
     use rocking_stones::dynamics::shake::{self as sh, ShakeConfig};
     if pulse.is_some() && motion.is_some() {
         return Err(PyValueError::new_err("give a pulse or a motion, not both"));
@@ -254,29 +216,12 @@ pub(crate) fn shake(
         (None, Some(m)) => (read_motion_arg(m, columns, accel_unit)?, false),
         (None, None) => (sh::default_pulse(r_max_m, params.sim.dt).map_err(py_err)?, true),
     };
-    let pgas = match pga_max.or(default_sweep.then_some(1.0)) {
-        Some(m) => {
-            if !(m > 0.0) || pga_steps == 0 {
-                return Err(PyValueError::new_err("need pga_max > 0 and pga_steps ≥ 1"));
-            }
-            (1..=pga_steps).map(|i| m * i as f64 / pga_steps as f64).collect()
-        }
-        None => vec![motion.measures().pga_g],
-    };
+    let pgas = sh::pgas_for(&motion, pga_max, pga_steps, default_sweep).map_err(py_err)?;
     let cfg = ShakeConfig { params, motion, pgas, trials, seed, azimuth: azimuth.map(f64::to_radians), r_max_m };
     cfg.check().map_err(py_err)?;
     let starts = match equilibria {
-        None => {
-            let (regular, rocking) = py.detach(|| default_pair(&stone, &cfg.params));
-            let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
-            if v.is_empty() {
-                return Err(PyValueError::new_err(
-                    "no stable micro-equilibrium of this stone stays at rest in the simulation",
-                ));
-            }
-            v
-        }
-        Some(ids) => select_starts(&stone, Some(ids), None)?,
+        None => py.detach(|| sh::default_starts(&stone, &cfg.params)).map_err(py_err)?,
+        Some(ids) => stone.select(&ids, None).map_err(py_err)?,
     };
     let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
     let report = interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;

@@ -1,11 +1,9 @@
 //! Parameters from `**kwargs`: keyword arguments mapped onto the serde fields of the library's
 //! parameter structs, the drop presets, and lowercase serde enums from their names.
 
-use crate::convert::py_err;
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use serde::Serialize;
 
 /// `base` with the fields named in `params` replaced: the keyword arguments map to the serde
@@ -72,15 +70,6 @@ fn field_names(v: &serde_json::Value, out: &mut Vec<String>) {
                 out.push(k.clone());
             }
         }
-    }
-}
-
-/// The drop parameters of `rocking drop --preset P --surface S [--size L]` before option
-/// overrides (as `cmd::drop::params`; to move into the library so that both call it).
-pub(crate) fn preset_params(preset: Preset, surface: Surface, size: Option<f64>) -> PyResult<DropParams> {
-    match size {
-        Some(size) => preset.params_at_size(surface, size).map_err(py_err),
-        None => Ok(preset.params(surface)),
     }
 }
 

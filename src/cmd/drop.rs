@@ -8,7 +8,7 @@ use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
     certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
-    RunHeader, Shard, FORMAT,
+    RunHeader, Shard,
 };
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -156,10 +156,7 @@ pub struct MergeArgs {
 }
 
 fn params(a: &Args) -> Result<DropParams> {
-    let mut p = match a.size {
-        Some(size) => a.preset.params_at_size(a.surface, size)?,
-        None => a.preset.params(a.surface),
-    };
+    let mut p = a.preset.params_for(a.surface, a.size)?;
     if a.fast {
         a.preset.fast(&mut p);
     }
@@ -198,16 +195,9 @@ pub fn run_drop(args: Args) -> Result<()> {
     let stone = Stone::new(&analysis, nu)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     let header = RunHeader {
-        format: FORMAT.into(),
-        mesh: name,
-        mesh_fingerprint: rocking_stones::montecarlo::fingerprint(&analysis.mesh),
-        seed: args.seed,
-        drops: args.drops,
-        params: p,
-        certificate: args.certificate,
-        preset: Some(format!("{} on {}", args.preset, args.surface)),
         center_of_mass: args.center_of_mass.map(|c| [c.x, c.y, c.z]),
         shard,
+        ..RunHeader::new(name, &analysis.mesh, args.seed, args.drops, p, args.certificate, (args.preset, args.surface))
     };
     let model = stone.model();
     let (mut checkpoint, done) = match &args.checkpoint {

@@ -156,33 +156,6 @@ pub struct Args {
     pub output: Option<PathBuf>,
 }
 
-/// Positions in `stone.stable` of the requested equilibria (all if none requested).
-pub fn select(stone: &Stone, equilibria: &[usize], flock: Option<usize>) -> Result<Vec<usize>> {
-    let list =
-        || stone.stable().iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
-    if let Some(k) = flock {
-        if k >= stone.flock_kinds.len() {
-            bail!("there is no flock {k} (the stone has {} flocks at ν = {:.3e})", stone.flock_kinds.len(), stone.nu);
-        }
-        let v: Vec<usize> = (0..stone.stable().len()).filter(|&i| stone.stable()[i].flock == k).collect();
-        if v.is_empty() {
-            bail!("flock {k} has no stable micro-equilibrium; stable ones: {}", list());
-        }
-        return Ok(v);
-    }
-    if equilibria.is_empty() {
-        return Ok((0..stone.stable().len()).collect());
-    }
-    equilibria
-        .iter()
-        .map(|&id| {
-            stone
-                .position(id)
-                .ok_or_else(|| anyhow::anyhow!("{id} is not a stable micro-equilibrium; stable ones: {}", list()))
-        })
-        .collect()
-}
-
 pub fn run(args: Args) -> Result<()> {
     if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
         bail!("need 0 < --eps-min ≤ --eps-max and --eps-steps ≥ 1");
@@ -198,7 +171,7 @@ pub fn run(args: Args) -> Result<()> {
         epsilon_star: args.epsilon_star,
     };
     cfg.check()?;
-    let starts = select(&stone, &args.equilibria, args.flock)?;
+    let starts = stone.select(&args.equilibria, args.flock)?;
     let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();

@@ -4,10 +4,9 @@
 //! (one record → one result; a folder of records × scale factors → runs.csv and the fragility
 //! surface).
 
-use super::perturb::{select, SimArgs};
+use super::perturb::SimArgs;
 use anyhow::{bail, Result};
 use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::default_pair;
 use rocking_stones::dynamics::shake::{self, RockSetup, ShakeConfig};
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
@@ -110,25 +109,10 @@ pub fn run(args: Args) -> Result<()> {
         (None, false) => (read_records(&args)?.remove(0), false),
         (None, true) => (shake::default_pulse(r_max_m, params.sim.dt)?, true),
     };
-    let pga_max = args.pga_max.or(default_sweep.then_some(1.0));
-    let pgas = match pga_max {
-        Some(m) => {
-            if m.is_nan() || m <= 0.0 || args.pga_steps == 0 {
-                bail!("need --pga-max > 0 and --pga-steps ≥ 1");
-            }
-            (1..=args.pga_steps).map(|i| m * i as f64 / args.pga_steps as f64).collect()
-        }
-        None => vec![motion.measures().pga_g],
-    };
-    let starts = if args.equilibria.is_empty() {
-        let (regular, rocking) = default_pair(&stone, &params);
-        let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
-        if v.is_empty() {
-            bail!("no stable micro-equilibrium of this stone stays at rest in the simulation");
-        }
-        v
-    } else {
-        select(&stone, &args.equilibria, None)?
+    let pgas = shake::pgas_for(&motion, args.pga_max, args.pga_steps, default_sweep)?;
+    let starts = match args.equilibria.is_empty() {
+        true => shake::default_starts(&stone, &params)?,
+        false => stone.select(&args.equilibria, None)?,
     };
     let cfg = ShakeConfig {
         params,

@@ -268,6 +268,16 @@ impl Preset {
         self.params_for_size(surface, REFERENCE_R_MAX_M)
     }
 
+    /// The parameters of this preset on `surface` for a stone of real size R_max = `size` metres
+    /// when it is given, else of the reference size [`REFERENCE_R_MAX_M`] (what `rocking drop
+    /// --preset P --surface S [--size L]` starts from).
+    pub fn params_for(self, surface: Surface, size: Option<f64>) -> Result<DropParams> {
+        match size {
+            Some(r) => self.params_at_size(surface, r),
+            None => Ok(self.params(surface)),
+        }
+    }
+
     /// The parameters of this preset on `surface` for a stone of real size R_max = `r_max_m`
     /// metres (the surface's rolling-resistance length is divided by it); a size that is not a
     /// positive finite length is a usage error.

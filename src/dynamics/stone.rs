@@ -346,6 +346,48 @@ impl Stone {
         self.stable.get_or_init(|| self.stable_equilibria())
     }
 
+    /// Positions in [`Stone::stable`] of the stable micro-equilibria asked for: those of flock
+    /// `flock`, else the analysis indices `equilibria`, else all. A flock that does not exist or
+    /// holds no stable micro-equilibrium, or an index that is not a stable micro-equilibrium, is
+    /// refused with the list of the stable ones.
+    pub fn select(&self, equilibria: &[usize], flock: Option<usize>) -> crate::Result<Vec<usize>> {
+        let list =
+            || self.stable().iter().map(|s| format!("{} (flock {})", s.index, s.flock)).collect::<Vec<_>>().join(", ");
+        if let Some(k) = flock {
+            if k >= self.flock_kinds.len() {
+                return Err(crate::Error::parameter(
+                    "flock",
+                    k,
+                    format!("a flock of the stone: it has {} flocks at ν = {:.3e}", self.flock_kinds.len(), self.nu),
+                ));
+            }
+            let v: Vec<usize> = (0..self.stable().len()).filter(|&i| self.stable()[i].flock == k).collect();
+            if v.is_empty() {
+                return Err(crate::Error::parameter(
+                    "flock",
+                    k,
+                    format!("a flock with a stable micro-equilibrium; stable ones: {}", list()),
+                ));
+            }
+            return Ok(v);
+        }
+        if equilibria.is_empty() {
+            return Ok((0..self.stable().len()).collect());
+        }
+        equilibria
+            .iter()
+            .map(|&id| {
+                self.position(id).ok_or_else(|| {
+                    crate::Error::parameter(
+                        "equilibrium",
+                        id,
+                        format!("a stable micro-equilibrium; stable ones: {}", list()),
+                    )
+                })
+            })
+            .collect()
+    }
+
     /// The position in [`Stone::stable`] of micro-equilibrium `index` (an index into the
     /// analysis' equilibria), if it is a stable one.
     pub fn position(&self, index: usize) -> Option<usize> {

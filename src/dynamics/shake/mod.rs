@@ -25,6 +25,6 @@ pub use field::{
     RockSetup, ShakeBatch,
 };
 pub use sweep::{
-    default_pulse, run, run_with, shake_stream, shake_trial, sine_pulse, Fragility, MotionInfo, ShakeConfig,
-    ShakeReport, ShakeTrial,
+    default_pulse, default_starts, pga_grid, pgas_for, run, run_with, shake_stream, shake_trial, sine_pulse, Fragility,
+    MotionInfo, ShakeConfig, ShakeReport, ShakeTrial,
 };

@@ -75,6 +75,38 @@ pub fn default_pulse(r_max_m: f64, dt_scaled: f64) -> Result<Record> {
     sine_pulse(1.0, f, 2.0, dt_scaled * r_max_m.sqrt())
 }
 
+/// The PGA grid of a sweep: `steps` values from `pga_max`/`steps` to `pga_max` (g).
+pub fn pga_grid(pga_max: f64, steps: usize) -> Result<Vec<f64>> {
+    if !(pga_max > 0.0 && pga_max.is_finite()) {
+        return Err(Error::parameter("pga_max", pga_max, "a positive acceleration in g"));
+    }
+    if steps == 0 {
+        return Err(Error::parameter("pga_steps", steps, "at least 1"));
+    }
+    Ok((1..=steps).map(|i| pga_max * i as f64 / steps as f64).collect())
+}
+
+/// The PGA grid of a run of `motion`: a sweep up to `pga_max` in `steps` when given, else up to
+/// 1 g for the default pulse (`default_sweep`), else the motion at its own amplitude only.
+pub fn pgas_for(motion: &Record, pga_max: Option<f64>, steps: usize, default_sweep: bool) -> Result<Vec<f64>> {
+    match pga_max.or(default_sweep.then_some(1.0)) {
+        Some(m) => pga_grid(m, steps),
+        None => Ok(vec![motion.measures().pga_g]),
+    }
+}
+
+/// The stable micro-equilibria a sweep shakes by default: the deepest regular one and the
+/// rocking one with the highest basin barrier that stay at rest
+/// ([`crate::dynamics::resting::default_pair`]); an error if none does.
+pub fn default_starts(stone: &Stone, p: &PerturbParams) -> Result<Vec<usize>> {
+    let (regular, rocking) = crate::dynamics::resting::default_pair(stone, p);
+    let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
+    if v.is_empty() {
+        return Err(Error::Usage("no stable micro-equilibrium of this stone stays at rest in the simulation".into()));
+    }
+    Ok(v)
+}
+
 /// Shake the ground under a stone resting on `start` with `record` (real time, already at its
 /// PGA and sampled for the run, see [`driven`]) along `azimuth`, then let it come to rest
 /// relative to the ground.
