@@ -192,8 +192,13 @@ pub struct RestSample<'s> {
 /// * [`PositionRest`]: positions that stay put over whole windows — the rule of stones shaken
 ///   where they stand, whose flat scanned bases make the soft contact jitter (see there).
 ///
-/// Which one a run uses is a [`RestKind`] of its parameters' caller; both read the same
-/// [`RestSample`] and neither is ever asked while a drive acts.
+/// Which one a run uses is a [`RestKind`] chosen by the kind of run (drops and pushes: speeds;
+/// stones shaken where they stand: positions); both read the same [`RestSample`] and neither is
+/// ever asked while a drive acts. Why not by the stone, from whether its hull has a flat base of
+/// near-coplanar micro-facets: every hull measured has them — the smallest angle between
+/// adjacent facets is 1.2·10⁻⁵–9.9·10⁻⁴ rad on the seven scanned stones of `shared/meshes` (the
+/// bundled stone 6.9·10⁻⁵) and 9·10⁻⁶–9·10⁻⁵ on synthetic pebbles — so such a rule would give
+/// every stone positions, and change every calibrated drop result.
 pub trait RestRule: Send {
     /// Account for a step taken after the drive ended; true once the stone is at rest.
     fn at_rest(&mut self, sample: &RestSample) -> bool;
