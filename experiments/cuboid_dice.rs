@@ -23,9 +23,9 @@
 //!
 //! Calibration, not validation: the seven dice are the data the throw is fitted to.
 //!
-//! Run: `cargo run --release --example cuboid_dice [-- N [H,… [Ω,… [v,…]]]]` (N = 300; the
-//! committed results ran with N = 400 on the default grid, refined from coarser grids over
-//! H 0.5–16, Ω 0–45, v 1–8) →
+//! Run: `cargo run --release --example cuboid_dice [-- N [H,… [Ω,… [v,…]]]]` (N = 400, as
+//! the committed results; the default grid was refined from coarser grids over H 0.5–16,
+//! Ω 0–45, v 1–8) →
 //! `results/cuboid_dice/`.
 
 use rocking_stones::analysis::{Analysis, Options};
@@ -33,7 +33,7 @@ use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::{chi_square_homogeneity, wilson};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::fmt::Write as _;
@@ -110,7 +110,7 @@ fn log_likelihood(dice: &[Die], p: &[f64]) -> f64 {
 }
 
 fn main() {
-    let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N"));
+    let n: u64 = std::env::args().nth(1).map_or(400, |s| s.parse().expect("N"));
     let out = Path::new("results/cuboid_dice");
     std::fs::create_dir_all(out).expect("results folder");
     let dice = read_dice(Path::new("../shared/data/cuboid_dice_throws.csv"));
@@ -343,58 +343,47 @@ fn plot(out: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
     init_fonts();
     let path = out.join("p_square.png");
-    let root = BitMapBackend::new(&path, (900, 600)).into_drawing_area();
+    let root = BitMapBackend::new(&path, (900, 640)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
+    let root = root.titled("Cuboid dice: P(lands on a square face) against x/y", (FONT_FAMILY, style::TITLE))?;
+    let (legend, area) = root.split_vertically(legend_height(2));
+    let (throw, drop, basins, measured) = (colors::BLUE, colors::ORANGE, colors::GREEN, BLACK);
+    draw_legend(
+        &legend,
+        &[
+            (Mark::LineDot(measured), "measured (hand throws, 95 % Wilson interval)".into()),
+            (Mark::Line(throw), "calibrated throw".into()),
+            (Mark::Box(throw, 0.25), "its 95 % Monte Carlo band".into()),
+            (Mark::Line(drop), "drop preset (from rest, 1 R_max)".into()),
+            (Mark::Line(basins), "quasi-static basins (exact)".into()),
+        ],
+    )
+    .map_err(|e| e.to_string())?;
+    let mut chart = ChartBuilder::on(&area)
         .margin(20)
+        .margin_top(10)
         .x_label_area_size(50)
         .y_label_area_size(60)
-        .caption("Cuboid dice: P(square face) against x/y", (FONT_FAMILY, 22))
         .build_cartesian_2d(0.3f64..2.8, 0.0f64..1.0)?;
     chart
         .configure_mesh()
         .x_desc("x / y (long side over square side)")
         .y_desc("P(lands on a square face)")
-        .label_style((FONT_FAMILY, 15))
+        .x_label_formatter(&|x| plain(*x))
+        .y_label_formatter(&|y| plain(*y))
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
         .draw()?;
-    let blue = RGBColor(0, 114, 178);
-    let orange = RGBColor(230, 159, 0);
-    let grey = RGBColor(90, 90, 90);
-    let green = RGBColor(0, 158, 115);
-    chart
-        .draw_series(rows.iter().map(|r| {
-            let pts = vec![(r.0, r.4), (r.0 + 0.02, r.4), (r.0 + 0.02, r.5), (r.0, r.5)];
-            Polygon::new(pts, blue.mix(0.25).filled())
-        }))?
-        .label("calibrated throw, 95 % Monte Carlo band")
-        .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], blue.mix(0.25).filled()));
-    chart
-        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0 + 0.01, r.3)), blue.stroke_width(2)))?
-        .label("calibrated throw")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
-    chart
-        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.7)), orange.stroke_width(2)))?
-        .label("drop preset (from rest, 1 R_max)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], orange.stroke_width(2)));
-    chart
-        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.8)), green.stroke_width(2)))?
-        .label("quasi-static basins")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], green.stroke_width(2)));
-    chart
-        .draw_series(rows.iter().map(|r| {
-            let (lo, hi) = wilson((r.1 * r.2 as f64).round() as u64, r.2, 1.96);
-            PathElement::new(vec![(r.0, lo), (r.0, hi)], grey.stroke_width(2))
-        }))?
-        .label("measured (hand throws, 95 % interval)")
-        .legend(move |(x, y)| Circle::new((x + 9, y), 4, grey.filled()));
-    chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.1), 4, grey.filled())))?;
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font((FONT_FAMILY, 15))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
+    let band: Vec<(f64, f64)> = rows.iter().map(|r| (r.0, r.5)).chain(rows.iter().rev().map(|r| (r.0, r.4))).collect();
+    chart.draw_series(std::iter::once(Polygon::new(band, throw.mix(0.25).filled())))?;
+    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.8)), basins.stroke_width(style::LINE)))?;
+    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.7)), drop.stroke_width(style::LINE)))?;
+    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.3)), throw.stroke_width(style::LINE)))?;
+    chart.draw_series(rows.iter().map(|r| {
+        let (lo, hi) = wilson((r.1 * r.2 as f64).round() as u64, r.2, 1.96);
+        PathElement::new(vec![(r.0, lo), (r.0, hi)], measured.stroke_width(style::LINE))
+    }))?;
+    chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.1), style::MARKER, measured.filled())))?;
     root.present()?;
     Ok(())
 }

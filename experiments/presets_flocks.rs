@@ -10,7 +10,7 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::params::{Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -32,7 +32,7 @@ fn main() {
     let _ = writeln!(
         md,
         "{n} drops per preset (seed 1, flock certificate), surface stone on stone, flocks at the automatic macro ν. \
-         `static` is the quasi-static basin probability of the flock (exact). Bars: `<mesh>_flocks.png`.\n"
+         `static` is the quasi-static basin probability of the flock (exact). Bars: `<mesh>_flocks.png` (with 95 % intervals of the simulated fractions).\n"
     );
     let mut csv = String::from("mesh,flock,type,static,quasi_static,drop,throw\n");
     for (name, path, surface) in meshes {
@@ -98,14 +98,14 @@ fn main() {
             let f = &r.fit_flocks;
             let _ = writeln!(
                 md,
-                "| {preset} | {:.1} ({}, {:.3}) | {:.4} | {}/{} | {:.2} |",
+                "| {preset} | {:.1} ({}, {:.3}) | {:.4} | {}/{} | {} |",
                 f.chi_square,
                 f.dof,
                 f.p_value,
                 f.kl_divergence,
                 r.settled,
                 r.drops,
-                r.mean_time_to_decision.unwrap_or(f64::NAN)
+                r.mean_time_to_decision.map_or("–".into(), |t| format!("{t:.2}"))
             );
         }
         md.push('\n');
@@ -120,19 +120,27 @@ fn plot(path: &Path, title: &str, reports: &[DropReport]) -> Result<(), Box<dyn 
     use plotters::prelude::*;
     init_fonts();
     let flocks = &reports[0].flocks;
-    let root = BitMapBackend::new(path, (900, 520)).into_drawing_area();
+    let root = BitMapBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE)?;
+    let root = root.titled(&format!("{title}: resting flocks by launch preset"), (FONT_FAMILY, style::TITLE))?;
+    let (legend, area) = root.split_vertically(legend_height(1));
+    let colours = [colors::GREEN, colors::ORANGE, colors::SKY, colors::BLUE];
+    let labels = ["quasi-static basins (exact)", "quasi-static", "drop", "throw"];
+    let mut entries: Vec<(Mark, String)> =
+        colours.iter().zip(labels).map(|(&c, l)| (Mark::Box(c, 1.0), l.to_string())).collect();
+    entries.push((Mark::Line(BLACK), "95 % interval".into()));
+    draw_legend(&legend, &entries).map_err(|e| e.to_string())?;
     let top = flocks
         .iter()
         .map(|f| f.static_probability)
         .chain(reports.iter().flat_map(|r| r.flocks.iter().map(|g| g.ci95.1)))
         .fold(0.0, f64::max);
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(&area)
         .margin(20)
+        .margin_top(10)
         .x_label_area_size(50)
         .y_label_area_size(60)
-        .caption(format!("{title}: resting flocks by launch preset"), (FONT_FAMILY, 20))
-        .build_cartesian_2d(-0.5f64..flocks.len() as f64 - 0.5, 0.0f64..(top * 1.25).min(1.0))?;
+        .build_cartesian_2d(-0.5f64..flocks.len() as f64 - 0.5, 0.0f64..(top * 1.1).min(1.0))?;
     chart
         .configure_mesh()
         .disable_x_mesh()
@@ -147,36 +155,35 @@ fn plot(path: &Path, title: &str, reports: &[DropReport]) -> Result<(), Box<dyn 
                 .get(k as usize)
                 .map_or(String::new(), |f| format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()))
         })
-        .x_desc("flock (id, type)")
+        .y_label_formatter(&|y| plain(*y))
+        .x_desc("flock (number, type)")
         .y_desc("fraction of drops")
-        .label_style((FONT_FAMILY, 14))
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
         .draw()?;
-    let colours = [RGBColor(0, 158, 115), RGBColor(230, 159, 0), RGBColor(86, 180, 233), RGBColor(0, 114, 178)];
-    let labels = ["quasi-static basins (exact)", "quasi-static preset", "drop preset", "throw preset"];
     let w = 0.8 / 4.0;
-    for (s, (&colour, label)) in colours.iter().zip(labels).enumerate() {
+    for (s, &colour) in colours.iter().enumerate() {
+        let group =
+            |k: usize| reports.get(s.wrapping_sub(1)).and_then(|r| r.flocks.iter().find(|g| g.id == flocks[k].id));
         let value = |k: usize| -> f64 {
             if s == 0 {
                 flocks[k].static_probability
             } else {
-                reports[s - 1].flocks.iter().find(|g| g.id == flocks[k].id).map_or(0.0, |g| g.fraction)
+                group(k).map_or(0.0, |g| g.fraction)
             }
         };
-        chart
-            .draw_series((0..flocks.len()).map(|k| {
-                let x0 = k as f64 - 0.4 + s as f64 * w;
-                Rectangle::new([(x0, 0.0), (x0 + w * 0.9, value(k))], colour.filled())
-            }))?
-            .label(label)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
+        chart.draw_series((0..flocks.len()).map(|k| {
+            let x0 = k as f64 - 0.4 + s as f64 * w;
+            Rectangle::new([(x0, 0.0), (x0 + w * 0.9, value(k))], colour.filled())
+        }))?;
+        if s > 0 {
+            chart.draw_series((0..flocks.len()).filter_map(|k| {
+                let g = group(k)?;
+                let x = k as f64 - 0.4 + (s as f64 + 0.45) * w;
+                Some(PathElement::new(vec![(x, g.ci95.0), (x, g.ci95.1)], BLACK.stroke_width(1)))
+            }))?;
+        }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font((FONT_FAMILY, 14))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
     root.present()?;
     Ok(())
 }

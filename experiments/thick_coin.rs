@@ -18,7 +18,7 @@ use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::wilson;
 use rocking_stones::Point3;
 use std::fmt::Write as _;
@@ -104,7 +104,7 @@ fn main() {
     let mut md = String::new();
     let _ = writeln!(md, "# The thick coin: P(edge) against h/d\n");
     let _ = writeln!(md, "Regenerate: `cargo run --release --example thick_coin`.\n");
-    let _ = writeln!(md, "A prism over a regular {SIDES}-gon (diameter d = 1, height h), {n} drops per point and preset, steel on wood. `p_edge.png`: the quasi-static basin probability (exact), the `quasi-static` preset (damped creep from contact), the calibrated `throw` with 95 % intervals; vertical lines at the two published fair-coin ratios.\n");
+    let _ = writeln!(md, "A prism over a regular {SIDES}-gon (diameter d = 1, height h), {n} drops per point and preset, steel on wood. `p_edge.png`: the quasi-static basin probability (exact), the `quasi-static` preset (damped creep from contact), the calibrated `throw` with 95 % Wilson intervals; dashed: P = 1/3 and vertical lines at the two published fair-coin ratios.\n");
     let _ = writeln!(md, "| h/d where P(edge) = 1/3 | value |\n|---|---|");
     let _ = writeln!(md, "| quasi-static basins (this code) | {} |", fmt(cross(&|r| r.1)));
     let _ = writeln!(md, "| solid-angle closed form | 0.354 |");
@@ -137,50 +137,56 @@ fn plot(out: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
     init_fonts();
     let path = out.join("p_edge.png");
-    let root = BitMapBackend::new(&path, (900, 600)).into_drawing_area();
+    let root = BitMapBackend::new(&path, (900, 640)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
+    let root = root.titled("Thick coin: P(lands on its edge) against h/d", (FONT_FAMILY, style::TITLE))?;
+    let (legend, area) = root.split_vertically(legend_height(2));
+    let (basin, qs, throw, grey) = (colors::GREEN, colors::ORANGE, colors::BLUE, colors::GREY);
+    draw_legend(
+        &legend,
+        &[
+            (Mark::Line(basin), "quasi-static basins (exact)".into()),
+            (Mark::Line(qs), "quasi-static preset (simulated)".into()),
+            (Mark::LineDot(throw), "throw preset, 95 % Wilson intervals".into()),
+            (Mark::Dashed(grey), "P = 1/3 and the published fair-coin ratios".into()),
+        ],
+    )
+    .map_err(|e| e.to_string())?;
+    let mut chart = ChartBuilder::on(&area)
         .margin(20)
         .x_label_area_size(50)
         .y_label_area_size(60)
-        .caption("Thick coin: P(lands on its edge) against h/d", (FONT_FAMILY, 22))
         .build_cartesian_2d(0.0f64..1.05, 0.0f64..1.0)?;
     chart
         .configure_mesh()
-        .x_desc("h / d (height over diameter)")
+        .x_desc("h / d (coin height over diameter)")
         .y_desc("P(edge)")
-        .label_style((FONT_FAMILY, 15))
+        .x_label_formatter(&|x| plain(*x))
+        .y_label_formatter(&|y| plain(*y))
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
         .draw()?;
-    let (blue, green, orange, grey) =
-        (RGBColor(0, 114, 178), RGBColor(0, 158, 115), RGBColor(230, 159, 0), RGBColor(120, 120, 120));
+    let dashed = |a: (f64, f64), b: (f64, f64)| {
+        (0..40).filter(|k| k % 2 == 0).map(move |k| {
+            let (s, t) = (k as f64 / 40.0, (k + 1) as f64 / 40.0);
+            PathElement::new(
+                vec![(a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1)), (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))],
+                grey.stroke_width(1),
+            )
+        })
+    };
     for (x, label) in [(0.354, "solid angle 1/(2√2)"), (0.577, "Yong & Mahadevan 1/√3")] {
-        chart.draw_series(std::iter::once(PathElement::new(vec![(x, 0.0), (x, 1.0)], grey.stroke_width(1))))?;
-        chart.draw_series(std::iter::once(Text::new(label, (x + 0.01, 0.95), (FONT_FAMILY, 13))))?;
+        chart.draw_series(dashed((x, 0.0), (x, 1.0)))?;
+        chart.draw_series(std::iter::once(Text::new(label, (x + 0.01, 0.97), (FONT_FAMILY, style::LEGEND))))?;
     }
-    chart.draw_series(std::iter::once(PathElement::new(
-        vec![(0.0, 1.0 / 3.0), (1.05, 1.0 / 3.0)],
-        grey.stroke_width(1),
-    )))?;
-    chart
-        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.1)), green.stroke_width(2)))?
-        .label("quasi-static basins (exact)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], green.stroke_width(2)));
-    chart
-        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.5)), orange.stroke_width(2)))?
-        .label("quasi-static preset (simulated)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], orange.stroke_width(2)));
-    chart
-        .draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.2)), blue.stroke_width(2)))?
-        .label("calibrated throw, 95 % intervals")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], blue.stroke_width(2)));
-    chart.draw_series(rows.iter().map(|r| PathElement::new(vec![(r.0, r.3), (r.0, r.4)], blue.stroke_width(2))))?;
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .label_font((FONT_FAMILY, 15))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
+    chart.draw_series(dashed((0.0, 1.0 / 3.0), (1.05, 1.0 / 3.0)))?;
+    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.1)), basin.stroke_width(style::LINE)))?;
+    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.5)), qs.stroke_width(style::LINE)))?;
+    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.2)), throw.stroke_width(style::LINE)))?;
+    chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.2), style::MARKER, throw.filled())))?;
+    chart.draw_series(
+        rows.iter().map(|r| PathElement::new(vec![(r.0, r.3), (r.0, r.4)], throw.stroke_width(style::LINE))),
+    )?;
     root.present()?;
     Ok(())
 }
