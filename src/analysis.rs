@@ -145,6 +145,18 @@ impl Analysis {
 
     /// The serialisable summary of the analysis.
     pub fn report(&self, file: &str, opts: &Options) -> Report {
+        self.report_with(file, opts, true)
+    }
+
+    /// [`Analysis::report`] without the quasi-static basin probabilities: `stable_facets` is
+    /// empty. For field studies, which count equilibria and never read the basins: the exact basin
+    /// areas (a descent of the support function per stable facet) are most of the time of a
+    /// 2000-point pebble's report.
+    pub fn report_without_basins(&self, file: &str, opts: &Options) -> Report {
+        self.report_with(file, opts, false)
+    }
+
+    fn report_with(&self, file: &str, opts: &Options, basins: bool) -> Report {
         let m = self.hierarchy.macro_scale(opts.nu);
         let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         let eq = &self.equilibria;
@@ -184,27 +196,30 @@ impl Analysis {
         // On the normalised hull (exact power-of-two scaling, as the pipeline): probabilities
         // are scale-free, and no product overflows at extreme scales.
         let k = self.mesh.unit_exponent();
-        let quasi_static = crate::basins::basin_probabilities(
-            &self.hull.clone().scaled_pow2(k),
-            &crate::mesh::scale_point(&self.mass.center_of_mass, k),
-            &eq.clone().scaled_pow2(k),
-        );
-        let stable_facets = eq
-            .at_facet
-            .iter()
-            .enumerate()
-            .filter_map(|(f, s)| {
-                let s = (*s)? as usize;
-                Some(StableFacet {
-                    facet: f as u32,
-                    equilibrium: s,
-                    normal: self.hull.facets[f].normal,
-                    r: eq.points[s].r,
-                    basin_probability: quasi_static.facet_probability[f],
-                    flock: flocks.membership[s],
+        let quasi_static = basins.then(|| {
+            crate::basins::basin_probabilities(
+                &self.hull.clone().scaled_pow2(k),
+                &crate::mesh::scale_point(&self.mass.center_of_mass, k),
+                &eq.clone().scaled_pow2(k),
+            )
+        });
+        let stable_facets = quasi_static.map_or_else(Vec::new, |quasi_static| {
+            eq.at_facet
+                .iter()
+                .enumerate()
+                .filter_map(|(f, s)| {
+                    let s = (*s)? as usize;
+                    Some(StableFacet {
+                        facet: f as u32,
+                        equilibrium: s,
+                        normal: self.hull.facets[f].normal,
+                        r: eq.points[s].r,
+                        basin_probability: quasi_static.facet_probability[f],
+                        flock: flocks.membership[s],
+                    })
                 })
-            })
-            .collect();
+                .collect()
+        });
         let macro_counts = m.counts;
         Report {
             file: file.to_string(),
@@ -408,7 +423,8 @@ pub struct Report {
     pub staircase: Vec<Step>,
     /// Every micro-equilibrium with its flock.
     pub equilibria: Vec<MicroEquilibrium>,
-    /// Every stable facet with its outward normal and quasi-static basin probability.
+    /// Every stable facet with its outward normal and quasi-static basin probability (empty in a
+    /// report made without the basins, [`Analysis::report_without_basins`]).
     pub stable_facets: Vec<StableFacet>,
 }
 

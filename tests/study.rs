@@ -391,3 +391,18 @@ fn fit_nu_cli_writes_the_loss_the_comparison_and_the_figure_12_plots() {
     let (_, rows) = read_csv(&out.join("comparison_paper_nu.csv"));
     assert_eq!(rows.len(), 5);
 }
+
+/// A field study's report skips the quasi-static basins (their exact areas were most of a
+/// 2000-point pebble's analysis time) and is otherwise the report of `rocking analyze`.
+#[test]
+fn a_study_report_is_the_analyze_report_without_the_basins() {
+    let (mesh, rep) = generate::pebble([1.0, 0.7, 0.5], 0.05, 2000, 4).into_solid_boundary().unwrap();
+    let opts = Options::default();
+    let a = Analysis::of_solid(mesh, rep, &opts).unwrap();
+    let full = a.report("p", &opts);
+    let lean = a.report_without_basins("p", &opts);
+    assert!(!full.stable_facets.is_empty() && lean.stable_facets.is_empty());
+    let mut full = serde_json::to_value(&full).unwrap();
+    full["stable_facets"] = serde_json::json!([]);
+    assert_eq!(full, serde_json::to_value(&lean).unwrap());
+}

@@ -37,7 +37,7 @@ impl Counted {
         seed: u64,
     ) -> Result<Counted> {
         let dynamic = exp.map(|e| hand_experiment(a, nu, e, seed)).transpose()?;
-        Ok(Counted { report: a.report(name, opts), curve: CountCurve::of(&a.hierarchy), dynamic })
+        Ok(Counted { report: a.report_without_basins(name, opts), curve: CountCurve::of(&a.hierarchy), dynamic })
     }
 }
 
