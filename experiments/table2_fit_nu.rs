@@ -16,9 +16,9 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::PAPER_NU;
-use rocking_stones::plot::log_tick;
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
-use rocking_stones::report;
+use rocking_stones::plot::{
+    colors, draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY,
+};
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -108,10 +108,15 @@ fn main() -> anyhow::Result<()> {
             let b = runs.iter().find(|r| r.group == "roughness" && r.params.roughness == r0).expect("base");
             fits.insert(0, (format!("base ({} points, spread {})", b.params.points, b.params.spread), &b.fit));
         }
+        let what = match group {
+            "roughness" => "by roughness amplitude of the synthetic pebbles",
+            "points" => "by resolution (points per synthetic pebble)",
+            _ => "by spread of the axis ratios within a sample",
+        };
         for ext in ["png", "svg"] {
-            report::study::plot_loss(
+            plot_loss(
                 &out.join(format!("{file}.{ext}")),
-                &format!("χ²(ν) of Table 2, by {group}"),
+                &format!("Misfit χ²(ν) to Table 2's hand counts, {what}"),
                 &fits,
             )?;
         }
@@ -190,15 +195,115 @@ fn write_csv(out: &Path, runs: &[Run]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// χ²(ν) curves of several fits (log–log), the fitted ν̂ marked on each, the paper's ν dashed:
+/// house style (Okabe–Ito series colours, series beyond the 8th dashed, legend strip above).
+fn plot_loss(path: &Path, title: &str, fits: &[(String, &NuFit)]) -> anyhow::Result<()> {
+    init_fonts();
+    let size = (1000, 680);
+    if path.extension().is_some_and(|e| e == "svg") {
+        let root = SVGBackend::new(path, size).into_drawing_area();
+        draw_loss(&root, title, fits)?;
+        root.present()?;
+    } else {
+        let root = BitMapBackend::new(path, size).into_drawing_area();
+        draw_loss(&root, title, fits)?;
+        root.present()?;
+    }
+    Ok(())
+}
+
+fn draw_loss<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    fits: &[(String, &NuFit)],
+) -> anyhow::Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let root = root.titled(title, (FONT_FAMILY, style::TITLE))?;
+    let mut entries = vec![(Mark::Dashed(colors::GREY), format!("paper: ν = {PAPER_NU}"))];
+    for (k, (label, f)) in fits.iter().enumerate() {
+        let c = series_color(k);
+        let mark = if k < 8 { Mark::Line(c) } else { Mark::Dashed(c) };
+        entries.push((mark, format!("{label}: best ν = {}", log_tick(f.nu))));
+    }
+    // the lines draw_legend will wrap the entries into (its layout: 16 px indent, 30 + text + 26 px per entry).
+    let width = root.dim_in_pixel().0 as i32;
+    let font = (FONT_FAMILY, style::LEGEND).into_text_style(&root);
+    let (mut x, mut lines) = (16, 1);
+    for (_, text) in &entries {
+        let w = 30 + root.estimate_text_size(text, &font)?.0 as i32 + 26;
+        if x + w > width && x > 16 {
+            x = 16;
+            lines += 1;
+        }
+        x += w;
+    }
+    let (legend, area) = root.split_vertically(legend_height(lines));
+    draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
+    let xs = || fits.iter().flat_map(|f| f.1.grid.iter().copied());
+    let ys = || fits.iter().flat_map(|f| f.1.chi2.iter().copied()).filter(|y| *y > 0.0 && y.is_finite());
+    let (x0, x1) = (xs().fold(f64::INFINITY, f64::min), xs().fold(0.0, f64::max));
+    let (y0, y1) = (ys().fold(f64::INFINITY, f64::min).max(1e-3), ys().fold(0.0, f64::max).max(1.0));
+    let (ylo, yhi) = (y0 / 1.3, y1 * 1.3);
+    let mut chart = ChartBuilder::on(&area)
+        .margin(20)
+        .margin_top(10)
+        .x_label_area_size(50)
+        .y_label_area_size(75)
+        .build_cartesian_2d((x0..x1).log_scale(), (ylo..yhi).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("ν, merging tolerance (fraction of R_max, log scale)")
+        .y_desc("χ² over 22 samples × 4 statistics (log scale)")
+        .x_label_formatter(&|x: &f64| log_tick(*x))
+        .y_label_formatter(&|y: &f64| {
+            // label only 1, 2, 3, 5 × 10ᵏ: the 6 … 9 × 10ᵏ ticks crowd each other on a log axis.
+            let m = *y / 10f64.powf(y.log10().floor());
+            if [1.0, 2.0, 3.0, 5.0].iter().any(|d| (m - d).abs() < 0.02) || m > 9.98 {
+                log_tick(*y)
+            } else {
+                String::new()
+            }
+        })
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    chart.draw_series(DashedLineSeries::new(
+        vec![(PAPER_NU, ylo), (PAPER_NU, yhi)],
+        8,
+        5,
+        colors::GREY.stroke_width(style::LINE),
+    ))?;
+    for (k, (_, f)) in fits.iter().enumerate() {
+        let color = series_color(k);
+        let pts: Vec<(f64, f64)> = f.grid.iter().zip(&f.chi2).map(|(x, y)| (*x, y.max(y0))).collect();
+        if k < 8 {
+            chart.draw_series(LineSeries::new(pts, color.stroke_width(style::LINE)))?;
+        } else {
+            chart.draw_series(DashedLineSeries::new(pts, 8, 5, color.stroke_width(style::LINE)))?;
+        }
+        chart.draw_series(std::iter::once(Circle::new(
+            (f.nu, f.chi2_min.max(y0)),
+            style::MARKER + 1,
+            color.filled(),
+        )))?;
+    }
+    Ok(())
+}
+
 /// Fitted ν (bootstrap 16–84 % bars) against the roughness amplitude, log–log, with 0.0035.
 fn plot_nu_vs_roughness(path: &Path, runs: &[&Run]) -> anyhow::Result<()> {
     init_fonts();
+    let size = (900, 600);
     if path.extension().is_some_and(|e| e == "svg") {
-        let root = SVGBackend::new(path, (860, 560)).into_drawing_area();
+        let root = SVGBackend::new(path, size).into_drawing_area();
         draw_nu_vs_roughness(&root, runs)?;
         root.present()?;
     } else {
-        let root = BitMapBackend::new(path, (860, 560)).into_drawing_area();
+        let root = BitMapBackend::new(path, size).into_drawing_area();
         draw_nu_vs_roughness(&root, runs)?;
         root.present()?;
     }
@@ -213,41 +318,67 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(root)
-        .caption("Fitted ν against the roughness of the synthetic pebbles", (FONT_FAMILY, 20))
-        .margin(14)
-        .x_label_area_size(45)
-        .y_label_area_size(65)
+    let root = root.titled("Fitted ν against the roughness of the synthetic pebbles", (FONT_FAMILY, style::TITLE))?;
+    let (legend, area) = root.split_vertically(legend_height(1));
+    let fitted = colors::VERMILLION;
+    draw_legend(
+        &legend,
+        &[
+            (Mark::LineDot(fitted), "fitted ν (bars: bootstrap 16–84 %)".into()),
+            (Mark::Dashed(colors::GREY), format!("paper: ν = {PAPER_NU}")),
+        ],
+    )
+    .map_err(|e| anyhow::anyhow!(e.to_string()))?;
+    let mut chart = ChartBuilder::on(&area)
+        .margin(20)
+        .margin_top(10)
+        .x_label_area_size(50)
+        .y_label_area_size(75)
         .build_cartesian_2d((0.007f64..1.0).log_scale(), (5e-5f64..5e-2).log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("roughness amplitude (log scale)")
-        .y_desc("fitted ν (log scale)")
+        .x_desc("roughness amplitude (largest relative radial deviation, log scale)")
+        .y_desc("fitted ν (fraction of R_max, log scale)")
         .x_label_formatter(&|x: &f64| log_tick(*x))
         .y_label_formatter(&|y: &f64| log_tick(*y))
-        .label_style((FONT_FAMILY, 14))
+        .label_style((FONT_FAMILY, style::TICK))
+        .axis_desc_style((FONT_FAMILY, style::AXIS))
+        .light_line_style(WHITE.mix(0.0))
         .draw()?;
-    chart
-        .draw_series(LineSeries::new(vec![(0.007, PAPER_NU), (1.0, PAPER_NU)], BLACK.stroke_width(1)))?
-        .label("paper: ν = 0.0035")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
-    let red = RGBColor(200, 40, 40);
+    chart.draw_series(DashedLineSeries::new(
+        vec![(0.007, PAPER_NU), (1.0, PAPER_NU)],
+        8,
+        5,
+        colors::GREY.stroke_width(style::LINE),
+    ))?;
+    chart.draw_series(LineSeries::new(
+        runs.iter().map(|r| (r.params.roughness, r.fit.nu)),
+        fitted.stroke_width(style::LINE),
+    ))?;
     chart.draw_series(runs.iter().map(|r| {
         let x = r.params.roughness;
-        PathElement::new(vec![(x, r.fit.bootstrap_interval.0), (x, r.fit.bootstrap_interval.1)], red.stroke_width(2))
+        PathElement::new(
+            vec![(x, r.fit.bootstrap_interval.0), (x, r.fit.bootstrap_interval.1)],
+            fitted.stroke_width(style::LINE),
+        )
     }))?;
-    chart
-        .draw_series(runs.iter().map(|r| Circle::new((r.params.roughness, r.fit.nu), 5, red.filled())))?
-        .label("fitted ν (bars: bootstrap 16–84 %)")
-        .legend(move |(x, y)| Circle::new((x + 6, y), 5, red.filled()));
-    chart
-        .configure_series_labels()
-        .label_font((FONT_FAMILY, 13))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
+    chart.draw_series(
+        runs.iter().map(|r| Circle::new((r.params.roughness, r.fit.nu), style::MARKER + 1, fitted.filled())),
+    )?;
     Ok(())
+}
+
+/// A table cell in the format `{:.prec$e}` (`e`) or `{:.prec$}`, "∞" / "–" where infinite or undefined.
+fn cell(x: f64, prec: usize, e: bool) -> String {
+    if x.is_nan() {
+        "–".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "∞" } else { "−∞" }.into()
+    } else if e {
+        format!("{x:.prec$e}")
+    } else {
+        format!("{x:.prec$}")
+    }
 }
 
 fn readme(out: &Path, runs: &[Run], r0: f64, opts: &FitOptions) -> anyhow::Result<()> {
@@ -313,23 +444,23 @@ fn readme(out: &Path, runs: &[Run], r0: f64, opts: &FitOptions) -> anyhow::Resul
         let c = f.chi2_by_statistic;
         writeln!(
             s,
-            "| {} | {}{} | {} | {:.2e}{} | {:.2e} – {:.2e} | {:.2e} – {:.2e} | {:.0} | {:.0} / {:.0} / {:.0} / {:.0} | {:.0} s |",
+            "| {} | {}{} | {} | {}{} | {} – {} | {} – {} | {} | {} / {} / {} / {} | {} s |",
             r.group,
             r.label,
             if r.group != "roughness" { format!(" (roughness {r0})") } else { String::new() },
             r.samples,
-            f.nu,
+            cell(f.nu, 2, true),
             if f.at_edge { " (grid end)" } else { "" },
-            f.interval.0,
-            f.interval.1,
-            f.bootstrap_interval.0,
-            f.bootstrap_interval.1,
-            f.chi2_min,
-            c[0],
-            c[1],
-            c[2],
-            c[3],
-            r.seconds
+            cell(f.interval.0, 2, true),
+            cell(f.interval.1, 2, true),
+            cell(f.bootstrap_interval.0, 2, true),
+            cell(f.bootstrap_interval.1, 2, true),
+            cell(f.chi2_min, 0, false),
+            cell(c[0], 0, false),
+            cell(c[1], 0, false),
+            cell(c[2], 0, false),
+            cell(c[3], 0, false),
+            cell(r.seconds, 0, false)
         )?;
     }
     writeln!(
@@ -371,9 +502,9 @@ fn readme(out: &Path, runs: &[Run], r0: f64, opts: &FitOptions) -> anyhow::Resul
            its minimum (each pebble's counts are step functions of ν); the seed scatter is the honest error.\n\
          * **Roughness is not identified separately from ν.** ν merges two equilibria when their R differ by less\n\
            than ν·R_max, and the R-differences of a synthetic pebble's equilibria scale with its roughness amplitude,\n\
-           so ν̂ rises steadily with it: from {:.1e} at roughness {} to {:.1e} at {} (`nu_vs_roughness.png`). The\n\
-           paper's ν = 0.0035 is the fitted value for roughness ≈ {}. χ²_min falls with the roughness ({:.0} at\n\
-           0.1, {:.0} at 0.2, {:.0} at 0.4, {:.0} at 0.6, {:.0} at 0.8; seed-to-seed scatter of χ²_min ±{:.0}), so the\n\
+           so ν̂ rises steadily with it: from {} at roughness {} to {} at {} (`nu_vs_roughness.png`). The\n\
+           paper's ν = 0.0035 is the fitted value for roughness ≈ {}. χ²_min falls with the roughness ({} at\n\
+           0.1, {} at 0.2, {} at 0.4, {} at 0.6, {} at 0.8; seed-to-seed scatter of χ²_min ±{}), so the\n\
            fit prefers very rough synthetic pebbles, but every one of these χ² is > 10 × dof: the preferred roughness\n\
            is where this shape model is least wrong, not a measurement of the pebbles. Saying which ν a person has\n\
            would need the roughness of the real pebbles (scans), which Table 2 does not give; the paper had its\n\
@@ -388,30 +519,30 @@ fn readme(out: &Path, runs: &[Run], r0: f64, opts: &FitOptions) -> anyhow::Resul
            large: the synthetic samples have E(U) > E(S) in all 22 samples at ν̂ and at 0.0035 (presumably because\n\
            the convex hull bridges the dents of the radial roughness but keeps its bumps), where the hand counts have\n\
            E(U) ≈ E(S). Fitting\n\
-           only the stable columns E(S), σ(S) gives ν̂ = {:.2e} instead. See `results/fig12_hand_vs_computer` for the\n\
+           only the stable columns E(S), σ(S) gives ν̂ = {} instead. See `results/fig12_hand_vs_computer` for the\n\
            per-sample comparison.\n",
         b.nu,
         10f64.powf(seed_sd),
         s_lo,
         s_hi,
         seed_sd,
-        rough.first().map_or(f64::NAN, |r| r.fit.nu),
-        rough.first().map_or(f64::NAN, |r| r.params.roughness),
-        rough.last().map_or(f64::NAN, |r| r.fit.nu),
-        rough.last().map_or(f64::NAN, |r| r.params.roughness),
+        cell(rough.first().map_or(f64::NAN, |r| r.fit.nu), 1, true),
+        rough.first().map_or("–".into(), |r| r.params.roughness.to_string()),
+        cell(rough.last().map_or(f64::NAN, |r| r.fit.nu), 1, true),
+        rough.last().map_or("–".into(), |r| r.params.roughness.to_string()),
         r_paper.map_or("— (not crossed)".into(), |r| format!("{r:.2}")),
-        chi_r(0.1),
-        chi_r(0.2),
-        chi_r(0.4),
-        chi_r(0.6),
-        chi_r(0.8),
-        chi_sd,
+        cell(chi_r(0.1), 0, false),
+        cell(chi_r(0.2), 0, false),
+        cell(chi_r(0.4), 0, false),
+        cell(chi_r(0.6), 0, false),
+        cell(chi_r(0.8), 0, false),
+        cell(chi_sd, 0, false),
         p_lo,
         p_hi,
         sp_lo,
         sp_hi,
         b.chi2_min / b.dof as f64,
-        s_only
+        cell(s_only, 2, true)
     )?;
     std::fs::write(out.join("README.md"), s)?;
     Ok(())
