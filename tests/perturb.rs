@@ -109,11 +109,11 @@ fn a_pulse_below_g_tan_alpha_does_not_rock_a_block() {
     // The block at R_max = 1 m: real and scaled time agree.
     let r_max_m = s.body.r_max;
     let weak = sine_pulse(0.4, 2.0 / r_max_m.sqrt(), 2.0, 1e-3).unwrap();
-    let t = shake_trial(&s, start, &p, &weak, r_max_m, 0.0, 0);
+    let t = shake_trial(&s, start, &p, &weak, 0.4, r_max_m, 0.0, 0);
     assert_eq!(t.outcome, Outcome::Same);
     assert!(t.max_tilt < 5e-3, "0.4 g tilted the block by {} rad", t.max_tilt);
     let strong = sine_pulse(0.8, 1.0 / r_max_m.sqrt(), 1.0, 1e-3).unwrap();
-    let t = shake_trial(&s, start, &p, &strong, r_max_m, 0.0, 0);
+    let t = shake_trial(&s, start, &p, &strong, 0.8, r_max_m, 0.0, 0);
     assert!(t.max_tilt > 0.05, "0.8 g only tilted the block by {} rad", t.max_tilt);
 }
 

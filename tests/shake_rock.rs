@@ -65,7 +65,7 @@ fn a_sweep_trial_is_the_field_run_of_the_same_stone() {
     let start = s.position(bottom(&s)).unwrap();
     for (amp, f) in [(0.4, 4.0), (0.8, 2.0)] {
         let m = sine_pulse(amp, f, 1.0, 1e-3).unwrap();
-        let trial = shake_trial(&s, start, &p, &m, r_max_m, 0.0, 0);
+        let trial = shake_trial(&s, start, &p, &m, amp, r_max_m, 0.0, 0);
         let run = shake(&s, &p, &m, r_max_m);
         assert_eq!(trial.outcome, run.outcome, "{amp} g, {f} Hz");
         assert_eq!(trial.max_tilt.to_bits(), run.max_tilt_deg.to_radians().to_bits(), "{amp} g");

@@ -73,24 +73,32 @@ fn dynamics_result(
 
 /// The parameters of a resting run as the CLI makes them (`--preset`, `--surface`,
 /// `--length-unit` / `--size`), then the keyword overrides (DropParams fields go into `sim`).
-#[allow(clippy::too_many_arguments)]
 fn resting_params(
     what: &str,
-    stone: &rocking_stones::dynamics::perturb::Stone,
     preset: Option<&str>,
     surface: Option<&str>,
     default_surface: Surface,
-    size: rocking_stones::dynamics::resting::Size,
+    r_max_m: f64,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<rocking_stones::dynamics::perturb::PerturbParams> {
     use rocking_stones::dynamics::perturb::{PerturbParams, RestingPreset};
     let preset: RestingPreset = preset.unwrap_or("surface").parse().map_err(py_err)?;
     let surface: Surface = surface.map_or(Ok(default_surface), str::parse).map_err(py_err)?;
-    let unit = size.length_unit_m(stone.body.r_max).map_err(py_err)?;
-    let base = PerturbParams::of(preset, surface, stone.body.r_max * unit).map_err(py_err)?;
+    let base = PerturbParams::of(preset, surface, r_max_m).map_err(py_err)?;
     let p: PerturbParams = with_params(what, &base, params)?;
     p.check().map_err(py_err)?;
     Ok(p)
+}
+
+/// The real R_max (m) of `stone` (named `name`), from `length_unit=` or `size=` ([`real_size`]).
+fn real_r_max(
+    name: &str,
+    stone: &rocking_stones::dynamics::perturb::Stone,
+    length_unit: Option<&Bound<'_, PyAny>>,
+    size: Option<f64>,
+) -> PyResult<f64> {
+    let unit = real_size(name, length_unit, size)?.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    Ok(stone.body.r_max * unit)
 }
 
 /// The real size of a stone from `length_unit=` (a name or metres per unit) or `size=` (R_max in
@@ -151,8 +159,8 @@ pub(crate) fn perturb(
     }
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let size = real_size(&s.name, length_unit, size)?;
-    let params = resting_params("perturb", &stone, preset, surface, Surface::StoneOnStone, size, params)?;
+    let r_max_m = real_r_max(&s.name, &stone, length_unit, size)?;
+    let params = resting_params("perturb", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
     let params = pt::PerturbParams { certificate, ..params };
     let cfg = PerturbConfig {
         params,
@@ -207,9 +215,8 @@ pub(crate) fn shake(
     }
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let size = real_size(&s.name, length_unit, size)?;
-    let params = resting_params("shake", &stone, preset, surface, Surface::StoneOnStone, size, params)?;
-    let r_max_m = stone.body.r_max * size.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    let r_max_m = real_r_max(&s.name, &stone, length_unit, size)?;
+    let params = resting_params("shake", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
     let real_dt = params.sim.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (pulse, motion) {
         (Some((a, f, c)), _) => (sh::sine_pulse(a, f, c, real_dt).map_err(py_err)?, false),

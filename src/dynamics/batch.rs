@@ -71,6 +71,8 @@ pub fn simulate_batch(
     let (mut world, _ground, ground_collider) = ground_world(p);
     let law = ContactLaw::of(p);
     let mut slots: Vec<Slot> = Vec::with_capacity(capacity);
+    // The stones in the world this step (a buffer kept across steps: no allocation per step).
+    let mut in_world: Vec<(RigidBodyHandle, ColliderHandle)> = Vec::with_capacity(capacity);
     let mut queue = queue.fuse();
     loop {
         while slots.len() < capacity {
@@ -87,13 +89,11 @@ pub fn simulate_batch(
         if slots.is_empty() {
             return;
         }
-        let in_world: Vec<(RigidBodyHandle, ColliderHandle)> = slots
-            .iter()
-            .filter_map(|s| match s.place {
-                Place::World { handle, collider } => Some((handle, collider)),
-                Place::Air(_) => None,
-            })
-            .collect();
+        in_world.clear();
+        in_world.extend(slots.iter().filter_map(|s| match s.place {
+            Place::World { handle, collider } => Some((handle, collider)),
+            Place::Air(_) => None,
+        }));
         if !in_world.is_empty() {
             step_world(&mut world, &law, &stone.body, ground_collider, &in_world);
         }

@@ -64,8 +64,7 @@ pub struct Simulation<'a> {
     pub ground_handle: RigidBodyHandle,
     body_collider: ColliderHandle,
     ground_collider: ColliderHandle,
-    rolling_resistance: f64,
-    torsional_friction: f64,
+    law: ContactLaw,
     body: &'a Body,
 }
 
@@ -82,25 +81,14 @@ impl<'a> Simulation<'a> {
     ) -> Self {
         let (mut world, ground_handle, ground_collider) = ground_world(p);
         let (body_handle, body_collider) = insert_stone(&mut world, body, p, orientation, z, linvel, angvel);
-        Simulation {
-            world,
-            body_handle,
-            ground_handle,
-            body_collider,
-            ground_collider,
-            rolling_resistance: p.rolling_resistance,
-            torsional_friction: p.torsional_friction,
-            body,
-        }
+        Simulation { world, body_handle, ground_handle, body_collider, ground_collider, law: ContactLaw::of(p), body }
     }
 
     /// Advance one time step: rapier's step, then the contact's rolling resistance and torsional
     /// friction (module docs).
     pub fn step(&mut self) {
-        let law =
-            ContactLaw { rolling_resistance: self.rolling_resistance, torsional_friction: self.torsional_friction };
         let stone = [(self.body_handle, self.body_collider)];
-        step_world(&mut self.world, &law, self.body, self.ground_collider, &stone);
+        step_world(&mut self.world, &self.law, self.body, self.ground_collider, &stone);
     }
 
     /// Advance `steps` time steps with nothing but gravity and the contact (settling).

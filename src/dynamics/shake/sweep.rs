@@ -108,13 +108,15 @@ pub fn default_starts(stone: &Stone, p: &PerturbParams) -> Result<Vec<usize>> {
 }
 
 /// Shake the ground under a stone resting on `start` with `record` (real time, already at its
-/// PGA and sampled for the run, see [`driven`]) along `azimuth`, then let it come to rest
-/// relative to the ground.
+/// peak ground acceleration `pga` (g) and sampled for the run, see [`driven`]) along `azimuth`,
+/// then let it come to rest relative to the ground.
+#[allow(clippy::too_many_arguments)]
 pub fn shake_trial(
     stone: &Stone,
     start: usize,
     p: &PerturbParams,
     record: &Record,
+    pga: f64,
     r_max_m: f64,
     azimuth: f64,
     k: u32,
@@ -124,7 +126,7 @@ pub fn shake_trial(
     ShakeTrial {
         start,
         equilibrium: stone.stable()[start].index,
-        pga: record.measures().pga_g,
+        pga,
         azimuth,
         trial: k,
         outcome: classify(stone, start, Some(rest.facet), rest.flock),
@@ -263,9 +265,7 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dy
             let mut rng = item_rng(cfg.seed, shake_stream(s, k));
             rng.random_range(0.0..2.0 * std::f64::consts::PI)
         });
-        let mut t = shake_trial(stone, s, &cfg.params, &motions[i], cfg.r_max_m, azimuth, k);
-        t.pga = cfg.pgas[i];
-        t
+        shake_trial(stone, s, &cfg.params, &motions[i], cfg.pgas[i], cfg.r_max_m, azimuth, k)
     })?;
     let fragility = starts.iter().zip(checks).map(|(&s, rest)| fragility(stone, s, rest, &cfg.pgas, &trials)).collect();
     Ok(ShakeReport {
