@@ -91,6 +91,50 @@ fn a_spinning_ball_stops_by_torsional_friction() {
     assert!((t / t_exact - 1.0).abs() < 0.03, "stopped after {t} s, closed form {t_exact}");
 }
 
+/// A box 1 × 0.8 × 0.5 standing on its largest face, spun about the vertical at `w0`: the time
+/// its spin takes to stop.
+fn box_spin_down(friction: f64, torsional: f64, w0: f64) -> (f64, Stone) {
+    let (mesh, _) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
+    let a = Analysis::of_solid(mesh, Default::default(), &Options::default()).unwrap();
+    let stone = Stone::new(&a, 0.0035).unwrap();
+    let p = DropParams {
+        friction,
+        restitution: 0.0,
+        rolling_resistance: torsional,
+        torsional_friction: torsional,
+        dt: 1.0 / 480.0,
+        ..Preset::Drop.params(Surface::StoneOnStone)
+    };
+    let z = stone.body.support(&-Vec3::z());
+    let mut sim =
+        Simulation::new(&stone.body, &p, &UnitQuaternion::identity(), z, &Vec3::zeros(), &Vec3::new(0.0, 0.0, w0));
+    let mut t = 0.0;
+    while sim.state().angvel.z > 1e-6 && t < 30.0 {
+        sim.step();
+        t += p.dt;
+    }
+    (t, stone)
+}
+
+#[test]
+fn a_flat_box_spins_down_at_the_coulomb_torque_of_its_corners() {
+    // Four corner contacts at r from the axis carry m g / 4 each; Coulomb friction opposes each
+    // corner's sliding with μ N/4 at lever r: I_z dω/dt = −μ m g r ⇒ t = ω₀ k² / (μ g r), with
+    // k² = (a² + b²)/3 for half-sides a, b (scaled frame). Rapier's twist friction gives exactly
+    // this torque, and the project's torsional friction δ_t N must not come on top of it: with
+    // δ_t = 0.05 R_max it would add 0.05 / (μ r) = 13–27 % to the torque.
+    for (mu, w0) in [(0.4, 6.0), (0.2, 3.0)] {
+        let (t, stone) = box_spin_down(mu, 0.05, w0);
+        let c = &stone.body.corners;
+        let (a, b) = (c.iter().map(|p| p.x.abs()).fold(0.0, f64::max), c.iter().map(|p| p.y.abs()).fold(0.0, f64::max));
+        let r = (a * a + b * b).sqrt();
+        let k2 = (a * a + b * b) / 3.0;
+        assert!((stone.body.inertia[(2, 2)] / k2 - 1.0).abs() < 1e-9, "the box's I_z is (a² + b²)/3");
+        let t_exact = w0 * k2 / (mu * GRAVITY * r);
+        assert!((t / t_exact - 1.0).abs() < 0.03, "μ = {mu}: stopped after {t} s, closed form {t_exact} s");
+    }
+}
+
 #[test]
 fn mechanical_energy_never_rises_under_the_contact_law() {
     // Throws of a pebble with rolling resistance and no damping: between states with a relaxed

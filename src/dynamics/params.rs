@@ -57,8 +57,9 @@ pub struct DropParams {
     /// Rolling-resistance length δ_r / R_max: the contact's rolling torque is at most δ_r N
     /// ([`super::world`]). Default 0.02: steel on wood (δ = 0.2 mm) for R_max = 1 cm.
     pub rolling_resistance: f64,
-    /// Torsional-friction length δ_t / R_max: the contact's torque about its normal is at most
-    /// δ_t N. Default: equal to `rolling_resistance`.
+    /// Torsional-friction length δ_t / R_max: on a single contact point the torque about the
+    /// normal is at most δ_t N (on two or more points rapier's Coulomb twist friction acts instead,
+    /// never both: [`super::world`]). Default: equal to `rolling_resistance`.
     pub torsional_friction: f64,
     /// Global linear velocity damping (1/s). Default 0: it would slow a body in flight; kept
     /// for the overdamped [`Preset::QuasiStatic`] limit and for comparison with older runs.

@@ -26,6 +26,23 @@
 //! the mechanical energy stays non-increasing and the energy certificate of
 //! [`super::run`] stays valid (tested in `tests/contact.rs`). A body in flight has N = 0 and
 //! feels nothing.
+//!
+//! # Friction about the normal, stated once
+//!
+//! Rapier's default friction model (`FrictionModel::Simplified`) solves, per contact manifold,
+//! one tangential Coulomb constraint at the centroid c of the contact points and one *twist*
+//! constraint about the normal with the Coulomb limit μ Σᵢ Nᵢ dᵢ (dᵢ = |pᵢ − c|) — on manifolds of
+//! two or more points only. For points spread symmetrically about c this is exactly the torque of
+//! Coulomb friction at the points of a spinning support (μ Nᵢ dᵢ each): a flat box spinning on a
+//! face spins down at μ g r / k² (r the corners' distance from the axis, k the radius of
+//! gyration about it), tested against that closed form in `tests/contact.rs`. A *single* contact
+//! point has no lever arm, and rapier has no torque there at all: that is where the contact
+//! patch's torsional friction δ_t N acts (a ball spinning on its contact point, also tested).
+//! So the torsional impulse J_s above is applied only when the ground–stone manifold has at most
+//! one contact point, never on top of rapier's twist. One caveat of rapier's model, kept: the
+//! centroid c counts speculative points (within the prediction distance, not yet loaded), so a
+//! stone pivoting on one loaded corner with a second corner within 0.02 R_max of the ground has
+//! a twist limit μ N d with d half their distance.
 
 use super::convert;
 use super::params::DropParams;
@@ -234,6 +251,15 @@ pub fn normal_impulse(world: &PhysicsWorld, ground: ColliderHandle, stone: Colli
     world.narrow_phase.contact_pair(ground, stone).map_or(0.0, |c| c.total_impulse_magnitude() as f64)
 }
 
+/// Number of contact points (within the prediction distance) of the largest manifold between
+/// two colliders in the last step: rapier's twist friction acts on manifolds of two or more.
+pub fn contact_points(world: &PhysicsWorld, ground: ColliderHandle, stone: ColliderHandle) -> usize {
+    world
+        .narrow_phase
+        .contact_pair(ground, stone)
+        .map_or(0, |c| c.manifolds().iter().map(|m| m.data.num_active_contacts()).max().unwrap_or(0))
+}
+
 /// The contact's rolling resistance and torsional friction (module docs), lengths in R_max.
 #[derive(Clone, Copy, Debug)]
 pub struct ContactLaw {
@@ -284,9 +310,10 @@ impl ContactLaw {
             let j = (self.rolling_resistance * jn).min(stop);
             dw -= inv * (u * j);
         }
-        // Spinning about the normal, after the rolling impulse.
+        // Spinning about the normal, after the rolling impulse: only on a single contact point,
+        // where rapier's twist friction is off (module docs).
         let ws = (w + dw).dot(&n);
-        if ws != 0.0 && self.torsional_friction > 0.0 {
+        if ws != 0.0 && self.torsional_friction > 0.0 && contact_points(world, ground, stone) <= 1 {
             let stop = ws.abs() / n.dot(&(inv * n));
             let j = (self.torsional_friction * jn).min(stop);
             dw -= inv * (n * (j * ws.signum()));
