@@ -5,7 +5,7 @@
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::flight::{FreeBody, LANDING_CLEARANCE};
+use rocking_stones::dynamics::flight::{FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE};
 use rocking_stones::dynamics::params::{Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::world::{ground_world, Simulation};
@@ -48,11 +48,16 @@ fn run(s: &Stone, h: &RunHeader, batch: usize, threads: usize) -> Vec<DropOutcom
 }
 
 #[test]
-fn landing_clearance_is_outside_rapiers_contact_range() {
+fn landings_are_handed_to_rapier_inside_its_contact_range() {
+    // The exact landing stops at CONTACT_CLEARANCE: inside rapier's prediction distance, so
+    // rapier's first step holds the contact, and above the ground, so the impact starts outside.
     let (world, _, _) = ground_world(&Preset::Throw.params(Surface::SteelOnWood));
     let prediction = world.integration_parameters.prediction_distance() as f64;
-    assert!(prediction > 0.0);
-    assert!(LANDING_CLEARANCE >= 2.0 * prediction, "landing at {LANDING_CLEARANCE}, rapier predicts {prediction}");
+    assert!(
+        (prediction - LANDING_CLEARANCE).abs() < 1e-8,
+        "flight's copy of rapier's prediction distance: {prediction}"
+    );
+    assert!(CONTACT_CLEARANCE > 0.0 && CONTACT_CLEARANCE + LANDING_TOLERANCE < prediction);
 }
 
 /// Fly a tumbling box for 1.5 s in rapier (time step 1/`steps_per_s`) and in [`FreeBody`]: the
@@ -148,4 +153,58 @@ fn fast_numerics_are_free_flight_at_the_presets_longest_stable_step_and_options_
     assert!(Preset::Throw.largest_stable_dt() > 1.0 / 240.0);
     let pinned = cli_params(&["--fast", "--flight", "rapier", "--dt", "0.005"]);
     assert_eq!((pinned["flight"].as_str(), pinned["dt"].as_f64()), (Some("rapier"), Some(0.005)));
+}
+
+/// Deepest compression h(down) − z_G (R_max) in the drop of `s` released at `height` with
+/// orientation `q` and spin `w`, at step `dt`, under `flight`.
+fn deepest(s: &Stone, flight: Flight, height: f64, dt: f64, q: UnitQuaternion<f64>, w: Vec3) -> f64 {
+    use rocking_stones::dynamics::batch::simulate_batch_observed;
+    use rocking_stones::dynamics::drop::Release;
+    let mut p = Preset::Drop.params(Surface::SteelOnWood);
+    (p.height, p.dt, p.flight) = (height, dt, flight);
+    let release = Release { orientation: q, linvel: Vec3::zeros(), angvel: w };
+    let cert = rocking_stones::dynamics::run::NoCertificate;
+    let mut worst = f64::NEG_INFINITY;
+    let mut settled = false;
+    simulate_batch_observed(
+        s,
+        &p,
+        &cert,
+        1,
+        &mut std::iter::once((0, release)),
+        &mut |o| settled = o.settled,
+        &mut |_, st| worst = worst.max(s.body.support(&st.down) - st.z),
+    );
+    assert!(settled);
+    worst
+}
+
+#[test]
+fn no_impact_starts_deeper_than_the_stated_bound() {
+    // A cube dropped flat, edge-first and corner-first, from 0.5 to 8 R_max, at 1/240 and
+    // 1/120 s, still and spinning: exact landings and sub-stepped impacts keep every hull point
+    // within IMPACT_APPROACH of the ground (the contact may still sink by its own softness,
+    // 10⁻³ R_max: measured here, not assumed).
+    use rocking_stones::dynamics::impact::IMPACT_APPROACH;
+    let cube = stone(generate::cuboid(1.0, 1.0, 1.0));
+    let flat = UnitQuaternion::identity();
+    let edge = UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_4, 0.0, 0.0);
+    let corner = UnitQuaternion::rotation_between(&Vec3::new(1.0, 1.0, 1.0), &-Vec3::z()).unwrap();
+    let mut worst_free: f64 = 0.0;
+    for q in [flat, edge, corner] {
+        for height in [0.5, 2.0, 8.0] {
+            for dt in [1.0 / 240.0, 1.0 / 120.0] {
+                for w in [Vec3::zeros(), Vec3::new(0.0, 20.0, 5.0)] {
+                    let d = deepest(&cube, Flight::Free, height, dt, q, w);
+                    assert!(d < IMPACT_APPROACH, "{d} R_max deep: height {height}, dt {dt}, {q:?}, ω {w:?}");
+                    worst_free = worst_free.max(d);
+                }
+            }
+        }
+    }
+    // Not vacuous: the same cube in rapier's own flight, impacts discovered at the step
+    // boundaries, goes far deeper.
+    let d = deepest(&cube, Flight::Rapier, 8.0, 1.0 / 120.0, corner, Vec3::new(0.0, 20.0, 5.0));
+    assert!(d > 5.0 * IMPACT_APPROACH, "rapier's own flight: {d}");
+    eprintln!("deepest compression: {worst_free:e} R_max (exact landings), {d:e} (rapier's flight)");
 }

@@ -18,12 +18,15 @@
 //! inserted, so the batch stays full until the queue runs dry.
 //!
 //! With [`super::params::Flight::Free`] a stone clear of the ground leaves the world and flies
-//! outside rapier ([`super::flight`]) until it is about to land; the world is stepped only while
-//! some stone is in it. Its step count, certificate checks and rest rule are those of a stone in
+//! outside rapier ([`super::flight`]) until the exact instant its clearance falls to
+//! [`flight::CONTACT_CLEARANCE`], where it re-enters the world (part-way through a step: its
+//! clock then runs late by the rest of that step, which the reported time takes off); the world
+//! is stepped only while some stone is in it. Its step count, certificate checks and rest rule are those of a stone in
 //! the world (the same [`Progress`]), and its flight depends on nothing but its own state, so the
 //! outcomes are again the same for any batch size and thread count (`tests/flight.rs`).
 
 use super::flight::{self, FreeBody};
+use super::impact::{self, ImpactWorld};
 use super::launch::{outcome, release_height, DropOutcome, Release};
 use super::params::DropParams;
 use super::run::{Certificate, Progress, RestKind, RestSample};
@@ -35,12 +38,14 @@ use nalgebra::Matrix3;
 use rapier3d::prelude::{ColliderHandle, PhysicsWorld, RigidBodyHandle};
 
 /// Where a stone of the batch is.
-#[derive(Clone, Copy)]
 enum Place {
     /// A body of the rapier world.
     World { handle: RigidBodyHandle, collider: ColliderHandle },
     /// Clear of the ground, in free flight outside rapier ([`super::flight`]).
     Air(FreeBody),
+    /// In an impact that one step could not resolve: in a world of its own, sub-stepped
+    /// ([`super::impact`]).
+    Impact(Box<ImpactWorld>),
 }
 
 /// One stone in flight in a batch.
@@ -48,6 +53,9 @@ struct Slot {
     index: u64,
     place: Place,
     progress: Progress,
+    /// How far (s) the stone's clock runs behind the step count: the unused parts of the steps
+    /// in which it landed ([`flight::FreeBody::fly`]).
+    lag: f64,
 }
 
 /// Simulate the drops of `queue` (drop index and release, in the order given) with at most
@@ -63,6 +71,20 @@ pub fn simulate_batch(
     capacity: usize,
     queue: &mut dyn Iterator<Item = (u64, Release)>,
     on_done: &mut dyn FnMut(DropOutcome),
+) {
+    simulate_batch_observed(stone, p, cert, capacity, queue, on_done, &mut |_, _| {})
+}
+
+/// [`simulate_batch`], with `observe` shown every stone's state after every step (its drop
+/// index and state), e.g. to measure the contact's compression.
+pub fn simulate_batch_observed(
+    stone: &Stone,
+    p: &DropParams,
+    cert: &dyn Certificate,
+    capacity: usize,
+    queue: &mut dyn Iterator<Item = (u64, Release)>,
+    on_done: &mut dyn FnMut(DropOutcome),
+    observe: &mut dyn FnMut(u64, &BodyState),
 ) {
     let capacity = capacity.max(1);
     let free_flight = flight::applies(p);
@@ -84,7 +106,7 @@ pub fn simulate_batch(
             } else {
                 enter_world(&mut world, &stone.body, p, &free)
             };
-            slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds) });
+            slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds), lag: 0.0 });
         }
         if slots.is_empty() {
             return;
@@ -92,7 +114,7 @@ pub fn simulate_batch(
         in_world.clear();
         in_world.extend(slots.iter().filter_map(|s| match s.place {
             Place::World { handle, collider } => Some((handle, collider)),
-            Place::Air(_) => None,
+            Place::Air(_) | Place::Impact(_) => None,
         }));
         if !in_world.is_empty() {
             step_world(&mut world, &law, &stone.body, ground_collider, &in_world);
@@ -100,78 +122,116 @@ pub fn simulate_batch(
         let mut k = 0;
         while k < slots.len() {
             let s = &mut slots[k];
+            let mut landed = false;
             let state = match &mut s.place {
                 Place::World { handle, .. } => body_state(&world.bodies[*handle], &stone.body),
                 Place::Air(b) => {
-                    b.step(p.dt, &inertia, &inertia_inv);
+                    if let flight::Flew::Landed(t) =
+                        b.fly(p.dt, &inertia, &inertia_inv, &|d| stone.body.support_climb(d))
+                    {
+                        s.lag += p.dt - t;
+                        landed = true;
+                    }
                     air_state(b, &stone.body)
                 }
+                Place::Impact(w) => {
+                    let n = impact::substeps(&w.state(&stone.body).0, p.dt);
+                    w.step(n, &law, &stone.body);
+                    w.state(&stone.body).0
+                }
             };
+            observe(s.index, &state);
             // The ground never moves here and the speed rule reads no position.
             let sample = RestSample { state: &state, ground_velocity: Vec3::zeros(), offset: Vec3::zeros() };
             match s.progress.after_step(&sample, cert) {
                 None => {
                     if free_flight {
-                        s.place = match s.place {
-                            Place::World { handle, collider } => {
-                                take_off_if_clear(&mut world, &stone.body, handle, collider, ground_collider, &state)
-                            }
-                            Place::Air(b) => land_if_due(&mut world, &stone.body, p, b),
-                        };
+                        let place = std::mem::replace(
+                            &mut s.place,
+                            Place::Air(FreeBody::new(0.0, Vec3::zeros(), Default::default(), &Vec3::zeros())),
+                        );
+                        s.place = next_place(&mut world, &stone.body, p, ground_collider, place, &state, landed);
                     }
                     k += 1;
                 }
                 Some(end) => {
                     let s = slots.swap_remove(k);
-                    if let Place::World { handle, .. } = s.place {
-                        world.remove_body(handle);
+                    if let Place::World { handle, .. } = &s.place {
+                        world.remove_body(*handle);
                     }
-                    on_done(outcome(stone, p, &end, s.index));
+                    let mut o = outcome(stone, p, &end, s.index);
+                    o.time -= s.lag;
+                    on_done(o);
                 }
             }
         }
     }
 }
 
-/// Insert the stone in the state `b` into the world.
+/// Insert the stone in the state `b` into the world (or, if one step could not resolve its
+/// impact, into a world of its own: [`super::impact`]).
 fn enter_world(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: &FreeBody) -> Place {
+    let state = air_state(b, body);
+    if flight::applies(p) && impact::substeps(&state, p.dt) > 1 {
+        return Place::Impact(Box::new(ImpactWorld::new(body, p, &b.orientation, &state)));
+    }
     let (handle, collider) = insert_stone(world, body, p, &b.orientation, b.z, &b.linvel, &b.angvel());
     Place::World { handle, collider }
 }
 
-/// Keep `b` in the air while it is clear of the ground ([`flight::in_flight`]); else insert it.
+/// Keep a released stone `b` in the air while it is clear of the ground ([`flight::airborne`]);
+/// else insert it.
 fn land_if_due(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: FreeBody) -> Place {
-    // h ≤ 1 (R_max) in every direction: high up, no support query is needed.
-    let clear = flight::in_flight(b.z - 1.0, false) || {
-        let down = b.orientation.inverse() * -Vec3::z();
-        flight::in_flight(flight::clearance(b.z, body.support_climb(&down)), false)
-    };
-    if clear {
+    if flight::airborne(flight::clearance(b.z, body.support_climb(&b.down()))) {
         Place::Air(b)
     } else {
         enter_world(world, body, p, &b)
     }
 }
 
-/// Take the stone out of the world into free flight if the ground gave it no impulse in the
-/// last step and it ended clear of the ground ([`flight::in_flight`]).
-fn take_off_if_clear(
+/// Where a stone goes after a step that ended in `state` (free flight, [`flight::applies`]): a
+/// stone that `landed` enters the world; one that the ground did not push and that ended clear
+/// of it ([`flight::may_take_off`]) leaves for free flight; one whose next step could bring a
+/// hull point down by more than [`impact::IMPACT_APPROACH`] goes to (or stays in) a world of its
+/// own, and comes back to the shared world once one step will do.
+fn next_place(
     world: &mut PhysicsWorld,
     body: &Body,
-    handle: RigidBodyHandle,
-    collider: ColliderHandle,
+    p: &DropParams,
     ground: ColliderHandle,
+    place: Place,
     state: &BodyState,
+    landed: bool,
 ) -> Place {
-    let clear = flight::in_flight(flight::clearance(state.z, body.support_climb(&state.down)), true);
-    if clear && normal_impulse(world, ground, collider) == 0.0 {
-        let rb = &world.bodies[handle];
-        let q = super::convert::quat_back(rb.rotation());
-        let b = FreeBody::new(state.z, state.linvel, q, &state.angvel);
-        world.remove_body(handle);
-        Place::Air(b)
-    } else {
-        Place::World { handle, collider }
+    let clear = || flight::may_take_off(flight::clearance(state.z, body.support_climb(&state.down)));
+    let free = |q| FreeBody::new(state.z, state.linvel, q, &state.angvel);
+    match place {
+        Place::Air(b) if landed => enter_world(world, body, p, &b),
+        Place::Air(b) => Place::Air(b),
+        Place::World { handle, collider } => {
+            let pushed = normal_impulse(world, ground, collider) > 0.0;
+            let take_off = !pushed && clear();
+            if !take_off && impact::substeps(state, p.dt) == 1 {
+                return Place::World { handle, collider };
+            }
+            let q = super::convert::quat_back(world.bodies[handle].rotation());
+            world.remove_body(handle);
+            if take_off {
+                Place::Air(free(q))
+            } else {
+                Place::Impact(Box::new(ImpactWorld::new(body, p, &q, state)))
+            }
+        }
+        Place::Impact(w) => {
+            let q = w.state(body).1;
+            if w.normal_impulse() == 0.0 && clear() {
+                Place::Air(free(q))
+            } else if impact::substeps(state, p.dt) == 1 {
+                enter_world(world, body, p, &free(q))
+            } else {
+                Place::Impact(w)
+            }
+        }
     }
 }
 

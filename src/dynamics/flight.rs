@@ -27,20 +27,30 @@
 //! the energy over 1.5 s of a 40 rad/s tumble at dt = 1/240 s and converges to this flight as
 //! its step shrinks (`tests/flight.rs`): the free flight is the same physics, more accurately.
 //!
-//! # When a stone is in flight ([`clearance`], [`in_flight`])
+//! # When a stone is in flight, and the exact landing ([`FreeBody::fly`])
 //!
-//! The clearance is c = z_G − h(d) (h the support function, d the body-frame down direction): the
-//! height of the lowest hull point. Rapier makes contact points only for features closer than its
-//! prediction distance (0.02 R_max here: rapier's default 0.02 × `length_unit` 1, no contact
-//! skin, no soft CCD), computed at the step boundaries; a step that starts with c above it is
-//! pure free flight in rapier too. So a stone leaves rapier only after a step in which the ground
-//! gave it no impulse and that ended with c > [`TAKE_OFF_CLEARANCE`], flies here while every step
-//! ends with c > [`LANDING_CLEARANCE`], and is handed back to rapier at the first step boundary
-//! where c ≤ [`LANDING_CLEARANCE`] — twice the prediction distance, so rapier sees every
-//! approach from outside its contact range, exactly as if it had flown the stone all along. A
-//! stone fast enough to cross that range within one step (≈ 5 m/s of the scaled body at
-//! dt = 1/240 s) meets the ground in rapier exactly as it would have: rapier too looks only at
-//! the step boundaries.
+//! The clearance is c(t) = z_G(t) − h(d(t)) (h the support function, d the body-frame down
+//! direction): the height of the lowest hull point. A stone leaves rapier only after a step in
+//! which the ground gave it no impulse and that ended with c > [`TAKE_OFF_CLEARANCE`]. In the
+//! air, the landing is not looked for at the step boundaries: [`FreeBody::fly`] finds the first
+//! time at which c falls to [`CONTACT_CLEARANCE`], by *conservative advancement* along the exact
+//! trajectory. On any interval [t, t + τ] of the step,
+//!
+//! ```text
+//! −dc/dt = −v_z − dh/dt ≤ max(0, −v_z(t)) + g τ + |ω_⊥| ρ  ≤  S,
+//! ```
+//!
+//! because |dh/dt| = |∇h · ḋ| ≤ max|x − G| · |ω × d| and every hull point is within ρ = 1 R_max
+//! of G, and |ω| ≤ √(2 T_rot / λ_min(I)) with T_rot the (conserved) rotational energy. So
+//! advancing by τ = (c − c_contact)/S can never carry the clearance below c_contact; repeating
+//! it converges to the first contact time from below, and never passes it. The stone is then
+//! handed to rapier at clearance c ∈ [c_contact, c_contact + [`LANDING_TOLERANCE`]], inside
+//! rapier's prediction distance (0.02 R_max, checked in `tests/flight.rs`): rapier's first step
+//! already has the lowest corner as a speculative contact and the impact starts outside the
+//! ground, never inside it. The stone lands part-way through a step; it re-enters rapier there
+//! and goes on with whole steps from that instant (the ground is flat, fixed and the same at
+//! every time, so the motion does not care), and its clock runs late by the unused part of the
+//! step (≤ dt per landing, subtracted from the reported time).
 
 use super::params::{DropParams, Flight};
 use crate::Vec3;
@@ -51,16 +61,39 @@ use nalgebra::{Matrix3, Quaternion, UnitQuaternion};
 /// in a second (rapier's own flight: 10⁻² and 5·10⁻³), at two sub-steps per step of 1/240 s.
 pub const MAX_SUBSTEP_ANGLE: f64 = 0.2;
 
-/// Clearance (R_max) at or below which a stone in free flight is handed back to rapier: twice
-/// rapier's contact prediction distance (module docs; checked against the world's own parameter
-/// in `tests/flight.rs`).
-pub const LANDING_CLEARANCE: f64 = 0.04;
+/// Clearance (R_max) at which a landing stone is handed to rapier: half rapier's contact
+/// prediction distance (module docs; checked against the world's own parameter in
+/// `tests/flight.rs`), so that its first step in rapier already holds the contact.
+pub const CONTACT_CLEARANCE: f64 = 0.01;
+
+/// The landing is handed to rapier once the clearance is within this (R_max) above
+/// [`CONTACT_CLEARANCE`].
+pub const LANDING_TOLERANCE: f64 = 1e-4;
+
+/// Most conservative-advancement moves in one step ([`FreeBody::fly`]); a stone that grazes the
+/// ground without reaching it can need many. After them the stone lands where it is, still above
+/// [`CONTACT_CLEARANCE`] (a move covers at least (c − c_contact)/S, so a stone more than
+/// 0.01 R_max above it runs out of moves only at speeds S > 0.01 · 256 / dt ≈ 300 m/s, scaled).
+pub const MAX_ADVANCES: usize = 256;
+
+/// Rapier's contact prediction distance (R_max; rapier's default 0.02 × `length_unit` 1, which
+/// [`super::world::ground_world`] keeps): [`CONTACT_CLEARANCE`] is inside it.
+pub const LANDING_CLEARANCE: f64 = 0.02;
 
 /// Clearance (R_max) above which a stone that the ground did not push during the step leaves
-/// rapier for free flight: twice [`LANDING_CLEARANCE`], so that a stone leaving the ground does
-/// not come back at once.
+/// rapier for free flight: eight times [`CONTACT_CLEARANCE`], so that a stone leaving the ground
+/// does not come back at once.
 pub const TAKE_OFF_CLEARANCE: f64 = 0.08;
-const _: () = assert!(TAKE_OFF_CLEARANCE > LANDING_CLEARANCE);
+const _: () = assert!(TAKE_OFF_CLEARANCE > LANDING_CLEARANCE && LANDING_CLEARANCE > CONTACT_CLEARANCE);
+
+/// How a step of free flight ended ([`FreeBody::fly`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Flew {
+    /// Still in the air at the end of the step.
+    Airborne,
+    /// Reached [`CONTACT_CLEARANCE`] after this much of the step (s).
+    Landed(f64),
+}
 
 /// Gravity (m/s², scaled frame) — the world's.
 use crate::GRAVITY as G;
@@ -154,10 +187,60 @@ pub fn clearance(z: f64, support: f64) -> f64 {
     z - support
 }
 
-/// Whether a stone whose step ended with clearance `c` stays in (or, with `take_off`, may
-/// start) free flight (module docs).
-pub fn in_flight(c: f64, take_off: bool) -> bool {
-    c > if take_off { TAKE_OFF_CLEARANCE } else { LANDING_CLEARANCE }
+/// Whether a stone in rapier whose step ended with clearance `c` may leave it for free flight.
+pub fn may_take_off(c: f64) -> bool {
+    c > TAKE_OFF_CLEARANCE
+}
+
+/// Whether a stone released (or found) at clearance `c` starts in the air rather than in rapier.
+pub fn airborne(c: f64) -> bool {
+    c > CONTACT_CLEARANCE + LANDING_TOLERANCE
+}
+
+impl FreeBody {
+    /// Down direction in the body frame.
+    pub fn down(&self) -> Vec3 {
+        self.orientation.inverse() * -Vec3::z()
+    }
+
+    /// Fly for at most `dt`, stopping at the first instant the clearance falls to
+    /// [`CONTACT_CLEARANCE`] (conservative advancement, module docs). `support` is the support
+    /// function h of the body frame.
+    pub fn fly(
+        &mut self,
+        dt: f64,
+        inertia: &Matrix3<f64>,
+        inertia_inv: &Matrix3<f64>,
+        support: &dyn Fn(&Vec3) -> f64,
+    ) -> Flew {
+        // |ω| ≤ √(2 T_rot / λ_min): T_rot and hence the bound are constant in free flight.
+        let t_rot = self.omega_body.dot(&(inertia * self.omega_body));
+        let lambda_min = inertia.symmetric_eigenvalues().min();
+        let omega_max = (t_rot / lambda_min).sqrt();
+        let mut t = 0.0;
+        for _ in 0..MAX_ADVANCES {
+            // h ≤ 1 in every direction: high up, the support need not be asked.
+            let gap = if self.z - 1.0 > TAKE_OFF_CLEARANCE {
+                self.z - 1.0 - CONTACT_CLEARANCE
+            } else {
+                clearance(self.z, support(&self.down())) - CONTACT_CLEARANCE
+            };
+            if gap <= LANDING_TOLERANCE {
+                return Flew::Landed(t);
+            }
+            let left = dt - t;
+            if left <= 0.0 {
+                return Flew::Airborne;
+            }
+            let speed = (-self.linvel.z).max(0.0) + G * left + omega_max;
+            let tau = (gap / speed).min(left);
+            self.step(tau, inertia, inertia_inv);
+            t = if tau == left { dt } else { t + tau };
+        }
+        // Out of moves (a graze, or a speed bound ≫ 100 m/s): land where it is, still above
+        // CONTACT_CLEARANCE.
+        Flew::Landed(t)
+    }
 }
 
 #[cfg(test)]

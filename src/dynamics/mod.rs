@@ -15,7 +15,10 @@
 //! * [`launch`] and [`outcome`] — how a drop starts and ends; what became of a stone that
 //!   started at rest, and the statistics of its curves.
 //! * [`batch`] — many independent drops in one rapier world (the same outcomes, drop by drop).
-//! * [`flight`] — free flight between contacts outside rapier (`--flight free`).
+//! * [`flight`] — free flight between contacts outside rapier (`--flight free`), with exact
+//!   landings.
+//! * [`impact`] — sub-stepped impacts: no hull point comes down by more than a stated bound in
+//!   one step (`--flight free`).
 //! * [`drop`](mod@drop), [`perturb`], [`shake`] — what drives a run: a launch, a push, a ground motion.
 //! * [`housner`] — Housner's rigid block, the reference the shaking runs are checked against.
 
@@ -25,6 +28,7 @@ pub mod drop;
 pub mod flight;
 pub mod housner;
 pub mod hull_shape;
+pub mod impact;
 pub mod launch;
 pub mod outcome;
 pub mod params;

@@ -94,9 +94,13 @@ pub enum Flight {
     #[default]
     Rapier,
     /// Out of rapier while the stone is clear of the ground: G on its parabola and the rotation
-    /// by Euler's equations ([`super::flight`]), handed back to rapier before it can touch down.
-    /// The same physics with a more accurate flight; outcomes differ from [`Flight::Rapier`]
-    /// drop by drop (a throw is chaotic) but not in distribution (`results/drops_certificate/`).
+    /// by Euler's equations ([`super::flight`]), handed to rapier at the exact instant its
+    /// lowest point comes within [`super::flight::CONTACT_CLEARANCE`] of the ground; in contact,
+    /// a step that could bring a hull point down by more than
+    /// [`super::impact::IMPACT_APPROACH`] is sub-stepped ([`super::impact`]). Impacts start
+    /// outside the ground instead of up to 0.1–0.2 R_max inside it (`tests/flight.rs`,
+    /// `results/drops_impacts/`). Outcomes differ from [`Flight::Rapier`] drop by drop (a throw
+    /// is chaotic).
     /// Drops only, and only without global damping (`--linear-damping`, `--angular-damping`
     /// act in flight too); otherwise the flight stays in rapier.
     Free,
