@@ -65,6 +65,8 @@ pub struct ImpactWorld {
     collider: ColliderHandle,
     ground: ColliderHandle,
     dt: f64,
+    /// The run's solver iterations (rapier's sub-steps of one step).
+    iterations: usize,
 }
 
 impl ImpactWorld {
@@ -73,12 +75,19 @@ impl ImpactWorld {
     pub fn new(body: &Body, p: &DropParams, q: &UnitQuaternion<f64>, s: &BodyState) -> Self {
         let (mut world, _, ground) = ground_world(p);
         let (handle, collider) = insert_stone(&mut world, body, p, q, s.z, &s.linvel, &s.angvel);
-        ImpactWorld { world, handle, collider, ground, dt: p.dt }
+        ImpactWorld { world, handle, collider, ground, dt: p.dt, iterations: p.solver_iterations }
     }
 
-    /// Advance one step of the run in `n` sub-steps of dt/n, each with the contact law.
+    /// Advance one step of the run in `n` sub-steps of dt/n, each with the contact law and
+    /// ⌈iterations / n⌉ of rapier's solver sub-steps (so a step still has at least the solver
+    /// sub-steps of the shared world). Why not all of them in every sub-step: rapier's
+    /// restitution is applied once per step, point by point, after the solver's sub-steps, and
+    /// it loses accuracy when the impact falls early in a short step — a flat cube landing at
+    /// 6.25 m/s with e = 0.3 leaves at 1.77 m/s with 4 solver sub-steps at dt = 1/720 s (plain
+    /// rapier; e·v = 1.88) and at 1.86 m/s with one.
     pub fn step(&mut self, n: u32, law: &ContactLaw, body: &Body) {
         self.world.integration_parameters.dt = (self.dt / n as f64) as f32;
+        self.world.integration_parameters.num_solver_iterations = self.iterations.div_ceil(n as usize);
         for _ in 0..n {
             step_world(&mut self.world, law, body, self.ground, &[(self.handle, self.collider)]);
         }
