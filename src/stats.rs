@@ -17,7 +17,8 @@ pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
 }
 
 /// Pearson's χ² of counts against probabilities (categories with expected count < 5 are pooled
-/// into one), its degrees of freedom and p-value.
+/// into one), its degrees of freedom and p-value. Counts in categories of probability 0 make
+/// χ² infinite and p = 0 (the model says they cannot happen), never silently dropped.
 pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
     let n: u64 = counts.iter().sum();
     let (mut chi2, mut cats) = (0.0, 0usize);
@@ -35,6 +36,8 @@ pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
     if pooled_e > 0.0 {
         chi2 += (pooled_o - pooled_e).powi(2) / pooled_e;
         cats += 1;
+    } else if pooled_o > 0.0 {
+        return (f64::INFINITY, cats.max(1), 0.0);
     }
     let dof = cats.saturating_sub(1);
     let p = if dof == 0 {
@@ -207,6 +210,9 @@ mod tests {
     fn chi_square_of_a_perfect_fit_is_zero_and_p_is_one() {
         let (c, dof, p) = chi_square(&[100, 200, 300], &[1.0 / 6.0, 2.0 / 6.0, 3.0 / 6.0]);
         assert!(c.abs() < 1e-12 && dof == 2 && (p - 1.0).abs() < 1e-12);
+        // Counts where the model gives probability 0: impossible, not ignored.
+        let (c, _, p) = chi_square(&[50, 50, 3], &[0.5, 0.5, 0.0]);
+        assert!(c.is_infinite() && p == 0.0, "{c} {p}");
         // 2 categories, O = (60, 40) vs E = (50, 50): χ² = 4, p = 0.0455.
         let (c, dof, p) = chi_square(&[60, 40], &[0.5, 0.5]);
         assert!((c - 4.0).abs() < 1e-12 && dof == 1 && (p - 0.0455).abs() < 1e-4, "{p}");
