@@ -176,8 +176,10 @@ fn centre_text(c: Option<[f64; 3]>) -> String {
 }
 
 /// Header format tag of checkpoint files (2: launches with horizontal speed and Gaussian spin,
-/// rolling resistance, outcomes by the quasi-static descent).
-pub const FORMAT: &str = "rocking-drops/2";
+/// rolling resistance, outcomes by the quasi-static descent; 3: exact landings and sub-stepped
+/// impacts under `flight = free`, now the default, and torsional friction on single contact
+/// points only — a run of format 2 cannot be resumed or merged with the numerics of 3).
+pub const FORMAT: &str = "rocking-drops/3";
 
 /// FNV-1a over the bit patterns of the vertices and the triangle indices.
 pub fn fingerprint(mesh: &crate::mesh::TriMesh) -> String {

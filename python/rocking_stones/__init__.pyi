@@ -316,9 +316,10 @@ def drop(
     the CLI's options: height, horizontal_speed, spin, spin_distribution, friction, restitution,
     rolling_resistance, torsional_friction, linear_damping, angular_damping, dt,
     solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time, flight
-    (``"rapier"``, the reference, or ``"free"``: flight between contacts outside rapier, faster,
-    the CLI's ``--flight``). ``fast=True`` is the CLI's ``--fast``: free flight at the preset's
-    longest stable time step (``**params`` still override it).
+    (``"free"``, the default: exact landings and sub-stepped impacts, so no impact starts inside
+    the ground, or ``"rapier"``: contacts found at rapier's step boundaries; the CLI's
+    ``--flight``). ``fast=True`` is the CLI's ``--fast``: the preset's longest stable time step
+    with free flight (``**params`` still override it).
     Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
     ``progress``: ``callable(done, total)`` called about every 0.1 s (a tqdm bar's ``update``).

@@ -153,11 +153,11 @@ impl PyDropResult {
 /// **params override single parameters, as the CLI's options: height, horizontal_speed, spin,
 /// spin_distribution, friction, restitution, rolling_resistance, torsional_friction,
 /// linear_damping, angular_damping, dt, solver_iterations, max_time, rest_linear_speed,
-/// rest_angular_speed, rest_time, flight ("rapier", the reference, or "free": the flight between
-/// contacts integrated outside rapier, the CLI's --flight).
+/// rest_angular_speed, rest_time, flight ("free", the default: exact landings and sub-stepped
+/// impacts, or "rapier": contacts found at rapier's step boundaries; the CLI's --flight).
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
-/// fast: the CLI's --fast (free flight at the preset's longest stable time step; **params still
-/// override it).
+/// fast: the CLI's --fast (the preset's longest stable time step with free flight; **params
+/// still override it).
 /// threads: threads of this run (default:
 /// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
 /// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.

@@ -71,14 +71,16 @@ pub struct Args {
     /// Time cap per drop (s of the scaled body).
     #[arg(long)]
     pub max_time: Option<f64>,
-    /// How the flight between contacts is integrated: rapier (every step in the physics engine,
-    /// the reference) or free (outside it, exactly as a free rigid body, until just before the
-    /// stone can touch down: the same statistics, faster). Default: rapier (free with --fast).
+    /// How the flight between contacts is integrated: free (the default: outside the physics
+    /// engine, exactly as a free rigid body, handed to it at the exact instant of touch-down,
+    /// and hard impacts sub-stepped so that no impact starts inside the ground) or rapier
+    /// (every step in the physics engine, contacts found at the step boundaries: the numerics
+    /// before issue 25, kept to compare).
     #[arg(long, value_parser = parse_flight)]
     pub flight: Option<Flight>,
-    /// Fast numerics: free flight and the preset's longest stable time step (1/120 s for drop
-    /// and throw, measured); per-flock statistics as the reference within sampling noise, about
-    /// 2× the drops per second. --dt and --flight still override it.
+    /// Fast numerics: the preset's longest stable time step (1/120 s for drop and throw,
+    /// measured) with free flight; per-flock statistics as the default within sampling noise.
+    /// --dt and --flight still override it.
     #[arg(long)]
     pub fast: bool,
     /// End drops early once the energy certificate decides the facet (facet), the flock (flock),
