@@ -22,9 +22,10 @@
 //! relaxed states with L ≤ R_max, L never rose by more than 10⁻³ R_max for dt from 1/480 to
 //! 1/80 s, and the rest compression stayed below 8·10⁻⁴ R_max — together under the margin.
 //!
-//! **Measured limit.** Rapier's contact solver (4 iterations) does not conserve energy in the hard
-//! first impact of a `throw` (≈ 10 m/s of the scaled body, 35 rad/s of spin): L can rise by up to
-//! 1.8 R_max there (0.4 at 16 iterations, 0.08 at 64). The certificate can only decide once
+//! **Measured limit.** With rapier's own flight (`--flight rapier`, impacts found after the stone
+//! is already up to 0.2 R_max inside the ground), rapier's contact solver (4 iterations) does not
+//! conserve energy in the hard first impact of a throw (≈ 10 m/s of the scaled body, 35 rad/s of
+//! spin): L could rise by up to 1.8 R_max there (0.4 at 16 iterations, 0.08 at 64). The certificate can only decide once
 //! L ≤ max h = R_max, where later impacts are slower than a drop from 1 R_max, and there no rise
 //! beyond the margin is measured (`tests/contact.rs`); an early injection only delays the decision.
 //! Certified outcomes equal full settling drop by drop on 400 throws (`tests/throws.rs`) and in
@@ -147,9 +148,10 @@ impl<'a> EnergyCertificate<'a> {
     }
 
     /// Whether the contact is relaxed enough for L to bound the energy
-    /// ([`CERTIFICATE_MAX_COMPRESSION`]).
+    /// ([`CERTIFICATE_MAX_COMPRESSION`]). h(down) by hill climbing (O(1) in the hull size, exact
+    /// to the collider's f32 rounding, 10⁻⁷ R_max: [`super::stone::Body::support_climb`]).
     pub fn relaxed(&self, s: &BodyState) -> bool {
-        self.stone.body.support(&s.down) - s.z <= CERTIFICATE_MAX_COMPRESSION
+        self.stone.body.support_climb(&s.down) - s.z <= CERTIFICATE_MAX_COMPRESSION
     }
 
     /// The stable facet that is certain in state `s`, if any.

@@ -83,6 +83,15 @@
 //! other convex shape (e.g. a `Cuboid` ground) the last arm calls `contact_manifold_pfm_pfm`
 //! (GJK/EPA on the support maps, then clipping of the two support features).
 //!
+//! So the hull-on-plane contact already is the support function's (issue 25, item 2): the
+//! support vertex by hill climbing, the facet at it closest to the plane's normal (reduced to at
+//! most four corners as above), and each corner's signed distance to the plane — no GJK, no
+//! generic polyhedron test. Rapier takes the manifold this way without a custom dispatcher. The
+//! distances are computed by parry in f32 (rapier's solver is f32 throughout, so f64 distances
+//! would be rounded on the way in anyway); what made impacts start deep was not this manifold
+//! but *when* it was asked (only at step boundaries), which [`crate::dynamics::flight`] and
+//! [`crate::dynamics::impact`] now resolve.
+//!
 //! [`SupportMap`]: parry3d::shape::SupportMap
 //! [`PolygonalFeatureMap`]: parry3d::shape::PolygonalFeatureMap
 //! [`Shape`]: parry3d::shape::Shape
