@@ -11,7 +11,10 @@
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
+#[path = "shared/cpu_time.rs"]
+mod cpu_time;
 use benchmark_bodies::benchmark_bodies;
+use cpu_time::thread_cpu_seconds;
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::params::{Flight, Preset, Surface};
@@ -123,13 +126,6 @@ fn header(name: &str, n: u64, preset: Preset, m: &Mode) -> RunHeader {
         center_of_mass: None,
         shard: Shard::ALL,
     }
-}
-
-/// CPU time of the calling thread (s), from Linux's /proc/thread-self/schedstat: on this shared
-/// machine, wall time counts the other jobs' time slices, CPU time does not.
-fn thread_cpu_seconds() -> f64 {
-    let s = std::fs::read_to_string("/proc/thread-self/schedstat").expect("Linux schedstat");
-    s.split_whitespace().next().and_then(|ns| ns.parse::<f64>().ok()).expect("CPU ns") * 1e-9
 }
 
 /// Run every drop of `h` with `batch` stones per world on the current (one-thread) pool; the
