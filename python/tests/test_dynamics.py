@@ -34,13 +34,13 @@ def test_drop_parameters_map_to_the_cli_options(cli, box_file):
     assert d.certified == 0
 
 
-def test_free_flight_is_the_cli_flight_option(cli, box_file):
-    d = rs.drop(box_file, 16, 4, flight="free")
-    expected = cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--flight", "free"])
+def test_flight_is_the_cli_flight_option(cli, box_file):
+    d = rs.drop(box_file, 16, 4, flight="rapier")
+    expected = cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--flight", "rapier"])
     assert d.to_dict() == expected
-    assert expected["params"]["flight"] == "free"
-    reference = rs.drop(box_file, 16, 4)
-    assert reference.to_dict()["params"]["flight"] == "rapier"
+    assert expected["params"]["flight"] == "rapier"
+    default = rs.drop(box_file, 16, 4)
+    assert default.to_dict()["params"]["flight"] == "free"
     fast = rs.drop(box_file, 16, 4, fast=True)
     assert fast.to_dict() == cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--fast"])
     assert fast.to_dict()["params"]["dt"] == pytest.approx(1 / 120)
