@@ -256,3 +256,38 @@ fn a_flat_landing_bounces_to_e_squared_h() {
         assert!(apex > 0.9 * exact, "e {e}, h {h}: rose {apex}, e²h = {exact}");
     }
 }
+
+#[test]
+fn damped_free_flight_is_the_limit_of_rapiers_damped_flight() {
+    // Global damping acts in the air (rapier: v ← v/(1 + c dt) every step; free flight: the
+    // exponential it discretises). A box released 20 R_max up, tumbling, with c = 0.5 and
+    // c_ω = 2 s⁻¹: after 1.5 s rapier's velocities approach the free flight's as its step
+    // shrinks.
+    use rocking_stones::dynamics::flight::Damping;
+    let s = stone(generate::cuboid(1.0, 0.8, 0.5));
+    let damping = Damping { linear: 0.5, angular: 2.0 };
+    let gap = |steps_per_s: f64| {
+        let mut p = Preset::Throw.params(Surface::SteelOnWood);
+        (p.dt, p.linear_damping, p.angular_damping) = (1.0 / steps_per_s, damping.linear, damping.angular);
+        let q = UnitQuaternion::from_euler_angles(0.7, -0.3, 1.9);
+        let (v, w) = (Vec3::new(1.5, -0.5, 2.0), Vec3::new(22.0, -30.0, 14.0));
+        let mut sim = Simulation::new(&s.body, &p, &q, 20.0, &v, &w);
+        let mut free = FreeBody::new(20.0, v, q, &w);
+        let inv = s.body.inertia.try_inverse().unwrap();
+        for _ in 0..(1.5 * steps_per_s) as usize {
+            sim.step();
+            free.step_damped(p.dt, &s.body.inertia, &inv, damping);
+        }
+        let r = sim.state();
+        ((free.linvel - r.linvel).norm(), (free.angvel() - r.angvel).norm(), free)
+    };
+    let (dv_240, dw_240, free) = gap(240.0);
+    let (dv_960, dw_960, _) = gap(960.0);
+    assert!(dv_240 < 0.05 && dw_240 < 0.5, "apart at 1/240 s: {dv_240} m/s, {dw_240} rad/s");
+    assert!(dv_960 < dv_240 / 2.0, "rapier's damped fall does not converge: {dv_240} → {dv_960}");
+    assert!(dw_960 < dw_240, "rapier's damped spin does not converge: {dw_240} → {dw_960}");
+    // Not vacuous: the damping took 95 % of the spin (e^{−3}) and much of the fall speed.
+    let undamped_vz = 2.0 - GRAVITY * 1.5;
+    assert!(free.angvel().norm() < 0.1 * Vec3::new(22.0, -30.0, 14.0).norm());
+    assert!((free.linvel.z - undamped_vz).abs() > 0.5, "{} vs {undamped_vz}", free.linvel.z);
+}

@@ -88,6 +88,7 @@ pub fn simulate_batch_observed(
 ) {
     let capacity = capacity.max(1);
     let free_flight = flight::applies(p);
+    let damping = flight::Damping::of(p);
     let inertia = stone.body.inertia;
     let inertia_inv = inertia.try_inverse().unwrap_or_else(Matrix3::identity);
     let (mut world, _ground, ground_collider) = ground_world(p);
@@ -127,7 +128,7 @@ pub fn simulate_batch_observed(
                 Place::World { handle, .. } => body_state(&world.bodies[*handle], &stone.body),
                 Place::Air(b) => {
                     if let flight::Flew::Landed(t) =
-                        b.fly(p.dt, &inertia, &inertia_inv, &|d| stone.body.support_climb(d))
+                        b.fly(p.dt, &inertia, &inertia_inv, damping, &|d| stone.body.support_climb(d))
                     {
                         s.lag += p.dt - t;
                         landed = true;

@@ -98,10 +98,27 @@ pub enum Flew {
 /// Gravity (m/s², scaled frame) — the world's.
 use crate::GRAVITY as G;
 
-/// Whether the runs of `p` fly outside rapier: [`Flight::Free`] and no global damping (which
-/// rapier applies in flight too).
+/// Whether the runs of `p` fly outside rapier: [`Flight::Free`].
 pub fn applies(p: &DropParams) -> bool {
-    p.flight == Flight::Free && p.linear_damping == 0.0 && p.angular_damping == 0.0
+    p.flight == Flight::Free
+}
+
+/// Global velocity damping in flight (1/s): the `linear_damping` and `angular_damping` of a run
+/// (rapier applies them in the air too). In free flight they act exactly: dv/dt = g − c v and
+/// dω/dt = I⁻¹((Iω) × ω) − c_ω ω (rapier's own step is the implicit-Euler v ← v/(1 + c dt)).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Damping {
+    /// Linear damping c (1/s).
+    pub linear: f64,
+    /// Angular damping c_ω (1/s).
+    pub angular: f64,
+}
+
+impl Damping {
+    /// The damping of `p`.
+    pub fn of(p: &DropParams) -> Self {
+        Damping { linear: p.linear_damping, angular: p.angular_damping }
+    }
 }
 
 /// A rigid body in free flight (scaled frame: unit mass, lengths / R_max). Horizontal position
@@ -142,40 +159,64 @@ impl FreeBody {
 
     /// Advance the free motion by `dt` (module docs): G exactly, the rotation by RK4 sub-steps.
     pub fn step(&mut self, dt: f64, inertia: &Matrix3<f64>, inertia_inv: &Matrix3<f64>) {
-        self.z += self.linvel.z * dt - 0.5 * G * dt * dt;
-        self.linvel.z -= G * dt;
+        self.step_damped(dt, inertia, inertia_inv, Damping::default());
+    }
+
+    /// [`FreeBody::step`] under global damping ([`Damping`]): G exactly (an exponential
+    /// approach to the terminal velocity −g/c), the rotation by RK4 sub-steps with the damping
+    /// term. Without damping, exactly [`FreeBody::step`].
+    pub fn step_damped(&mut self, dt: f64, inertia: &Matrix3<f64>, inertia_inv: &Matrix3<f64>, damping: Damping) {
+        let c = damping.linear;
+        if c > 0.0 {
+            let decay = (-c * dt).exp();
+            let terminal = -G / c;
+            self.z += (self.linvel.z - terminal) * (1.0 - decay) / c + terminal * dt;
+            self.linvel.z = terminal + (self.linvel.z - terminal) * decay;
+            self.linvel.x *= decay;
+            self.linvel.y *= decay;
+        } else {
+            self.z += self.linvel.z * dt - 0.5 * G * dt * dt;
+            self.linvel.z -= G * dt;
+        }
         let turn = self.omega_body.norm() * dt;
         let n = ((turn / MAX_SUBSTEP_ANGLE).ceil() as usize).max(1);
         let h = dt / n as f64;
         let mut q = *self.orientation.quaternion();
         let mut w = self.omega_body;
         for _ in 0..n {
-            (q, w) = rk4(q, w, h, inertia, inertia_inv);
+            (q, w) = rk4(q, w, h, inertia, inertia_inv, damping.angular);
         }
         self.orientation = UnitQuaternion::new_normalize(q);
         self.omega_body = w;
     }
 }
 
-/// (q̇, ω̇) of Euler's equations.
-fn rates(q: &Quaternion<f64>, w: &Vec3, inertia: &Matrix3<f64>, inertia_inv: &Matrix3<f64>) -> (Quaternion<f64>, Vec3) {
+/// (q̇, ω̇) of Euler's equations with angular damping `c`.
+fn rates(
+    q: &Quaternion<f64>,
+    w: &Vec3,
+    inertia: &Matrix3<f64>,
+    inertia_inv: &Matrix3<f64>,
+    c: f64,
+) -> (Quaternion<f64>, Vec3) {
     let qdot = q * Quaternion::from_imag(*w) * 0.5;
-    let wdot = inertia_inv * (inertia * w).cross(w);
+    let wdot = inertia_inv * (inertia * w).cross(w) - w * c;
     (qdot, wdot)
 }
 
-/// One classical Runge–Kutta step of length `h`; q renormalised.
+/// One classical Runge–Kutta step of length `h` (angular damping `c`); q renormalised.
 fn rk4(
     q: Quaternion<f64>,
     w: Vec3,
     h: f64,
     inertia: &Matrix3<f64>,
     inertia_inv: &Matrix3<f64>,
+    c: f64,
 ) -> (Quaternion<f64>, Vec3) {
-    let (k1q, k1w) = rates(&q, &w, inertia, inertia_inv);
-    let (k2q, k2w) = rates(&(q + k1q * (h / 2.0)), &(w + k1w * (h / 2.0)), inertia, inertia_inv);
-    let (k3q, k3w) = rates(&(q + k2q * (h / 2.0)), &(w + k2w * (h / 2.0)), inertia, inertia_inv);
-    let (k4q, k4w) = rates(&(q + k3q * h), &(w + k3w * h), inertia, inertia_inv);
+    let (k1q, k1w) = rates(&q, &w, inertia, inertia_inv, c);
+    let (k2q, k2w) = rates(&(q + k1q * (h / 2.0)), &(w + k1w * (h / 2.0)), inertia, inertia_inv, c);
+    let (k3q, k3w) = rates(&(q + k2q * (h / 2.0)), &(w + k2w * (h / 2.0)), inertia, inertia_inv, c);
+    let (k4q, k4w) = rates(&(q + k3q * h), &(w + k3w * h), inertia, inertia_inv, c);
     let q1 = q + (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (h / 6.0);
     let w1 = w + (k1w + k2w * 2.0 + k3w * 2.0 + k4w) * (h / 6.0);
     (q1.normalize(), w1)
@@ -203,17 +244,19 @@ impl FreeBody {
         self.orientation.inverse() * -Vec3::z()
     }
 
-    /// Fly for at most `dt`, stopping at the first instant the clearance falls to
-    /// [`CONTACT_CLEARANCE`] (conservative advancement, module docs). `support` is the support
-    /// function h of the body frame.
+    /// Fly for at most `dt` under `damping`, stopping at the first instant the clearance falls
+    /// to [`CONTACT_CLEARANCE`] (conservative advancement, module docs). `support` is the support
+    /// function h of the body frame. The speed bound holds with damping too: damping only
+    /// lowers |v| towards the terminal velocity, and the rotational energy.
     pub fn fly(
         &mut self,
         dt: f64,
         inertia: &Matrix3<f64>,
         inertia_inv: &Matrix3<f64>,
+        damping: Damping,
         support: &dyn Fn(&Vec3) -> f64,
     ) -> Flew {
-        // |ω| ≤ √(2 T_rot / λ_min): T_rot and hence the bound are constant in free flight.
+        // |ω| ≤ √(2 T_rot / λ_min): T_rot is constant in free flight (it only falls with damping).
         let t_rot = self.omega_body.dot(&(inertia * self.omega_body));
         let lambda_min = inertia.symmetric_eigenvalues().min();
         let omega_max = (t_rot / lambda_min).sqrt();
@@ -234,7 +277,7 @@ impl FreeBody {
             }
             let speed = (-self.linvel.z).max(0.0) + G * left + omega_max;
             let tau = (gap / speed).min(left);
-            self.step(tau, inertia, inertia_inv);
+            self.step_damped(tau, inertia, inertia_inv, damping);
             t = if tau == left { dt } else { t + tau };
         }
         // Out of moves (a graze, or a speed bound ≫ 100 m/s): land where it is, still above
@@ -276,6 +319,35 @@ mod tests {
         // Not vacuous: the body did turn, and the body-frame ω moved (it is not a steady spin).
         assert!(b.orientation.angle_to(&tumbling().orientation) > 0.1);
         assert!((b.omega_body - tumbling().omega_body).norm() > 1.0);
+    }
+
+    #[test]
+    fn damped_flight_has_its_closed_form() {
+        // dv/dt = g − c v: v_z(t) = −g/c + (v₀ + g/c) e^{−ct}, z(t) = z₀ + (v₀ + g/c)(1 − e^{−ct})/c
+        // − g t/c; v_x decays as e^{−ct}. For an isotropic body (Iω × ω = 0) ω(t) = ω₀ e^{−c_ω t}.
+        let inertia = Matrix3::identity() * 0.4;
+        let inv = inertia.try_inverse().unwrap();
+        let damping = Damping { linear: 0.1, angular: 1.0 };
+        let (v0, w0) = (Vec3::new(2.0, 0.0, 3.0), Vec3::new(5.0, -3.0, 1.0));
+        let mut b = FreeBody::new(2.0, v0, UnitQuaternion::identity(), &w0);
+        let (dt, steps) = (1.0 / 240.0, 360);
+        for _ in 0..steps {
+            b.step_damped(dt, &inertia, &inv, damping);
+        }
+        let t = dt * steps as f64;
+        let (c, e) = (damping.linear, (-damping.linear * t).exp());
+        let vz = -G / c + (v0.z + G / c) * e;
+        let z = 2.0 + (v0.z + G / c) * (1.0 - e) / c - G * t / c;
+        assert!((b.linvel.z - vz).abs() < 1e-10 && (b.z - z).abs() < 1e-10, "{} {vz}, {} {z}", b.linvel.z, b.z);
+        assert!((b.linvel.x - v0.x * e).abs() < 1e-12);
+        let w = w0 * (-damping.angular * t).exp();
+        assert!((b.angvel() - w).norm() < 1e-8, "{:?} vs {w:?}", b.angvel());
+        // Not vacuous: without damping the same flight ends elsewhere.
+        let mut free = FreeBody::new(2.0, v0, UnitQuaternion::identity(), &w0);
+        for _ in 0..steps {
+            free.step(dt, &inertia, &inv);
+        }
+        assert!((free.z - b.z).abs() > 0.01 && (free.angvel() - w).norm() > 1.0);
     }
 
     #[test]

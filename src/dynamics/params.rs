@@ -101,10 +101,10 @@ pub enum Flight {
     /// instant its lowest point comes within [`super::flight::CONTACT_CLEARANCE`] of the ground;
     /// in contact, a step that could bring a hull point down by more than
     /// [`super::impact::IMPACT_APPROACH`] is sub-stepped ([`super::impact`]). Impacts start
-    /// outside the ground (deepest compression 7.4·10⁻³ R_max over 7 200 drops and throws at
-    /// 1/240 and 1/120 s, `results/drops_impacts/`). Drops only, and only without global damping
-    /// (`--linear-damping`, `--angular-damping` act in flight too: the quasi-static preset
-    /// stays in rapier).
+    /// outside the ground (deepest compression 6.2·10⁻³ R_max over 7 200 drops and throws at
+    /// 1/240 and 1/120 s, `results/drops_impacts/`). Drops only; global damping
+    /// (`--linear-damping`, `--angular-damping`) acts in free flight too, exactly
+    /// ([`super::flight::Damping`]).
     #[default]
     Free,
 }
@@ -269,8 +269,7 @@ impl Preset {
     }
 
     /// The fast numerics of this preset (issue 16, `rocking drop --fast`): free flight between
-    /// contacts ([`Flight::Free`]; the quasi-static preset's damping keeps its flight in rapier)
-    /// and [`Preset::largest_stable_dt`]. Statistics unchanged within sampling noise
+    /// contacts ([`Flight::Free`]) and [`Preset::largest_stable_dt`]. Statistics unchanged within sampling noise
     /// (`results/drops_certificate/`, `results/cuboid_dice/`), drop by drop different from the
     /// reference numerics.
     pub fn fast(self, p: &mut DropParams) {
