@@ -248,8 +248,24 @@ state where a certificate may be asked (relaxed, L ≤ 1 R_max), the largest lat
 above the energy level L read there — what the margin must cover.\n\n\
 | numerics | drops | facet decisions | flock decisions | first facet decisions | first flock decisions | states where it may be asked | largest excess (R_max) |\n\
 |---|---|---|---|---|---|---|---|\n{md}\n\
-Per body, preset and numerics: `decisions.csv`. The largest excess per body: \n\n![excess](excess.png)\n",
-        clock.elapsed().as_secs_f64()
+Per body, preset and numerics: `decisions.csv`. The largest excess per body: \n\n![excess](excess.png)\n\n\
+## Reading\n\n\
+* **No wrong decision**: {} decisions, {} of them the first of their drop (what a certified run acts on), on 40 \
+bodies, three presets and both numerics, and not one names a facet or flock other than where the drop came to rest.\n\
+* **What the margin covers.** The largest later rise of h(down) above L is {:.1e} R_max, under the margin \
+{CERTIFICATE_MARGIN}. Most of it is the compression at the asked state itself (h = z_G + compression, and the \
+certificate is asked up to a compression of {CERTIFICATE_MAX_COMPRESSION}): the per-body maxima sit at \
+3·10⁻⁴–1.1·10⁻³ R_max, the order of each body's contact compression, and a margin three times the largest covers \
+it. The old picture of a spring giving back ½(2πf)²c²/g (7.2·10⁻³ R_max at 60 Hz and \
+c = 10⁻³) does not happen: rapier's soft contact restores a compression as height, not as kinetic energy \
+(`run::CERTIFICATE_MAX_COMPRESSION`).\n\
+* **Both numerics decide alike**: the largest excess is the same with rapier's flight (impacts found up to \
+0.2 R_max deep) and with exact landings, because the certificate is asked only below L = 1 R_max, after the hard \
+first impacts.\n",
+        clock.elapsed().as_secs_f64(),
+        total.iter().map(|t| t.decisions[0] + t.decisions[1]).sum::<u64>(),
+        total.iter().map(|t| t.first[0] + t.first[1]).sum::<u64>(),
+        total.iter().map(|t| t.excess).fold(0.0, f64::max),
     );
     std::fs::write(out.join("README.md"), readme)?;
     println!("{}", std::fs::read_to_string(out.join("README.md"))?);

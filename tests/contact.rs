@@ -206,7 +206,7 @@ fn the_stone_never_climbs_above_the_level_the_certificate_reads() {
 }
 
 #[test]
-#[ignore = "10⁴ throws, about two minutes: run with --ignored"]
+#[ignore = "10⁴ throws, several minutes: run with --ignored"]
 fn ten_thousand_throws_never_climb_above_the_certificates_level() {
     let stone = throw_pebble();
     let (worst, asked) = later_rise_above_level(&stone, &DropParams::default(), 10_000);

@@ -37,7 +37,7 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     );
     let _ = writeln!(
         s,
-        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max, damping {}/{} 1/s; dt {:.5} s, flight {}",
+        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {}/{} 1/s; dt {:.5} s, flight {}",
         p.friction,
         p.restitution,
         p.rolling_resistance,
