@@ -34,7 +34,7 @@ use super::stone::{Body, Stone};
 use super::world::{body_state, ground_world, insert_stone, normal_impulse, step_world, BodyState, ContactLaw};
 use crate::Vec3;
 use crate::GRAVITY;
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, UnitQuaternion};
 use rapier3d::prelude::{ColliderHandle, PhysicsWorld, RigidBodyHandle};
 
 /// Where a stone of the batch is.
@@ -96,6 +96,9 @@ pub fn simulate_batch_observed(
     let mut slots: Vec<Slot> = Vec::with_capacity(capacity);
     // The stones in the world this step (a buffer kept across steps: no allocation per step).
     let mut in_world: Vec<(RigidBodyHandle, ColliderHandle)> = Vec::with_capacity(capacity);
+    // Impact worlds no longer in use, kept for the next impact (a rapier world is costly to
+    // build; one that held another stone behaves the same: `tests/batch.rs`, `tests/flight.rs`).
+    let mut spare: Vec<Box<ImpactWorld>> = Vec::new();
     let mut queue = queue.fuse();
     loop {
         while slots.len() < capacity {
@@ -103,9 +106,9 @@ pub fn simulate_batch_observed(
             let z0 = release_height(stone, p, &release);
             let free = FreeBody::new(z0, release.linvel, release.orientation, &release.angvel);
             let place = if free_flight {
-                land_if_due(&mut world, &stone.body, p, free)
+                land_if_due(&mut world, &mut spare, &stone.body, p, free)
             } else {
-                enter_world(&mut world, &stone.body, p, &free)
+                enter_world(&mut world, &mut spare, &stone.body, p, &free)
             };
             slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds), lag: 0.0 });
         }
@@ -151,14 +154,19 @@ pub fn simulate_batch_observed(
                             &mut s.place,
                             Place::Air(FreeBody::new(0.0, Vec3::zeros(), Default::default(), &Vec3::zeros())),
                         );
-                        s.place = next_place(&mut world, &stone.body, p, ground_collider, place, &state, landed);
+                        s.place =
+                            next_place(&mut world, &mut spare, &stone.body, p, ground_collider, place, &state, landed);
                     }
                     k += 1;
                 }
                 Some(end) => {
                     let s = slots.swap_remove(k);
-                    if let Place::World { handle, .. } = &s.place {
-                        world.remove_body(*handle);
+                    match s.place {
+                        Place::World { handle, .. } => {
+                            world.remove_body(handle);
+                        }
+                        Place::Impact(w) => spare.push(w),
+                        Place::Air(_) => {}
                     }
                     let mut o = outcome(stone, p, &end, s.index);
                     o.time -= s.lag;
@@ -171,10 +179,16 @@ pub fn simulate_batch_observed(
 
 /// Insert the stone in the state `b` into the world (or, if one step could not resolve its
 /// impact, into a world of its own: [`super::impact`]).
-fn enter_world(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: &FreeBody) -> Place {
+fn enter_world(
+    world: &mut PhysicsWorld,
+    spare: &mut Vec<Box<ImpactWorld>>,
+    body: &Body,
+    p: &DropParams,
+    b: &FreeBody,
+) -> Place {
     let state = air_state(b, body);
     if flight::applies(p) && impact::substeps(&state, p.dt) > 1 {
-        return Place::Impact(Box::new(ImpactWorld::new(body, p, &b.orientation, &state)));
+        return Place::Impact(impact_world(spare, body, p, &b.orientation, &state));
     }
     let (handle, collider) = insert_stone(world, body, p, &b.orientation, b.z, &b.linvel, &b.angvel());
     Place::World { handle, collider }
@@ -182,11 +196,35 @@ fn enter_world(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: &FreeBo
 
 /// Keep a released stone `b` in the air while it is clear of the ground ([`flight::airborne`]);
 /// else insert it.
-fn land_if_due(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: FreeBody) -> Place {
+fn land_if_due(
+    world: &mut PhysicsWorld,
+    spare: &mut Vec<Box<ImpactWorld>>,
+    body: &Body,
+    p: &DropParams,
+    b: FreeBody,
+) -> Place {
     if flight::airborne(flight::clearance(b.z, body.support_climb(&b.down()))) {
         Place::Air(b)
     } else {
-        enter_world(world, body, p, &b)
+        enter_world(world, spare, body, p, &b)
+    }
+}
+
+/// An impact world holding the stone in `state` with orientation `q`: a spare one if there is,
+/// else a new one.
+fn impact_world(
+    spare: &mut Vec<Box<ImpactWorld>>,
+    body: &Body,
+    p: &DropParams,
+    q: &UnitQuaternion<f64>,
+    state: &BodyState,
+) -> Box<ImpactWorld> {
+    match spare.pop() {
+        Some(mut w) => {
+            w.reset(body, p, q, state);
+            w
+        }
+        None => Box::new(ImpactWorld::new(body, p, q, state)),
     }
 }
 
@@ -195,8 +233,10 @@ fn land_if_due(world: &mut PhysicsWorld, body: &Body, p: &DropParams, b: FreeBod
 /// of it ([`flight::may_take_off`]) leaves for free flight; one whose next step could bring a
 /// hull point down by more than [`impact::IMPACT_APPROACH`] goes to (or stays in) a world of its
 /// own, and comes back to the shared world once one step will do.
+#[allow(clippy::too_many_arguments)]
 fn next_place(
     world: &mut PhysicsWorld,
+    spare: &mut Vec<Box<ImpactWorld>>,
     body: &Body,
     p: &DropParams,
     ground: ColliderHandle,
@@ -207,7 +247,7 @@ fn next_place(
     let clear = || flight::may_take_off(flight::clearance(state.z, body.support_climb(&state.down)));
     let free = |q| FreeBody::new(state.z, state.linvel, q, &state.angvel);
     match place {
-        Place::Air(b) if landed => enter_world(world, body, p, &b),
+        Place::Air(b) if landed => enter_world(world, spare, body, p, &b),
         Place::Air(b) => Place::Air(b),
         Place::World { handle, collider } => {
             let pushed = normal_impulse(world, ground, collider) > 0.0;
@@ -220,15 +260,17 @@ fn next_place(
             if take_off {
                 Place::Air(free(q))
             } else {
-                Place::Impact(Box::new(ImpactWorld::new(body, p, &q, state)))
+                Place::Impact(impact_world(spare, body, p, &q, state))
             }
         }
         Place::Impact(w) => {
             let q = w.state(body).1;
             if w.normal_impulse() == 0.0 && clear() {
+                spare.push(w);
                 Place::Air(free(q))
             } else if impact::substeps(state, p.dt) == 1 {
-                enter_world(world, body, p, &free(q))
+                spare.push(w);
+                enter_world(world, spare, body, p, &free(q))
             } else {
                 Place::Impact(w)
             }

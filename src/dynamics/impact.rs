@@ -78,6 +78,13 @@ impl ImpactWorld {
         ImpactWorld { world, handle, collider, ground, dt: p.dt, iterations: p.solver_iterations }
     }
 
+    /// Put the stone in state `s` with orientation `q` in this world instead of the one it held
+    /// (the world, its ground and numerics are kept: building a rapier world is costly).
+    pub fn reset(&mut self, body: &Body, p: &DropParams, q: &UnitQuaternion<f64>, s: &BodyState) {
+        self.world.remove_body(self.handle);
+        (self.handle, self.collider) = insert_stone(&mut self.world, body, p, q, s.z, &s.linvel, &s.angvel);
+    }
+
     /// Advance one step of the run in `n` sub-steps of dt/n, each with the contact law and
     /// ⌈iterations / n⌉ of rapier's solver sub-steps (so a step still has at least the solver
     /// sub-steps of the shared world). Why not all of them in every sub-step: rapier's
