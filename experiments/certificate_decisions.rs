@@ -9,7 +9,7 @@
 //! largest later rise of the support height h(down) above the level L read there — what the
 //! margin (`CERTIFICATE_MARGIN`) must cover.
 //!
-//! Run: `cargo run --release --example certificate_decisions [-- N]` (N = 100 drops per mesh,
+//! Run: `cargo run --release --example certificate_decisions [-- N]` (N = 300 drops per mesh,
 //! preset and numerics) → `results/certificate_decisions/`.
 
 use rayon::prelude::*;
@@ -145,7 +145,7 @@ fn meshes(root: &Path) -> anyhow::Result<Vec<(String, Analysis)>> {
 }
 
 fn main() -> anyhow::Result<()> {
-    let n: u64 = std::env::args().nth(1).map_or(100, |s| s.parse().expect("N"));
+    let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N"));
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/certificate_decisions");
     std::fs::create_dir_all(&out)?;

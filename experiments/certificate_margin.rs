@@ -15,7 +15,7 @@
 //! The contact's compression at rest and the energy rise between relaxed states, which the
 //! margin covers, are measured per body and dt in `results/drops_dt/`.
 //!
-//! Run: `cargo run --release --example certificate_margin [-- N]` (N = 200 drops per body and
+//! Run: `cargo run --release --example certificate_margin [-- N]` (N = 1000 drops per body and
 //! preset) → `results/certificate_margin/`.
 
 #[path = "shared/benchmark_bodies.rs"]
@@ -166,7 +166,7 @@ fn summarise(obs: &[Observed], lvl: usize, k: usize, dt: f64) -> Row {
 }
 
 fn main() -> anyhow::Result<()> {
-    let n: u64 = std::env::args().nth(1).map_or(200, |s| s.parse().expect("N"));
+    let n: u64 = std::env::args().nth(1).map_or(1000, |s| s.parse().expect("N"));
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/certificate_margin");
     std::fs::create_dir_all(&out)?;

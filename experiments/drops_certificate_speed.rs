@@ -6,7 +6,7 @@
 //! same facet / flock), and the per-flock statistics of every mode are given against the
 //! quasi-static probabilities. A batch-size sweep picks `montecarlo::DEFAULT_BATCH`.
 //!
-//! Run: `cargo run --release --example drops_certificate_speed [-- N]` (N = 300 drops per mode;
+//! Run: `cargo run --release --example drops_certificate_speed [-- N]` (N = 1000 drops per mode;
 //! one thread, so the figures are per core) → `results/drops_certificate/`.
 
 #[path = "shared/benchmark_bodies.rs"]
@@ -141,7 +141,7 @@ fn timed(stone: &Stone, h: &RunHeader, batch: usize) -> ModeRun {
 }
 
 fn main() -> anyhow::Result<()> {
-    let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N"));
+    let n: u64 = std::env::args().nth(1).map_or(1000, |s| s.parse().expect("N"));
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/drops_certificate");
     std::fs::create_dir_all(&out)?;

@@ -12,7 +12,7 @@
 //! * drops that did not settle, settled off their equilibrium, the mean simulated time to rest,
 //!   and drops/s (one thread).
 //!
-//! Run: `cargo run --release --example drops_dt [-- N M]` (N = 400, M = 60) → `results/drops_dt/`.
+//! Run: `cargo run --release --example drops_dt [-- N M]` (N = 400, M = 40: the committed results) → `results/drops_dt/`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
@@ -86,7 +86,7 @@ fn observe(stone: &Stone, p: &DropParams, seed: u64, i: u64) -> Observed {
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
     let n: u64 = args.next().map_or(400, |s| s.parse().expect("N"));
-    let m: u64 = args.next().map_or(60, |s| s.parse().expect("M"));
+    let m: u64 = args.next().map_or(40, |s| s.parse().expect("M"));
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/drops_dt");
     std::fs::create_dir_all(&out)?;
