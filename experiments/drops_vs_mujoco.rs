@@ -114,8 +114,8 @@ const MODES: [Mode; 4] = [
 
 /// The project's parameters of mode `m`: the `drop` preset on steel on wood, with the matched
 /// physics overriding it, no rolling resistance or torsional friction (MuJoCo's condim 3 has
-/// neither), and `Preset::fast` for `--fast` (its free flight does not apply with global damping,
-/// so only its time step, 1/120 s, changes).
+/// neither), and `Preset::fast` for `--fast` (the default numerics — exact landings and
+/// sub-stepped impacts, which damp the free flight exactly — at the longer step 1/120 s).
 fn params(m: &Mode) -> DropParams {
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
     p.height = HEIGHT;
@@ -802,8 +802,8 @@ fn readme(
         "**The large ratios are the project's algorithms, not a faster engine.** Batching ({} per step, \
          against plain's {}) shares a rapier world's fixed cost per step between {DEFAULT_BATCH} stones; the \
          flock certificate ends a drop once its flock is certain, after {} simulated s instead of {}; \
-         `--fast` takes twice the step (and, with global damping, keeps rapier's flight: its free flight \
-         applies only without damping). None of this is specific to rapier: the certificate needs only the \
+         `--fast` takes twice the step. Exact landings and sub-stepped impacts (the default numerics) cost \
+         speed here: a hard impact is stepped in a world of the stone's own, outside the batch. None of this is specific to rapier: the certificate needs only the \
          body's energy and down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and \
          MuJoCo at dt 1/120 s was not measured here. So {} (flock-certified + batched) and {} (`--fast`) are \
          what this project's drop pipeline gains over a plain MuJoCo loop (outcome statistics compared below), \
