@@ -5,7 +5,7 @@
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::flight::{FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE};
+use rocking_stones::dynamics::flight::{Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE};
 use rocking_stones::dynamics::params::{Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::world::{ground_world, Simulation};
@@ -61,11 +61,15 @@ fn landings_are_handed_to_rapier_inside_its_contact_range() {
     assert!(CONTACT_CLEARANCE > 0.0 && CONTACT_CLEARANCE + LANDING_TOLERANCE < prediction);
 }
 
-/// Fly a tumbling box for 1.5 s in rapier (time step 1/`steps_per_s`) and in [`FreeBody`]: the
-/// angle between the two final orientations, and the pair of final states.
-fn fly_both(s: &Stone, steps_per_s: f64) -> (f64, FreeBody, rocking_stones::dynamics::world::BodyState, f64) {
+/// Fly a tumbling box for 1.5 s in rapier (time step 1/`steps_per_s`, global `damping`) and in
+/// [`FreeBody`]: the angle between the two final orientations, and the pair of final states.
+fn fly_both(
+    s: &Stone,
+    steps_per_s: f64,
+    damping: Damping,
+) -> (f64, FreeBody, rocking_stones::dynamics::world::BodyState, f64) {
     let mut p = Preset::Throw.params(Surface::SteelOnWood);
-    p.dt = 1.0 / steps_per_s;
+    (p.dt, p.linear_damping, p.angular_damping) = (1.0 / steps_per_s, damping.linear, damping.angular);
     let q = UnitQuaternion::from_euler_angles(0.7, -0.3, 1.9);
     let (v, w) = (Vec3::new(1.5, -0.5, 2.0), Vec3::new(22.0, -30.0, 14.0));
     let mut sim = Simulation::new(&s.body, &p, &q, 20.0, &v, &w);
@@ -73,7 +77,7 @@ fn fly_both(s: &Stone, steps_per_s: f64) -> (f64, FreeBody, rocking_stones::dyna
     let inv = s.body.inertia.try_inverse().unwrap();
     for _ in 0..(1.5 * steps_per_s) as usize {
         sim.step();
-        free.step(p.dt, &s.body.inertia, &inv);
+        free.step_damped(p.dt, &s.body.inertia, &inv, damping);
     }
     let (q_rapier, z_rapier) = sim.pose();
     (free.orientation.angle_to(&q_rapier), free, sim.state(), z_rapier)
@@ -83,14 +87,14 @@ fn fly_both(s: &Stone, steps_per_s: f64) -> (f64, FreeBody, rocking_stones::dyna
 fn free_flight_is_the_limit_of_rapiers_flight() {
     // A box tumbling at 40 rad/s, released 20 R_max up: 1.5 s (≈ 60 rad turned) side by side.
     let s = stone(generate::cuboid(1.0, 0.8, 0.5));
-    let (angle_240, free, r, z_rapier) = fly_both(&s, 240.0);
+    let (angle_240, free, r, z_rapier) = fly_both(&s, 240.0, Damping::default());
     // G: the parabola, to rapier's first-order integration of gravity (g t dt / 2 ≈ 0.03).
     assert!((free.z - z_rapier).abs() < 0.05, "z {} vs rapier {}", free.z, z_rapier);
     assert!((free.linvel - r.linvel).norm() < 1e-3, "v {:?} vs rapier {:?}", free.linvel, r.linvel);
     // The tumble: rapier at 1/240 s loses 0.5 % of the angular momentum and 1 % of the energy
     // over this flight (measured) and is 0.3 rad behind; with 4× smaller steps it is more than
     // 3× closer to the free flight, which conserves both (unit tests of `flight`).
-    let (angle_960, ..) = fly_both(&s, 960.0);
+    let (angle_960, ..) = fly_both(&s, 960.0, Damping::default());
     assert!(angle_240 < 0.5, "{angle_240} rad apart at dt = 1/240 s");
     assert!(angle_960 < angle_240 / 3.0, "rapier does not converge to the free flight: {angle_240} → {angle_960} rad");
     // Not vacuous: the body turned a lot and its world angular velocity moved.
@@ -263,22 +267,10 @@ fn damped_free_flight_is_the_limit_of_rapiers_damped_flight() {
     // exponential it discretises). A box released 20 R_max up, tumbling, with c = 0.5 and
     // c_ω = 2 s⁻¹: after 1.5 s rapier's velocities approach the free flight's as its step
     // shrinks.
-    use rocking_stones::dynamics::flight::Damping;
     let s = stone(generate::cuboid(1.0, 0.8, 0.5));
     let damping = Damping { linear: 0.5, angular: 2.0 };
     let gap = |steps_per_s: f64| {
-        let mut p = Preset::Throw.params(Surface::SteelOnWood);
-        (p.dt, p.linear_damping, p.angular_damping) = (1.0 / steps_per_s, damping.linear, damping.angular);
-        let q = UnitQuaternion::from_euler_angles(0.7, -0.3, 1.9);
-        let (v, w) = (Vec3::new(1.5, -0.5, 2.0), Vec3::new(22.0, -30.0, 14.0));
-        let mut sim = Simulation::new(&s.body, &p, &q, 20.0, &v, &w);
-        let mut free = FreeBody::new(20.0, v, q, &w);
-        let inv = s.body.inertia.try_inverse().unwrap();
-        for _ in 0..(1.5 * steps_per_s) as usize {
-            sim.step();
-            free.step_damped(p.dt, &s.body.inertia, &inv, damping);
-        }
-        let r = sim.state();
+        let (_, free, r, _) = fly_both(&s, steps_per_s, damping);
         ((free.linvel - r.linvel).norm(), (free.angvel() - r.angvel).norm(), free)
     };
     let (dv_240, dw_240, free) = gap(240.0);
