@@ -19,6 +19,8 @@
 //! * [`hull`] — exact convex hull with exactly-coplanar triangles merged into polygonal facets.
 //! * [`equilibria`] — micro-equilibria (critical points of R = |x − G| on the hull), SPEC §2.
 //! * [`shape`] — axes a ≥ b ≥ c, Zingg class, isoperimetric ratio.
+//! * [`tipping`] — a pose's support polygon (with a contact tolerance) and its quasi-static
+//!   tipping acceleration tan α against azimuth.
 //! * [`generate`] — seeded shape generators (Platonic solids, boxes, ellipsoids, pebbles).
 //! * [`morse_smale`] — the Morse–Smale graph of R on the hull and its cancellation hierarchy.
 //! * [`hierarchy`] — N(ν), the plateau (macro scale), flocks and rocking equilibria (2D and 3D).
@@ -73,6 +75,7 @@ pub mod shape;
 pub mod solid;
 pub mod stats;
 pub mod study;
+pub mod tipping;
 
 pub use error::{Error, Result};
 
