@@ -34,7 +34,7 @@ use super::stone::{Body, Stone};
 use super::world::{body_state, ground_world, insert_stone, normal_impulse, step_world, BodyState, ContactLaw};
 use crate::Vec3;
 use crate::GRAVITY;
-use nalgebra::{Matrix3, UnitQuaternion};
+use nalgebra::UnitQuaternion;
 use rapier3d::prelude::{ColliderHandle, PhysicsWorld, RigidBodyHandle};
 
 /// Where a stone of the batch is.
@@ -89,8 +89,7 @@ pub fn simulate_batch_observed(
     let capacity = capacity.max(1);
     let free_flight = flight::applies(p);
     let damping = flight::Damping::of(p);
-    let inertia = stone.body.inertia;
-    let inertia_inv = inertia.try_inverse().unwrap_or_else(Matrix3::identity);
+    let inertia = flight::Inertia::new(stone.body.inertia);
     let (mut world, _ground, ground_collider) = ground_world(p);
     let law = ContactLaw::of(p);
     let mut slots: Vec<Slot> = Vec::with_capacity(capacity);
@@ -130,9 +129,7 @@ pub fn simulate_batch_observed(
             let state = match &mut s.place {
                 Place::World { handle, .. } => body_state(&world.bodies[*handle], &stone.body),
                 Place::Air(b) => {
-                    if let flight::Flew::Landed(t) =
-                        b.fly(p.dt, &inertia, &inertia_inv, damping, &|d| stone.body.support_climb(d))
-                    {
+                    if let flight::Flew::Landed(t) = b.fly(p.dt, &inertia, damping, &|d| stone.body.support_climb(d)) {
                         s.lag += p.dt - t;
                         landed = true;
                     }

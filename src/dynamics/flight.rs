@@ -121,6 +121,29 @@ impl Damping {
     }
 }
 
+/// The inertia of a body in flight, with what every step needs of it computed once: the
+/// inverse, and the smallest principal moment (which bounds |ω| by the rotational energy).
+#[derive(Clone, Copy, Debug)]
+pub struct Inertia {
+    /// Inertia about G (unit mass, scaled frame, body axes).
+    pub matrix: Matrix3<f64>,
+    /// Its inverse (the identity if it has none).
+    pub inverse: Matrix3<f64>,
+    /// Its smallest eigenvalue λ_min.
+    pub smallest: f64,
+}
+
+impl Inertia {
+    /// The inertia `matrix`.
+    pub fn new(matrix: Matrix3<f64>) -> Self {
+        Inertia {
+            matrix,
+            inverse: matrix.try_inverse().unwrap_or_else(Matrix3::identity),
+            smallest: matrix.symmetric_eigenvalues().min(),
+        }
+    }
+}
+
 /// A rigid body in free flight (scaled frame: unit mass, lengths / R_max). Horizontal position
 /// is not kept: the ground is flat and unbounded, and the stones of a batch never meet.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -248,18 +271,10 @@ impl FreeBody {
     /// to [`CONTACT_CLEARANCE`] (conservative advancement, module docs). `support` is the support
     /// function h of the body frame. The speed bound holds with damping too: damping only
     /// lowers |v| towards the terminal velocity, and the rotational energy.
-    pub fn fly(
-        &mut self,
-        dt: f64,
-        inertia: &Matrix3<f64>,
-        inertia_inv: &Matrix3<f64>,
-        damping: Damping,
-        support: &dyn Fn(&Vec3) -> f64,
-    ) -> Flew {
+    pub fn fly(&mut self, dt: f64, inertia: &Inertia, damping: Damping, support: &dyn Fn(&Vec3) -> f64) -> Flew {
         // |ω| ≤ √(2 T_rot / λ_min): T_rot is constant in free flight (it only falls with damping).
-        let t_rot = self.omega_body.dot(&(inertia * self.omega_body));
-        let lambda_min = inertia.symmetric_eigenvalues().min();
-        let omega_max = (t_rot / lambda_min).sqrt();
+        let t_rot = self.omega_body.dot(&(inertia.matrix * self.omega_body));
+        let omega_max = (t_rot / inertia.smallest).sqrt();
         let mut t = 0.0;
         for _ in 0..MAX_ADVANCES {
             // h ≤ 1 in every direction: high up, the support need not be asked.
@@ -277,7 +292,7 @@ impl FreeBody {
             }
             let speed = (-self.linvel.z).max(0.0) + G * left + omega_max;
             let tau = (gap / speed).min(left);
-            self.step_damped(tau, inertia, inertia_inv, damping);
+            self.step_damped(tau, &inertia.matrix, &inertia.inverse, damping);
             t = if tau == left { dt } else { t + tau };
         }
         // Out of moves (a graze, or a speed bound ≫ 100 m/s): land where it is, still above

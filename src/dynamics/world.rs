@@ -251,13 +251,10 @@ pub fn normal_impulse(world: &PhysicsWorld, ground: ColliderHandle, stone: Colli
     world.narrow_phase.contact_pair(ground, stone).map_or(0.0, |c| c.total_impulse_magnitude() as f64)
 }
 
-/// Number of contact points (within the prediction distance) of the largest manifold between
-/// two colliders in the last step: rapier's twist friction acts on manifolds of two or more.
-pub fn contact_points(world: &PhysicsWorld, ground: ColliderHandle, stone: ColliderHandle) -> usize {
-    world
-        .narrow_phase
-        .contact_pair(ground, stone)
-        .map_or(0, |c| c.manifolds().iter().map(|m| m.data.num_active_contacts()).max().unwrap_or(0))
+/// Number of contact points (within the prediction distance) of the largest manifold of a
+/// contact pair: rapier's twist friction acts on manifolds of two or more.
+fn contact_points(pair: &ContactPair) -> usize {
+    pair.manifolds().iter().map(|m| m.data.num_active_contacts()).max().unwrap_or(0)
 }
 
 /// The contact's rolling resistance and torsional friction (module docs), lengths in R_max.
@@ -291,10 +288,13 @@ impl ContactLaw {
         stone: ColliderHandle,
         ground: ColliderHandle,
     ) {
-        let jn = normal_impulse(world, ground, stone);
+        // One look-up of the pair for the normal impulse and the number of contact points.
+        let Some(pair) = world.narrow_phase.contact_pair(ground, stone) else { return };
+        let jn = pair.total_impulse_magnitude() as f64;
         if !(jn > 0.0) {
             return;
         }
+        let single_point = contact_points(pair) <= 1;
         let rb = &world.bodies[handle];
         let q = convert::quat_back(rb.rotation());
         let w = convert::vec_back(rb.angvel());
@@ -313,7 +313,7 @@ impl ContactLaw {
         // Spinning about the normal, after the rolling impulse: only on a single contact point,
         // where rapier's twist friction is off (module docs).
         let ws = (w + dw).dot(&n);
-        if ws != 0.0 && self.torsional_friction > 0.0 && contact_points(world, ground, stone) <= 1 {
+        if ws != 0.0 && self.torsional_friction > 0.0 && single_point {
             let stop = ws.abs() / n.dot(&(inv * n));
             let j = (self.torsional_friction * jn).min(stop);
             dw -= inv * (n * (j * ws.signum()));
