@@ -218,6 +218,10 @@ pub enum Mark {
     Box(RGBColor, f64),
     /// A dot with a short line (points joined by lines, with error bars).
     LineDot(RGBColor),
+    /// A filled dot (scattered points).
+    Dot(RGBColor),
+    /// An open circle (scattered points of a second kind).
+    Ring(RGBColor),
 }
 
 /// Draw a legend in its own strip `area` (outside every chart, so it never covers data): the
@@ -263,6 +267,8 @@ where
                 area.draw(&PathElement::new(vec![(x, my), (x + 22, my)], c.stroke_width(style::LINE))).map_err(err)?;
                 area.draw(&Circle::new((x + 11, my), 4, c.filled())).map_err(err)?;
             }
+            Mark::Dot(c) => area.draw(&Circle::new((x + 11, my), 4, c.filled())).map_err(err)?,
+            Mark::Ring(c) => area.draw(&Circle::new((x + 11, my), 4, c.stroke_width(2))).map_err(err)?,
         }
         area.draw(&Text::new(text.clone(), (x + 30, y), font)).map_err(err)?;
         x += item_w;

@@ -5,7 +5,7 @@ use super::{short_name, write_json, Folder};
 use crate::dynamics::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
 use crate::dynamics::shake::{MotionInfo, ShakeReport, ShakeTrial};
 use crate::ground_motion::Record;
-use crate::plot::{render, DrawResult};
+use crate::plot::{render, DrawResult, Mark};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -456,8 +456,18 @@ where
     }
     let (x0, x1, y0, y1) = (x0 / 1.5, x1 * 1.5, y0 / 1.5, y1 * 1.5);
     root.fill(&WHITE).map_err(err)?;
-    let mut chart = ChartBuilder::on(root)
-        .caption(caption, (font, 19))
+    let (red, blue) = (crate::plot::colors::VERMILLION, crate::plot::colors::BLUE);
+    // The legend in its own strip above the chart: the runs cover the whole plane.
+    let titled = root.titled(caption, (font, 19)).map_err(err)?;
+    let (legend, area) = titled.split_vertically(crate::plot::legend_height(1));
+    let mut entries = vec![(Mark::Dot(red), "overturned".to_string()), (Mark::Ring(blue), "standing".to_string())];
+    if surface.is_some() {
+        entries.push((Mark::Dashed(BLACK), "P = 0.1 (short dashes)".into()));
+        entries.push((Mark::Line(BLACK), "P = 0.5".into()));
+        entries.push((Mark::Dashed(BLACK), "P = 0.9 (long dashes)".into()));
+    }
+    crate::plot::draw_legend(&legend, &entries)?;
+    let mut chart = ChartBuilder::on(&area)
         .margin(14)
         .x_label_area_size(45)
         .y_label_area_size(60)
@@ -472,23 +482,18 @@ where
         .label_style((font, 13))
         .draw()
         .map_err(err)?;
-    let (red, blue) = (crate::plot::colors::VERMILLION, crate::plot::colors::BLUE);
     chart
         .draw_series(
             pts.iter().filter(|r| r.rock.overturned).map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, red.filled())),
         )
-        .map_err(err)?
-        .label("overturned")
-        .legend(move |(x, y)| Circle::new((x + 8, y), 4, red.filled()));
+        .map_err(err)?;
     chart
         .draw_series(
             pts.iter()
                 .filter(|r| !r.rock.overturned)
                 .map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, blue.stroke_width(2))),
         )
-        .map_err(err)?
-        .label("standing")
-        .legend(move |(x, y)| Circle::new((x + 8, y), 4, blue.stroke_width(2)));
+        .map_err(err)?;
     if let Some(f) = surface {
         for (p, dash) in [(0.1, 3), (0.5, 0), (0.9, 8)] {
             let line: Vec<(f64, f64)> = (0..=100)
@@ -500,34 +505,13 @@ where
                 continue;
             }
             let style = BLACK.stroke_width(if p == 0.5 { 2 } else { 1 });
-            let label = match dash {
-                0 => format!("P = {p}"),
-                3 => format!("P = {p} (short dashes)"),
-                _ => format!("P = {p} (long dashes)"),
-            };
             if dash == 0 {
-                chart
-                    .draw_series(LineSeries::new(line, style))
-                    .map_err(err)?
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], style));
+                chart.draw_series(LineSeries::new(line, style)).map_err(err)?;
             } else {
-                chart
-                    .draw_series(DashedLineSeries::new(line, dash, 4, style))
-                    .map_err(err)?
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], style));
+                chart.draw_series(DashedLineSeries::new(line, dash, 4, style)).map_err(err)?;
             }
         }
     }
-    chart
-        .configure_series_labels()
-        .label_font((font, 13))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()
-        .map_err(err)?;
     Ok(())
 }
 
