@@ -135,6 +135,21 @@ fn a_flat_box_spins_down_at_the_coulomb_torque_of_its_corners() {
     }
 }
 
+#[test]
+fn a_broad_patch_spins_down_at_the_larger_of_twist_and_torsional_friction() {
+    // The couple about the normal is T = max(μ Σ Nᵢ dᵢ, δ_t N), never the sum (`world` docs).
+    // With μ r < δ_t the patch's δ_t m g acts alone: t = ω₀ k² / (δ_t g). Their sum would stop
+    // the box (μ r / δ_t ≈ 20 %) early, and rapier's twist alone ≈ 5× late.
+    let (mu, delta, w0) = (0.05, 0.2, 4.0);
+    let (t, stone) = box_spin_down(mu, delta, w0);
+    let c = &stone.body.corners;
+    let (a, b) = (c.iter().map(|p| p.x.abs()).fold(0.0, f64::max), c.iter().map(|p| p.y.abs()).fold(0.0, f64::max));
+    let r = (a * a + b * b).sqrt();
+    assert!(mu * r < 0.3 * delta, "the test needs rapier's twist well below δ_t: μ r = {}", mu * r);
+    let t_exact = w0 * (a * a + b * b) / 3.0 / (delta * GRAVITY);
+    assert!((t / t_exact - 1.0).abs() < 0.03, "stopped after {t} s, closed form {t_exact} s");
+}
+
 /// Over `n` throws of `stone` under `p`: the largest later rise of h(down) above the energy level
 /// L at any state where the certificate may be asked (relaxed contact, L ≤ 1 R_max), the number
 /// of such states. Every throw must settle.

@@ -26,12 +26,14 @@
 //! outcomes are again the same for any batch size and thread count (`tests/flight.rs`).
 
 use super::flight::{self, FreeBody};
-use super::impact::{self, ImpactWorld};
+use super::impact;
 use super::launch::{outcome, release_height, DropOutcome, Release};
 use super::params::DropParams;
 use super::run::{Certificate, Progress, RestKind, RestSample};
 use super::stone::{Body, Stone};
-use super::world::{body_state, ground_world, insert_stone, normal_impulse, step_world, BodyState, ContactLaw};
+use super::world::{
+    body_state, ground_world, insert_stone, normal_impulse, step_world, BodyState, ContactLaw, ImpactWorld,
+};
 use crate::Vec3;
 use crate::GRAVITY;
 use nalgebra::UnitQuaternion;
@@ -136,7 +138,10 @@ pub fn simulate_batch_observed(
                     air_state(b, &stone.body)
                 }
                 Place::Impact(w) => {
-                    let n = impact::substeps(&w.state(&stone.body).0, p.dt);
+                    let n = {
+                        let s = w.state(&stone.body).0;
+                        impact::substeps(&s.linvel, &s.angvel, p.dt)
+                    };
                     w.step(n, &law, &stone.body);
                     w.state(&stone.body).0
                 }
@@ -184,7 +189,7 @@ fn enter_world(
     b: &FreeBody,
 ) -> Place {
     let state = air_state(b, body);
-    if flight::applies(p) && impact::substeps(&state, p.dt) > 1 {
+    if flight::applies(p) && impact::substeps(&state.linvel, &state.angvel, p.dt) > 1 {
         return Place::Impact(impact_world(spare, body, p, &b.orientation, &state));
     }
     let (handle, collider) = insert_stone(world, body, p, &b.orientation, b.z, &b.linvel, &b.angvel());
@@ -249,7 +254,7 @@ fn next_place(
         Place::World { handle, collider } => {
             let pushed = normal_impulse(world, ground, collider) > 0.0;
             let take_off = !pushed && clear();
-            if !take_off && impact::substeps(state, p.dt) == 1 {
+            if !take_off && impact::substeps(&state.linvel, &state.angvel, p.dt) == 1 {
                 return Place::World { handle, collider };
             }
             let q = super::convert::quat_back(world.bodies[handle].rotation());
@@ -265,7 +270,7 @@ fn next_place(
             if w.normal_impulse() == 0.0 && clear() {
                 spare.push(w);
                 Place::Air(free(q))
-            } else if impact::substeps(state, p.dt) == 1 {
+            } else if impact::substeps(&state.linvel, &state.angvel, p.dt) == 1 {
                 spare.push(w);
                 enter_world(world, spare, body, p, &free(q))
             } else {

@@ -19,7 +19,7 @@
 //! (global angular damping 1 s⁻¹ on the scaled body, no rolling resistance) survives only as the
 //! explicitly named reference [`RestingPreset::Damped`] ([`PerturbParams::damped`]).
 
-use super::params::{DropParams, Preset, SpinDistribution, Surface};
+use super::params::{DropParams, Flight, Preset, SpinDistribution, Surface};
 use super::stone::{resting_orientation, Class, StableEquilibrium, Stone};
 use super::world::Simulation;
 use crate::monitor::{self, Monitor};
@@ -186,6 +186,8 @@ impl PerturbParams {
             linear_damping: 0.1,
             angular_damping: 1.0,
             max_time: RESTING_MAX_TIME,
+            // The old numerics with the old contact: rapier's own steps, impacts not sub-stepped.
+            flight: Flight::Rapier,
             ..DropParams::default()
         };
         PerturbParams {
