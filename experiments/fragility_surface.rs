@@ -238,7 +238,7 @@ fn part_b(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     for c in &cases {
         let t0 = Instant::now();
         let setup = RockSetup::new(c.stone, c.pose, c.length_unit_m, Surface::RockOnConcrete, 0.0)?;
-        let batch = run_batch(c.stone, &setup, &recs, &SCALES, &[], &|_| {})?;
+        let batch = run_batch(c.stone, &setup, &recs, &SCALES, None, &[], &|_| {})?;
         let secs = t0.elapsed().as_secs_f64();
         let dir = out.join(c.name);
         rocking_stones::report::shake::write_batch_outputs(&batch, c.name, &dir)?;

@@ -28,7 +28,7 @@ enum Command {
     /// Push a pebble resting on a stable micro-equilibrium: how robust is it, does it topple?
     Perturb(cmd::perturb::Args),
     /// Shake the ground under a resting pebble: fragility curves.
-    Shake(cmd::shake::Args),
+    Shake(Box<cmd::shake::Args>),
     /// Field study over a folder of scans, synthetic hand experiments, fitting ν.
     Study(cmd::study::Args),
 }
@@ -42,7 +42,7 @@ fn main() {
         Command::Drop(a) => cmd::drop::run_drop(a),
         Command::Merge(a) => cmd::drop::run_merge(a),
         Command::Perturb(a) => cmd::perturb::run(a),
-        Command::Shake(a) => cmd::shake::run(a),
+        Command::Shake(a) => cmd::shake::run(*a),
         Command::Study(a) => cmd::study::run(a),
     };
     if let Err(e) = result {

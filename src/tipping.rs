@@ -24,8 +24,15 @@
 //! planes — soil, a thin layer of debris, the scan's own error — so that those corners can carry
 //! load. The pose itself is unchanged (the rock is not re-seated); only its support polygon
 //! grows with τ, and with it the tipping acceleration in the directions where new corners lie.
+//!
+//! **Azimuths.** (e₁, e₂) is an orthonormal basis of the ground plane in the body frame
+//! ([`TippingPolar::basis`]); azimuth θ is measured from e₁ towards e₂, and direction θ is
+//! u(θ) = cos θ e₁ + sin θ e₂. tan α(θ) is the ground acceleration (in g) that tips the stone
+//! about its side in direction u(θ); that acceleration points along −u(θ).
+//! [`TippingSummary`] carries the curve, its minimum and the basis, in metres and degrees.
 
 use crate::{Error, Point3, Result, Vec3};
+use serde::{Deserialize, Serialize};
 
 /// The support polygon of a pose and the tipping acceleration it gives in every direction.
 #[derive(Clone, Debug)]
@@ -44,7 +51,8 @@ pub struct TippingPolar {
 impl TippingPolar {
     /// The support polygon of the stone with hull `corners` and centre of mass `g`, standing
     /// with body-frame down direction `down`, counting the corners within `tolerance` (input
-    /// units, ≥ 0) of the lowest as touching.
+    /// units, ≥ 0) of the lowest as touching (plus 10⁻¹² of the hull's size from G, so that the
+    /// corners of the facet the stone rests on touch at τ = 0 despite rounding).
     pub fn new(corners: &[Point3], g: &Point3, down: &Vec3, tolerance: f64) -> Result<Self> {
         let n = down
             .try_normalize(1e-12)
@@ -57,11 +65,14 @@ impl TippingPolar {
         }
         let depth = |p: &Point3| (p - g).dot(&n);
         let lowest = corners.iter().map(depth).fold(f64::NEG_INFINITY, f64::max);
+        // Rounding: the corners of the facet a stone rests on differ in depth by ~10⁻¹⁶ of its
+        // size; they all touch at τ = 0.
+        let slack = 1e-12 * corners.iter().map(|p| (p - g).norm()).fold(0.0, f64::max);
         let e1 = n.cross(&if n.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() }).normalize();
         let e2 = n.cross(&e1);
         let touching: Vec<[f64; 2]> = corners
             .iter()
-            .filter(|p| lowest - depth(p) <= tolerance)
+            .filter(|p| lowest - depth(p) <= tolerance + slack)
             .map(|p| {
                 let r = p - g;
                 [r.dot(&e1), r.dot(&e2)]
@@ -105,9 +116,74 @@ impl TippingPolar {
             .fold((f64::INFINITY, 0.0), |best, x| if x.0 < best.0 { x } else { best })
     }
 
+    /// The polar as data (module docs): tolerance, height and support polygon in metres
+    /// (lengths × `metres_per_unit`, the size of one input unit in metres, > 0), the minimum
+    /// tan α (dimensionless, in g) with its azimuth in degrees in [0, 360), and the curve
+    /// tan α(θ) sampled at θ = 0°, 1°, …, 359°. `tolerance_m` is the contact tolerance this
+    /// polar was built with, in metres (recorded as given).
+    pub fn summary(&self, tolerance_m: f64, metres_per_unit: f64) -> TippingSummary {
+        let (minimum_g, azimuth) = self.minimum();
+        let curve = (0..360).map(|k| [k as f64, self.acceleration((k as f64).to_radians())]).collect();
+        let vec = |v: &Vec3| [v.x, v.y, v.z];
+        TippingSummary {
+            tolerance_m,
+            height_m: self.height * metres_per_unit,
+            stands: self.stands(),
+            minimum_g,
+            minimum_azimuth_deg: degrees_0_360(azimuth),
+            support_polygon_m: self.polygon.iter().map(|p| [p[0] * metres_per_unit, p[1] * metres_per_unit]).collect(),
+            curve,
+            basis: [vec(&self.basis[0]), vec(&self.basis[1])],
+        }
+    }
+
     fn sides(&self) -> impl Iterator<Item = ([f64; 2], [f64; 2])> + '_ {
         let k = self.polygon.len();
         (0..k).map(move |i| (self.polygon[i], self.polygon[(i + 1) % k]))
+    }
+}
+
+/// The quasi-static tipping of one pose as data, for JSON and plots: [`TippingPolar::summary`].
+/// Azimuths as in the module docs: θ from e₁ towards e₂ (`basis`), u(θ) = cos θ e₁ + sin θ e₂;
+/// tan α(θ) is the ground acceleration (in g), pointing along −u(θ), that tips the stone about
+/// its side in direction u(θ).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TippingSummary {
+    /// The contact tolerance τ (m).
+    pub tolerance_m: f64,
+    /// Height h of G above the ground (m).
+    pub height_m: f64,
+    /// Whether G's projection lies in the support polygon: the pose can stand.
+    pub stands: bool,
+    /// The smallest tan α over all azimuths (in g): the distance from G's projection to the
+    /// nearest side of the support polygon over h. Negative if the pose cannot stand.
+    pub minimum_g: f64,
+    /// Azimuth of the minimum (degrees, in [0, 360)).
+    pub minimum_azimuth_deg: f64,
+    /// The support polygon, counter-clockwise, in the (e₁, e₂) coordinates relative to G's
+    /// projection (m).
+    pub support_polygon_m: Vec<[f64; 2]>,
+    /// [θ (degrees), tan α(θ) (in g)] at θ = 0°, 1°, …, 359° (360 points).
+    pub curve: Vec<[f64; 2]>,
+    /// e₁ and e₂ in the body (mesh) frame: azimuth 0° is e₁, azimuth 90° is e₂.
+    pub basis: [[f64; 3]; 2],
+}
+
+/// One [`TippingPolar`] per contact tolerance in `tolerances` (input units, each ≥ 0), for the
+/// stone with hull `corners` and centre of mass `g` standing with body-frame down direction
+/// `down` ([`TippingPolar::new`]). The support polygon, hence every tan α(θ), grows with τ.
+pub fn tipping_polars(corners: &[Point3], g: &Point3, down: &Vec3, tolerances: &[f64]) -> Result<Vec<TippingPolar>> {
+    tolerances.iter().map(|&tol| TippingPolar::new(corners, g, down, tol)).collect()
+}
+
+/// An angle in radians as degrees in [0, 360) (`rem_euclid` may round −0 or a tiny negative
+/// angle up to 360 itself).
+fn degrees_0_360(radians: f64) -> f64 {
+    let d = radians.to_degrees().rem_euclid(360.0);
+    if d >= 360.0 {
+        0.0
+    } else {
+        d
     }
 }
 
@@ -202,6 +278,71 @@ mod tests {
         // from (a, −b) to (−a, b): |b·0.05 + a·0.05| / √(a² + b²), over the height c.
         let d = (b * 0.05 + a * 0.05) / (a * a + b * b).sqrt() / c;
         assert!((m - d).abs() < 1e-9, "{m} vs {d}");
+    }
+
+    #[test]
+    fn the_summary_of_a_block_holds_housners_minimum_and_its_curve() {
+        // Block 2a × 2b × 2c, a < b: min tan α = a/c across the nearer sides (±x in the body).
+        let (a, b, c) = (0.3, 0.5, 1.2);
+        let t = TippingPolar::new(&block(a, b, c), &Point3::origin(), &-Vec3::z(), 0.0).unwrap();
+        let s = t.summary(0.0, 1.0);
+        assert!(s.stands && (s.minimum_g - a / c).abs() < 1e-12, "{}", s.minimum_g);
+        assert!((0.0..360.0).contains(&s.minimum_azimuth_deg), "{}", s.minimum_azimuth_deg);
+        assert_eq!(s.curve.len(), 360);
+        assert!(s.curve.iter().enumerate().all(|(k, p)| p[0] == k as f64));
+        let sampled = s.curve.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+        assert!((sampled - s.minimum_g).abs() <= 1e-3 * s.minimum_g, "{sampled} vs {}", s.minimum_g);
+        // The minimum's azimuth points along ±x in the body frame.
+        let th = s.minimum_azimuth_deg.to_radians();
+        let ux = s.basis[0][0] * th.cos() + s.basis[1][0] * th.sin();
+        assert!(ux.abs() > 1.0 - 1e-12, "{ux}");
+        let json = serde_json::to_string(&s).unwrap();
+        assert_eq!(serde_json::from_str::<TippingSummary>(&json).unwrap(), s);
+    }
+
+    #[test]
+    fn summary_lengths_scale_with_the_unit_and_tan_alpha_does_not() {
+        // The same block in mm (0.001 m per unit) and m: lengths scale, tan α does not.
+        let (a, b, c) = (300.0, 500.0, 1200.0);
+        let polars = tipping_polars(&block(a, b, c), &Point3::new(20.0, -10.0, 0.0), &-Vec3::z(), &[0.0, 2.0]).unwrap();
+        assert_eq!(polars.len(), 2);
+        let mm = polars[0].summary(0.0, 1e-3);
+        let unit = polars[0].summary(0.0, 1.0);
+        assert!((mm.height_m - 1.2).abs() < 1e-12 && (unit.height_m - c).abs() < 1e-9);
+        for (p, q) in mm.support_polygon_m.iter().zip(&unit.support_polygon_m) {
+            assert!((p[0] - q[0] * 1e-3).abs() < 1e-12 && (p[1] - q[1] * 1e-3).abs() < 1e-12);
+        }
+        assert_eq!(
+            (mm.minimum_g, mm.minimum_azimuth_deg, &mm.curve),
+            (unit.minimum_g, unit.minimum_azimuth_deg, &unit.curve)
+        );
+        // G moved 20 towards +x: the nearest side is now +x, at (a − 20)/c.
+        assert!((mm.minimum_g - (a - 20.0) / c).abs() < 1e-12, "{}", mm.minimum_g);
+        assert!((0.0..360.0).contains(&mm.minimum_azimuth_deg));
+    }
+
+    #[test]
+    fn azimuths_are_reported_in_0_to_360_degrees() {
+        assert_eq!(degrees_0_360(0.0), 0.0);
+        assert_eq!(degrees_0_360(-0.0), 0.0);
+        assert_eq!(degrees_0_360(-1e-17), 0.0);
+        assert!((degrees_0_360(-std::f64::consts::FRAC_PI_2) - 270.0).abs() < 1e-12);
+        assert!((degrees_0_360(std::f64::consts::PI) - 180.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tilted_blocks_on_their_face_touch_at_all_four_base_corners_at_zero_tolerance() {
+        // Rotated about oblique axes, the base corners' depths along the rotated down direction
+        // differ by rounding only: all four touch at τ = 0 and the block stands.
+        let (a, b, c) = (0.3, 0.5, 1.2);
+        for k in 0..40 {
+            let axis = nalgebra::Unit::new_normalize(Vec3::new(0.3 + 0.1 * k as f64, -0.7, 0.5 - 0.05 * k as f64));
+            let r = nalgebra::Rotation3::from_axis_angle(&axis, 0.1 + 0.15 * k as f64);
+            let corners: Vec<Point3> = block(a, b, c).iter().map(|p| r * p).collect();
+            let t = TippingPolar::new(&corners, &Point3::origin(), &(r * -Vec3::z()), 0.0).unwrap();
+            assert_eq!(t.polygon.len(), 4, "rotation {k}");
+            assert!(t.stands() && (t.minimum().0 - a / c).abs() < 1e-12, "rotation {k}: {:?}", t.minimum());
+        }
     }
 
     #[test]

@@ -344,8 +344,8 @@ fn batches_are_independent_of_the_thread_count() {
     let setup = RockSetup::new(&s, Pose::Facet { id: bottom(&s) }, 0.3, Surface::RockOnConcrete, 0.5).unwrap();
     let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
     let scales = [0.2, 0.45, 0.8];
-    let one = pool(1).install(|| run_batch(&s, &setup, &recs, &scales, &[], &|_| {})).unwrap();
-    let two = pool(2).install(|| run_batch(&s, &setup, &recs, &scales, &[], &|_| {})).unwrap();
+    let one = pool(1).install(|| run_batch(&s, &setup, &recs, &scales, None, &[], &|_| {})).unwrap();
+    let two = pool(2).install(|| run_batch(&s, &setup, &recs, &scales, None, &[], &|_| {})).unwrap();
     assert_eq!(one.runs, two.runs);
     assert_eq!(one.runs.len(), 6);
     assert!(one.runs.iter().any(|r| r.rock.max_tilt_deg > 0.5), "the records should rock the block");

@@ -71,9 +71,36 @@ pub struct Args {
     /// Trials per equilibrium and PGA.
     #[arg(short = 'n', long, default_value_t = 40, conflicts_with = "pose")]
     pub trials: u32,
-    /// Seed of the random azimuths.
-    #[arg(long, default_value_t = 1, conflicts_with = "pose")]
+    /// Seed of the random azimuths; with --pose --ensemble, of the members' draws.
+    #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Field rock: an ensemble of N members over what is not known (issue 24): every member
+    /// draws the uncertain inputs below uniformly from their ranges; the result is P(overturn)
+    /// with its 95 % interval and the inputs it is most sensitive to. Friction, restitution and
+    /// rolling resistance range over the surface pair's published ranges unless pinned (--friction,
+    /// --restitution, --rolling-resistance) or given (--friction-range, …).
+    #[arg(long, value_name = "N", requires = "pose")]
+    pub ensemble: Option<u64>,
+    /// Ensemble: base-contact tolerance in the mesh's length unit, T (uniform in [0, T]) or
+    /// LOW,HIGH: hull corners within it of the base plane carry load (the collider's base is
+    /// flattened onto that plane; mass and pose unchanged).
+    #[arg(long, value_name = "T|LOW,HIGH", requires = "ensemble")]
+    pub contact_tolerance: Option<String>,
+    /// Ensemble: azimuth of the records' x axis, degrees: LOW,HIGH, or `unknown` (0–360).
+    #[arg(long, value_name = "LOW,HIGH|unknown", requires = "ensemble", conflicts_with = "azimuth")]
+    pub azimuth_range: Option<String>,
+    /// Ensemble: the record's sign is unknown (each member flips it with probability ½).
+    #[arg(long, requires = "ensemble")]
+    pub random_sign: bool,
+    /// Ensemble: friction coefficient range LOW,HIGH.
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble")]
+    pub friction_range: Option<String>,
+    /// Ensemble: restitution range LOW,HIGH.
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble")]
+    pub restitution_range: Option<String>,
+    /// Ensemble: rolling-resistance length range LOW,HIGH in mm.
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble")]
+    pub rolling_resistance_range: Option<String>,
     #[command(flatten)]
     pub sim: SimArgs,
     #[arg(long)]
@@ -176,6 +203,24 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
     let azimuth = args.azimuth.unwrap_or(0.0).to_radians();
     let params = args.sim.params(&stone, &name, Surface::RockOnConcrete)?;
     let setup = RockSetup::with_params(&stone, pose, args.sim.length_unit_m(&stone, &name)?, azimuth, params);
+    let ensemble = ensemble_spec(&args, &setup)?;
+    if let (Some(e), [record], [scale]) = (&ensemble, &records[..], &args.scales[..]) {
+        let bar = super::progress_bar(e.members, "members");
+        let run = shake::run_ensemble(&stone, &setup, record, *scale, e, &|_| bar.inc(1))?;
+        bar.finish_and_clear();
+        return super::emit(
+            &run,
+            args.json,
+            || report::ensemble::ensemble_summary(&run, &name),
+            args.output.as_deref(),
+            |dir| {
+                let mut w = report::ensemble::write_ensemble_outputs(&run, &name, dir)?;
+                let title = format!("rocking shake --ensemble: {}", report::short_name(&name));
+                report::html::add_page(dir, &mut w, &title, &report::ensemble::ensemble_summary(&run, &name), None)?;
+                Ok(w)
+            },
+        );
+    }
     if records.len() == 1 && args.scales.len() == 1 {
         let run = shake::run_record(&stone, &setup, &records[0], args.scales[0])?;
         return super::emit(
@@ -198,7 +243,10 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
         Some(p) => format!("{} fnv1a {:016x}", p.display(), rocking_stones::rng::fnv1a(std::fs::read(p)?)),
         None => "bundled stone".to_string(),
     };
-    let header = serde_json::json!({ "format": JOURNAL_FORMAT, "mesh": mesh_id, "setup": setup });
+    let header = match &ensemble {
+        Some(e) => serde_json::json!({ "format": JOURNAL_FORMAT, "mesh": mesh_id, "setup": setup, "ensemble": e }),
+        None => serde_json::json!({ "format": JOURNAL_FORMAT, "mesh": mesh_id, "setup": setup }),
+    };
     let (previous, sink) = match &args.output {
         Some(dir) => {
             std::fs::create_dir_all(dir)?;
@@ -229,9 +277,10 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
     if !previous.is_empty() {
         eprintln!("resuming: {} finished run(s) in the journal are kept", previous.len());
     }
-    let bar = super::progress_bar((records.len() * args.scales.len()) as u64, "runs");
+    let members = ensemble.as_ref().map_or(1, |e| e.members);
+    let bar = super::progress_bar((records.len() * args.scales.len()) as u64 * members, "runs");
     let failed = std::sync::atomic::AtomicBool::new(false);
-    let batch = shake::run_batch(&stone, &setup, &records, &args.scales, &previous, &|r| {
+    let batch = shake::run_batch(&stone, &setup, &records, &args.scales, ensemble.as_ref(), &previous, &|r| {
         if let Some(w) = &sink {
             let mut w = w.lock().unwrap_or_else(|e| e.into_inner());
             let (j, c) = &mut *w;
@@ -256,8 +305,62 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
         args.json,
         || report::shake::batch_summary(&batch, &name),
         args.output.as_deref(),
-        |dir| Ok(report::shake::write_batch_outputs(&batch, &name, dir)?),
+        |dir| {
+            let mut w = report::shake::write_batch_outputs(&batch, &name, dir)?;
+            let title = format!("rocking shake --pose: {}", report::short_name(&name));
+            report::html::add_page(dir, &mut w, &title, &report::shake::batch_summary(&batch, &name), None)?;
+            Ok(w)
+        },
     )
+}
+
+/// A `LOW,HIGH` range (or one number T: [0, T] when `from_zero`, else [T, T]) of option `flag`.
+fn parse_range(flag: &str, s: &str, from_zero: bool) -> Result<[f64; 2]> {
+    let v: Vec<f64> = s.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| {
+        anyhow::anyhow!("--{flag}: expected LOW,HIGH (two numbers){}, got {s:?}", if from_zero { " or T" } else { "" })
+    })?;
+    match v[..] {
+        [t] if from_zero => Ok([0.0, t]),
+        [t] => Ok([t, t]),
+        [lo, hi] => Ok([lo, hi]),
+        _ => bail!("--{flag}: expected LOW,HIGH, got {s:?}"),
+    }
+}
+
+/// The ensemble of the command line: the surface pair's contact ranges unless pinned or given,
+/// the base-contact tolerance from mesh units to metres, the azimuth range or `unknown`.
+fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shake::EnsembleSpec>> {
+    let Some(members) = args.ensemble else { return Ok(None) };
+    let range = |flag: &str, s: &Option<String>| s.as_deref().map(|s| parse_range(flag, s, false)).transpose();
+    let given = shake::Uncertainty {
+        contact_tolerance_m: args
+            .contact_tolerance
+            .as_deref()
+            .map(|s| parse_range("contact-tolerance", s, true))
+            .transpose()?,
+        azimuth_deg: match args.azimuth_range.as_deref() {
+            Some("unknown") => Some([0.0, 360.0]),
+            s => s
+                .map(|s| parse_range("azimuth-range", s, false).map_err(|e| anyhow::anyhow!("{e}, or unknown")))
+                .transpose()?,
+        },
+        random_sign: args.random_sign,
+        friction: range("friction-range", &args.friction_range)?,
+        restitution: range("restitution-range", &args.restitution_range)?,
+        rolling_resistance_m: range("rolling-resistance-range", &args.rolling_resistance_range)?,
+    };
+    // Check the ranges as given (mesh units, mm), named by their flags.
+    let flag = |n: &str| match n {
+        "contact_tolerance" => "--contact-tolerance".to_string(),
+        other => format!("--{}-range", other.replace('_', "-")),
+    };
+    given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;
+    let surface = args.sim.surface.unwrap_or(Surface::RockOnConcrete);
+    let pinned = [args.sim.friction.is_some(), args.sim.restitution.is_some(), args.sim.rolling_resistance.is_some()];
+    let uncertainty = shake::Uncertainty::stated(&given, surface, setup.length_unit_m, pinned);
+    let spec = shake::EnsembleSpec { uncertainty, seed: args.seed, members };
+    spec.check().map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;
+    Ok(Some(spec))
 }
 
 /// Format tag of the first line of a batch journal (`runs.jsonl`).

@@ -376,6 +376,18 @@ pub struct Contact {
     pub rolling_resistance_m: f64,
 }
 
+/// The range of each contact parameter of a surface pair (low, high): what an ensemble of field
+/// runs draws from when the surface is only known by its kind ([`Surface::ranges`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ContactRanges {
+    /// Coulomb friction coefficient.
+    pub friction: [f64; 2],
+    /// Coefficient of restitution.
+    pub restitution: [f64; 2],
+    /// Rolling-resistance length δ (metres).
+    pub rolling_resistance_m: [f64; 2],
+}
+
 /// Named surface pairs, with friction, restitution and rolling resistance inside published
 /// ranges (each variant cites them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -422,6 +434,30 @@ impl Surface {
         Contact { friction, restitution, rolling_resistance_m }
     }
 
+    /// The ranges each contact parameter of this pair may take, around [`Surface::contact`]
+    /// (which lies inside them). Cited, as in the variants' docs: steel on wood μ 0.2–0.6,
+    /// e 0.4–0.6, δ 0.05–0.5 mm (Marks' handbook tables); rock on rock μ 0.6–0.85 (Byerlee 1978)
+    /// and e 0.2–0.5 (rockfall back-analyses); rock on concrete μ 0.5–0.7; rock on steel μ
+    /// 0.3–0.6. Not cited, this project's assumption, said where it is used: e 0.2–0.5 on
+    /// concrete (as on bedrock), e 0.3–0.5 on steel, and δ a factor 2 either side of the
+    /// nominal value for the three rock pairs (no published range found).
+    pub fn ranges(self) -> ContactRanges {
+        let c = self.contact();
+        let (friction, restitution, rolling_resistance_m) = match self {
+            Surface::SteelOnWood => ([0.2, 0.6], [0.4, 0.6], [5e-5, 5e-4]),
+            Surface::StoneOnStone => {
+                ([0.6, 0.85], [0.2, 0.5], [0.5 * c.rolling_resistance_m, 2.0 * c.rolling_resistance_m])
+            }
+            Surface::RockOnConcrete => {
+                ([0.5, 0.7], [0.2, 0.5], [0.5 * c.rolling_resistance_m, 2.0 * c.rolling_resistance_m])
+            }
+            Surface::RockOnSteel => {
+                ([0.3, 0.6], [0.3, 0.5], [0.5 * c.rolling_resistance_m, 2.0 * c.rolling_resistance_m])
+            }
+        };
+        ContactRanges { friction, restitution, rolling_resistance_m }
+    }
+
     /// Set the contact of `p` to this pair's, for a stone of real size R_max = `r_max_m` metres.
     pub fn scaled(self, p: &mut DropParams, r_max_m: f64) {
         let c = self.contact();
@@ -459,6 +495,15 @@ mod tests {
             for s in Surface::ALL {
                 assert_eq!(s.name().parse::<Surface>().unwrap(), s);
                 p.params(s).check().unwrap();
+                // The nominal contact lies inside its ranges.
+                let (c, r) = (s.contact(), s.ranges());
+                for (x, [lo, hi]) in [
+                    (c.friction, r.friction),
+                    (c.restitution, r.restitution),
+                    (c.rolling_resistance_m, r.rolling_resistance_m),
+                ] {
+                    assert!(lo < hi && (lo..=hi).contains(&x), "{s}: {x} outside [{lo}, {hi}]");
+                }
             }
         }
         assert!("fling".parse::<Preset>().is_err());

@@ -102,6 +102,34 @@ impl Body {
         best.1
     }
 
+    /// This body with its base flattened (issue 24): every corner x within `tolerance` (R_max)
+    /// of the lowest plane in direction `down` — h(down) − x·down ≤ tolerance — moved along
+    /// `down` onto that plane, the collider rebuilt on the new hull. Those corners then carry
+    /// load: the support polygon is [`crate::tipping::TippingPolar`]'s at that tolerance. Mass,
+    /// G, inertia and R_max are kept (a few mm of surface do not move them), and so are
+    /// `facet_normals`, which stay the analysed hull's (the outcome is read by the static
+    /// theory of the scanned hull).
+    pub fn flattened(&self, down: &Vec3, tolerance: f64) -> Result<Body> {
+        let h = self.support(down);
+        let points: Vec<Point3> = self
+            .corners
+            .iter()
+            .map(|c| {
+                let lift = h - c.dot(down);
+                Point3::from(if lift <= tolerance { c + down * lift } else { *c })
+            })
+            .collect();
+        let hull = Polyhedron::new(&points, crate::hull::DEFAULT_COPLANAR_TOL)?;
+        let shape = SharedShape::new(super::hull_shape::HullShape::new(&hull, &Point3::origin(), 1.0));
+        Ok(Body {
+            corners: hull.vertices.iter().map(|p| p.coords).collect(),
+            shape,
+            facet_normals: self.facet_normals.clone(),
+            inertia: self.inertia,
+            r_max: self.r_max,
+        })
+    }
+
     /// Inertia tensor about G in the world frame for body orientation `q` (unit mass, scaled).
     pub fn world_inertia(&self, q: &UnitQuaternion<f64>) -> Matrix3<f64> {
         let r = q.to_rotation_matrix();
@@ -215,6 +243,7 @@ pub struct StaticModel {
 
 /// A stone prepared for every dynamic run: the body in the scaled frame, the merge tree of its
 /// support function, its flocks at `nu`, and (on demand) its basins and stable equilibria.
+#[derive(Clone)]
 pub struct Stone {
     /// The rigid body.
     pub body: Body,
@@ -316,6 +345,22 @@ impl Stone {
                 })
                 .expect("a stone has a stable facet")
         })
+    }
+
+    /// This stone standing on `facet` with the corners within `tolerance` (R_max) of that
+    /// facet's plane carrying load ([`Body::flattened`]); the static analysis is the scanned
+    /// hull's. Tolerance 0: the stone itself.
+    pub fn with_base_contact(&self, facet: u32, tolerance: f64) -> Result<Stone> {
+        let n =
+            *self.body.facet_normals.get(facet as usize).ok_or_else(|| Error::check(format!("no facet {facet}")))?;
+        if !(tolerance >= 0.0 && tolerance.is_finite()) {
+            return Err(Error::parameter("contact_tolerance", tolerance, "a finite length ≥ 0"));
+        }
+        let mut stone = self.clone();
+        if tolerance > 0.0 {
+            stone.body = self.body.flattened(&n, tolerance)?;
+        }
+        Ok(stone)
     }
 
     /// R_F / R_max of a stable facet (NaN for a non-stable one).

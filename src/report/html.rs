@@ -266,6 +266,10 @@ pub fn caption(file_name: &str) -> String {
                                quasi-static basin probabilities.",
         "drops_facets.png" => "The same per stable facet (micro-equilibrium).",
         "fragility.png" => "Fragility: the probability that shaking topples the stone against the peak ground acceleration.",
+        "fragility_surface.png" => "Every run in the (PGA, PGV/PGA) plane (filled: overturned) with the fitted \
+                                    P(overturn) = 0.1, 0.5, 0.9 contours; with an ensemble, each contour's 95 % band.",
+        "tipping_polar.png" => "Quasi-static tipping acceleration tan α (in g) against the azimuth of the side the rock \
+                                tips about, for each base-contact tolerance; dots: the minimum.",
         other => return other.to_string(),
     }
     .to_string()

@@ -10,12 +10,14 @@
 
 pub mod analysis;
 pub mod drops;
+pub mod ensemble;
 pub mod html;
 pub mod names;
 pub mod perturb;
 pub mod planar;
 pub mod shake;
 pub mod study;
+pub mod tipping;
 
 pub use analysis::{
     flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, summary_in, write_batch_csv, write_outputs,

@@ -307,7 +307,7 @@ use crate::dynamics::shake::{RecordRun, ShakeBatch};
 use crate::ground_motion::surface::FragilitySurface;
 
 /// Columns of `runs.csv`: one row per (record, scale) run of a field rock.
-pub const RUN_CSV_HEADER: [&str; 15] = [
+pub const RUN_CSV_HEADER: [&str; 22] = [
     "record",
     "scale",
     "pga_g",
@@ -323,11 +323,18 @@ pub const RUN_CSV_HEADER: [&str; 15] = [
     "final_flock",
     "settled",
     "time_s",
+    "member",
+    "contact_tolerance_m",
+    "azimuth_deg",
+    "sign",
+    "friction",
+    "restitution",
+    "rolling_resistance_m",
 ];
 
 /// The `runs.csv` row of a run (columns [`RUN_CSV_HEADER`]).
 pub fn run_csv_row(r: &RecordRun) -> Vec<String> {
-    vec![
+    let mut row = vec![
         r.record.clone(),
         format!("{}", r.scale),
         format!("{:.6}", r.pga_g),
@@ -343,7 +350,21 @@ pub fn run_csv_row(r: &RecordRun) -> Vec<String> {
         r.rock.final_flock.to_string(),
         r.rock.settled.to_string(),
         format!("{:.3}", r.rock.time_s),
-    ]
+    ];
+    // An ensemble member's inputs; blank for the rock as given.
+    let member = r.member.map(|d| {
+        [
+            d.member.to_string(),
+            format!("{:.6}", d.contact_tolerance_m),
+            format!("{:.3}", d.azimuth_deg),
+            format!("{}", d.sign),
+            format!("{:.4}", d.friction),
+            format!("{:.4}", d.restitution),
+            format!("{:.3e}", d.rolling_resistance_m),
+        ]
+    });
+    row.extend(member.unwrap_or_default());
+    row
 }
 
 /// Write `runs.csv` (header and one row per run, in the batch's order).
@@ -411,6 +432,7 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         (None, Some(e)) => s += &format!("no fragility surface: {e}\n"),
         (None, None) => {}
     }
+    s += &super::ensemble::batch_lines(b);
     if b.unsettled > 0 {
         s += &format!(
             "{} of {n} runs were still moving at the time cap: classified by the quasi-static descent in runs.csv \
@@ -422,14 +444,17 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
 }
 
 /// Plot the runs in the (PGA, PGV/PGA) plane on log axes — overturned filled, standing hollow —
-/// with the surface's P = 0.1, 0.5, 0.9 contours (the form of Purvance et al. 2008, Fig. 7).
+/// with the surface's P = 0.1, 0.5, 0.9 contours (the form of Purvance et al. 2008, Fig. 7) and,
+/// with `bands`, the 95 % band of the P = 0.5 contour shaded ([`FragilitySurface::pga_band_at`];
+/// every contour's band is in `contours.csv`).
 pub fn plot_fragility_surface(
     path: &Path,
     caption: &str,
     runs: &[RecordRun],
     surface: Option<&FragilitySurface>,
+    bands: bool,
 ) -> crate::Result<()> {
-    render!(path, (900, 650), |root| draw_surface(&root, caption, runs, surface))
+    render!(path, (900, 650), |root| draw_surface(&root, caption, runs, surface, bands))
 }
 
 fn draw_surface<DB: DrawingBackend>(
@@ -437,6 +462,7 @@ fn draw_surface<DB: DrawingBackend>(
     caption: &str,
     runs: &[RecordRun],
     surface: Option<&FragilitySurface>,
+    bands: bool,
 ) -> DrawResult
 where
     DB::ErrorType: 'static,
@@ -466,6 +492,9 @@ where
         entries.push((Mark::Line(BLACK), "P = 0.5".into()));
         entries.push((Mark::Dashed(BLACK), "P = 0.9 (long dashes)".into()));
     }
+    if surface.is_some() && bands {
+        entries.push((Mark::Box(BLACK, 0.15), "95 % band of P = 0.5".into()));
+    }
     crate::plot::draw_legend(&legend, &entries)?;
     let mut chart = ChartBuilder::on(&area)
         .margin(14)
@@ -494,6 +523,22 @@ where
                 .map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, blue.stroke_width(2))),
         )
         .map_err(err)?;
+    if let (Some(f), true) = (surface, bands) {
+        // The P = 0.5 contour's band only: the three bands overlap and hide each other.
+        let p = 0.5;
+        let edge = |k: usize| -> Vec<(f64, f64)> {
+            (0..=100)
+                .map(|i| y0 * (y1 / y0).powf(i as f64 / 100.0))
+                .filter_map(|y| f.pga_band_at(p, y, 1.96).and_then(|b| b[k]).map(|x| (x.clamp(x0, x1), y)))
+                .collect()
+        };
+        let (low, mut high) = (edge(0), edge(2));
+        high.reverse();
+        let band: Vec<(f64, f64)> = low.into_iter().chain(high).collect();
+        if band.len() >= 3 {
+            chart.draw_series(std::iter::once(Polygon::new(band, BLACK.mix(0.12).filled()))).map_err(err)?;
+        }
+    }
     if let Some(f) = surface {
         for (p, dash) in [(0.1, 3), (0.5, 0), (0.9, 8)] {
             let line: Vec<(f64, f64)> = (0..=100)
@@ -521,6 +566,8 @@ pub fn write_batch_outputs(b: &ShakeBatch, name: &str, dir: &Path) -> crate::Res
     out.file("shake_batch.json", |p| write_json(p, b))?;
     out.file("runs.csv", |p| write_runs_csv(p, &b.runs))?;
     let caption = format!("{}: P(overturn | PGA, PGV/PGA)", short_name(name));
-    out.file("fragility_surface.png", |p| plot_fragility_surface(p, &caption, &b.runs, b.surface.as_ref()))?;
+    let bands = b.ensemble.is_some();
+    out.file("fragility_surface.png", |p| plot_fragility_surface(p, &caption, &b.runs, b.surface.as_ref(), bands))?;
+    super::ensemble::write_batch_ensemble_outputs(b, name, &mut out)?;
     Ok(out.written)
 }

@@ -11,7 +11,8 @@
 //!   the contact of every resting run; rock on concrete by default on the command line).
 //! * **Outcome** ([`RockRun`]): overturned = rests on a stable micro-equilibrium of another flock;
 //!   the largest tilt; the residual slide relative to the ground.
-//! * **Fragility surface**: fitted to the runs that came to rest; the others are counted.
+//! * Records × scale factors, with or without an ensemble, and their fragility surface:
+//!   [`super::batch`].
 
 use super::drive::{shake_placed, Placed};
 use crate::dynamics::outcome::{classify, Outcome};
@@ -20,7 +21,7 @@ use crate::dynamics::resting::PerturbParams;
 use crate::dynamics::run::{self as run_loop, NoCertificate, RestKind};
 use crate::dynamics::stone::Stone;
 use crate::dynamics::world::Simulation;
-use crate::ground_motion::{surface, Record};
+use crate::ground_motion::Record;
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
 use serde::Serialize;
@@ -298,194 +299,5 @@ pub fn driven(record: &Record, real_dt: f64) -> Result<Record> {
         record.resampled(real_dt)
     } else {
         Ok(record.clone())
-    }
-}
-
-/// One record × scale factor on a field rock: the record's intensity measures and the outcome.
-#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
-pub struct RecordRun {
-    /// Name of the record.
-    pub record: String,
-    /// Scale factor applied to the record.
-    pub scale: f64,
-    /// Peak horizontal ground acceleration of the scaled record (g).
-    pub pga_g: f64,
-    /// Peak horizontal ground velocity of the scaled record (m/s).
-    pub pgv_m_s: f64,
-    /// PGV/PGA (s).
-    pub pgv_over_pga_s: f64,
-    /// Peak vertical ground acceleration (g).
-    pub pga_vertical_g: f64,
-    /// Outcome of the run.
-    #[serde(flatten)]
-    pub rock: RockRun,
-}
-
-/// Shake the rock of `setup` with `record` × `scale`: the record is scaled, its PGA/PGV measured
-/// ([`Record::measures`], on the record as given: correct its baseline
-/// before), resampled without aliasing to the simulation's real step ([`RockSetup::real_dt`]) when
-/// it is sampled finer, the rock placed ([`place`]) and shaken ([`shake_record`]).
-pub fn run_record(stone: &Stone, setup: &RockSetup, record: &Record, scale: f64) -> Result<RecordRun> {
-    if !(scale.is_finite() && scale >= 0.0) {
-        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
-    }
-    let scaled = record.scaled(scale);
-    let m = scaled.measures();
-    let motion = driven(&scaled, setup.real_dt())?;
-    let placed = place(stone, &setup.pose, &setup.params)?;
-    let rock = shake_record(stone, placed, &setup.params, &motion, setup.azimuth, setup.r_max_m);
-    Ok(RecordRun {
-        record: record.name.clone(),
-        scale,
-        pga_g: m.pga_g,
-        pgv_m_s: m.pgv_m_s,
-        pgv_over_pga_s: m.pgv_over_pga_s,
-        pga_vertical_g: m.pga_vertical_g,
-        rock,
-    })
-}
-
-/// Every record × every scale factor on one rock, with the fragility surface fitted to them.
-#[derive(Clone, Debug, Serialize)]
-pub struct ShakeBatch {
-    /// The rock and how it was shaken.
-    pub setup: RockSetup,
-    /// Settling tilt (degrees) when the rock was put down.
-    pub settling_tilt_deg: f64,
-    /// Analysis index of the stable micro-equilibrium it stands on.
-    pub start_equilibrium: usize,
-    /// One run per (record, scale), records in the given order, scales within a record.
-    pub runs: Vec<RecordRun>,
-    /// P(overturn | PGA, PGV/PGA) fitted to the runs that came to rest ([`surface`]); runs
-    /// still moving at the time cap are left out and counted in `unsettled`.
-    pub surface: Option<surface::FragilitySurface>,
-    /// Why the surface could not be fitted (e.g. every run had the same outcome).
-    pub surface_error: Option<String>,
-    /// Runs still moving at the time cap: classified by the quasi-static descent in `runs`, but
-    /// not used in the fit (their outcome is a guess, not an observation).
-    pub unsettled: usize,
-}
-
-/// The fragility surface of `runs`, fitted to the runs that came to rest (the others' outcome is
-/// the quasi-static descent's guess from where they were at the time cap, not an observation):
-/// the surface, or why it could not be fitted, and how many runs were left out.
-pub fn fit_surface(runs: &[RecordRun]) -> (Option<surface::FragilitySurface>, Option<String>, usize) {
-    let unsettled = runs.iter().filter(|r| !r.rock.settled).count();
-    let points: Vec<surface::Run> = runs
-        .iter()
-        .filter(|r| r.rock.settled)
-        .map(|r| surface::Run { pga_g: r.pga_g, pgv_over_pga_s: r.pgv_over_pga_s, overturned: r.rock.overturned })
-        .collect();
-    match surface::FragilitySurface::fit(&points) {
-        Ok(s) => (Some(s), None, unsettled),
-        Err(e) => (None, Some(e.to_string()), unsettled),
-    }
-}
-
-/// Run every record × scale in parallel (rayon; each run is deterministic and independent, so the
-/// result does not depend on the thread count), calling `done` with each finished run (from any
-/// thread, in completion order: for appending to a file as the runs finish). The pose is checked
-/// once before any run. Runs already in `previous` (same record name and scale, from an
-/// interrupted batch) are taken as they are and not run again: a run is a deterministic function
-/// of the rock, the setup, the record and the scale, so the batch is the same as one run in one go.
-pub fn run_batch(
-    stone: &Stone,
-    setup: &RockSetup,
-    records: &[Record],
-    scales: &[f64],
-    previous: &[RecordRun],
-    done: &(dyn Fn(&RecordRun) + Sync),
-) -> Result<ShakeBatch> {
-    use rayon::prelude::*;
-    if records.is_empty() || scales.is_empty() {
-        return Err(Error::Usage("a batch needs at least one record and one scale factor".into()));
-    }
-    let placed = place(stone, &setup.pose, &setup.params)?;
-    let s = &stone.stable()[placed.start];
-    let (settling_tilt_deg, start_equilibrium) = (placed.settling_tilt.to_degrees(), s.index);
-    drop(placed);
-    let jobs: Vec<(usize, f64)> = (0..records.len()).flat_map(|r| scales.iter().map(move |&k| (r, k))).collect();
-    let runs: Vec<RecordRun> = jobs
-        .par_iter()
-        .map(|&(r, k)| {
-            let same = |p: &&RecordRun| p.record == records[r].name && p.scale.to_bits() == k.to_bits();
-            if let Some(p) = previous.iter().find(same) {
-                return Ok(p.clone());
-            }
-            let run = run_record(stone, setup, &records[r], k)?;
-            done(&run);
-            Ok(run)
-        })
-        .collect::<Result<_>>()?;
-    let (surface, surface_error, unsettled) = fit_surface(&runs);
-    Ok(ShakeBatch {
-        setup: setup.clone(),
-        settling_tilt_deg,
-        start_equilibrium,
-        runs,
-        surface,
-        surface_error,
-        unsettled,
-    })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn run(pga_g: f64, ratio: f64, overturned: bool, settled: bool) -> RecordRun {
-        RecordRun {
-            record: format!("r{pga_g}-{ratio}"),
-            scale: 1.0,
-            pga_g,
-            pgv_m_s: pga_g * ratio * 9.81,
-            pgv_over_pga_s: ratio,
-            pga_vertical_g: 0.0,
-            rock: RockRun {
-                overturned,
-                outcome: if overturned { Outcome::Toppled } else { Outcome::Same },
-                max_tilt_deg: 0.0,
-                slide_m: 0.0,
-                settling_tilt_deg: 0.0,
-                start_equilibrium: 0,
-                start_flock: 0,
-                final_equilibrium: 0,
-                final_flock: 0,
-                settled,
-                azimuth_deg: 0.0,
-                r_max_m: 1.0,
-                time_s: 1.0,
-                steps: 1,
-            },
-        }
-    }
-
-    /// Runs still moving at the cap do not enter the fit: adding unsettled runs that claim the
-    /// opposite outcome changes nothing but the count.
-    #[test]
-    fn the_fragility_fit_uses_settled_runs_only() {
-        let mut settled = Vec::new();
-        for (i, a) in [0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.7, 1.0].iter().enumerate() {
-            for (j, t) in [0.05, 0.1, 0.2].iter().enumerate() {
-                settled.push(run(*a, *t, a * t.sqrt() > 0.1 || (i + j) % 5 == 0, true));
-            }
-        }
-        let (alone, _, none) = fit_surface(&settled);
-        assert_eq!(none, 0);
-        let mut all = settled.clone();
-        all.extend([run(0.1, 0.05, true, false), run(1.0, 0.2, false, false), run(0.12, 0.06, true, false)]);
-        let (with, _, three) = fit_surface(&all);
-        assert_eq!(three, 3);
-        assert_eq!(alone.unwrap().beta, with.unwrap().beta);
-        // The same runs counted as settled would move the fit: the check is not vacuous.
-        let counted: Vec<RecordRun> = all
-            .iter()
-            .cloned()
-            .map(|mut r| {
-                r.rock.settled = true;
-                r
-            })
-            .collect();
-        assert_ne!(fit_surface(&settled).0.unwrap().beta, fit_surface(&counted).0.unwrap().beta);
     }
 }

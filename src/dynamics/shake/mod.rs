@@ -8,6 +8,10 @@
 //!   a grid, random azimuths, P(toppled) with intervals and PGA₅₀.
 //! * [`field`] — a field rock in a physical pose under records × scale factors, and the fragility
 //!   surface P(overturn | PGA, PGV/PGA) of a batch.
+//! * [`batch`] — records × scale factors on a field rock (with or without an ensemble) and the
+//!   fragility surface P(overturn | PGA, PGV/PGA) fitted to them.
+//! * [`ensemble`] — the same rock over what is not known about it (base contact, azimuth, sign,
+//!   contact): P(overturn) with its interval and the inputs it is most sensitive to.
 //!
 //! Both modes run on the contact of every resting run ([`crate::dynamics::resting`]: the surface
 //! pair at the stone's real size), rest by positions over windows
@@ -15,15 +19,16 @@
 //! Housner's rigid block, the reference they are checked against, is
 //! [`crate::dynamics::housner`].
 
+pub mod batch;
 pub mod drive;
+pub mod ensemble;
 pub mod field;
 pub mod sweep;
 
+pub use batch::{run_batch, run_record, RecordRun, ShakeBatch};
 pub use drive::{shake_placed, GroundDrive, Placed, Shaken};
-pub use field::{
-    driven, parse_length_unit, place, rock_params, run_batch, run_record, shake_record, Pose, RecordRun, RockRun,
-    RockSetup, ShakeBatch,
-};
+pub use ensemble::{run_ensemble, Ensemble, EnsembleSpec, Member, Uncertainty};
+pub use field::{driven, parse_length_unit, place, rock_params, shake_record, Pose, RockRun, RockSetup};
 pub use sweep::{
     default_pulse, default_starts, pga_grid, pgas_for, run, run_with, shake_stream, shake_trial, sine_pulse, Fragility,
     MotionInfo, ShakeConfig, ShakeReport, ShakeTrial,
