@@ -77,7 +77,7 @@ fn main() {
             "{name}: {}/{} settled, {} off, mean {:.2} s, {wall:.1} s wall",
             r.settled, r.drops, r.off_equilibrium, r.mean_time
         );
-        if frac < worst.0 {
+        if frac < worst.0 || worst.1.is_empty() {
             worst = (frac, name.clone());
         }
         rows.push((name, frac, r.unsettled, r.off_equilibrium, r.mean_time));
