@@ -41,7 +41,7 @@ fn an_ensemble_without_uncertainty_is_the_single_run_bit_for_bit() {
     for (amp, f) in [(0.3, 4.0), (0.9, 2.0)] {
         let record = sine_pulse(amp, f, 1.0, 1e-3).unwrap();
         let single = run_record(&s, &setup, &record, 1.0).unwrap();
-        let e = run_ensemble(&s, &setup, &record, 1.0, &spec(Uncertainty::default(), 7, 2), &|_| {}).unwrap();
+        let e = run_ensemble(&s, &setup, &record, 1.0, &spec(Uncertainty::default(), 7, 2), &|| {}).unwrap();
         for m in &e.members {
             assert_eq!(m.run, single.rock, "{amp} g, {f} Hz, member {}", m.draw.member);
         }
@@ -63,7 +63,7 @@ fn members_do_not_depend_on_threads_or_ensemble_size() {
     };
     let run = |threads: usize, n: u64| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| run_ensemble(&s, &setup, &record, 1.0, &spec(u.clone(), 11, n), &|_| {}).unwrap())
+        pool.install(|| run_ensemble(&s, &setup, &record, 1.0, &spec(u.clone(), 11, n), &|| {}).unwrap())
     };
     let (one, two) = (run(1, 4), run(2, 4));
     assert_eq!(one.members, two.members);
@@ -143,4 +143,27 @@ fn an_ensemble_batch_fits_every_member_and_resumes_by_member() {
     .unwrap();
     assert_eq!(ran.into_inner(), 5);
     assert_eq!(resumed.runs, all.runs);
+}
+
+#[test]
+fn a_stopped_ensemble_skips_the_members_left_and_says_so() {
+    use rocking_stones::monitor::Monitor;
+    use std::sync::atomic::{AtomicU64, Ordering};
+    struct StopAfterOne(AtomicU64);
+    impl Monitor for StopAfterOne {
+        fn finished(&self) {
+            self.0.fetch_add(1, Ordering::Relaxed);
+        }
+        fn stopped(&self) -> bool {
+            self.0.load(Ordering::Relaxed) >= 1
+        }
+    }
+    let s = stone(generate::cuboid(1.0, 0.6, 2.0));
+    let setup = block_setup(&s);
+    let record = sine_pulse(0.3, 4.0, 1.0, 1e-3).unwrap();
+    let m = StopAfterOne(AtomicU64::new(0));
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let r = pool.install(|| run_ensemble(&s, &setup, &record, 1.0, &spec(Uncertainty::default(), 1, 8), &m));
+    assert!(matches!(r, Err(rocking_stones::Error::Cancelled)), "{:?}", r.map(|e| e.probability));
+    assert_eq!(m.0.into_inner(), 1, "one member ran, the seven left were skipped");
 }

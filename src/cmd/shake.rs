@@ -206,7 +206,7 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
     let ensemble = ensemble_spec(&args, &setup)?;
     if let (Some(e), [record], [scale]) = (&ensemble, &records[..], &args.scales[..]) {
         let bar = super::progress_bar(e.members, "members");
-        let run = shake::run_ensemble(&stone, &setup, record, *scale, e, &|_| bar.inc(1))?;
+        let run = shake::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
         bar.finish_and_clear();
         return super::emit(
             &run,

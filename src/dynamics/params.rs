@@ -101,7 +101,7 @@ pub enum Flight {
     /// instant its lowest point comes within [`super::flight::CONTACT_CLEARANCE`] of the ground;
     /// in contact, a step that could bring a hull point down by more than
     /// [`super::impact::IMPACT_APPROACH`] is sub-stepped ([`super::impact`]). Impacts start
-    /// outside the ground (deepest compression 6.2·10⁻³ R_max over 7 200 drops and throws at
+    /// outside the ground (deepest compression 6.1·10⁻³ R_max over 7 200 drops and throws at
     /// 1/240 and 1/120 s, `results/drops_impacts/`). Runs that start at rest (pushes, shaking)
     /// sub-step their impacts the same way and keep their flight in rapier. Global damping
     /// (`--linear-damping`, `--angular-damping`) acts in free flight too, exactly

@@ -38,6 +38,7 @@ use super::field::{place, shake_record, RockRun, RockSetup};
 use crate::dynamics::params::Surface;
 use crate::dynamics::stone::Stone;
 use crate::ground_motion::Record;
+use crate::monitor::{self, Monitor};
 use crate::rng::item_rng;
 use crate::stats::wilson;
 use crate::tipping::{TippingPolar, TippingSummary};
@@ -400,14 +401,15 @@ pub struct Ensemble {
 
 /// Run the members of the ensemble `e` of the rock of `setup` under `record` × `scale`, in
 /// parallel (rayon; each member is independent and deterministic, so the result does not depend
-/// on the thread count); `done` sees each finished member (any thread, completion order).
+/// on the thread count); `monitor` hears of each finished member and may stop the run
+/// ([`crate::monitor`]: the members not started are skipped, [`Error::Cancelled`]).
 pub fn run_ensemble(
     stone: &Stone,
     setup: &RockSetup,
     record: &Record,
     scale: f64,
     e: &EnsembleSpec,
-    done: &(dyn Fn(&Member) + Sync),
+    monitor: &dyn Monitor,
 ) -> Result<Ensemble> {
     use rayon::prelude::*;
     e.check()?;
@@ -418,14 +420,11 @@ pub fn run_ensemble(
     let scaled = record.scaled(scale);
     let m = scaled.measures();
     let motion = super::field::driven(&scaled, setup.real_dt())?;
-    let members: Vec<Member> = (0..n)
+    let members: Vec<Option<Result<Member>>> = (0..n)
         .into_par_iter()
-        .map(|k| {
-            let member = run_member(stone, setup, &motion, u, seed, k)?;
-            done(&member);
-            Ok(member)
-        })
-        .collect::<Result<_>>()?;
+        .map(|k| monitor::item(monitor, || run_member(stone, setup, &motion, u, seed, k)))
+        .collect();
+    let members: Vec<Member> = monitor::all(members)?.into_iter().collect::<Result<_>>()?;
     Ok(Ensemble {
         record: record.name.clone(),
         scale,
