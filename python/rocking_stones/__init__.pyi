@@ -394,17 +394,30 @@ def shake_rock(
     columns: str = "1,2",
     accel_unit: Literal["g", "m/s2", "gal"] = "g",
     baseline: Optional[int] = None,
-    azimuth: float = 0.0,
+    azimuth: Optional[float] = None,
     surface: Literal["rock-on-concrete", "stone-on-stone", "rock-on-steel", "steel-on-wood"] = "rock-on-concrete",
     scale: float = 1.0,
+    ensemble: Optional[int] = None,
+    uncertainty: Optional[Dict[str, Any]] = None,
+    seed: int = 1,
     nu: Optional[float] = None,
     name: Optional[str] = None,
 ) -> Dict[str, Any]:
     """A field rock at true size under one ground motion, as ``rocking shake --pose ... --json``:
     ``pose`` "as-scanned", "facet:ID" or "quat:w,x,y,z"; ``length_unit`` default mm for the
     bundled stone, m otherwise; ``motion`` a CSV or 1–3 .AT2 files, or
-    ``accel`` an (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s. Returns overturned, max_tilt_deg,
-    slide_m, pga_g, pgv_m_s, pgv_over_pga_s, ..."""
+    ``accel`` an (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s; ``azimuth`` degrees of the
+    record's x axis (default 0). Returns overturned, max_tilt_deg, slide_m, pga_g, pgv_m_s,
+    pgv_over_pga_s, ...
+
+    ``ensemble=N`` (``--ensemble N --seed SEED``): N members drawing what ``uncertainty`` leaves
+    unknown; returns the ensemble dict instead: probability {members, settled, overturned,
+    p_overturn, interval95}, sensitivity [{input, measure, correlation}], tipping [...],
+    members [{draw, run}], with record, scale, pga_g, ..., seed, uncertainty. ``uncertainty``
+    keys (all optional): contact_tolerance T or (low, high) in mesh units; azimuth (low, high)
+    degrees or "unknown"; random_sign bool; friction, restitution (low, high);
+    rolling_resistance_mm (low, high) in mm. Friction, restitution and rolling resistance not
+    given range over the surface pair's published ranges."""
 
 def study(
     folder: Union[str, "os.PathLike[str]"],

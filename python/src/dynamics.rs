@@ -258,9 +258,27 @@ fn read_motion_arg(
 /// The motion is `motion=` a CSV path (read with `columns` and `accel_unit`) or a list of one to
 /// three PEER `.AT2` paths (x, y, z), or `accel=` an array of shape (n,) or (n, k ≤ 3) in m/s²
 /// (x, y horizontal, z up) sampled every `dt` seconds. `length_unit`: "mm", "cm", "m", "km" or
-/// metres per mesh unit (default mm for the bundled stone, m otherwise, as the CLI).
+/// metres per mesh unit (default mm for the bundled stone, m otherwise, as the CLI). `azimuth`:
+/// degrees (world frame) of the record's x axis (default 0); `scale`: factor on the record.
+///
+/// `ensemble=N` (as `--ensemble N`): N members over what is not known about the rock, each
+/// drawing the uncertain inputs uniformly from their ranges, member m from the stream
+/// (`seed`, m) (`--seed`, default 1); returns the dict of `--ensemble N --json` instead: `record`,
+/// `scale`, `pga_g`, `pgv_m_s`, `pgv_over_pga_s`, `pga_vertical_g`, `seed`, `uncertainty` (the
+/// ranges used, in m and degrees), `probability` {members, settled, overturned, p_overturn,
+/// interval95 (Wilson 95 %)}, `sensitivity` [{input, measure ("spearman" or
+/// "circular-linear"), correlation (None when undefined)}], `tipping` [the quasi-static tipping
+/// polar at base-contact tolerance 0 and at the ends of its range] and `members` [{draw, run}]
+/// in member order. `uncertainty=` a dict (needs `ensemble=`), every key optional:
+/// `contact_tolerance` T (meaning [0, T]) or (low, high) in the mesh's length unit
+/// (`--contact-tolerance`); `azimuth` (low, high) degrees or "unknown" ([0, 360],
+/// `--azimuth-range`; not with `azimuth=`); `random_sign` bool (`--random-sign`); `friction`,
+/// `restitution` (low, high) and `rolling_resistance_mm` (low, high) in mm (`--friction-range`,
+/// `--restitution-range`, `--rolling-resistance-range`; one number x means (x, x)). Friction,
+/// restitution and rolling resistance not given range over the `surface` pair's published
+/// ranges. The members run in parallel; Ctrl-C stops the members not yet started.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, *, pose, length_unit = None, motion = None, accel = None, dt = None, columns = "1,2", accel_unit = "g", baseline = None, azimuth = 0.0, surface = "rock-on-concrete", scale = 1.0, nu = None, name = None))]
+#[pyo3(signature = (mesh = None, *, pose, length_unit = None, motion = None, accel = None, dt = None, columns = "1,2", accel_unit = "g", baseline = None, azimuth = None, surface = "rock-on-concrete", scale = 1.0, ensemble = None, uncertainty = None, seed = 1, nu = None, name = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shake_rock<'py>(
     py: Python<'py>,
@@ -273,17 +291,31 @@ pub(crate) fn shake_rock<'py>(
     columns: &str,
     accel_unit: &str,
     baseline: Option<usize>,
-    azimuth: f64,
+    azimuth: Option<f64>,
     surface: &str,
     scale: f64,
+    ensemble: Option<u64>,
+    uncertainty: Option<&Bound<'py, PyDict>>,
+    seed: u64,
     nu: Option<f64>,
     name: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use rocking_stones::dynamics::perturb as pt;
-    use rocking_stones::dynamics::shake::{self as sh, Pose, RockSetup};
+    use rocking_stones::dynamics::shake::{self as sh, EnsembleSpec, Pose, RockSetup, Uncertainty};
     use rocking_stones::ground_motion::Record;
     let pose: Pose = pose.parse().map_err(py_err)?;
     let surface: Surface = surface.parse().map_err(py_err)?;
+    let given = match (ensemble, uncertainty) {
+        (None, Some(_)) => {
+            return Err(PyValueError::new_err("uncertainty= needs ensemble=N (the number of members to draw)"))
+        }
+        (None, None) => None,
+        (Some(_), u) => Some(given_uncertainty(u)?),
+    };
+    if given.as_ref().is_some_and(|g| g.azimuth_deg.is_some()) && azimuth.is_some() {
+        return Err(PyValueError::new_err("give azimuth= or uncertainty[\"azimuth\"], not both"));
+    }
+    let azimuth = azimuth.unwrap_or(0.0).to_radians();
     let record = match (motion, accel) {
         (Some(_), Some(_)) => return Err(PyValueError::new_err("give motion= (files) or accel= (an array), not both")),
         (None, None) => return Err(PyValueError::new_err("give motion= (a CSV or .AT2 files) or accel= with dt=")),
@@ -316,9 +348,94 @@ pub(crate) fn shake_rock<'py>(
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let unit = real_size(&s.name, length_unit, None)?.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    if let (Some(members), Some(given)) = (ensemble, given) {
+        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth).map_err(py_err)?;
+        // As the command line (`ensemble_spec` of `rocking shake`): nothing is pinned, since
+        // shake_rock takes no friction / restitution / rolling-resistance override.
+        let uncertainty = Uncertainty::stated(&given, surface, setup.length_unit_m, [false; 3]);
+        let spec = EnsembleSpec { uncertainty, seed, members };
+        spec.check().map_err(py_err)?;
+        // Ctrl-C stops the members not yet started (`interruptible`).
+        let run = interruptible(py, None, None, |c| sh::run_ensemble(&stone, &setup, &record, scale, &spec, c))?;
+        return to_py(py, &run.map_err(py_err)?);
+    }
     let run = py.detach(|| -> rocking_stones::Result<sh::RecordRun> {
-        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth.to_radians())?;
+        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth)?;
         sh::run_record(&stone, &setup, &record, scale)
     });
     to_py(py, &run.map_err(py_err)?)
+}
+
+/// The keys of `shake_rock`'s `uncertainty=` dict.
+const UNCERTAINTY_KEYS: [&str; 6] =
+    ["contact_tolerance", "azimuth", "random_sign", "friction", "restitution", "rolling_resistance_mm"];
+
+/// `uncertainty=` of `shake_rock` as the command line's `given` uncertainty (user units: the
+/// mesh's length unit, degrees, mm), each range checked and named by its key.
+fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::dynamics::shake::Uncertainty> {
+    use pyo3::types::PyBool;
+    let mut given = rocking_stones::dynamics::shake::Uncertainty::default();
+    let Some(d) = d else { return Ok(given) };
+    let repr = |v: &Bound<'_, PyAny>| v.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+    // A pair (low, high), or one number x: [0, x] when `from_zero`, else [x, x] (`parse_range`).
+    let range = |key: &str, v: &Bound<'_, PyAny>, from_zero: bool| -> PyResult<[f64; 2]> {
+        let bad = || {
+            let one = if from_zero { " or a number T (meaning (0, T))" } else { " or one number" };
+            PyValueError::new_err(format!("uncertainty[{key:?}] must be a pair (low, high){one}, got {}", repr(v)))
+        };
+        if v.is_instance_of::<PyBool>() {
+            return Err(bad());
+        }
+        if let Ok(x) = v.extract::<f64>() {
+            return Ok(if from_zero { [0.0, x] } else { [x, x] });
+        }
+        match v.extract::<Vec<f64>>() {
+            Ok(x) if x.len() == 2 => Ok([x[0], x[1]]),
+            _ => Err(bad()),
+        }
+    };
+    for (k, v) in d.iter() {
+        let key: String = k
+            .extract()
+            .map_err(|_| PyValueError::new_err(format!("uncertainty= keys must be strings, got {}", repr(&k))))?;
+        match key.as_str() {
+            "contact_tolerance" => given.contact_tolerance_m = Some(range(&key, &v, true)?),
+            "azimuth" => {
+                given.azimuth_deg = Some(match v.extract::<String>() {
+                    Ok(s) if s == "unknown" => [0.0, 360.0],
+                    Ok(s) => {
+                        return Err(PyValueError::new_err(format!(
+                            "uncertainty[\"azimuth\"] must be a pair (low, high) of degrees or \"unknown\", got {s:?}"
+                        )))
+                    }
+                    Err(_) => range(&key, &v, false)?,
+                })
+            }
+            "random_sign" => {
+                given.random_sign = v.extract::<bool>().map_err(|_| {
+                    PyValueError::new_err(format!(
+                        "uncertainty[\"random_sign\"] must be True or False, got {}",
+                        repr(&v)
+                    ))
+                })?
+            }
+            "friction" => given.friction = Some(range(&key, &v, false)?),
+            "restitution" => given.restitution = Some(range(&key, &v, false)?),
+            "rolling_resistance_mm" => given.rolling_resistance_m = Some(range(&key, &v, false)?),
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "uncertainty: unknown key {key:?} (keys: {})",
+                    UNCERTAINTY_KEYS.join(", ")
+                )))
+            }
+        }
+    }
+    // The ranges in the user's units (scaling by a positive unit keeps them valid), named by key.
+    given.check().map_err(|e| {
+        PyValueError::new_err(e.spelled(&|name| {
+            let key = if name == "rolling_resistance" { "rolling_resistance_mm" } else { name };
+            format!("uncertainty[{key:?}]")
+        }))
+    })?;
+    Ok(given)
 }

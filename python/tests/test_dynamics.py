@@ -126,3 +126,129 @@ def test_shake_rock_is_the_cli_run(cli, box_file, tmp_path):
         rs.shake_rock(box_file, pose="facet:0", motion=rec, accel=values, dt=0.005)
     with pytest.raises(ValueError, match="pose"):
         rs.shake_rock(box_file, pose="upright", motion=rec)
+
+
+# Ensembles of a field rock (issue 24): the 1 cm box (tips at 0.5 g) under 2 cycles at 2 Hz.
+ROCK = dict(pose="facet:0", length_unit="cm", columns="time_s,ax_g")
+
+
+def pulse_csv(path, amplitude=0.7):
+    """Two sine cycles of `amplitude` g at 2 Hz along x, then 1 s of rest, as a CSV."""
+    t = np.arange(0, 2.0 + 1e-9, 0.005)
+    a = np.where(t <= 1.0, amplitude * np.sin(2 * np.pi * 2 * t), 0.0)
+    path.write_text("time_s,ax_g\n" + "".join(f"{x:.3f},{y:.9f}\n" for x, y in zip(t, a)))
+    return path
+
+
+def test_shake_rock_ensemble_is_the_cli_ensemble(cli, box_file, tmp_path):
+    rec = pulse_csv(tmp_path / "pulse.csv")
+    base = ["shake", str(box_file), "--pose", "facet:0", "--length-unit", "cm", "--motion", str(rec),
+            "--columns", "time_s,ax_g"]
+    expected = cli.json([*base, "--ensemble", "2", "--seed", "3", "--contact-tolerance", "0.001"])
+    r = rs.shake_rock(box_file, motion=rec, ensemble=2, seed=3, uncertainty={"contact_tolerance": 0.001}, **ROCK)
+    assert r == expected
+    assert r["probability"]["members"] == 2 and r["uncertainty"]["contact_tolerance_m"][0] == 0.0
+    # Every key against its option (δ in mm on both sides).
+    expected = cli.json([*base, "--ensemble", "3", "--seed", "4", "--contact-tolerance", "0.0005,0.002",
+                         "--azimuth-range", "10,80", "--random-sign", "--friction-range", "0.4,0.6",
+                         "--restitution-range", "0.1,0.3", "--rolling-resistance-range", "0.05,0.1",
+                         "--surface", "rock-on-steel", "--scales", "1.5"])
+    u = {"contact_tolerance": (0.0005, 0.002), "azimuth": (10, 80), "random_sign": True, "friction": [0.4, 0.6],
+         "restitution": (0.1, 0.3), "rolling_resistance_mm": (0.05, 0.1)}
+    r = rs.shake_rock(box_file, motion=rec, ensemble=3, seed=4, uncertainty=u, surface="rock-on-steel", scale=1.5,
+                      **ROCK)
+    assert r == expected
+    assert r["uncertainty"]["rolling_resistance_m"] == pytest.approx([0.05e-3, 0.1e-3], rel=1e-12)
+
+
+def test_shake_rock_ensemble_draws_depend_only_on_the_seed(box_file, tmp_path):
+    rec = pulse_csv(tmp_path / "pulse.csv")
+    u = {"friction": (0.5, 0.6), "restitution": (0.2, 0.3), "rolling_resistance_mm": (0.05, 0.1)}
+    a = rs.shake_rock(box_file, motion=rec, ensemble=2, seed=5, uncertainty=u, **ROCK)
+    assert rs.shake_rock(box_file, motion=rec, ensemble=2, seed=5, uncertainty=u, **ROCK) == a
+    c = rs.shake_rock(box_file, motion=rec, ensemble=2, seed=6, uncertainty=u, **ROCK)
+    assert c["seed"] == 6 and a["seed"] == 5
+    assert [m["draw"]["friction"] for m in c["members"]] != [m["draw"]["friction"] for m in a["members"]]
+    # Member m is the same possible rock in a smaller ensemble (common random numbers).
+    one = rs.shake_rock(box_file, motion=rec, ensemble=1, seed=5, uncertainty=u, **ROCK)
+    assert one["members"] == a["members"][:1]
+    # Nothing stated: the contact ranges over the surface pair's ranges, as with an empty dict.
+    none = rs.shake_rock(box_file, motion=rec, ensemble=1, **ROCK)
+    assert none == rs.shake_rock(box_file, motion=rec, ensemble=1, uncertainty={}, **ROCK)
+    assert none["uncertainty"]["friction"] is not None and none["uncertainty"]["azimuth_deg"] is None
+    # Without ensemble=: the single run, as before.
+    assert "probability" not in rs.shake_rock(box_file, motion=rec, seed=5, **ROCK)
+
+
+def test_shake_rock_ensemble_dict(box_file, tmp_path):
+    rec = pulse_csv(tmp_path / "pulse.csv")
+    u = {"contact_tolerance": (0.0005, 0.002), "azimuth": "unknown", "random_sign": True, "friction": (0.4, 0.6),
+         "restitution": (0.1, 0.3), "rolling_resistance_mm": (0.05, 0.1)}
+    r = rs.shake_rock(box_file, motion=rec, ensemble=8, seed=2, uncertainty=u, **ROCK)
+    assert set(r) >= {"record", "scale", "pga_g", "seed", "uncertainty", "probability", "sensitivity", "tipping",
+                      "members"}
+    p = r["probability"]
+    assert set(p) == {"members", "settled", "overturned", "p_overturn", "interval95"}
+    assert p["members"] == 8 == len(r["members"])
+    assert 0 <= p["overturned"] <= p["settled"] <= 8
+    assert 0 <= p["p_overturn"] <= 1
+    lo, hi = p["interval95"]
+    assert 0 <= lo <= p["p_overturn"] <= hi <= 1
+    assert p["p_overturn"] == sum(m["run"]["settled"] and m["run"]["overturned"] for m in r["members"]) / p["settled"]
+    tol = r["uncertainty"]["contact_tolerance_m"]
+    assert tol == pytest.approx([0.0005e-2, 0.002e-2], rel=1e-12)
+    assert r["uncertainty"]["azimuth_deg"] == [0.0, 360.0]
+    for k, m in enumerate(r["members"]):
+        assert set(m) == {"draw", "run"}
+        d = m["draw"]
+        assert d["member"] == k
+        assert tol[0] <= d["contact_tolerance_m"] <= tol[1]
+        assert 0 <= d["azimuth_deg"] <= 360 and d["sign"] in (1.0, -1.0)
+        assert 0.4 <= d["friction"] <= 0.6 and 0.1 <= d["restitution"] <= 0.3
+        assert 0.05e-3 * (1 - 1e-12) <= d["rolling_resistance_m"] <= 0.1e-3 * (1 + 1e-12)
+        assert m["run"]["azimuth_deg"] == pytest.approx(d["azimuth_deg"], abs=1e-9)
+    sens = {s["input"]: s for s in r["sensitivity"]}
+    assert set(sens) == {"contact_tolerance", "azimuth", "sign", "friction", "restitution", "rolling_resistance"}
+    assert all(set(s) == {"input", "measure", "correlation"} for s in r["sensitivity"])
+    assert sens["azimuth"]["measure"] == "circular-linear"
+    assert all(s["measure"] == "spearman" for k, s in sens.items() if k != "azimuth")
+    for k, s in sens.items():
+        c = s["correlation"]
+        assert c is None or (0 <= c <= 1 if k == "azimuth" else -1 <= c <= 1)
+    # The quasi-static polar at tolerance 0 and at both ends of the range.
+    assert [t["tolerance_m"] for t in r["tipping"]] == [0.0, *tol]
+    # A known azimuth range is ranked like the rest.
+    r = rs.shake_rock(box_file, motion=rec, ensemble=3, uncertainty={"azimuth": (0, 90)}, **ROCK)
+    assert {s["input"]: s["measure"] for s in r["sensitivity"]}["azimuth"] == "spearman"
+    assert all(0 <= m["draw"]["azimuth_deg"] <= 90 for m in r["members"])
+
+
+def test_shake_rock_ensemble_bad_input(box_file, tmp_path):
+    rec = pulse_csv(tmp_path / "pulse.csv")
+
+    def shake(**kw):
+        return rs.shake_rock(box_file, motion=rec, **ROCK, **kw)
+
+    with pytest.raises(ValueError, match="frction") as e:
+        shake(ensemble=2, uncertainty={"frction": (0.1, 0.2)})
+    assert "rolling_resistance_mm" in str(e.value)  # the valid keys are listed
+    with pytest.raises(ValueError, match="restitution"):
+        shake(ensemble=2, uncertainty={"restitution": (0.2, 1.5)})
+    with pytest.raises(ValueError, match="rolling_resistance_mm"):
+        shake(ensemble=2, uncertainty={"rolling_resistance_mm": (0.2, 0.1)})
+    with pytest.raises(ValueError, match="contact_tolerance"):
+        shake(ensemble=2, uncertainty={"contact_tolerance": -0.001})
+    with pytest.raises(ValueError, match="friction"):
+        shake(ensemble=2, uncertainty={"friction": (0.1, 0.2, 0.3)})
+    with pytest.raises(ValueError, match="friction"):
+        shake(ensemble=2, uncertainty={"friction": "0.1,0.2"})
+    with pytest.raises(ValueError, match="azimuth"):
+        shake(ensemble=2, uncertainty={"azimuth": "north"})
+    with pytest.raises(ValueError, match="random_sign"):
+        shake(ensemble=2, uncertainty={"random_sign": "yes"})
+    with pytest.raises(ValueError, match="ensemble="):
+        shake(uncertainty={"friction": (0.1, 0.2)})
+    with pytest.raises(ValueError, match="not both"):
+        shake(ensemble=2, azimuth=30, uncertainty={"azimuth": "unknown"})
+    with pytest.raises(ValueError, match="ensemble"):
+        shake(ensemble=0)
