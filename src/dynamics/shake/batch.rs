@@ -4,10 +4,10 @@
 //! with an ensemble P(overturn) per record × scale and the surface's contours with their bands.
 
 use super::ensemble::{run_member, sensitivities, Draw, EnsembleSpec, Member, Probability, Sensitivity};
-use super::field::{driven, place, shake_record, RockRun, RockSetup};
+use super::field::{place, scaled_motion, shake_record, RockRun, RockSetup};
 use crate::dynamics::stone::Stone;
 use crate::ground_motion::surface::{self, FragilitySurface};
-use crate::ground_motion::Record;
+use crate::ground_motion::{Measures, Record};
 use crate::{Error, Result};
 use serde::Serialize;
 
@@ -39,24 +39,10 @@ pub struct RecordRun {
 /// before), resampled without aliasing to the simulation's real step ([`RockSetup::real_dt`]) when
 /// it is sampled finer, the rock placed ([`place`]) and shaken ([`shake_record`]).
 pub fn run_record(stone: &Stone, setup: &RockSetup, record: &Record, scale: f64) -> Result<RecordRun> {
-    if !(scale.is_finite() && scale >= 0.0) {
-        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
-    }
-    let scaled = record.scaled(scale);
-    let m = scaled.measures();
-    let motion = driven(&scaled, setup.real_dt())?;
+    let (m, motion) = scaled_motion(record, scale, setup)?;
     let placed = place(stone, &setup.pose, &setup.params)?;
     let rock = shake_record(stone, placed, &setup.params, &motion, setup.azimuth, setup.r_max_m);
-    Ok(RecordRun {
-        record: record.name.clone(),
-        scale,
-        pga_g: m.pga_g,
-        pgv_m_s: m.pgv_m_s,
-        pgv_over_pga_s: m.pgv_over_pga_s,
-        pga_vertical_g: m.pga_vertical_g,
-        member: None,
-        rock,
-    })
+    Ok(RecordRun::of(record, scale, &m, None, rock))
 }
 
 /// Member `member` of the ensemble `ensemble` on `record` × `scale` ([`run_member`]), as a run of
@@ -69,23 +55,25 @@ pub fn run_record_member(
     ensemble: &EnsembleSpec,
     member: u64,
 ) -> Result<RecordRun> {
-    if !(scale.is_finite() && scale >= 0.0) {
-        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
-    }
-    let scaled = record.scaled(scale);
-    let m = scaled.measures();
-    let motion = driven(&scaled, setup.real_dt())?;
+    let (m, motion) = scaled_motion(record, scale, setup)?;
     let Member { draw, run } = run_member(stone, setup, &motion, &ensemble.uncertainty, ensemble.seed, member)?;
-    Ok(RecordRun {
-        record: record.name.clone(),
-        scale,
-        pga_g: m.pga_g,
-        pgv_m_s: m.pgv_m_s,
-        pgv_over_pga_s: m.pgv_over_pga_s,
-        pga_vertical_g: m.pga_vertical_g,
-        member: Some(draw),
-        rock: run,
-    })
+    Ok(RecordRun::of(record, scale, &m, Some(draw), run))
+}
+
+impl RecordRun {
+    /// The run of `record` × `scale` (measures `m`) that ended in `rock`.
+    fn of(record: &Record, scale: f64, m: &Measures, member: Option<Draw>, rock: RockRun) -> RecordRun {
+        RecordRun {
+            record: record.name.clone(),
+            scale,
+            pga_g: m.pga_g,
+            pgv_m_s: m.pgv_m_s,
+            pgv_over_pga_s: m.pgv_over_pga_s,
+            pga_vertical_g: m.pga_vertical_g,
+            member,
+            rock,
+        }
+    }
 }
 
 /// Every record × every scale factor on one rock, with the fragility surface fitted to them.

@@ -414,12 +414,7 @@ pub fn run_ensemble(
     use rayon::prelude::*;
     e.check()?;
     let (u, seed, n) = (&e.uncertainty, e.seed, e.members);
-    if !(scale.is_finite() && scale >= 0.0) {
-        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
-    }
-    let scaled = record.scaled(scale);
-    let m = scaled.measures();
-    let motion = super::field::driven(&scaled, setup.real_dt())?;
+    let (m, motion) = super::field::scaled_motion(record, scale, setup)?;
     let members: Vec<Option<Result<Member>>> = (0..n)
         .into_par_iter()
         .map(|k| monitor::item(monitor, || run_member(stone, setup, &motion, u, seed, k)))

@@ -21,7 +21,7 @@ use crate::dynamics::resting::PerturbParams;
 use crate::dynamics::run::{self as run_loop, NoCertificate, RestKind};
 use crate::dynamics::stone::Stone;
 use crate::dynamics::world::Simulation;
-use crate::ground_motion::Record;
+use crate::ground_motion::{Measures, Record};
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
 use serde::Serialize;
@@ -290,6 +290,17 @@ impl RockSetup {
     pub fn real_dt(&self) -> f64 {
         self.params.sim.dt * self.r_max_m.sqrt()
     }
+}
+
+/// `record` × `scale` (≥ 0, else a usage error) as the rock of `setup` is driven by it: the
+/// scaled record's intensity measures (on the record as given) and the motion of the run
+/// ([`driven`] to the setup's real step).
+pub fn scaled_motion(record: &Record, scale: f64, setup: &RockSetup) -> Result<(Measures, Record)> {
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
+    }
+    let scaled = record.scaled(scale);
+    Ok((scaled.measures(), driven(&scaled, setup.real_dt())?))
 }
 
 /// `record` as a run with real time step `real_dt` (s) is driven by it: resampled without aliasing
