@@ -139,8 +139,8 @@ pub fn simulate_batch_observed(
                 }
                 Place::Impact(w) => {
                     let n = {
-                        let s = w.state(&stone.body).0;
-                        impact::substeps(&s.linvel, &s.angvel, p.dt)
+                        let (s, q) = w.state(&stone.body);
+                        impact::substeps(&stone.body, &q, s.z, &s.linvel, &s.angvel, p.dt)
                     };
                     w.step(n, &law, &stone.body);
                     w.state(&stone.body).0
@@ -189,7 +189,7 @@ fn enter_world(
     b: &FreeBody,
 ) -> Place {
     let state = air_state(b, body);
-    if flight::applies(p) && impact::substeps(&state.linvel, &state.angvel, p.dt) > 1 {
+    if flight::applies(p) && impact::substeps(body, &b.orientation, b.z, &b.linvel, &state.angvel, p.dt) > 1 {
         return Place::Impact(impact_world(spare, body, p, &b.orientation, &state));
     }
     let (handle, collider) = insert_stone(world, body, p, &b.orientation, b.z, &b.linvel, &b.angvel());
@@ -233,8 +233,9 @@ fn impact_world(
 /// Where a stone goes after a step that ended in `state` (free flight, [`flight::applies`]): a
 /// stone that `landed` enters the world; one that the ground did not push and that ended clear
 /// of it ([`flight::may_take_off`]) leaves for free flight; one whose next step could bring a
-/// hull point down by more than [`impact::IMPACT_APPROACH`] goes to (or stays in) a world of its
-/// own, and comes back to the shared world once one step will do.
+/// hull corner outside rapier's contacts down by more than its clearance plus
+/// [`impact::IMPACT_APPROACH`] ([`impact::substeps`]) goes to (or stays in) a world of its own,
+/// and comes back to the shared world once one step will do.
 #[allow(clippy::too_many_arguments)]
 fn next_place(
     world: &mut PhysicsWorld,
@@ -254,10 +255,10 @@ fn next_place(
         Place::World { handle, collider } => {
             let pushed = normal_impulse(world, ground, collider) > 0.0;
             let take_off = !pushed && clear();
-            if !take_off && impact::substeps(&state.linvel, &state.angvel, p.dt) == 1 {
+            let q = super::convert::quat_back(world.bodies[handle].rotation());
+            if !take_off && impact::substeps(body, &q, state.z, &state.linvel, &state.angvel, p.dt) == 1 {
                 return Place::World { handle, collider };
             }
-            let q = super::convert::quat_back(world.bodies[handle].rotation());
             world.remove_body(handle);
             if take_off {
                 Place::Air(free(q))
@@ -270,7 +271,7 @@ fn next_place(
             if w.normal_impulse() == 0.0 && clear() {
                 spare.push(w);
                 Place::Air(free(q))
-            } else if impact::substeps(&state.linvel, &state.angvel, p.dt) == 1 {
+            } else if impact::substeps(body, &q, state.z, &state.linvel, &state.angvel, p.dt) == 1 {
                 spare.push(w);
                 enter_world(world, spare, body, p, &free(q))
             } else {

@@ -131,16 +131,18 @@ impl<'a> Simulation<'a> {
 
     /// Advance one time step: rapier's step, then the contact's rolling resistance and torsional
     /// friction (module docs). With [`Flight::Free`] (the default numerics), a step that could
-    /// bring a hull point into the (possibly moving) ground by more than
-    /// [`impact::IMPACT_APPROACH`] is cut into the sub-steps of [`impact::substeps`], as a
+    /// bring a hull corner outside rapier's contacts into the (possibly moving) ground by more
+    /// than [`impact::IMPACT_APPROACH`] is cut into the sub-steps of [`impact::substeps`], as a
     /// drop's impacts are: pushes, shaking and the rocking checks resolve their impacts the same
     /// way.
     pub fn step(&mut self) {
         let stone = [(self.body_handle, self.body_collider)];
         let n = if self.resolve_impacts {
-            let ground = convert::vec_back(self.world.bodies[self.ground_handle].linvel());
+            let g = &self.world.bodies[self.ground_handle];
+            let (ground_v, ground_z) = (convert::vec_back(g.linvel()), g.translation().z as f64);
+            let (q, _) = self.pose();
             let s = self.state();
-            impact::substeps(&(s.linvel - ground), &s.angvel, self.dt)
+            impact::substeps(self.body, &q, s.z - ground_z, &(s.linvel - ground_v), &s.angvel, self.dt)
         } else {
             1
         };

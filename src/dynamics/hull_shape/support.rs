@@ -60,6 +60,11 @@ impl HullShape {
         self.closest_facet_at_with_sin2(v, d).map(|b| b.0)
     }
 
+    /// The corners joined to corner `v` by a hull edge.
+    pub fn corner_neighbours(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
+        self.neighbours(v).iter().map(|&(w, _)| w)
+    }
+
     /// Support vertex and the support feature towards `dir`.
     fn feature_toward(&self, dir: Vector) -> (u32, Feature) {
         let v = self.support_vertex(dir);
