@@ -233,7 +233,7 @@ fn impact_world(
 /// Where a stone goes after a step that ended in `state` (free flight, [`flight::applies`]): a
 /// stone that `landed` enters the world; one that the ground did not push and that ended clear
 /// of it ([`flight::may_take_off`]) leaves for free flight; one whose next step could bring a
-/// hull corner outside rapier's contacts down by more than its clearance plus
+/// hull corner down by more than its clearance plus
 /// [`impact::IMPACT_APPROACH`] ([`impact::substeps`]) goes to (or stays in) a world of its own,
 /// and comes back to the shared world once one step will do.
 #[allow(clippy::too_many_arguments)]

@@ -131,7 +131,7 @@ impl<'a> Simulation<'a> {
 
     /// Advance one time step: rapier's step, then the contact's rolling resistance and torsional
     /// friction (module docs). With [`Flight::Free`] (the default numerics), a step that could
-    /// bring a hull corner outside rapier's contacts into the (possibly moving) ground by more
+    /// bring a hull corner into the (possibly moving) ground by more
     /// than [`impact::IMPACT_APPROACH`] is cut into the sub-steps of [`impact::substeps`], as a
     /// drop's impacts are: pushes, shaking and the rocking checks resolve their impacts the same
     /// way.
