@@ -803,7 +803,9 @@ fn readme(
          against plain's {}) shares a rapier world's fixed cost per step between {DEFAULT_BATCH} stones; the \
          flock certificate ends a drop once its flock is certain, after {} simulated s instead of {}; \
          `--fast` takes twice the step. Exact landings and sub-stepped impacts (the default numerics) cost \
-         speed here: a hard impact is stepped in a world of the stone's own, outside the batch. None of this is specific to rapier: the certificate needs only the \
+         little here: only a step in which some hull corner could come down by more than its clearance plus \
+         0.01 R_max is cut, in a world of the stone's own, outside the batch (`dynamics::impact`). None of this \
+         is specific to rapier: the certificate needs only the \
          body's energy and down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and \
          MuJoCo at dt 1/120 s was not measured here. So {} (flock-certified + batched) and {} (`--fast`) are \
          what this project's drop pipeline gains over a plain MuJoCo loop (outcome statistics compared below), \
