@@ -33,6 +33,12 @@ use std::str::FromStr;
 /// [`PerturbParams::contact_frequency`].
 pub const CONTACT_FREQUENCY: f64 = 120.0;
 
+/// Time step (s, of the scaled body) of every run that starts at rest: its own, not the drop
+/// preset's, so that a change of the drops' numerics (e.g. a longer default step) cannot move a
+/// push, a shaking run or a field rock. The contact at [`CONTACT_FREQUENCY`] and the rocking
+/// thresholds of `results/fig11_rocking_vs_regular/` were measured with it.
+pub const RESTING_DT: f64 = 1.0 / 240.0;
+
 /// Which contact a run that starts at rest uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -153,11 +159,14 @@ impl Default for PerturbParams {
 
 impl PerturbParams {
     /// The contact of `surface` for a stone of real size R_max = `r_max_m` metres (module docs):
-    /// [`Preset::Drop`]'s numerics at that size, a cap of [`RESTING_MAX_TIME`], rest held for
-    /// [`RESTING_REST_TIME`], contacts at [`CONTACT_FREQUENCY`]. A size that is not a positive
-    /// finite length is refused.
+    /// [`Preset::Drop`]'s contact at that size with the numerics of resting runs pinned
+    /// ([`RESTING_DT`], impacts sub-stepped: [`Flight::Free`]), a cap of [`RESTING_MAX_TIME`],
+    /// rest held for [`RESTING_REST_TIME`], contacts at [`CONTACT_FREQUENCY`]. A size that is not
+    /// a positive finite length is refused.
     pub fn on_surface(surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
         let mut sim = Preset::Drop.params_at_size(surface, r_max_m)?;
+        sim.dt = RESTING_DT;
+        sim.flight = Flight::Free;
         sim.max_time = RESTING_MAX_TIME;
         sim.rest_time = RESTING_REST_TIME;
         Ok(PerturbParams {
