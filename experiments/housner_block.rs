@@ -359,10 +359,12 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
          Restitution: rapier applies it only to contact points that are new in this step (`is_bouncy`), so with \
          rock on concrete's e = 0.3 the slender blocks, whose impacting corner is already within the contact \
          prediction distance before the impact, behave almost as with e = 0, while the squatter ones bounce and \
-         lose more than Housner (see the last column). The squattest (α = 38.7°) hops: its impacting corner, met \
-         in sub-steps as a new contact, rebounds, the block leaves the ground and tilts back the other way, and the \
-         ratio — which assumes a rotation about one corner — reads the hop, not an impact (above 1 there; the \
-         energy level never rises above its start, checked on this block). Robustness and fragility results therefore depend on the \
+         lose more than Housner (see the last column). The squattest (α = 38.7°) lies between: with e = 0.3 it \
+         comes out a few per cent below Housner, less lossy than the α = 33.7° block, because whether rapier's \
+         restitution acts depends on whether its impacting corner is a new contact in the (sub-)step of the impact, \
+         which the impact sub-stepping decides (`dynamics::impact`; under the earlier rule, which cut every step \
+         of a fast-rocking block, it was met as a new contact and the block hopped). Robustness and fragility \
+         results therefore depend on the \
          restitution chosen; Housner's law is the e = 0 limit. Small amplitudes (corner lift b·θ comparable to the \
          contact's static compression, ~10⁻⁴ R_max) scatter more (every impact down to an amplitude of 10⁻⁵ rad in \
          `rocking_impacts.csv`)."
