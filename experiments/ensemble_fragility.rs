@@ -739,7 +739,7 @@ fn part_b(
          * The deterministic run is one rock among the possible ones, and not a typical one: for the blocks it is \
          shaken along its weakest direction at full amplitude (azimuth 0), so it overturns wherever some azimuths \
          would not; for the quarry stone it stands on the scanned hull as is (tolerance 0: the smallest support \
-         polygon) with mid-range contact. Its yes/no is wrong wherever the truth is uncertain, and confidently so \
+         polygon) with the surface pair's nominal contact (μ 0.6, e 0.3, δ 0.1 mm). Its yes/no is wrong wherever the truth is uncertain, and confidently so \
          (its log loss is that of a forecast of 1/(2n) or 1 − 1/(2n)).\n\
          * The reliability curves lie slightly below the diagonal at high P: binning cases by a P that carries \
          sampling noise (standard error up to 1/(2√n): 0.125 at n = 16) selects the cases whose P came out high \
