@@ -2,7 +2,9 @@
 //! bit; members do not depend on threads or ensemble size; the base-contact tolerance changes the
 //! rock's support as the quasi-static polar says, and the dynamics follows it.
 
-use rocking_stones::analysis::{Analysis, Options};
+mod common;
+
+use common::{bottom, stone};
 use rocking_stones::dynamics::housner::ramp_tipping;
 use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
@@ -13,18 +15,6 @@ use rocking_stones::hull::convex_hull;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::tipping::TippingPolar;
 use rocking_stones::Point3;
-
-fn stone(mesh: TriMesh) -> Stone {
-    let (mesh, rep) = mesh.into_solid_boundary().unwrap();
-    let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
-    let (nu, _) = a.macro_nu(&Options::default());
-    Stone::new(&a, nu).unwrap()
-}
-
-/// Analysis index of the stable micro-equilibrium of the face with normal −z.
-fn bottom(s: &Stone) -> usize {
-    s.stable().iter().find(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap().index
-}
 
 fn spec(uncertainty: Uncertainty, seed: u64, members: u64) -> EnsembleSpec {
     EnsembleSpec { uncertainty, seed, members }

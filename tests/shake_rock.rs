@@ -2,7 +2,9 @@
 //! sliding vs rocking, flat scanned bases, and the one-sine-pulse overturning boundary against
 //! Housner's rocking equation.
 
-use rocking_stones::analysis::{Analysis, Options};
+mod common;
+
+use common::{bottom, stone};
 use rocking_stones::dynamics::housner::housner_overturns;
 use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{Outcome, PerturbParams, Stone};
@@ -14,18 +16,6 @@ use rocking_stones::mesh::TriMesh;
 use rocking_stones::Point3;
 use rocking_stones::GRAVITY;
 use std::f64::consts::PI;
-
-fn stone(mesh: TriMesh) -> Stone {
-    let (mesh, rep) = mesh.into_solid_boundary().unwrap();
-    let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
-    let (nu, _) = a.macro_nu(&Options::default());
-    Stone::new(&a, nu).unwrap()
-}
-
-/// Analysis index of the stable micro-equilibrium of the face with normal −z.
-fn bottom(s: &Stone) -> usize {
-    s.stable().iter().find(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap().index
-}
 
 /// Shake `s` (R_max = `r_max_m` metres) standing on its bottom face with `motion`.
 fn shake(s: &Stone, p: &PerturbParams, motion: &Record, r_max_m: f64) -> RockRun {

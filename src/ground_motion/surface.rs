@@ -185,16 +185,14 @@ mod tests {
     use crate::rng::item_rng;
     use rand::RngExt;
 
+    /// The surface with coefficients `beta`, known exactly (no fit behind it).
+    fn known(beta: [f64; 3]) -> FragilitySurface {
+        FragilitySurface { beta, std_err: [0.0; 3], covariance: [[0.0; 3]; 3], runs: 0, overturned: 0, converged: true }
+    }
+
     /// Runs drawn from a known surface on a grid of PGA and PGV/PGA.
     fn simulated(beta: [f64; 3], per_cell: usize, seed: u64) -> Vec<Run> {
-        let truth = FragilitySurface {
-            beta,
-            std_err: [0.0; 3],
-            covariance: [[0.0; 3]; 3],
-            runs: 0,
-            overturned: 0,
-            converged: true,
-        };
+        let truth = known(beta);
         let mut rng = item_rng(seed, 0);
         let mut runs = Vec::new();
         for i in 0..12 {
@@ -264,14 +262,7 @@ mod tests {
         // sd 1.3 %), and the contour band contains the true PGA₅₀ as often.
         let beta = [4.0, 3.0, 1.5];
         let (pga, ratio) = (0.35, 0.1);
-        let truth = FragilitySurface {
-            beta,
-            std_err: [0.0; 3],
-            covariance: [[0.0; 3]; 3],
-            runs: 0,
-            overturned: 0,
-            converged: true,
-        };
+        let truth = known(beta);
         let (p_true, pga50_true) = (truth.probability(pga, ratio), truth.pga_at(0.5, ratio).unwrap());
         let (mut covered, mut contour_covered) = (0, 0);
         for seed in 0..300 {
