@@ -65,8 +65,8 @@ pub struct Args {
     /// Global angular velocity damping (1/s); 0 except in the quasi-static preset.
     #[arg(long)]
     pub angular_damping: Option<f64>,
-    /// Time step (s of the scaled body).
-    #[arg(long)]
+    /// Time step (s of the scaled body), a number or a fraction such as 1/240 (the default).
+    #[arg(long, value_parser = parse_step)]
     pub dt: Option<f64>,
     /// Time cap per drop (s of the scaled body).
     #[arg(long)]
@@ -80,7 +80,9 @@ pub struct Args {
     pub flight: Option<Flight>,
     /// Fast numerics: the preset's longest stable time step (1/120 s for drop and throw,
     /// measured) with free flight; per-flock statistics as the default within sampling noise.
-    /// --dt and --flight still override it.
+    /// On some scanned bodies a stone resting on its facet keeps jiggling at this step: without
+    /// a certificate such drops run to the time cap (results/drops_settling/). --dt and --flight
+    /// still override it.
     #[arg(long)]
     pub fast: bool,
     /// End drops early once the energy certificate decides the facet (facet), the flock (flock),
@@ -118,6 +120,18 @@ pub fn parse_preset(s: &str) -> std::result::Result<Preset, String> {
 
 pub fn parse_surface(s: &str) -> std::result::Result<Surface, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
+}
+
+/// A time step given as a number (`0.004`) or a fraction (`1/240`).
+pub fn parse_step(s: &str) -> std::result::Result<f64, String> {
+    let value = match s.split_once('/') {
+        Some((n, d)) => n.trim().parse::<f64>().ok().zip(d.trim().parse::<f64>().ok()).map(|(n, d)| n / d),
+        None => s.trim().parse::<f64>().ok(),
+    };
+    match value {
+        Some(v) if v > 0.0 && v.is_finite() => Ok(v),
+        _ => Err(format!("--dt must be a positive time step in seconds, as 0.004 or 1/240, got {s:?}")),
+    }
 }
 
 pub fn parse_batch(s: &str) -> std::result::Result<usize, String> {

@@ -37,7 +37,7 @@ pub const CONTACT_FREQUENCY: f64 = 120.0;
 /// preset's, so that a change of the drops' numerics (e.g. a longer default step) cannot move a
 /// push, a shaking run or a field rock. The contact at [`CONTACT_FREQUENCY`] and the rocking
 /// thresholds of `results/fig11_rocking_vs_regular/` were measured with it.
-pub const RESTING_DT: f64 = 1.0 / 240.0;
+pub const RESTING_DT: f64 = super::params::REFERENCE_DT;
 
 /// Which contact a run that starts at rest uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
