@@ -135,8 +135,8 @@ a throw's first impacts reach 0.07–0.2 R_max, which is where a die's face used
 * What remains is the contact's own softness in a hard impact (rapier's soft constraint lets a loaded contact sink a \
 little before it pushes the stone out), not a penetration found after the fact.\n\
 * The χ² column compares the two numerics' flock statistics on the same launches; a throw is chaotic, so the drops \
-differ one by one. The calibrated throw (`results/cuboid_dice/`) was fitted with rapier's flight and has not been \
-refitted with exact landings yet: the reference numerics stay the default until it is.\n",
+differ one by one. The throw preset is calibrated with exact landings (`results/cuboid_dice/`), and exact landings \
+are the default numerics of every drop.\n",
     );
     std::fs::write(out.join("README.md"), readme)?;
     Ok(())
