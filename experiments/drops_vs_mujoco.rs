@@ -3,14 +3,19 @@
 //!
 //! Both engines drop the three benchmark bodies (`shared/benchmark_bodies.rs`) from rest, lowest
 //! point 0.5 R_max above a plane, Haar-uniform orientation, μ 0.6, e 0.2, global damping 0.1 s⁻¹
-//! (linear) and 1 s⁻¹ (angular), dt 1/240 s, the same rest rule and 60 s cap, in the scaled frame
-//! (R_max = 1 m, mass 1, g = 9.81) with the same hull corners and inertia tensor. The project
-//! runs plain, batched, flock-certified + batched and `--fast` flock-certified + batched;
-//! MuJoCo runs from Python (`shared/mujoco_drops.py`, which documents its settings) and returns
-//! each drop's final body-frame down direction, classified here by the project's own rule
-//! (`Stone::rest`), so both are counted per flock identically. The drops are not the same drop by
-//! drop (each side draws its own orientations); the per-flock statistics are compared (χ²
-//! homogeneity).
+//! (linear) and 1 s⁻¹ (angular), the same rest rule and 60 s cap, in the scaled frame (R_max =
+//! 1 m, mass 1, g = 9.81) with the same hull corners and inertia tensor. The project runs plain,
+//! batched and flock-certified + batched at the reference step `REFERENCE_DT` = 1/240 s, and
+//! flock-certified + batched with its `--fast` numerics (`Preset::largest_stable_dt`, 1/120 s).
+//! MuJoCo runs from Python (`shared/mujoco_drops.py`, which documents its settings) at both steps,
+//! 1/240 s (the issue's protocol) and 1/120 s (the project's `--fast` step): one model,
+//! its contact's damping ratio calibrated on a ball at 1/240 s, only the step changed (an untimed
+//! check runs it at 1/120 s with the ratio calibrated again there); it returns each drop's final
+//! body-frame down direction, classified here by the project's own rule (`Stone::rest`), so both
+//! are counted per flock identically. The drops are not the same drop by drop (each side draws
+//! its own orientations); the per-flock statistics are compared (χ² homogeneity), on the timed
+//! drops and on larger untimed samples: the project at each step against MuJoCo at each step,
+//! and MuJoCo at 1/120 s against itself at 1/240 s (is MuJoCo accurate at the longer step?).
 //!
 //! Run: `cargo run --release --example drops_vs_mujoco [-- N]` (N = 300 drops per body and mode)
 //! → `results/drops_vs_mujoco/`. Needs MuJoCo's Python bindings (`pip install mujoco`) in
@@ -25,11 +30,11 @@ use cpu_time::thread_cpu_seconds;
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::params::{DropParams, Preset, Surface, REFERENCE_DT};
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::world::Simulation;
 use rocking_stones::montecarlo::{
-    certificate, run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
+    certificate, run_batched, summarize, CertificateMode, DropReport, FlockRow, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::stats::chi_square_homogeneity;
@@ -47,13 +52,30 @@ const FRICTION: f64 = 0.6;
 const RESTITUTION: f64 = 0.2;
 const LINEAR_DAMPING: f64 = 0.1;
 const ANGULAR_DAMPING: f64 = 1.0;
-const DT: f64 = 1.0 / 240.0;
 const SEED: u64 = 7;
 /// The untimed samples for the statistics have this many times N drops per engine (their first N
 /// are the timed drops).
 const SAMPLE_FACTOR: u64 = 10;
-/// Rounds of timing (each: MuJoCo's drops, then every mode of the project); the fastest round counts.
+/// Rounds of timing (each: MuJoCo's drops at both steps, then every mode of the project); the
+/// fastest round counts.
 const REPEATS: usize = 3;
+/// MuJoCo's default contact time constant (s), the first number of solref (`mujoco_drops.py`).
+const MJ_TIMECONST: f64 = 0.02;
+
+/// The project's `--fast` drop step, `Preset::largest_stable_dt` (1/120 s).
+fn default_dt() -> f64 {
+    Preset::Drop.largest_stable_dt()
+}
+
+/// The steps MuJoCo runs at: the reference step (the issue's protocol) and the project's `--fast` step.
+fn mj_dts() -> [f64; 2] {
+    [REFERENCE_DT, default_dt()]
+}
+
+/// "1/240 s" for dt = 1/240 s.
+fn step_label(dt: f64) -> String {
+    format!("1/{:.0} s", 1.0 / dt)
+}
 
 /// What differs between the two engines, for the README.
 const DIFFERENCES: &str = "
@@ -62,9 +84,11 @@ const DIFFERENCES: &str = "
 * **Contact.** Both contacts are soft, differently. Rapier's is a velocity-level constraint that
   applies the restitution coefficient at impact, with a soft position correction (springs of 30–60 Hz,
   `dynamics::world`); MuJoCo's is a spring-damper reference acceleration (time constant 0.02 s, the
-  `solimp` impedance) whose under-damping *is* the restitution. Matched on a ball (e = 0.2 by rebound
-  height), they differ on other impacts: the box landing flat rebounds differently in the two engines
-  (above), and the edge and corner impacts of a tumbling stone are not calibrated at all.
+  `solimp` impedance) whose under-damping *is* the restitution, calibrated at 1/240 s and kept at
+  1/120 s, where the same damping ratio gives another restitution (above). Matched on a ball at
+  1/240 s (e = 0.2 by rebound height), they differ on other impacts: the box landing flat rebounds
+  differently in the two engines (above), and the edge and corner impacts of a tumbling stone are not
+  calibrated at all.
 * **Friction.** Rapier 0.36's default friction model (`FrictionModel::Simplified`) solves one Coulomb
   constraint (circular cone) per contact patch at its friction centre plus one *twist* constraint with the
   contact points' lever arms; MuJoCo with condim 3 has an elliptic-cone Coulomb constraint at each contact
@@ -83,39 +107,42 @@ const DIFFERENCES: &str = "
   by more while other jobs run; the rounds (above) time both engines under the same load.
 ";
 
-/// A mode of the project: stones per world, certificate, and the preset's fast numerics.
-#[derive(Clone, Copy)]
+/// A mode of the project: stones per world, certificate, and the step it runs.
+#[derive(Clone)]
 struct Mode {
-    name: &'static str,
-    short: &'static str,
+    name: String,
+    short: String,
     batch: usize,
     cert: CertificateMode,
-    fast: bool,
+    /// Time step (s, scaled): [`REFERENCE_DT`] for the reference modes, the preset's `--fast` step
+    /// for the `--fast` numerics.
+    dt: f64,
 }
 
-const MODES: [Mode; 4] = [
-    Mode { name: "plain", short: "plain", batch: 1, cert: CertificateMode::None, fast: false },
-    Mode { name: "batched", short: "batched", batch: DEFAULT_BATCH, cert: CertificateMode::None, fast: false },
-    Mode {
-        name: "flock-certified + batched",
-        short: "flock-cert. + batched",
-        batch: DEFAULT_BATCH,
-        cert: CertificateMode::Flock,
-        fast: false,
-    },
-    Mode {
-        name: "flock-certified + batched, --fast (dt 1/120 s)",
-        short: "--fast flock-cert. + batched",
-        batch: DEFAULT_BATCH,
-        cert: CertificateMode::Flock,
-        fast: true,
-    },
-];
+/// The project's modes: three at the reference step (MuJoCo's step of the issue's protocol) and
+/// the `--fast` numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
+fn modes() -> [Mode; 4] {
+    let mode =
+        |name: &str, short: &str, batch, cert, dt| Mode { name: name.into(), short: short.into(), batch, cert, dt };
+    let d = step_label(default_dt());
+    [
+        mode("plain", "plain", 1, CertificateMode::None, REFERENCE_DT),
+        mode("batched", "batched", DEFAULT_BATCH, CertificateMode::None, REFERENCE_DT),
+        mode("flock-certified + batched", "flock-cert. + batched", DEFAULT_BATCH, CertificateMode::Flock, REFERENCE_DT),
+        mode(
+            &format!("flock-certified + batched, `--fast` numerics (dt {d})"),
+            &format!("flock-cert. + batched, `--fast` numerics (dt {d})"),
+            DEFAULT_BATCH,
+            CertificateMode::Flock,
+            default_dt(),
+        ),
+    ]
+}
 
-/// The project's parameters of mode `m`: the `drop` preset on steel on wood, with the matched
+/// The project's parameters of mode `m`: the `drop` preset on steel on wood (its numerics:
+/// exact landings and sub-stepped impacts, which damp the free flight exactly), with the matched
 /// physics overriding it, no rolling resistance or torsional friction (MuJoCo's condim 3 has
-/// neither), and `Preset::fast` for `--fast` (the default numerics — exact landings and
-/// sub-stepped impacts, which damp the free flight exactly — at the longer step 1/120 s).
+/// neither), at the mode's step.
 fn params(m: &Mode) -> DropParams {
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
     p.height = HEIGHT;
@@ -125,10 +152,7 @@ fn params(m: &Mode) -> DropParams {
     p.angular_damping = ANGULAR_DAMPING;
     p.rolling_resistance = 0.0;
     p.torsional_friction = 0.0;
-    p.dt = DT;
-    if m.fast {
-        Preset::Drop.fast(&mut p);
-    }
+    p.dt = m.dt;
     p
 }
 
@@ -214,29 +238,37 @@ struct MjDrop {
     down: [f64; 3],
     steps: u64,
     settled: bool,
+    /// Warnings MuJoCo raised during the drop (bad qpos/qvel/qacc: an instability, after which it
+    /// resets the state).
+    #[serde(default)]
+    warnings: u64,
 }
 
-/// MuJoCo's drops classified by the project's rule ([`Stone::rest`] of the final down direction),
-/// as outcomes of the plain mode, and their summary.
-fn classify(stone: &Stone, name: &str, drops: &[MjDrop]) -> (DropReport, BTreeMap<u64, DropOutcome>) {
+/// MuJoCo's drops at step `dt` classified by the project's rule ([`Stone::rest`] of the final
+/// down direction), as outcomes of a plain run, and their summary. A drop that ended with a
+/// non-finite down direction or after a MuJoCo warning counts as not settled.
+fn classify(stone: &Stone, name: &str, drops: &[MjDrop], dt: f64) -> (DropReport, BTreeMap<u64, DropOutcome>) {
     let outcomes: BTreeMap<u64, DropOutcome> = drops
         .iter()
         .enumerate()
         .map(|(i, d)| {
-            let rest = stone.rest(&Vec3::new(d.down[0], d.down[1], d.down[2]));
+            let down = Vec3::new(d.down[0], d.down[1], d.down[2]);
+            let sane = down.iter().all(|x| x.is_finite()) && down.norm() > 0.5 && d.warnings == 0;
+            let rest = sane.then(|| stone.rest(&down));
             let o = DropOutcome {
                 index: i as u64,
-                settled: d.settled,
-                facet: Some(rest.facet),
+                settled: d.settled && sane,
+                facet: rest.as_ref().map(|r| r.facet),
                 flock: None,
-                time: d.steps as f64 * DT,
+                time: d.steps as f64 * dt,
                 certified: false,
-                height_above: Some(rest.height_above),
+                height_above: rest.as_ref().map(|r| r.height_above),
             };
             (i as u64, o)
         })
         .collect();
-    (summarize(&stone.model(), &header(name, drops.len() as u64, &MODES[0]), &outcomes), outcomes)
+    let mode = Mode { dt, ..modes()[0].clone() };
+    (summarize(&stone.model(), &header(name, drops.len() as u64, &mode), &outcomes), outcomes)
 }
 
 /// The Python interpreter (`ROCKING_PYTHON`, default `python3`); exits with a message when it
@@ -262,52 +294,142 @@ fn python_with_mujoco() -> String {
     python
 }
 
-/// Restitution of a flat landing in rapier (the project's world and contact, no damping): the
-/// body dropped from rest with its facet of outward normal `normal` (body frame) facing down,
-/// `HEIGHT` above the ground; e = √(rebound height / drop height) of G above its height at first
-/// touch, as the Python side measures MuJoCo's.
-fn rapier_flat_restitution(stone: &Stone, normal: &Vec3) -> f64 {
-    let mut p = params(&MODES[0]);
+/// Restitution of a flat landing in rapier (the project's world and contact, no damping) at step
+/// `dt`: the body dropped from rest with its facet of outward normal `normal` (body frame) facing
+/// down, `HEIGHT` above the ground; e = √(rebound height / drop height) of G above its height at
+/// rest on the facet, as the Python side measures MuJoCo's. The rebound is found by the velocity
+/// (from the step where G first moves up to the step where it moves down again), not by the
+/// contact impulse, which a sub-stepped impact (`dynamics::impact`) leaves at zero after the step.
+fn rapier_flat_restitution(stone: &Stone, normal: &Vec3, dt: f64) -> f64 {
+    let mut p = params(&Mode { dt, ..modes()[0].clone() });
     p.linear_damping = 0.0;
     p.angular_damping = 0.0;
     let q = UnitQuaternion::rotation_between(normal, &-Vec3::z()).unwrap_or_else(UnitQuaternion::identity);
     let h = stone.body.support(normal);
     let mut sim = Simulation::new(&stone.body, &p, &q, HEIGHT + h, &Vec3::zeros(), &Vec3::zeros());
-    let (mut touched, mut left, mut apex) = (false, false, f64::NEG_INFINITY);
+    let (mut rising, mut apex) = (false, f64::NEG_INFINITY);
     for _ in 0..(10.0 / p.dt) as usize {
         sim.step();
-        let touching = sim.normal_impulse() > 0.0;
         let s = sim.state();
-        if !touched {
-            touched = touching;
-        } else if !left {
-            left = !touching;
-        } else if touching || s.linvel.z < 0.0 {
-            return ((apex - h).max(0.0) / HEIGHT).sqrt();
-        } else {
+        rising |= s.linvel.z > 0.0;
+        if rising {
+            if s.linvel.z <= 0.0 {
+                return ((apex - h).max(0.0) / HEIGHT).sqrt();
+            }
             apex = apex.max(s.z);
         }
     }
     0.0
 }
 
+/// Per-flock counts of a report, by flock id.
+fn counts(stone: &Stone, r: &DropReport) -> Vec<u64> {
+    (0..stone.flock_kinds.len()).map(|k| r.flocks.iter().find(|f| f.id == k).map_or(0, |f| f.count)).collect()
+}
+
+/// Each category's share of Pearson's χ² statistic of homogeneity of the counts `a` and `b`.
+fn chi_shares(a: &[u64], b: &[u64]) -> Vec<f64> {
+    let (na, nb) = (a.iter().sum::<u64>() as f64, b.iter().sum::<u64>() as f64);
+    a.iter()
+        .zip(b)
+        .map(|(&x, &y)| {
+            let col = (x + y) as f64;
+            if col == 0.0 {
+                return 0.0;
+            }
+            [(x as f64, na), (y as f64, nb)]
+                .iter()
+                .map(|&(o, row)| (o - row * col / (na + nb)).powi(2) / (row * col / (na + nb)))
+                .sum::<f64>()
+        })
+        .collect()
+}
+
+/// A χ² homogeneity test of two samples' per-flock counts.
+#[derive(Clone, Copy)]
+struct Chi {
+    chi2: f64,
+    dof: usize,
+    p: f64,
+}
+
+fn chi(a: &[u64], b: &[u64]) -> Chi {
+    let (chi2, dof, p) = chi_square_homogeneity(a, b);
+    Chi { chi2, dof, p }
+}
+
+/// MuJoCo at one step, for one body.
+struct MjSide {
+    dt: f64,
+    report: DropReport,
+    outcomes: BTreeMap<u64, DropOutcome>,
+    /// Fastest round: CPU s of the loop and of the stepping alone.
+    loop_s: f64,
+    step_s: f64,
+    steps: u64,
+    big: DropReport,
+    big_outcomes: BTreeMap<u64, DropOutcome>,
+    /// Drops with a MuJoCo warning, in the larger sample (which holds the timed drops).
+    warned: usize,
+}
+
+/// What the reading of the README needs of one body and one MuJoCo step.
+struct MjSummary {
+    step_us: f64,
+    loop_us: f64,
+    loop_rate: f64,
+    step_rate: f64,
+    t: f64,
+    unsettled: u64,
+    big_unsettled: u64,
+    big_drops: u64,
+    warned: usize,
+}
+
+/// The flock with the largest share of χ² between two samples: id, type, the fraction there in
+/// the first and in the second.
+type Widest = (usize, String, f64, f64);
+
 /// What the reading of the README needs of one body.
 struct Summary {
     short: &'static str,
     /// CPU µs per simulated step of each mode.
     us: Vec<f64>,
-    /// χ² homogeneity p of each mode's per-flock counts against MuJoCo's.
+    /// χ² homogeneity p (timed drops) of each mode's per-flock counts against MuJoCo's at 1/240 s.
     p: Vec<f64>,
-    mj_step_us: f64,
-    mj_loop_us: f64,
+    /// Drops of each mode that ended in the flock of the same plain drop.
+    same_flock: Vec<usize>,
     /// Mean simulated s per drop of each mode.
     t: Vec<f64>,
-    mj_t: f64,
-    /// The flock with the largest share of χ² in the larger samples: id, type, the project's and
-    /// MuJoCo's fraction there.
-    widest: (usize, String, f64, f64),
-    /// χ² homogeneity p of the larger samples.
-    p_big: f64,
+    /// MuJoCo at each of [`mj_dts`].
+    mj: Vec<MjSummary>,
+    /// χ² p, timed drops: the `--fast` numerics against MuJoCo at the same step; MuJoCo at the
+    /// `--fast` step against MuJoCo at the reference step.
+    p_default_same: f64,
+    p_mj_steps: f64,
+    /// Larger samples: the reference project (batched) against MuJoCo at the reference step, and
+    /// the flock with the largest share of χ² there.
+    big_ref: Chi,
+    widest: Widest,
+    /// Larger samples: MuJoCo at the `--fast` step against MuJoCo at the reference step.
+    big_mj_steps: Chi,
+    widest_mj_steps: Widest,
+    /// Larger samples: the `--fast` numerics against MuJoCo at the same step, against MuJoCo at the
+    /// reference step, against the project at the reference step.
+    big_default_same: Chi,
+    /// The flock with the largest share of χ² between the `--fast` numerics and MuJoCo at the
+    /// same step (larger samples).
+    widest_default_same: Widest,
+    big_default_ref: Chi,
+    big_project_steps: Chi,
+    /// Larger samples' unsettled drops: the project's reference (batched) and `--fast` numerics.
+    big_unsettled: (u64, u64),
+    /// Larger samples, paired by their orientations: drops that end in the same flock at both
+    /// steps, in MuJoCo and in the project, of this many.
+    same_big: (usize, usize, u64),
+    /// The untimed check of MuJoCo at the longer step with the damping ratio calibrated there:
+    /// drops, drops not at rest at the cap, drops with a warning, mean simulated s per drop.
+    recal: (u64, u64, usize, f64),
 }
 
 /// One row of the results: a project mode.
@@ -322,6 +444,7 @@ struct Row {
 
 fn main() -> anyhow::Result<()> {
     let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N: drops per body and mode"));
+    let modes = modes();
     let python = python_with_mujoco();
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/drops_vs_mujoco");
@@ -332,8 +455,8 @@ fn main() -> anyhow::Result<()> {
         bodies.iter().map(|(_, a)| Stone::new(a, a.macro_nu(&Options::default()).0)).collect::<Result<_, _>>()?;
     let box_normal = -Vec3::z();
 
-    // MuJoCo first (one process, one thread): the bodies as the project has them.
-    let reference = params(&MODES[0]);
+    // MuJoCo first (one process per step, one thread): the bodies as the project has them.
+    let reference = params(&modes[0]);
     let input = serde_json::json!({
         "drops": n,
         "sample_drops": n * SAMPLE_FACTOR,
@@ -360,11 +483,14 @@ fn main() -> anyhow::Result<()> {
     let tmp = std::env::temp_dir().join(format!("drops_vs_mujoco_{}", std::process::id()));
     std::fs::create_dir_all(&tmp)?;
     let script = root.join("experiments/shared/mujoco_drops.py");
-    // One round of MuJoCo (one process, one thread): its timed drops, and in the first round the
-    // larger sample for the statistics.
-    let run_mujoco = |round: usize| -> anyhow::Result<MjOut> {
+    // One run of MuJoCo at step `dt` (one process, one thread): `n` timed drops and a sample of
+    // `sample` drops (the timed ones first), with `solref` when given, else the damping ratio
+    // calibrated on the ball at this step.
+    let run_mujoco = |sample: u64, dt: f64, solref: Option<[f64; 2]>| -> anyhow::Result<MjOut> {
         let mut input = input.clone();
-        input["sample_drops"] = serde_json::json!(if round == 0 { n * SAMPLE_FACTOR } else { n });
+        input["sample_drops"] = serde_json::json!(sample);
+        input["dt"] = serde_json::json!(dt);
+        input["solref"] = serde_json::json!(solref);
         let (in_path, out_path) = (tmp.join("in.json"), tmp.join("out.json"));
         std::fs::write(&in_path, serde_json::to_string(&input)?)?;
         let status = Command::new(&python)
@@ -380,15 +506,39 @@ fn main() -> anyhow::Result<()> {
         anyhow::ensure!(mj.bodies.len() == bodies.len(), "MuJoCo returned {} bodies", mj.bodies.len());
         Ok(mj)
     };
-    // REPEATS rounds, each MuJoCo's drops and then every mode of the project, so that both engines
-    // are timed under the same load of this shared machine; the fastest round counts for each.
-    let mut mj_rounds: Vec<MjOut> = Vec::new();
-    let mut best: Vec<Vec<Option<Run>>> = (0..bodies.len()).map(|_| (0..MODES.len()).map(|_| None).collect()).collect();
+    // REPEATS rounds, each MuJoCo's drops at both steps and then every mode of the project, so
+    // that both engines are timed under the same load of this shared machine; the fastest round
+    // counts for each. MuJoCo at the longer step is the model of the reference step (its solref,
+    // calibrated there) with only the step changed, as the project keeps its parameters at its
+    // longer step; in the first round, an untimed check runs MuJoCo at the longer step with the
+    // damping ratio calibrated again at that step (`recalibrated`).
+    let mut mj_rounds: Vec<Vec<MjOut>> = Vec::new();
+    let mut recalibrated: Option<MjOut> = None;
+    let mut best: Vec<Vec<Option<Run>>> = (0..bodies.len()).map(|_| (0..modes.len()).map(|_| None).collect()).collect();
     for round in 0..REPEATS {
-        eprintln!("round {} of {REPEATS}: MuJoCo ({python} {}), then the project", round + 1, script.display());
-        mj_rounds.push(run_mujoco(round)?);
+        let sample = if round == 0 { n * SAMPLE_FACTOR } else { n };
+        let mut this: Vec<MjOut> = Vec::new();
+        for dt in mj_dts() {
+            eprintln!(
+                "round {} of {REPEATS}: MuJoCo at dt {} ({python} {})",
+                round + 1,
+                step_label(dt),
+                script.display()
+            );
+            let solref = this.first().map(|r| r.solref);
+            this.push(run_mujoco(sample, dt, solref)?);
+        }
+        if round == 0 {
+            eprintln!(
+                "round 1 of {REPEATS}: MuJoCo at dt {}, damping ratio calibrated at that step (untimed check)",
+                step_label(default_dt())
+            );
+            recalibrated = Some(run_mujoco(n, default_dt(), None)?);
+        }
+        mj_rounds.push(this);
+        eprintln!("round {} of {REPEATS}: the project", round + 1);
         for (b, ((name, _), stone)) in bodies.iter().zip(&stones).enumerate() {
-            for (k, m) in MODES.iter().enumerate() {
+            for (k, m) in modes.iter().enumerate() {
                 let r = pool.install(|| timed(stone, &header(name, n, m), m.batch));
                 eprintln!("  {name} {}: {:.1} drops/s", m.name, n as f64 / r.seconds);
                 if best[b][k].as_ref().is_none_or(|x| r.seconds < x.seconds) {
@@ -398,49 +548,77 @@ fn main() -> anyhow::Result<()> {
         }
     }
     std::fs::remove_dir_all(&tmp)?;
-    let same_drops = |b: usize| {
+    // Whether every round gave MuJoCo's round-0 drops, per body and step.
+    let same_rounds = |b: usize, s: usize| {
         mj_rounds.iter().all(|r| {
-            r.bodies[b]
+            r[s].bodies[b]
                 .drops
                 .iter()
-                .zip(&mj_rounds[0].bodies[b].drops)
+                .zip(&mj_rounds[0][s].bodies[b].drops)
                 .all(|(x, y)| x.down == y.down && x.steps == y.steps)
         })
     };
-    let same_rounds: Vec<bool> = (0..bodies.len()).map(same_drops).collect();
-    let mj = &mj_rounds[0];
+    let yes_no = |ok: bool| if ok { "yes" } else { "**no**" };
+    let dts = mj_dts();
+    let (ref_label, def_label) = (step_label(dts[0]), step_label(dts[1]));
 
     let mut csv = String::from(
         "body,engine,mode,batch,certificate,dt,drops,cpu_seconds,drops_per_s,ratio_vs_mujoco_loop,\
-         ratio_vs_mujoco_stepping,cpu_us_per_step,mean_sim_time_s,settled,certified,off_equilibrium,chi2_p_flocks_vs_mujoco,\
+         ratio_vs_mujoco_stepping,ratio_vs_mujoco_same_dt_loop,ratio_vs_mujoco_same_dt_stepping,cpu_us_per_step,\
+         mean_sim_time_s,settled,certified,off_equilibrium,chi2_p_flocks_vs_mujoco,chi2_p_flocks_vs_mujoco_same_dt,\
          kl_flocks_vs_static\n",
     );
     let mut table = String::new();
     let mut flock_tables = String::new();
+    // Per body: the four modes against MuJoCo at the reference step, then the `--fast` numerics
+    // against MuJoCo at the same step; each (against the loop, against the stepping alone).
     let mut bars: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     let mut checks = String::new();
-    let mut rapier_flat = None;
+    let mut rapier_flat: Vec<(f64, f64, [f64; 2])> = Vec::new();
     let mut summaries: Vec<Summary> = Vec::new();
     let mut sample_tables = String::new();
     let mut box_pairs = String::new();
-    for (b, (((name, _), stone), mb)) in bodies.iter().zip(&stones).zip(&mj.bodies).enumerate() {
-        // MuJoCo's drops, classified by the project's rule; its fastest round.
-        let (mj_report, outcomes) = classify(stone, name, &mb.drops);
-        let fastest = |f: &dyn Fn(&MjBody) -> &[f64]| {
-            mj_rounds.iter().flat_map(|r| f(&r.bodies[b]).iter().copied()).fold(f64::INFINITY, f64::min)
-        };
-        let (mj_loop, mj_step) = (fastest(&|x| &x.loop_cpu_s), fastest(&|x| &x.replay_cpu_s));
-        let mj_rise = rise(&outcomes);
-        if mb.flat_restitution.is_some() {
-            rapier_flat = Some((rapier_flat_restitution(stone, &box_normal), mb.flat_restitution));
+    for (b, ((name, _), stone)) in bodies.iter().zip(&stones).enumerate() {
+        // MuJoCo's drops at each step, classified by the project's rule; its fastest round.
+        let mj: Vec<MjSide> = dts
+            .iter()
+            .enumerate()
+            .map(|(s, &dt)| {
+                let mb = &mj_rounds[0][s].bodies[b];
+                let (report, outcomes) = classify(stone, name, &mb.drops, dt);
+                let big = classify(stone, name, &mb.sample_drops, dt);
+                let fastest = |f: &dyn Fn(&MjBody) -> &[f64]| {
+                    mj_rounds.iter().flat_map(|r| f(&r[s].bodies[b]).iter().copied()).fold(f64::INFINITY, f64::min)
+                };
+                MjSide {
+                    dt,
+                    report,
+                    outcomes,
+                    loop_s: fastest(&|x| &x.loop_cpu_s),
+                    step_s: fastest(&|x| &x.replay_cpu_s),
+                    steps: mb.drops.iter().map(|d| d.steps).sum(),
+                    big: big.0,
+                    big_outcomes: big.1,
+                    warned: mb.sample_drops.iter().filter(|d| d.warnings > 0).count(),
+                }
+            })
+            .collect();
+        let mb0 = &mj_rounds[0][0].bodies[b];
+        let recal_drops = &recalibrated.as_ref().expect("round 0 ran").bodies[b].drops;
+        let recal = classify(stone, name, recal_drops, default_dt()).0;
+        if mb0.flat_restitution.is_some() {
+            for (s, &dt) in dts.iter().enumerate() {
+                let mj_e = mj_rounds[0][s].bodies[b].flat_restitution.unwrap_or([f64::NAN; 2]);
+                rapier_flat.push((dt, rapier_flat_restitution(stone, &box_normal, dt), mj_e));
+            }
         }
 
         // The project's modes, their fastest round.
         let mut rows: Vec<Row> = Vec::new();
-        for (m, r) in MODES.iter().zip(best[b].iter_mut()) {
+        for (m, r) in modes.iter().zip(best[b].iter_mut()) {
             let r = r.take().expect("REPEATS ≥ 1");
             rows.push(Row {
-                label: m.name.into(),
+                label: m.name.clone(),
                 rate: n as f64 / r.seconds,
                 seconds: r.seconds,
                 report: r.report,
@@ -448,71 +626,112 @@ fn main() -> anyhow::Result<()> {
                 rise: r.rise,
             });
         }
+        let per_step = |f: &dyn Fn(usize) -> String| {
+            dts.iter()
+                .enumerate()
+                .map(|(s, &dt)| format!("{} at {}", f(s), step_label(dt)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let rises = per_step(&|s| {
+            let r = rise(&mj[s].outcomes);
+            format!("median {:.1e}, largest {:.1e} R_max", r.0, r.1)
+        });
         writeln!(
             checks,
             "* {name}: MuJoCo's compiled mesh has {} vertices ({} hull corners given), its support in 7 \
              directions within {:.1e} R_max of the corners'; the replays ended bit for bit where the loop did: \
-             {}; every round gave the same drops: {}. How far off its stable facet a drop came to rest, h(final down) − R_F (the rise of G that \
-             its tilt implies; 0 flat on the facet, counted on it up to {REST_TOLERANCE}): median {:.1e}, \
-             largest {:.1e} R_max in MuJoCo; median {:.1e}, largest {:.1e} in the project's plain drops.",
-            mb.mesh_vertices,
+             {}; every round gave the same drops: {}; drops with a MuJoCo warning (an instability) in the \
+             larger samples: {}. How far off its stable facet a drop came to rest, h(final down) − R_F (the rise \
+             of G that its tilt implies; 0 flat on the facet, counted on it up to {REST_TOLERANCE}): in MuJoCo \
+             {rises}; median {:.1e}, largest {:.1e} in the project's plain drops.",
+            mb0.mesh_vertices,
             stone.body.corners.len(),
-            mb.placement_error,
-            if mj_rounds.iter().all(|r| r.bodies[b].replay_identical) { "yes" } else { "**no**" },
-            if same_rounds[b] { "yes" } else { "**no**" },
-            mj_rise.0,
-            mj_rise.1,
+            mb0.placement_error,
+            per_step(&|s| yes_no(mj_rounds.iter().all(|r| r[s].bodies[b].replay_identical)).to_string()),
+            per_step(&|s| yes_no(same_rounds(b, s)).to_string()),
+            per_step(&|s| mj[s].warned.to_string()),
             rows[0].rise.0,
             rows[0].rise.1,
         )?;
-        let nd = mb.drops.len() as f64;
-        let counts = |r: &DropReport| -> Vec<u64> {
-            (0..stone.flock_kinds.len()).map(|k| r.flocks.iter().find(|f| f.id == k).map_or(0, |f| f.count)).collect()
-        };
-        let mj_counts = counts(&mj_report);
-        // The larger, untimed samples: the batched project (drop by drop the plain drops) and MuJoCo.
+        let nd = n as f64;
+        let mj_counts: Vec<Vec<u64>> = mj.iter().map(|x| counts(stone, &x.report)).collect();
+        // The larger, untimed samples: the batched project at the reference step (drop by drop
+        // the plain drops), the `--fast` numerics, and MuJoCo at both steps.
         let big = n * SAMPLE_FACTOR;
-        let project_big = pool.install(|| timed(stone, &header(name, big, &MODES[1]), DEFAULT_BATCH)).report;
-        let (mj_big, _) = classify(stone, name, &mb.sample_drops);
-        let (pc, mc) = (counts(&project_big), counts(&mj_big));
-        let (chi2_big, dof_big, p_big) = chi_square_homogeneity(&pc, &mc);
-        let (na, nb) = (pc.iter().sum::<u64>() as f64, mc.iter().sum::<u64>() as f64);
-        let contribution = |k: usize| {
-            let col = (pc[k] + mc[k]) as f64;
-            if col == 0.0 {
-                return 0.0;
-            }
-            [(pc[k] as f64, na), (mc[k] as f64, nb)]
-                .iter()
-                .map(|&(o, row)| (o - row * col / (na + nb)).powi(2) / (row * col / (na + nb)))
-                .sum::<f64>()
+        let project_run = pool.install(|| timed(stone, &header(name, big, &modes[1]), DEFAULT_BATCH));
+        let default_run = pool.install(|| timed(stone, &header(name, big, &modes[3]), modes[3].batch));
+        let (project_big, default_big) = (&project_run.report, &default_run.report);
+        // The two steps of one engine start from the same orientations: drops that end in the
+        // same flock at both steps.
+        let flock_of = |o: &DropOutcome| {
+            o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
         };
+        let paired = |a: &BTreeMap<u64, DropOutcome>, b: &BTreeMap<u64, DropOutcome>| {
+            a.iter()
+                .filter(|(i, o)| o.settled && b.get(i).is_some_and(|p| p.settled && flock_of(p) == flock_of(o)))
+                .count()
+        };
+        let same_mj = paired(&mj[0].big_outcomes, &mj[1].big_outcomes);
+        let same_project = paired(&project_run.outcomes, &default_run.outcomes);
+        let (pc, dc) = (counts(stone, project_big), counts(stone, default_big));
+        let (m0, m1) = (counts(stone, &mj[0].big), counts(stone, &mj[1].big));
+        let big_ref = chi(&pc, &m0);
+        let big_mj_steps = chi(&m1, &m0);
+        let big_default_same = chi(&dc, &m1);
+        let big_default_ref = chi(&dc, &m0);
+        let big_project_steps = chi(&dc, &pc);
+        let shares = chi_shares(&pc, &m0);
+        let shares_mj = chi_shares(&m1, &m0);
+        let test = |what: &str, c: &Chi| format!("* {what}: χ² = {:.1} ({} dof), p = {:.3}", c.chi2, c.dof, c.p);
         writeln!(
             sample_tables,
-            "\n### {name}: {} project drops, {} MuJoCo drops; χ² = {chi2_big:.1} ({dof_big} dof), p = {p_big:.3}\n",
-            project_big.drops, mj_big.drops
+            "\n### {name}\n\n{} drops per engine and step; not settled within the {} s cap: project {} at {ref_label} \
+             (batched), {} at {def_label} (`--fast` numerics); MuJoCo {} at {ref_label}, {} at {def_label}.\n\n{}\n{}\n{}\n{}\n{}\n",
+            big,
+            reference.max_time,
+            project_big.unsettled,
+            default_big.unsettled,
+            mj[0].big.unsettled,
+            mj[1].big.unsettled,
+            test(&format!("project {ref_label} against MuJoCo {ref_label}"), &big_ref),
+            test(&format!("MuJoCo {def_label} against MuJoCo {ref_label}"), &big_mj_steps)
+                + &format!(" (the same orientations at both steps: {same_mj} of {big} drops end in the same flock)"),
+            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {def_label}"), &big_default_same),
+            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {ref_label}"), &big_default_ref),
+            test(&format!("project `--fast` numerics ({def_label}) against project {ref_label}"), &big_project_steps)
+                + &format!(" (the same orientations at both steps: {same_project} of {big} drops end in the same flock)"),
         )?;
         writeln!(
             sample_tables,
-            "| flock | type | static | project | MuJoCo | share of χ² |\n|---|---|---|---|---|---|"
+            "| flock | type | static | project {ref_label} (batched) | MuJoCo {ref_label} | project {def_label} (`--fast` \
+             numerics) | MuJoCo {def_label} | share of χ², project {ref_label} vs MuJoCo {ref_label} | share of χ², \
+             MuJoCo {def_label} vs {ref_label} |\n|---|---|---|---|---|---|---|---|---|"
         )?;
+        let cell = |r: &DropReport, id: usize| {
+            r.flocks
+                .iter()
+                .find(|g| g.id == id)
+                .map_or("—".into(), |g: &FlockRow| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1))
+        };
+        let share = |v: &[f64], k: usize| 100.0 * v[k] / v.iter().sum::<f64>().max(f64::MIN_POSITIVE);
         for f in &project_big.flocks {
-            let g = mj_big.flocks.iter().find(|g| g.id == f.id);
-            let cell = |x: Option<&rocking_stones::montecarlo::FlockRow>| {
-                x.map_or("—".into(), |g| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1))
-            };
             writeln!(
                 sample_tables,
-                "| {} | {} | {:.3} | {} | {} | {:.0} % |",
+                "| {} | {} | {:.3} | {} | {} | {} | {} | {:.0} % | {:.0} % |",
                 f.id,
                 format!("{:?}", f.kind).to_lowercase(),
                 f.static_probability,
-                cell(Some(f)),
-                cell(g),
-                100.0 * contribution(f.id) / chi2_big.max(f64::MIN_POSITIVE)
+                cell(project_big, f.id),
+                cell(&mj[0].big, f.id),
+                cell(default_big, f.id),
+                cell(&mj[1].big, f.id),
+                share(&shares, f.id),
+                share(&shares_mj, f.id),
             )?;
         }
-        if mb.flat_restitution.is_some() {
+        let fraction = |r: &DropReport, k: usize| r.flocks.iter().find(|f| f.id == k).map_or(0.0, |f| f.fraction);
+        if mb0.flat_restitution.is_some() {
             // The box: its six flocks are its faces; pool the two faces of each pair (by symmetry the same).
             let axis_of = |k: usize| {
                 let f = (0..stone.facet_flock.len()).find(|&f| stone.facet_flock[f] == Some(k)).expect("a facet");
@@ -523,58 +742,84 @@ fn main() -> anyhow::Result<()> {
                 for f in &r.flocks {
                     v[axis_of(f.id)] += if statics { f.static_probability } else { f.fraction };
                 }
-                v
+                format!("{:.3} / {:.3} / {:.3}", v[0], v[1], v[2])
             };
-            let (pp, mp, sp) = (pooled(&project_big, false), pooled(&mj_big, false), pooled(&project_big, true));
             box_pairs = format!(
                 " By face pair, the box rests on its 0.8 × 0.5 ends, 1 × 0.5 sides and 1 × 0.8 faces with fractions \
-                 {:.3} / {:.3} / {:.3} in the project and {:.3} / {:.3} / {:.3} in MuJoCo (static {:.3} / {:.3} / \
-                 {:.3}).",
-                pp[0], pp[1], pp[2], mp[0], mp[1], mp[2], sp[0], sp[1], sp[2]
+                 {} in the project at {ref_label} and {} in MuJoCo at {ref_label}; {} in the project's `--fast` \
+                 numerics and {} in MuJoCo at {def_label} (static {}).",
+                pooled(project_big, false),
+                pooled(&mj[0].big, false),
+                pooled(default_big, false),
+                pooled(&mj[1].big, false),
+                pooled(project_big, true),
             );
-            // MuJoCo − project per face, the two faces of each pair side by side.
+            // MuJoCo − project per face at the reference step, the two faces of each pair side by side.
             let mut diffs = [Vec::new(), Vec::new(), Vec::new()];
             for f in &project_big.flocks {
-                let m = mj_big.flocks.iter().find(|g| g.id == f.id).map_or(0.0, |g| g.fraction);
-                diffs[axis_of(f.id)].push(format!("{:+.3}", m - f.fraction));
+                diffs[axis_of(f.id)].push(format!("{:+.3}", fraction(&mj[0].big, f.id) - f.fraction));
             }
             write!(
                 box_pairs,
-                " MuJoCo − project per face: ends {}, sides {}, faces {}.",
+                " MuJoCo − project per face at {ref_label}: ends {}, sides {}, faces {}.",
                 diffs[0].join(" / "),
                 diffs[1].join(" / "),
                 diffs[2].join(" / ")
             )?;
-            if p_big < 0.05 {
+            let flat_apart = rapier_flat.iter().all(|&(_, r, [m, _])| (r - m).abs() > 0.01);
+            if big_ref.p < 0.05 && flat_apart {
                 box_pairs.push_str(
                     " The ball calibration of the restitution does not pin down how a box tumbles: its flat landing \
                      already rebounds differently in the two engines (above).",
                 );
             }
         }
-        let widest =
-            (0..stone.flock_kinds.len()).max_by(|&a, &b| contribution(a).total_cmp(&contribution(b))).expect("a flock");
+        let widest_of = |v: &[f64], a: &DropReport, b: &DropReport| {
+            let k = (0..v.len()).max_by(|&x, &y| v[x].total_cmp(&v[y])).expect("a flock");
+            (k, format!("{:?}", stone.flock_kinds[k]).to_lowercase(), fraction(a, k), fraction(b, k))
+        };
+        let widest = widest_of(&shares, project_big, &mj[0].big);
+        let widest_mj_steps = widest_of(&shares_mj, &mj[1].big, &mj[0].big);
+        let widest_default_same = widest_of(&chi_shares(&dc, &m1), default_big, &mj[1].big);
+
         let mut ratios = Vec::new();
-        let (mut us_modes, mut p_modes) = (Vec::new(), Vec::new());
-        for (m, r) in MODES.iter().zip(&rows) {
-            let (rl, rs) = (r.rate / (nd / mj_loop), r.rate / (nd / mj_step));
+        let (mut us_modes, mut p_modes, mut same_modes) = (Vec::new(), Vec::new(), Vec::new());
+        let mut p_default_same = f64::NAN;
+        for (m, r) in modes.iter().zip(&rows) {
+            let s = dts.iter().position(|&d| d == m.dt).expect("MuJoCo runs at every mode's step");
+            let (rl, rs) = (r.rate / (nd / mj[0].loop_s), r.rate / (nd / mj[0].step_s));
+            let (sl, ss) = (r.rate / (nd / mj[s].loop_s), r.rate / (nd / mj[s].step_s));
             ratios.push((rl, rs));
-            let (_, _, p) = chi_square_homogeneity(&counts(&r.report), &mj_counts);
-            let us = 1e6 * r.seconds / (n as f64 * r.report.mean_time / r.report.params.dt);
+            let c = counts(stone, &r.report);
+            let p = chi(&c, &mj_counts[0]).p;
+            let p_same = chi(&c, &mj_counts[s]).p;
+            if s == 1 {
+                p_default_same = p_same;
+            }
+            let us = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.dt);
             us_modes.push(us);
             p_modes.push(p);
             let flock_of = |o: &DropOutcome| {
                 o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
             };
             let same = r.outcomes.iter().filter(|(i, o)| flock_of(o) == flock_of(&rows[0].outcomes[*i])).count();
+            same_modes.push(same);
             writeln!(
                 table,
-                "| {name} | project, {} | {:.1} | **{rl:.2}×** | {rs:.2}× | {us:.2} | {:.2} | {} | {} | {} | {same}/{n} | {p:.2} |",
-                r.label, r.rate, r.report.mean_time, r.report.settled, r.report.certified, r.report.off_equilibrium
+                "| {name} | project, {} | {} | {:.1} | **{rl:.2}×** | {rs:.2}× | **{sl:.2}×** ({ss:.2}×) | {us:.2} | \
+                 {:.2} | {} | {} | {} | {same}/{n} | {p:.2} | {p_same:.2} |",
+                r.label,
+                step_label(m.dt),
+                r.rate,
+                r.report.mean_time,
+                r.report.settled,
+                r.report.certified,
+                r.report.off_equilibrium
             )?;
             writeln!(
                 csv,
-                "\"{name}\",project,\"{}\",{},{},{:.6},{n},{:.4},{:.2},{rl:.4},{rs:.4},{us:.3},{:.4},{},{},{},{p:.4},{:.5}",
+                "\"{name}\",project,\"{}\",{},{},{:.6},{n},{:.4},{:.2},{rl:.4},{rs:.4},{sl:.4},{ss:.4},{us:.3},{:.4},{},{},{},\
+                 {p:.4},{p_same:.4},{:.5}",
                 r.label,
                 m.batch,
                 m.cert.name(),
@@ -588,54 +833,90 @@ fn main() -> anyhow::Result<()> {
                 r.report.fit_flocks.kl_divergence
             )?;
         }
-        let mj_steps: u64 = mb.drops.iter().map(|d| d.steps).sum();
-        for (label, secs) in [("mj_step loop + rest check (Python)", mj_loop), ("stepping alone (replay)", mj_step)] {
-            let us = 1e6 * secs / mj_steps as f64;
-            writeln!(
-                table,
-                "| {name} | MuJoCo, {label} | {:.1} | | | {us:.2} | {:.2} | {} | — | {} | | |",
-                nd / secs,
-                mj_report.mean_time,
-                mj_report.settled,
-                mj_report.off_equilibrium
-            )?;
-            writeln!(
-                csv,
-                "\"{name}\",mujoco,\"{label}\",1,none,{DT:.6},{},{secs:.4},{:.2},,,{us:.3},{:.4},{},0,{},,{:.5}",
-                mb.drops.len(),
-                nd / secs,
-                mj_report.mean_time,
-                mj_report.settled,
-                mj_report.off_equilibrium,
-                mj_report.fit_flocks.kl_divergence
-            )?;
+        // The `--fast` numerics against MuJoCo at the same step.
+        let d = &rows[3];
+        ratios.push((d.rate / (nd / mj[1].loop_s), d.rate / (nd / mj[1].step_s)));
+        let p_mj_steps = chi(&mj_counts[1], &mj_counts[0]).p;
+        for (s, side) in mj.iter().enumerate() {
+            let p_cell = if s == 0 { String::new() } else { format!("{p_mj_steps:.2}") };
+            for (label, secs) in
+                [("mj_step loop + rest check (Python)", side.loop_s), ("stepping alone (replay)", side.step_s)]
+            {
+                let us = 1e6 * secs / side.steps as f64;
+                writeln!(
+                    table,
+                    "| {name} | MuJoCo, {label} | {} | {:.1} | | | | {us:.2} | {:.2} | {} | — | {} | | {p_cell} | |",
+                    step_label(side.dt),
+                    nd / secs,
+                    side.report.mean_time,
+                    side.report.settled,
+                    side.report.off_equilibrium
+                )?;
+                writeln!(
+                    csv,
+                    "\"{name}\",mujoco,\"{label}\",1,none,{:.6},{n},{secs:.4},{:.2},,,,,{us:.3},{:.4},{},0,{},{},,{:.5}",
+                    side.dt,
+                    nd / secs,
+                    side.report.mean_time,
+                    side.report.settled,
+                    side.report.off_equilibrium,
+                    if s == 0 { String::new() } else { format!("{p_mj_steps:.4}") },
+                    side.report.fit_flocks.kl_divergence
+                )?;
+            }
         }
         let short = ["stone", "pebble", "box"][bars.len()];
         bars.push((short.into(), ratios));
-        let fraction = |r: &DropReport, k: usize| r.flocks.iter().find(|f| f.id == k).map_or(0.0, |f| f.fraction);
         summaries.push(Summary {
             short,
             us: us_modes,
             p: p_modes,
-            mj_step_us: 1e6 * mj_step / mj_steps as f64,
-            mj_loop_us: 1e6 * mj_loop / mj_steps as f64,
+            same_flock: same_modes,
             t: rows.iter().map(|r| r.report.mean_time).collect(),
-            mj_t: mj_report.mean_time,
-            widest: (
-                widest,
-                format!("{:?}", stone.flock_kinds[widest]).to_lowercase(),
-                fraction(&project_big, widest),
-                fraction(&mj_big, widest),
+            mj: mj
+                .iter()
+                .map(|x| MjSummary {
+                    step_us: 1e6 * x.step_s / x.steps as f64,
+                    loop_us: 1e6 * x.loop_s / x.steps as f64,
+                    loop_rate: nd / x.loop_s,
+                    step_rate: nd / x.step_s,
+                    t: x.report.mean_time,
+                    unsettled: x.report.unsettled,
+                    big_unsettled: x.big.unsettled,
+                    big_drops: x.big.drops,
+                    warned: x.warned,
+                })
+                .collect(),
+            p_default_same,
+            p_mj_steps,
+            big_ref,
+            widest,
+            big_mj_steps,
+            widest_mj_steps,
+            widest_default_same,
+            big_default_same,
+            big_default_ref,
+            big_project_steps,
+            big_unsettled: (project_big.unsettled, default_big.unsettled),
+            same_big: (same_mj, same_project, big),
+            recal: (
+                recal.drops,
+                recal.unsettled,
+                recal_drops.iter().filter(|d| d.warnings > 0).count(),
+                recal.mean_time,
             ),
-            p_big,
         });
 
         writeln!(flock_tables, "\n### {name}\n")?;
         write!(flock_tables, "| flock | type | static |")?;
-        for m in &MODES {
+        for m in &modes {
             write!(flock_tables, " {} |", m.name)?;
         }
-        writeln!(flock_tables, " MuJoCo |\n|---|---|---|{}---|", "---|".repeat(MODES.len()))?;
+        for side in &mj {
+            write!(flock_tables, " MuJoCo {} |", step_label(side.dt))?;
+        }
+        writeln!(flock_tables, "\n|---|---|---|{}", "---|".repeat(modes.len() + mj.len()))?;
+        let reports: Vec<&DropReport> = rows.iter().map(|r| &r.report).chain(mj.iter().map(|x| &x.report)).collect();
         for f in &rows[0].report.flocks {
             write!(
                 flock_tables,
@@ -644,28 +925,24 @@ fn main() -> anyhow::Result<()> {
                 format!("{:?}", f.kind).to_lowercase(),
                 f.static_probability
             )?;
-            for r in rows.iter().map(|r| &r.report).chain([&mj_report]) {
-                let cell = r
-                    .flocks
-                    .iter()
-                    .find(|g| g.id == f.id)
-                    .map_or("—".into(), |g| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1));
-                write!(flock_tables, " {cell} |")?;
+            for r in &reports {
+                write!(flock_tables, " {} |", cell(r, f.id))?;
             }
             writeln!(flock_tables)?;
         }
         write!(flock_tables, "| KL vs static | | |")?;
-        for r in rows.iter().map(|r| &r.report).chain([&mj_report]) {
+        for r in &reports {
             write!(flock_tables, " {:.4} |", r.fit_flocks.kl_divergence)?;
         }
         writeln!(flock_tables)?;
     }
 
     let parts = Parts { table, flock_tables, checks, sample_tables, box_pairs };
-    let s = readme(n, mj, &parts, &bars, &summaries, rapier_flat)?;
+    let recalibrated = recalibrated.expect("round 0 ran");
+    let s = readme(n, &mj_rounds[0], &recalibrated, &modes, &parts, &bars, &summaries, &rapier_flat)?;
     std::fs::write(out.join("README.md"), s)?;
     std::fs::write(out.join("speed.csv"), csv)?;
-    plot(&out.join("ratio.png"), &bars).map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+    plot(&out.join("ratio.png"), &modes, &bars).map_err(|e| anyhow::anyhow!("plot: {e}"))?;
     Ok(())
 }
 
@@ -680,14 +957,20 @@ struct Parts {
     box_pairs: String,
 }
 
+#[allow(clippy::too_many_arguments)]
 fn readme(
     n: u64,
-    mj: &MjOut,
+    mj: &[MjOut],
+    recal: &MjOut,
+    modes: &[Mode],
     parts: &Parts,
     bars: &[(String, Vec<(f64, f64)>)],
     summaries: &[Summary],
-    rapier_flat: Option<(f64, Option<[f64; 2]>)>,
+    rapier_flat: &[(f64, f64, [f64; 2])],
 ) -> anyhow::Result<String> {
+    let dts = mj_dts();
+    let (r_l, d_l) = (step_label(dts[0]), step_label(dts[1]));
+    let def = &modes[3];
     let mut s = String::new();
     writeln!(s, "# Drops per second per core: this project against MuJoCo, same physics\n")?;
     writeln!(
@@ -696,15 +979,34 @@ fn readme(
          `experiments/shared/mujoco_drops.py`): {n} drops per body and mode, on **one core** — the project in a \
          one-thread rayon pool, timed by the CPU time of its worker thread; MuJoCo in one Python process, timed by \
          its process CPU time; the two run one after the other, never at the same time, in {REPEATS} rounds (each: \
-         MuJoCo's drops, then every mode of the project, so that both see the same load of this shared machine), \
-         and each side's fastest round is used. The *ratio* is the project's drops/s over MuJoCo's for the same \
-         body. The per-flock statistics are compared on the timed drops and on larger untimed samples \
-         ({SAMPLE_FACTOR} × {n} drops per engine and body).\n",
-        mj.mujoco_version, mj.python_version, mj.numpy_version
+         MuJoCo's drops at {r_l} and at {d_l}, then every mode of the project, so that both see the same load of \
+         this shared machine), and each side's fastest round is used. The project runs plain, batched and \
+         flock-certified + batched at the reference step {r_l} (`REFERENCE_DT`, MuJoCo's step in the issue's \
+         protocol), and flock-certified + batched with its **`--fast` numerics** at dt {d_l} \
+         (`Preset::largest_stable_dt`, `rocking drop --fast`; the default step stays {r_l}, `results/drops_settling/`). MuJoCo runs at both steps: at {r_l} (the issue's \
+         protocol) and at {d_l}, the project's `--fast` step. The *ratio* is the project's drops/s over \
+         MuJoCo's for the same body. The per-flock statistics are compared on the timed drops and on larger \
+         untimed samples ({SAMPLE_FACTOR} × {n} drops per engine, step and body).\n",
+        mj[0].mujoco_version, mj[0].python_version, mj[0].numpy_version
     )?;
     writeln!(s, "## The physics matched\n")?;
-    writeln!(s, "| | project (rapier3d 0.36) | MuJoCo {} |", mj.mujoco_version)?;
+    writeln!(s, "| | project (rapier3d 0.36) | MuJoCo {} |", mj[0].mujoco_version)?;
     writeln!(s, "|---|---|---|")?;
+    let calibration = format!(
+        "solref = ({}, {:.4}): **measured e = {:.3} at {r_l}** (by rebound speed over impact speed at the steps where \
+         the contact starts and stops: {:.3}). At {d_l} MuJoCo runs the same model, only the step changed (as the \
+         project keeps its parameters at its longer step): there the same solref gives the ball **e = {:.3}** ({:.3} \
+         by speeds); the damping ratio calibrated at {d_l}, {:.4} (ball e = {:.3}), is used only in an untimed check \
+         (Reading)",
+        mj[0].solref[0],
+        mj[0].solref[1],
+        mj[0].ball_restitution,
+        mj[0].ball_restitution_speeds,
+        mj[1].ball_restitution,
+        mj[1].ball_restitution_speeds,
+        recal.solref[1],
+        recal.ball_restitution,
+    );
     writeln!(
         s,
         "| frame | scaled: R_max = 1 m, mass 1, g = 9.81 m/s² | the same |\n\
@@ -718,54 +1020,73 @@ fn readme(
          statistics are compared, not drop by drop) |\n\
          | friction | Coulomb μ = {FRICTION} (rapier, circular cone) | condim 3 (sliding only), μ = {FRICTION} on \
          both geoms, **{} cone** (MuJoCo's default is pyramidal) |\n\
-         | restitution | e = {RESTITUTION} (rapier's restitution coefficient) | MuJoCo has none: solref = \
-         ({}, {:.4}) (time constant, damping ratio), the default time constant and the damping ratio found by \
-         bisection so that a ball (radius 1 = R_max, mass 1) dropped {HEIGHT} R_max onto the plane rebounds to \
-         e² of its drop height: **measured e = {:.3}** (by rebound speed over impact speed at the steps where the \
-         contact starts and stops: {:.3}); solimp = {:?} (default) |\n\
+         | restitution | e = {RESTITUTION} (rapier's restitution coefficient, at every step) | MuJoCo has none: \
+         solref = (time constant, damping ratio), the default time constant and the damping ratio found by \
+         bisection at {r_l} so that a ball (radius 1 = R_max, mass 1) dropped {HEIGHT} R_max onto the plane \
+         rebounds to e² of its drop height: {calibration}; solimp = {:?} (default) |\n\
          | rolling / torsional friction | off (`rolling_resistance = 0`, `torsional_friction = 0`) | none (condim 3) |\n\
          | global damping | {LINEAR_DAMPING} s⁻¹ linear, {ANGULAR_DAMPING} s⁻¹ angular: v ← v / (1 + dt c) each step \
          | dof_damping on the free joint: {LINEAR_DAMPING}·m on the translations and {ANGULAR_DAMPING}·I_i on the \
          principal rotations (the torque −c I ω), treated implicitly by the integrator, which is the same \
          v ← v / (1 + dt c) |\n\
-         | numerics | dt = 1/240 s, 4 solver iterations (`--fast`: dt 1/120 s) | opt.timestep = 1/240 s, \
-         **{}** integrator (MuJoCo's default is {}), {} solver ({} iterations, tolerance {:e}), one thread |\n\
+         | numerics | the `drop` preset's (exact landings, sub-stepped impacts), 4 solver iterations; dt = {r_l} \
+         (plain, batched, flock-certified + batched) or {d_l} (the `--fast` numerics) | opt.timestep = {r_l} or \
+         {d_l} (one run each; the contact's time constant {MJ_TIMECONST} s is at least twice either, as MuJoCo \
+         asks of a soft contact), **{}** integrator (MuJoCo's default is {}), {} solver ({} iterations, tolerance \
+         {:e}), one thread |\n\
          | rest | linear speed < 2·10⁻³ m/s and angular speed < 5·10⁻³ rad/s for 0.25 s of consecutive steps, \
-         cap 60 s | the same rule on qvel, checked after every step |\n\
+         cap 60 s | the same rule on qvel, checked after every step (⌈0.25 s / dt⌉ steps, cap ⌈60 s / dt⌉) |\n\
          | outcome | `Stone::rest` of the final down direction (the certificate's flock when it decides) | the \
          final down direction returned, `Stone::rest` applied here |\n",
-        mj.cone,
-        mj.solref[0],
-        mj.solref[1],
-        mj.ball_restitution,
-        mj.ball_restitution_speeds,
-        mj.solimp,
-        mj.integrator,
-        mj.default_integrator.trim_start_matches("mjINT_").to_lowercase(),
-        mj.solver.trim_start_matches("mjSOL_").to_lowercase(),
-        mj.iterations,
-        mj.tolerance
+        mj[0].cone,
+        mj[0].solimp,
+        mj[0].integrator,
+        mj[0].default_integrator.trim_start_matches("mjINT_").to_lowercase(),
+        mj[0].solver.trim_start_matches("mjSOL_").to_lowercase(),
+        mj[0].iterations,
+        mj[0].tolerance
     )?;
-    if let Some((rapier_e, Some([mj_e, mj_e_speeds]))) = rapier_flat {
+    if !rapier_flat.is_empty() {
+        let list = rapier_flat
+            .iter()
+            .map(|&(dt, r, [m, ms])| {
+                format!("at {}: e = {r:.3} in rapier and {m:.3} in MuJoCo (by speeds {ms:.3})", step_label(dt))
+            })
+            .collect::<Vec<_>>()
+            .join("; ");
         writeln!(
             s,
             "Check of the restitution on a body: the box dropped flat on its 1 × 0.8 face from {HEIGHT} R_max (no \
-             damping) rebounds with e = {rapier_e:.3} in rapier and {mj_e:.3} in MuJoCo (by speeds {mj_e_speeds:.3}).\n"
+             damping) rebounds {list}.\n"
         )?;
     }
-    writeln!(s, "**MuJoCo timing.** *mj_step loop + rest check*: per drop, a Python loop of `mujoco.mj_step(m, d)` and the rest test on `d.qvel` (what the project's run loop does in Rust); *stepping alone*: the same drops replayed as one `mj_step(m, d, nstep=steps)` call each (MuJoCo is deterministic: the replay ends bit for bit where the loop did), i.e. MuJoCo's C stepping without the interpreter — a lower bound of what a C program driving MuJoCo would spend. The ratio in bold is against the loop, the second against stepping alone.\n")?;
+    writeln!(
+        s,
+        "**MuJoCo timing.** *mj_step loop + rest check*: per drop, a Python loop of `mujoco.mj_step(m, d)` and the \
+         rest test on `d.qvel` (what the project's run loop does in Rust); *stepping alone*: the same drops replayed \
+         as one `mj_step(m, d, nstep=steps)` call each (MuJoCo is deterministic: the replay ends bit for bit where \
+         the loop did), i.e. MuJoCo's C stepping without the interpreter — a lower bound of what a C program driving \
+         MuJoCo would spend. The ratios in bold are against the loop, the others against stepping alone. The \
+         columns *vs MuJoCo {r_l}* divide by MuJoCo at {r_l} for every mode (the issue's protocol); the column *vs \
+         MuJoCo at the same dt* divides by MuJoCo at the mode's own step: {r_l} for plain, batched and \
+         flock-certified + batched (so the same numbers), **{d_l} for the `--fast` numerics** — the comparison at \
+         equal steps.\n"
+    )?;
     writeln!(s, "## Drops per second per core\n")?;
     writeln!(
         s,
-        "| body | engine, mode | drops/s | ratio vs MuJoCo loop | ratio vs MuJoCo stepping alone | CPU µs per step | mean simulated s per drop | settled | certified | off its facet | same flock as plain | χ² p vs MuJoCo (flocks) |"
+        "| body | engine, mode | dt | drops/s | ratio vs MuJoCo {r_l} loop | ratio vs MuJoCo {r_l} stepping alone | \
+         ratio vs MuJoCo at the same dt: loop (stepping alone) | CPU µs per step | mean simulated s per drop | settled \
+         | certified | off its facet | same flock as plain | χ² p vs MuJoCo {r_l} (flocks) | χ² p vs MuJoCo at the \
+         same dt |"
     )?;
-    writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|")?;
+    writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")?;
     s.push_str(&parts.table);
     writeln!(
         s,
         "\n*off its facet*: settled with G more than {REST_TOLERANCE} R_max above its stable facet's rest (stopped on \
-         a slope or an edge). *χ² p*: Pearson's test of homogeneity of the per-flock counts of that mode against \
-         MuJoCo's (`stats::chi_square_homogeneity`).\n"
+         a slope or an edge). *χ² p*: Pearson's test of homogeneity of the per-flock counts of that row against \
+         MuJoCo's (`stats::chi_square_homogeneity`); on MuJoCo's {d_l} rows, against MuJoCo's own at {r_l}.\n"
     )?;
     writeln!(s, "![ratio](ratio.png)\n")?;
     writeln!(s, "## Reading\n")?;
@@ -776,98 +1097,294 @@ fn readme(
         let hi = v.iter().copied().fold(0.0, f64::max);
         format!("{lo:.1}–{hi:.1}×")
     };
-    for (k, m) in MODES.iter().enumerate() {
-        let list: Vec<String> = bars.iter().map(|(b, v)| format!("{b} {:.2}× ({:.2}×)", v[k].0, v[k].1)).collect();
-        writeln!(s, "* **{}** against MuJoCo's loop (against its stepping alone): {}.", m.name, list.join(", "))?;
+    let list = |k: usize| bars.iter().map(|(b, v)| format!("{b} {:.2}× ({:.2}×)", v[k].0, v[k].1)).collect::<Vec<_>>();
+    for (k, m) in modes.iter().enumerate() {
+        let protocol = if k == 3 { ", the issue's protocol" } else { "" };
+        writeln!(
+            s,
+            "* **{}** against MuJoCo's loop at {r_l}{protocol} (in parentheses: against its stepping alone): {}.",
+            m.name,
+            list(k).join(", ")
+        )?;
     }
     writeln!(
         s,
-        "\n**Engine against engine, the two physics engines cost about the same per step.** The plain rows \
-         ({} of MuJoCo's loop, {} of its stepping alone) split into a cost per simulated step — \
-         {} µs in the project against {} µs of MuJoCo stepping alone ({} µs with the Python loop) — and \
-         the simulated time a drop takes to come to rest, longer in MuJoCo ({} s against {} s; the rest rule \
-         and the damping are the same, so the difference is in how the two contacts dissipate). \
-         The Python loop adds {} % to MuJoCo's stepping.\n",
+        "* **{}** against MuJoCo's loop at the same step, {d_l} (in parentheses: against its stepping alone): {}.",
+        def.name,
+        list(4).join(", ")
+    )?;
+    let per_step_ratio: Vec<f64> = summaries.iter().map(|x| x.us[0] / x.mj[0].step_us).collect();
+    let lead = if per_step_ratio.iter().all(|&q| (2.0 / 3.0..=1.5).contains(&q)) {
+        "Engine against engine, the two physics engines cost about the same per step."
+    } else if per_step_ratio.iter().all(|&q| q < 1.0) {
+        "Engine against engine, the project's engine costs less per step."
+    } else if per_step_ratio.iter().all(|&q| q > 1.0) {
+        "Engine against engine, MuJoCo costs less per step."
+    } else {
+        "Engine against engine, the cost per step depends on the body."
+    };
+    let longer = if summaries.iter().all(|x| x.mj[0].t > x.t[0]) {
+        "longer in MuJoCo"
+    } else if summaries.iter().all(|x| x.mj[0].t < x.t[0]) {
+        "shorter in MuJoCo"
+    } else {
+        "in MuJoCo longer for some bodies and shorter for others"
+    };
+    writeln!(
+        s,
+        "\n**{lead}** The plain rows at {r_l} ({} of MuJoCo's loop, {} of its stepping alone) split into a cost per \
+         simulated step — {} µs in the project against {} µs of MuJoCo stepping alone ({} µs with the Python loop) — \
+         and the simulated time a drop takes to come to rest, {longer} ({} s against {} s; the rest rule and the \
+         damping are the same, so the difference is in how the two contacts dissipate). The Python loop adds {} % \
+         to MuJoCo's stepping{}.\n",
         range(0, false),
         range(0, true),
         each(&|x| format!("{} {:.2}", x.short, x.us[0])),
-        each(&|x| format!("{:.2}", x.mj_step_us)),
-        each(&|x| format!("{:.2}", x.mj_loop_us)),
-        each(&|x| format!("{} {:.2}", x.short, x.mj_t)),
+        each(&|x| format!("{:.2}", x.mj[0].step_us)),
+        each(&|x| format!("{:.2}", x.mj[0].loop_us)),
+        each(&|x| format!("{} {:.2}", x.short, x.mj[0].t)),
         each(&|x| format!("{:.2}", x.t[0])),
-        each(&|x| format!("{:.0}", 100.0 * (x.mj_loop_us / x.mj_step_us - 1.0))),
+        each(&|x| format!("{:.0}", 100.0 * (x.mj[0].loop_us / x.mj[0].step_us - 1.0))),
+        if summaries.iter().any(|x| x.mj[0].loop_us < x.mj[0].step_us) {
+            " (a negative share is the noise of the timing: the loop cannot cost less than the stepping it contains)"
+        } else {
+            ""
+        },
+    )?;
+    // MuJoCo at the longer step: speed, settling, warnings, and its statistics against its own at
+    // the reference step.
+    let mj_unsettled: Vec<String> = summaries
+        .iter()
+        .flat_map(|x| {
+            x.mj.iter().zip(dts).filter(|(m, _)| m.big_unsettled > 0).map(move |(m, dt)| {
+                format!(
+                    "{} at {}: {} of {} (of them {} of the {n} timed)",
+                    x.short,
+                    step_label(dt),
+                    m.big_unsettled,
+                    m.big_drops,
+                    m.unsettled
+                )
+            })
+        })
+        .collect();
+    let warned: usize = summaries.iter().flat_map(|x| x.mj.iter().map(|m| m.warned)).sum();
+    let settling = if mj_unsettled.is_empty() {
+        format!(
+            "Every MuJoCo drop came to rest within the 60 s cap at both steps ({} drops per body and step, the \
+             timed ones among them)",
+            n * SAMPLE_FACTOR
+        )
+    } else {
+        format!("MuJoCo drops not at rest at the 60 s cap: {}", mj_unsettled.join("; "))
+    };
+    let warnings = if warned == 0 {
+        "and MuJoCo raised no warning (no bad qpos, qvel or qacc: no instability) in any drop".to_string()
+    } else {
+        format!("and MuJoCo raised warnings (an instability, after which it resets the state) in {warned} drops, counted as not settled")
+    };
+    let recal_unsettled: u64 = summaries.iter().map(|x| x.recal.1).sum();
+    let recal_sentence = if recal_unsettled > 0 {
+        format!(
+            "Calibrating the damping ratio again at {d_l} gives {:.4}, with which the ball rebounds with e = {:.3}, but \
+             then drops do not come to rest: in an untimed check of {n} drops per body, {} were still moving at the \
+             60 s cap (mean simulated s per drop {}; drops with a MuJoCo warning {}), so that calibration is not used.",
+            recal.solref[1],
+            recal.ball_restitution,
+            each(&|x| format!("{} {} of {}", x.short, x.recal.1, x.recal.0)),
+            each(&|x| format!("{} {:.2}", x.short, x.recal.3)),
+            each(&|x| format!("{} {}", x.short, x.recal.2)),
+        )
+    } else {
+        format!(
+            "Calibrated again at {d_l}, the damping ratio {:.4} (ball e = {:.3}) brings every drop of an untimed check \
+             ({n} per body) to rest too (mean simulated s per drop {}); the table keeps the model of {r_l}.",
+            recal.solref[1],
+            recal.ball_restitution,
+            each(&|x| format!("{} {:.2}", x.short, x.recal.3)),
+        )
+    };
+    let mj_differ: Vec<&str> = summaries.iter().filter(|x| x.big_mj_steps.p < 0.05).map(|x| x.short).collect();
+    let mj_verdict = if mj_differ.is_empty() {
+        format!(
+            "No p below 0.05: MuJoCo's per-flock statistics at {d_l} are those it has at {r_l} within what these \
+             samples resolve; MuJoCo too keeps its statistics at the longer step, and the comparison at equal steps \
+             compares two engines that both do."
+        )
+    } else {
+        format!(
+            "Below 0.05 for the {}: there MuJoCo's per-flock statistics at {d_l} differ from its own at {r_l} by more \
+             than sampling (the flock with the largest share of χ²: {}), so MuJoCo at {d_l} is a faster but not an \
+             equivalent MuJoCo there.",
+            mj_differ.join(" and "),
+            summaries
+                .iter()
+                .filter(|x| x.big_mj_steps.p < 0.05)
+                .map(|x| format!(
+                    "{} flock {} ({}), {:.3} at {d_l} against {:.3} at {r_l}",
+                    x.short, x.widest_mj_steps.0, x.widest_mj_steps.1, x.widest_mj_steps.2, x.widest_mj_steps.3
+                ))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
+    writeln!(
+        s,
+        "**MuJoCo at the project's `--fast` step, {d_l}.** The same MuJoCo model as at {r_l}, solref ({}, {:.4}), \
+         only the step changed; the contact's time constant {MJ_TIMECONST} s is {:.1} steps of {d_l} (MuJoCo asks \
+         for at least 2). MuJoCo's restitution {}: the ball that rebounds with e = {:.3} at {r_l} rebounds with \
+         e = {:.3} at {d_l}. {recal_sentence} MuJoCo's loop runs {} drops/s at {d_l} against {} at {r_l} (×{}), its \
+         stepping alone {} against {}; a step costs {} µs of stepping alone against {} µs at {r_l}, and a drop \
+         takes {} simulated s against {}. {settling}, {warnings}. χ² p of its per-flock counts at {d_l} against its \
+         own at {r_l}: timed drops {}; larger samples ({SAMPLE_FACTOR} × {n}, [below](#larger-samples-untimed)) {}. \
+         {mj_verdict} (Both steps start from the same orientations, numpy's stream of the body, so the samples are \
+         paired: {} drops end in the same flock at both steps; for paired samples the χ² test, which takes them as \
+         independent, is conservative.)\n",
+        mj[1].solref[0],
+        mj[1].solref[1],
+        MJ_TIMECONST / dts[1],
+        if (mj[0].ball_restitution - mj[1].ball_restitution).abs() > 0.02 {
+            "depends on its step"
+        } else {
+            "hardly depends on its step"
+        },
+        mj[0].ball_restitution,
+        mj[1].ball_restitution,
+        each(&|x| format!("{} {:.1}", x.short, x.mj[1].loop_rate)),
+        each(&|x| format!("{:.1}", x.mj[0].loop_rate)),
+        each(&|x| format!("{:.2}", x.mj[1].loop_rate / x.mj[0].loop_rate)),
+        each(&|x| format!("{} {:.1}", x.short, x.mj[1].step_rate)),
+        each(&|x| format!("{:.1}", x.mj[0].step_rate)),
+        each(&|x| format!("{} {:.2}", x.short, x.mj[1].step_us)),
+        each(&|x| format!("{:.2}", x.mj[0].step_us)),
+        each(&|x| format!("{} {:.2}", x.short, x.mj[1].t)),
+        each(&|x| format!("{:.2}", x.mj[0].t)),
+        each(&|x| format!("{} {:.2}", x.short, x.p_mj_steps)),
+        each(&|x| format!("{} {:.3}", x.short, x.big_mj_steps.p)),
+        each(&|x| format!("{} {} of {}", x.short, x.same_big.0, x.same_big.2)),
     )?;
     writeln!(
         s,
-        "**The large ratios are the project's algorithms, not a faster engine.** Batching ({} per step, \
-         against plain's {}) shares a rapier world's fixed cost per step between {DEFAULT_BATCH} stones; the \
-         flock certificate ends a drop once its flock is certain, after {} simulated s instead of {}; \
-         `--fast` takes twice the step. Exact landings and sub-stepped impacts (the default numerics) cost \
-         little here: only a step in which some hull corner could come down by more than its clearance plus \
-         0.01 R_max is cut, in a world of the stone's own, outside the batch (`dynamics::impact`). None of this \
-         is specific to rapier: the certificate needs only the \
-         body's energy and down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and \
-         MuJoCo at dt 1/120 s was not measured here. So {} (flock-certified + batched) and {} (`--fast`) are \
-         what this project's drop pipeline gains over a plain MuJoCo loop (outcome statistics compared below), \
-         not a property of the engines.\n",
+        "**The large ratios are the project's algorithms, not a faster engine.** Batching ({} per step, against \
+         plain's {}) shares a rapier world's fixed cost per step between {DEFAULT_BATCH} stones; the flock \
+         certificate ends a drop once its flock is certain, after {} simulated s instead of {}; the `--fast` \
+         numerics take the step {d_l} instead of {r_l}. Exact landings and sub-stepped impacts (the `drop` preset's \
+         numerics, in every mode here) cost little: only a step in which some hull corner could come down by more \
+         than its clearance plus 0.01 R_max is cut, in a world of the stone's own, outside the batch \
+         (`dynamics::impact`). None of this is specific to rapier: the certificate needs only the body's energy and \
+         down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and MuJoCo too takes the \
+         longer step (above). So {} (flock-certified + batched, both engines at {r_l}) and {} (the `--fast` numerics \
+         against MuJoCo at {r_l}, the issue's protocol) — **{} against MuJoCo at the same step {d_l}**{} — are what \
+         this project's drop pipeline gains over a plain MuJoCo loop (outcome statistics compared below), not a \
+         property of the engines.\n",
         each(&|x| format!("{} {:.2} µs", x.short, x.us[1])),
         each(&|x| format!("{:.2}", x.us[0])),
         each(&|x| format!("{} {:.2}", x.short, x.t[2])),
         each(&|x| format!("{:.2}", x.t[0])),
         range(2, false),
         range(3, false),
+        range(4, false),
+        if summaries.iter().any(|x| x.mj[1].unsettled > 0) {
+            format!(
+                " (MuJoCo's timed drops at {d_l} that did not come to rest ran to the 60 s cap, which inflates these)"
+            )
+        } else {
+            String::new()
+        },
     )?;
     let worst = summaries
         .iter()
         .flat_map(|x| x.p.iter().map(move |&p| (p, x.short)))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .expect("a body");
-    writeln!(
+    let drop_by_drop = summaries.iter().all(|x| x.same_flock[1] == n as usize && x.same_flock[2] == n as usize);
+    let shared = if drop_by_drop {
+        "The batched and flock-certified drops end in the plain drop's flock drop by drop (the *same flock as plain* \
+         column), so they share plain's p"
+            .to_string()
+    } else {
+        format!(
+            "The batched and flock-certified drops do not all end in the plain drop's flock (the *same flock as plain* \
+             column: batched {}, flock-certified {} of {n})",
+            each(&|x| format!("{} {}", x.short, x.same_flock[1])),
+            each(&|x| format!("{} {}", x.short, x.same_flock[2])),
+        )
+    };
+    let big_differ = |f: &dyn Fn(&Summary) -> f64| -> Vec<&str> {
+        summaries.iter().filter(|x| f(x) < 0.05).map(|x| x.short).collect()
+    };
+    let verdict = |differ: Vec<&str>, what: &str| {
+        if differ.is_empty() {
+            format!("no p below 0.05 ({what} agree within what these samples resolve)")
+        } else {
+            format!("below 0.05 for the {} ({what} differ there by more than sampling)", differ.join(" and "))
+        }
+    };
+    write!(
         s,
-        "**Outcome statistics.** In the timed runs ({n} drops per engine), χ² p of the per-flock counts \
-         against MuJoCo's, plain / batched / flock-certified + batched / `--fast`: {}; the lowest is {:.2} \
-         ({}). The batched and flock-certified drops end in the plain drop's flock drop by drop (the *same \
-         flock as plain* column), so they share plain's p; `--fast` integrates differently and is a sample \
-         of its own. Each engine draws its own orientations, and at {n} drops a flock of a few per cent has a \
-         95 % interval about as wide as its share, so the sharper test is the larger untimed samples \
-         ({SAMPLE_FACTOR} × {n} drops per engine, the project's batched drops against MuJoCo's, \
-         [below](#larger-samples-untimed)): p = {}. {} The flock with the largest share of χ² there: {}.\n",
+        "**Outcome statistics.** In the timed runs ({n} drops per engine), χ² p of the per-flock counts against \
+         MuJoCo's at {r_l}, plain / batched / flock-certified + batched / `--fast` numerics: {}; the lowest is {:.2} \
+         ({}). {shared}; the `--fast` numerics integrate at another step and are a sample of their own: against \
+         MuJoCo at the same step, {d_l}, their p is {}. Each engine draws its own orientations, and at {n} drops a \
+         flock of a few per cent has a 95 % interval about as wide as its share, so the sharper tests are on the \
+         larger untimed samples ({SAMPLE_FACTOR} × {n} drops per engine and step, [below](#larger-samples-untimed)). \
+         There, the project's batched drops at {r_l} against MuJoCo's at {r_l}: p = {}, {}. The flock with the \
+         largest share of χ² there: {}. The project's `--fast` numerics against MuJoCo at the same step {d_l}: p = \
+         {}, {}{}; against MuJoCo at {r_l}: p = {}, {}; against the project's own drops at {r_l}: p = {}, {}; these two \
+         samples are paired, as MuJoCo's two steps are ({} drops end in the same flock at both steps).",
         each(&|x| format!("{} {}", x.short, x.p.iter().map(|p| format!("{p:.2}")).collect::<Vec<_>>().join(" / "))),
         worst.0,
         worst.1,
-        each(&|x| format!("{} {:.3}", x.short, x.p_big)),
-        {
-            let differ: Vec<&str> = summaries.iter().filter(|x| x.p_big < 0.05).map(|x| x.short).collect();
-            if differ.is_empty() {
-                "No p below 0.05: the two engines' per-flock statistics agree within what these samples can \
-                 resolve."
-                    .to_string()
-            } else {
-                format!(
-                    "Below 0.05 for the {}: there the two engines' per-flock statistics differ by more than \
-                     sampling.",
-                    differ.join(" and ")
-                )
-            }
-        },
+        each(&|x| format!("{} {:.2}", x.short, x.p_default_same)),
+        each(&|x| format!("{} {:.3}", x.short, x.big_ref.p)),
+        verdict(big_differ(&|x| x.big_ref.p), "the two engines' per-flock statistics"),
         each(&|x| format!(
             "{} flock {} ({}), project {:.3} against MuJoCo {:.3}",
             x.short, x.widest.0, x.widest.1, x.widest.2, x.widest.3
         )),
+        each(&|x| format!("{} {:.3}", x.short, x.big_default_same.p)),
+        verdict(big_differ(&|x| x.big_default_same.p), "the two engines at equal steps"),
+        {
+            let w: Vec<String> = summaries
+                .iter()
+                .filter(|x| x.big_default_same.p < 0.05)
+                .map(|x| {
+                    let (k, kind, a, b) = &x.widest_default_same;
+                    format!("{} flock {k} ({kind}), project {a:.3} against MuJoCo {b:.3}", x.short)
+                })
+                .collect();
+            if w.is_empty() {
+                String::new()
+            } else {
+                format!(", the flock with the largest share of χ² there: {}", w.join(", "))
+            }
+        },
+        each(&|x| format!("{} {:.3}", x.short, x.big_default_ref.p)),
+        verdict(big_differ(&|x| x.big_default_ref.p), "the project's `--fast` numerics and MuJoCo at the reference step"),
+        each(&|x| format!("{} {:.3}", x.short, x.big_project_steps.p)),
+        verdict(big_differ(&|x| x.big_project_steps.p), "the project's two steps"),
+        each(&|x| format!("{} {} of {}", x.short, x.same_big.1, x.same_big.2)),
     )?;
-    if !parts.box_pairs.is_empty() {
-        s.truncate(s.trim_end().len());
-        writeln!(s, "{}\n", parts.box_pairs)?;
+    let project_unsettled: u64 = summaries.iter().map(|x| x.big_unsettled.0 + x.big_unsettled.1).sum();
+    if project_unsettled > 0 {
+        write!(
+            s,
+            " Project drops not at rest at the cap in the larger samples ({r_l} / {d_l}): {}.",
+            each(&|x| format!("{} {} / {}", x.short, x.big_unsettled.0, x.big_unsettled.1))
+        )?;
     }
+    s.push_str(&parts.box_pairs);
+    writeln!(s)?;
     s.push_str(DIFFERENCES);
     writeln!(s, "\n## Checks\n")?;
     s.push_str(&parts.checks);
     writeln!(
         s,
-        "\n## Larger samples (untimed)\n\n{SAMPLE_FACTOR} × {n} drops per engine and body, the first {n} the timed ones: \
-         the project's batched drops (drop by drop its plain drops) and MuJoCo's, per flock (fraction of settled \
-         drops, 95 % interval; static = quasi-static basin probability), with each flock's share of the χ² \
-         statistic of homogeneity."
+        "\n## Larger samples (untimed)\n\n{SAMPLE_FACTOR} × {n} drops per engine, step and body, the first {n} the \
+         timed ones: the project's batched drops at {r_l} (drop by drop its plain drops), its `--fast` numerics \
+         (flock-certified + batched at {d_l}) and MuJoCo's drops at both steps, per flock (fraction of settled drops, \
+         95 % interval; static = quasi-static basin probability), with each flock's share of two χ² statistics of \
+         homogeneity."
     )?;
     s.push_str(&parts.sample_tables);
     writeln!(s, "\n## Per flock, timed runs (fraction of settled drops, 95 % interval; static = quasi-static basin probability)")?;
@@ -875,15 +1392,22 @@ fn readme(
     Ok(s)
 }
 
-fn plot(path: &Path, bars: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn std::error::Error>> {
+fn plot(path: &Path, modes: &[Mode], bars: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
     init_fonts();
-    let root = BitMapBackend::new(path, (1100, 640)).into_drawing_area();
+    let dts = mj_dts();
+    let (r_l, d_l) = (step_label(dts[0]), step_label(dts[1]));
+    // One bar per mode against MuJoCo at the reference step, then the `--fast` numerics against
+    // MuJoCo at the same step.
+    let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l}", m.short)).collect();
+    series.push(format!("{} ÷ MuJoCo at {d_l}, the same step", modes[3].short));
+    let slots = series.len();
+    let root = BitMapBackend::new(path, (1200, 720)).into_drawing_area();
     root.fill(&WHITE)?;
     let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));
     // Log axis: a ratio and its inverse are as far from 1×; room above the bars for the legend.
     let bottom = values().fold(0.5, f64::min) * 0.8;
-    let top = values().fold(10.0, f64::max) * 7.0;
+    let top = values().fold(10.0, f64::max) * 12.0;
     let mut chart = ChartBuilder::on(&root)
         .margin(20)
         .x_label_area_size(45)
@@ -909,15 +1433,27 @@ fn plot(path: &Path, bars: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn s
         .y_desc("drops/s of the project ÷ drops/s of MuJoCo (log scale)")
         .label_style((FONT_FAMILY, 14))
         .draw()?;
-    let w = 0.84 / MODES.len() as f64;
-    let x0 = |k: usize, slot: usize| k as f64 - 0.42 + slot as f64 * w;
-    for (slot, m) in MODES.iter().enumerate() {
+    // The reference level 1×, drawn first so that the bars and their labels lie over it (10× and
+    // 100× are the axis' major grid lines).
+    let references = [(1.0, "1×: as fast as MuJoCo")];
+    let reference_style = |_: f64| BLACK.stroke_width(2);
+    for (level, _) in references {
+        chart.draw_series(DashedLineSeries::new(
+            vec![(-0.5, level), (bars.len() as f64 - 0.5, level)],
+            10,
+            6,
+            reference_style(level),
+        ))?;
+    }
+    let w = 0.86 / slots as f64;
+    let x0 = |k: usize, slot: usize| k as f64 - 0.43 + slot as f64 * w;
+    for (slot, label) in series.iter().enumerate() {
         let colour = series_color(slot);
         chart
             .draw_series(bars.iter().enumerate().map(|(k, (_, v))| {
                 Rectangle::new([(x0(k, slot), bottom), (x0(k, slot) + w * 0.9, v[slot].0)], colour.filled())
             }))?
-            .label(format!("{} (vs MuJoCo's mj_step loop + rest check)", m.short))
+            .label(format!("{label} (its mj_step loop + rest check)"))
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
     }
     // The ratio against MuJoCo's loop, written above each bar.
@@ -925,26 +1461,27 @@ fn plot(path: &Path, bars: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn s
     let label = TextStyle::from((FONT_FAMILY, 12).into_font()).pos(Pos::new(HPos::Center, VPos::Bottom));
     chart.draw_series(bars.iter().enumerate().flat_map(|(k, (_, v))| {
         let label = label.clone();
-        (0..MODES.len()).map(move |slot| {
+        (0..slots).map(move |slot| {
             let top = v[slot].0.max(v[slot].1) * 1.04;
             Text::new(format!("{:.1}×", v[slot].0), (x0(k, slot) + w * 0.45, top), label.clone())
         })
     }))?;
     chart
         .draw_series(bars.iter().enumerate().flat_map(|(k, (_, v))| {
-            (0..MODES.len()).map(move |slot| {
+            (0..slots).map(move |slot| {
                 PathElement::new(
                     vec![(x0(k, slot), v[slot].1), (x0(k, slot) + w * 0.9, v[slot].1)],
                     BLACK.stroke_width(3),
                 )
             })
         }))?
-        .label("the same mode vs MuJoCo's stepping alone (no Python per step)")
+        .label("the same bar against MuJoCo's stepping alone (no Python per step)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK.stroke_width(3)));
-    for (level, label) in [(1.0, "1×: as fast as MuJoCo"), (10.0, "10×")] {
-        let style = if level == 1.0 { BLACK.stroke_width(2) } else { RGBColor(110, 110, 110).stroke_width(2) };
+    // The reference lines' legend entries (the lines themselves are drawn under the bars).
+    for (level, label) in references {
+        let style = reference_style(level);
         chart
-            .draw_series(DashedLineSeries::new(vec![(-0.5, level), (bars.len() as f64 - 0.5, level)], 10, 6, style))?
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
             .label(label)
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], style));
     }

@@ -9,10 +9,11 @@ bodies, each with its hull corners relative to G and its inertia tensor about G,
 frame of the project (R_max = 1 m, mass 1, g = 9.81).
 
 OUT.json: the MuJoCo settings chosen, the measured restitution of a ball drop, and per body the
-final body-frame down direction of every drop (in the project's body frame), its steps and
-whether it came to rest, for the timed drops and for the whole sample, with the CPU time of the
-timed drops. The project classifies the down directions with its own rule (`Stone::rest`), so
-both engines are counted by the same rule.
+final body-frame down direction of every drop (in the project's body frame), its steps, whether
+it came to rest and how many warnings MuJoCo raised during it (a bad qacc, qvel or qpos is an
+instability, after which MuJoCo resets the state), for the timed drops and for the whole sample,
+with the CPU time of the timed drops. The project classifies the down directions with its own
+rule (`Stone::rest`), so both engines are counted by the same rule.
 
 How the physics is matched (the README of `results/drops_vs_mujoco/` says the same):
 
@@ -30,7 +31,8 @@ How the physics is matched (the README of `results/drops_vs_mujoco/` says the sa
   cone; MuJoCo's default is the pyramidal one), MuJoCo's default solimp and timeconst 0.02 s
   with a damping ratio chosen by bisection so that a ball dropped on the plane rebounds with the
   target restitution (MuJoCo has no restitution coefficient: a bounce is the soft contact's
-  under-damped spring).
+  under-damped spring), or the solref given in IN.json (`solref`, e.g. the one calibrated at
+  another step: the same model at another step), whose ball restitution is then measured.
 * numerics: opt.timestep = dt, the implicitfast integrator (MuJoCo's default is Euler), the
   default Newton solver (100 iterations, tolerance 1e-8), one thread.
 * rest: the project's rule: linear speed of G < rest_linear_speed and angular speed <
@@ -242,6 +244,10 @@ def run_body(p, body, seed, solref, integrator):
     step = mujoco.mj_step
     qvel = d.qvel
 
+    def warnings():
+        """Warnings MuJoCo raised since the last reset (mj_resetData clears them)."""
+        return int(sum(w.number for w in d.warning))
+
     def drop(q, z):
         mujoco.mj_resetData(m, d)
         d.qpos[:3] = (0.0, 0.0, z)
@@ -267,7 +273,7 @@ def run_body(p, body, seed, solref, integrator):
         t = time.process_time()
         for q, z in starts[:n]:
             steps, settled = drop(q, z)
-            out.append((steps, settled, d.qpos.copy(), d.xmat[1].copy()))
+            out.append((steps, settled, d.qpos.copy(), d.xmat[1].copy(), warnings()))
         loop_times.append(time.process_time() - t)
         if results is None:
             results = out
@@ -280,7 +286,7 @@ def run_body(p, body, seed, solref, integrator):
     for _ in range(p["repeats"]):
         t = time.process_time()
         finals = []
-        for (q, z), (steps, _, _, _) in zip(starts[:n], results):
+        for (q, z), (steps, *_) in zip(starts[:n], results):
             mujoco.mj_resetData(m, d)
             d.qpos[:3] = (0.0, 0.0, z)
             d.qpos[3:7] = q
@@ -293,15 +299,15 @@ def run_body(p, body, seed, solref, integrator):
     sample = list(results)
     for q, z in starts[n:]:
         steps, settled = drop(q, z)
-        sample.append((steps, settled, None, d.xmat[1].copy()))
+        sample.append((steps, settled, None, d.xmat[1].copy(), warnings()))
 
-    def record(steps, settled, xmat):
+    def record(steps, settled, xmat, warned):
         r = xmat.reshape(3, 3)  # body → world, principal frame
         down = vecs @ (r.T @ down_world)
-        return {"down": down.tolist(), "steps": steps, "settled": bool(settled)}
+        return {"down": down.tolist(), "steps": steps, "settled": bool(settled), "warnings": warned}
 
-    drops = [record(steps, settled, xmat) for steps, settled, _, xmat in results]
-    sample_drops = [record(steps, settled, xmat) for steps, settled, _, xmat in sample]
+    drops = [record(steps, settled, xmat, w) for steps, settled, _, xmat, w in results]
+    sample_drops = [record(steps, settled, xmat, w) for steps, settled, _, xmat, w in sample]
     return {
         "name": body["name"],
         "principal_inertia": lam.tolist(),
@@ -323,10 +329,15 @@ def main():
     with open(sys.argv[1]) as f:
         p = json.load(f)
     integrator = "implicitfast" if hasattr(mujoco.mjtIntegrator, "mjINT_IMPLICITFAST") else "Euler"
-    solref, (e, e_speeds) = calibrate(p, integrator)
+    if p.get("solref") is not None:
+        solref = (float(p["solref"][0]), float(p["solref"][1]))
+        e, e_speeds = ball_restitution(p, solref, integrator)
+    else:
+        solref, (e, e_speeds) = calibrate(p, integrator)
+    how = "given" if p.get("solref") is not None else "calibrated"
     print(
-        f"MuJoCo {mujoco.__version__}: integrator {integrator}, elliptic cone, condim 3, "
-        f"solref ({solref[0]}, {solref[1]:.4f}): ball restitution e = {e:.4f} by rebound height, "
+        f"MuJoCo {mujoco.__version__}: dt {p['dt']}, integrator {integrator}, elliptic cone, condim 3, "
+        f"{how} solref ({solref[0]}, {solref[1]:.4f}): ball restitution e = {e:.4f} by rebound height, "
         f"{e_speeds:.4f} by speeds at the steps contact starts/ends (target {p['restitution']})",
         file=sys.stderr,
     )
@@ -352,6 +363,7 @@ def main():
         "iterations": int(m.opt.iterations),
         "tolerance": float(m.opt.tolerance),
         "solref": list(solref),
+        "solref_calibrated": p.get("solref") is None,
         "solimp": [float(x) for x in mujoco.MjModel.from_xml_string(ball_xml(p, solref, integrator)).geom_solimp[0]],
         "ball_restitution": e,
         "ball_restitution_speeds": e_speeds,
