@@ -63,13 +63,13 @@ const REPEATS: usize = 3;
 const MJ_TIMECONST: f64 = 0.02;
 
 /// The project's `--fast` drop step, `Preset::largest_stable_dt` (1/120 s).
-fn default_dt() -> f64 {
+fn fast_dt() -> f64 {
     Preset::Drop.largest_stable_dt()
 }
 
 /// The steps MuJoCo runs at: the reference step (the issue's protocol) and the project's `--fast` step.
 fn mj_dts() -> [f64; 2] {
-    [REFERENCE_DT, default_dt()]
+    [REFERENCE_DT, fast_dt()]
 }
 
 /// "1/240 s" for dt = 1/240 s.
@@ -124,7 +124,7 @@ struct Mode {
 fn modes() -> [Mode; 4] {
     let mode =
         |name: &str, short: &str, batch, cert, dt| Mode { name: name.into(), short: short.into(), batch, cert, dt };
-    let d = step_label(default_dt());
+    let d = step_label(fast_dt());
     [
         mode("plain", "plain", 1, CertificateMode::None, REFERENCE_DT),
         mode("batched", "batched", DEFAULT_BATCH, CertificateMode::None, REFERENCE_DT),
@@ -134,7 +134,7 @@ fn modes() -> [Mode; 4] {
             &format!("flock-cert. + batched, `--fast` numerics (dt {d})"),
             DEFAULT_BATCH,
             CertificateMode::Flock,
-            default_dt(),
+            fast_dt(),
         ),
     ]
 }
@@ -405,7 +405,7 @@ struct Summary {
     mj: Vec<MjSummary>,
     /// χ² p, timed drops: the `--fast` numerics against MuJoCo at the same step; MuJoCo at the
     /// `--fast` step against MuJoCo at the reference step.
-    p_default_same: f64,
+    p_fast_same: f64,
     p_mj_steps: f64,
     /// Larger samples: the reference project (batched) against MuJoCo at the reference step, and
     /// the flock with the largest share of χ² there.
@@ -416,11 +416,11 @@ struct Summary {
     widest_mj_steps: Widest,
     /// Larger samples: the `--fast` numerics against MuJoCo at the same step, against MuJoCo at the
     /// reference step, against the project at the reference step.
-    big_default_same: Chi,
+    big_fast_same: Chi,
     /// The flock with the largest share of χ² between the `--fast` numerics and MuJoCo at the
     /// same step (larger samples).
-    widest_default_same: Widest,
-    big_default_ref: Chi,
+    widest_fast_same: Widest,
+    big_fast_ref: Chi,
     big_project_steps: Chi,
     /// Larger samples' unsettled drops: the project's reference (batched) and `--fast` numerics.
     big_unsettled: (u64, u64),
@@ -531,9 +531,9 @@ fn main() -> anyhow::Result<()> {
         if round == 0 {
             eprintln!(
                 "round 1 of {REPEATS}: MuJoCo at dt {}, damping ratio calibrated at that step (untimed check)",
-                step_label(default_dt())
+                step_label(fast_dt())
             );
-            recalibrated = Some(run_mujoco(n, default_dt(), None)?);
+            recalibrated = Some(run_mujoco(n, fast_dt(), None)?);
         }
         mj_rounds.push(this);
         eprintln!("round {} of {REPEATS}: the project", round + 1);
@@ -605,7 +605,7 @@ fn main() -> anyhow::Result<()> {
             .collect();
         let mb0 = &mj_rounds[0][0].bodies[b];
         let recal_drops = &recalibrated.as_ref().expect("round 0 ran").bodies[b].drops;
-        let recal = classify(stone, name, recal_drops, default_dt()).0;
+        let recal = classify(stone, name, recal_drops, fast_dt()).0;
         if mb0.flat_restitution.is_some() {
             for (s, &dt) in dts.iter().enumerate() {
                 let mj_e = mj_rounds[0][s].bodies[b].flat_restitution.unwrap_or([f64::NAN; 2]);
@@ -660,8 +660,8 @@ fn main() -> anyhow::Result<()> {
         // the plain drops), the `--fast` numerics, and MuJoCo at both steps.
         let big = n * SAMPLE_FACTOR;
         let project_run = pool.install(|| timed(stone, &header(name, big, &modes[1]), DEFAULT_BATCH));
-        let default_run = pool.install(|| timed(stone, &header(name, big, &modes[3]), modes[3].batch));
-        let (project_big, default_big) = (&project_run.report, &default_run.report);
+        let fast_run = pool.install(|| timed(stone, &header(name, big, &modes[3]), modes[3].batch));
+        let (project_big, fast_big) = (&project_run.report, &fast_run.report);
         // The two steps of one engine start from the same orientations: drops that end in the
         // same flock at both steps.
         let flock_of = |o: &DropOutcome| {
@@ -673,13 +673,13 @@ fn main() -> anyhow::Result<()> {
                 .count()
         };
         let same_mj = paired(&mj[0].big_outcomes, &mj[1].big_outcomes);
-        let same_project = paired(&project_run.outcomes, &default_run.outcomes);
-        let (pc, dc) = (counts(stone, project_big), counts(stone, default_big));
+        let same_project = paired(&project_run.outcomes, &fast_run.outcomes);
+        let (pc, dc) = (counts(stone, project_big), counts(stone, fast_big));
         let (m0, m1) = (counts(stone, &mj[0].big), counts(stone, &mj[1].big));
         let big_ref = chi(&pc, &m0);
         let big_mj_steps = chi(&m1, &m0);
-        let big_default_same = chi(&dc, &m1);
-        let big_default_ref = chi(&dc, &m0);
+        let big_fast_same = chi(&dc, &m1);
+        let big_fast_ref = chi(&dc, &m0);
         let big_project_steps = chi(&dc, &pc);
         let shares = chi_shares(&pc, &m0);
         let shares_mj = chi_shares(&m1, &m0);
@@ -691,14 +691,14 @@ fn main() -> anyhow::Result<()> {
             big,
             reference.max_time,
             project_big.unsettled,
-            default_big.unsettled,
+            fast_big.unsettled,
             mj[0].big.unsettled,
             mj[1].big.unsettled,
             test(&format!("project {ref_label} against MuJoCo {ref_label}"), &big_ref),
             test(&format!("MuJoCo {def_label} against MuJoCo {ref_label}"), &big_mj_steps)
                 + &format!(" (the same orientations at both steps: {same_mj} of {big} drops end in the same flock)"),
-            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {def_label}"), &big_default_same),
-            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {ref_label}"), &big_default_ref),
+            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {def_label}"), &big_fast_same),
+            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {ref_label}"), &big_fast_ref),
             test(&format!("project `--fast` numerics ({def_label}) against project {ref_label}"), &big_project_steps)
                 + &format!(" (the same orientations at both steps: {same_project} of {big} drops end in the same flock)"),
         )?;
@@ -724,7 +724,7 @@ fn main() -> anyhow::Result<()> {
                 f.static_probability,
                 cell(project_big, f.id),
                 cell(&mj[0].big, f.id),
-                cell(default_big, f.id),
+                cell(fast_big, f.id),
                 cell(&mj[1].big, f.id),
                 share(&shares, f.id),
                 share(&shares_mj, f.id),
@@ -750,7 +750,7 @@ fn main() -> anyhow::Result<()> {
                  numerics and {} in MuJoCo at {def_label} (static {}).",
                 pooled(project_big, false),
                 pooled(&mj[0].big, false),
-                pooled(default_big, false),
+                pooled(fast_big, false),
                 pooled(&mj[1].big, false),
                 pooled(project_big, true),
             );
@@ -780,11 +780,11 @@ fn main() -> anyhow::Result<()> {
         };
         let widest = widest_of(&shares, project_big, &mj[0].big);
         let widest_mj_steps = widest_of(&shares_mj, &mj[1].big, &mj[0].big);
-        let widest_default_same = widest_of(&chi_shares(&dc, &m1), default_big, &mj[1].big);
+        let widest_fast_same = widest_of(&chi_shares(&dc, &m1), fast_big, &mj[1].big);
 
         let mut ratios = Vec::new();
         let (mut us_modes, mut p_modes, mut same_modes) = (Vec::new(), Vec::new(), Vec::new());
-        let mut p_default_same = f64::NAN;
+        let mut p_fast_same = f64::NAN;
         for (m, r) in modes.iter().zip(&rows) {
             let s = dts.iter().position(|&d| d == m.dt).expect("MuJoCo runs at every mode's step");
             let (rl, rs) = (r.rate / (nd / mj[0].loop_s), r.rate / (nd / mj[0].step_s));
@@ -794,7 +794,7 @@ fn main() -> anyhow::Result<()> {
             let p = chi(&c, &mj_counts[0]).p;
             let p_same = chi(&c, &mj_counts[s]).p;
             if s == 1 {
-                p_default_same = p_same;
+                p_fast_same = p_same;
             }
             let us = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.dt);
             us_modes.push(us);
@@ -887,17 +887,17 @@ fn main() -> anyhow::Result<()> {
                     warned: x.warned,
                 })
                 .collect(),
-            p_default_same,
+            p_fast_same,
             p_mj_steps,
             big_ref,
             widest,
             big_mj_steps,
             widest_mj_steps,
-            widest_default_same,
-            big_default_same,
-            big_default_ref,
+            widest_fast_same,
+            big_fast_same,
+            big_fast_ref,
             big_project_steps,
-            big_unsettled: (project_big.unsettled, default_big.unsettled),
+            big_unsettled: (project_big.unsettled, fast_big.unsettled),
             same_big: (same_mj, same_project, big),
             recal: (
                 recal.drops,
@@ -1335,21 +1335,21 @@ fn readme(
         each(&|x| format!("{} {}", x.short, x.p.iter().map(|p| format!("{p:.2}")).collect::<Vec<_>>().join(" / "))),
         worst.0,
         worst.1,
-        each(&|x| format!("{} {:.2}", x.short, x.p_default_same)),
+        each(&|x| format!("{} {:.2}", x.short, x.p_fast_same)),
         each(&|x| format!("{} {:.3}", x.short, x.big_ref.p)),
         verdict(big_differ(&|x| x.big_ref.p), "the two engines' per-flock statistics"),
         each(&|x| format!(
             "{} flock {} ({}), project {:.3} against MuJoCo {:.3}",
             x.short, x.widest.0, x.widest.1, x.widest.2, x.widest.3
         )),
-        each(&|x| format!("{} {:.3}", x.short, x.big_default_same.p)),
-        verdict(big_differ(&|x| x.big_default_same.p), "the two engines at equal steps"),
+        each(&|x| format!("{} {:.3}", x.short, x.big_fast_same.p)),
+        verdict(big_differ(&|x| x.big_fast_same.p), "the two engines at equal steps"),
         {
             let w: Vec<String> = summaries
                 .iter()
-                .filter(|x| x.big_default_same.p < 0.05)
+                .filter(|x| x.big_fast_same.p < 0.05)
                 .map(|x| {
-                    let (k, kind, a, b) = &x.widest_default_same;
+                    let (k, kind, a, b) = &x.widest_fast_same;
                     format!("{} flock {k} ({kind}), project {a:.3} against MuJoCo {b:.3}", x.short)
                 })
                 .collect();
@@ -1359,8 +1359,8 @@ fn readme(
                 format!(", the flock with the largest share of χ² there: {}", w.join(", "))
             }
         },
-        each(&|x| format!("{} {:.3}", x.short, x.big_default_ref.p)),
-        verdict(big_differ(&|x| x.big_default_ref.p), "the project's `--fast` numerics and MuJoCo at the reference step"),
+        each(&|x| format!("{} {:.3}", x.short, x.big_fast_ref.p)),
+        verdict(big_differ(&|x| x.big_fast_ref.p), "the project's `--fast` numerics and MuJoCo at the reference step"),
         each(&|x| format!("{} {:.3}", x.short, x.big_project_steps.p)),
         verdict(big_differ(&|x| x.big_project_steps.p), "the project's two steps"),
         each(&|x| format!("{} {} of {}", x.short, x.same_big.1, x.same_big.2)),
