@@ -246,7 +246,7 @@ fn knocked_stones_resolve_their_impacts_as_drops_do() {
     // Pushes and shaking run one stone in its own world (`Simulation`); with the default
     // numerics a step that could bring a hull point down by more than IMPACT_APPROACH is
     // sub-stepped there too: a cube knocked off its face (tumbling, thrown up, on a table moving
-    // down and sideways) never lands deeper than the bound at 1/240 and 1/120 s.
+    // down and sideways) never lands deeper than the bound at 1/240, 1/120 and 1/80 s.
     use rocking_stones::dynamics::impact::IMPACT_APPROACH;
     let cube = stone(generate::cuboid(1.0, 1.0, 1.0));
     let knocks = [
@@ -254,17 +254,23 @@ fn knocked_stones_resolve_their_impacts_as_drops_do() {
         (Vec3::new(1.0, 0.0, 4.0), Vec3::new(15.0, 6.0, 3.0), Vec3::zeros()),
         (Vec3::new(0.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.5, 0.0, -1.5)),
     ];
+    // The steps: the reference, `--fast`'s, and a longer one.
+    const STEPS: [f64; 3] = [1.0 / 240.0, 1.0 / 120.0, 1.0 / 80.0];
     let mut worst: f64 = 0.0;
     for (v, w, ground) in knocks {
-        for dt in [1.0 / 240.0, 1.0 / 120.0] {
+        for dt in STEPS {
             let d = deepest_knock(&cube, Flight::Free, dt, v, w, ground);
             assert!(d < IMPACT_APPROACH, "{d} R_max deep: v {v:?}, ω {w:?}, ground {ground:?}, dt {dt}");
             worst = worst.max(d);
         }
     }
-    // Not vacuous: rapier's own steps (the damped reference's numerics) go deeper than the bound.
-    let (v, w, ground) = knocks[1];
-    let d = deepest_knock(&cube, Flight::Rapier, 1.0 / 120.0, v, w, ground);
+    // Not vacuous: rapier's own steps (the damped reference's numerics) go deeper than the bound
+    // after some knock at some step (where, depends on the bounces before: 0.038 R_max at
+    // 1/80 s after the second knock, when measured).
+    let d = knocks
+        .iter()
+        .flat_map(|&(v, w, ground)| STEPS.map(|dt| deepest_knock(&cube, Flight::Rapier, dt, v, w, ground)))
+        .fold(0.0, f64::max);
     assert!(d > 2.0 * IMPACT_APPROACH, "rapier's own steps: {d}");
     eprintln!("deepest compression after a knock: {worst:e} R_max (sub-stepped), {d:e} (rapier's steps)");
 }
@@ -274,10 +280,18 @@ fn a_flat_landing_bounces_to_e_squared_h() {
     // A cube released flat, its lowest face h above the ground, lands flat (no rotation) at
     // √(2 g h) and leaves at e √(2 g h): its face rises to e² h (a sphere's law, for a body that
     // lands without turning). With the landing found exactly, restitution acts on the real
-    // impact at every step and height. Measured: 0.240 for 0.25, 0.177 for 0.18, 0.243 for 0.245.
+    // impact at every step and height. The box 1 × 0.8 × 0.5 on its broad face is the case
+    // rapier's one restitution sweep leaves short (0.72–0.88 e by rebound speed), which
+    // the contact law completes (`world::ContactLaw::restitute`). Measured: cube 0.247 for 0.25,
+    // 0.180 for 0.18, 0.240 for 0.245; box 0.247, 0.181, 0.240.
+    for (name, shape) in [("cube", generate::cuboid(1.0, 1.0, 1.0)), ("box", generate::cuboid(1.0, 0.8, 0.5))] {
+        flat_landings_bounce_to_e_squared_h(name, &stone(shape));
+    }
+}
+
+fn flat_landings_bounce_to_e_squared_h(name: &str, cube: &Stone) {
     use rocking_stones::dynamics::batch::simulate_batch_observed;
     use rocking_stones::dynamics::drop::Release;
-    let cube = stone(generate::cuboid(1.0, 1.0, 1.0));
     let rest = cube.body.support(&-Vec3::z());
     for (e, h, dt) in [(0.5, 1.0, 1.0 / 240.0), (0.3, 2.0, 1.0 / 120.0), (0.7, 0.5, 1.0 / 240.0)] {
         let mut p = Preset::Drop.params(Surface::SteelOnWood);
@@ -286,7 +300,7 @@ fn a_flat_landing_bounces_to_e_squared_h() {
         let (mut down, mut apex) = (false, f64::NEG_INFINITY);
         let mut last = f64::INFINITY;
         simulate_batch_observed(
-            &cube,
+            cube,
             &p,
             &rocking_stones::dynamics::run::NoCertificate,
             1,
@@ -309,9 +323,10 @@ fn a_flat_landing_bounces_to_e_squared_h() {
         // in plain rapier over dt 1/120–1/1440 s; the height is within twice that.
         assert!(
             (apex - exact).abs() < 0.05 * exact + 0.5 * GRAVITY * dt * dt,
-            "e {e}, h {h}: rose {apex}, e²h = {exact}"
+            "{name}, e {e}, h {h}: rose {apex}, e²h = {exact}"
         );
-        assert!(apex > 0.9 * exact, "e {e}, h {h}: rose {apex}, e²h = {exact}");
+        assert!(apex > 0.9 * exact, "{name}, e {e}, h {h}: rose {apex}, e²h = {exact}");
+        eprintln!("{name}, e {e}, h {h}: rose {apex:.4}, e²h = {exact:.4}");
     }
 }
 
