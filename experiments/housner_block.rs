@@ -356,14 +356,13 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
          soft, heavily damped spring whose compression is partly given back — a pseudo-restitution that Housner's \
          plastic impact lacks — so it comes out 10–14 % *above* Housner at 1/240 s, and within 1 % at 1/960 s and \
          1/3840 s. (Only one impact per run has an amplitude above 0.02 rad there, so its column is a single impact.) \
-         Restitution: rapier applies it only to contact points that are new in this step (`is_bouncy`), so with \
-         rock on concrete's e = 0.3 the slender blocks, whose impacting corner is already within the contact \
-         prediction distance before the impact, behave almost as with e = 0, while the squatter ones bounce and \
-         lose more than Housner (see the last column). The squattest (α = 38.7°) lies between: with e = 0.3 it \
-         comes out a few per cent below Housner, less lossy than the α = 33.7° block, because whether rapier's \
-         restitution acts depends on whether its impacting corner is a new contact in the (sub-)step of the impact, \
-         which the impact sub-stepping decides (`dynamics::impact`; under the earlier rule, which cut every step \
-         of a fast-rocking block, it was met as a new contact and the block hopped). Robustness and fragility \
+         Restitution: the contact applies Newton's law at every point that strikes the ground faster than \
+         `world::STRUCK_SPEED` (0.1 R_max/s), all struck points solved together (`world::ContactLaw::restitute`; \
+         rapier alone applied it once, and only to points new in the step). With rock on concrete's e = 0.3 the \
+         impacting corner rebounds, so the block loses more per impact than Housner's plastic impulse (last \
+         column): little for the slender blocks, whose corners strike slowly (near or below that speed after the \
+         first impact), and much more for the squatter ones, whose corners strike at up to 2bω. The squattest \
+         (α = 38.7°, a single impact) stands apart again, as at e = 0 (above). Robustness and fragility \
          results therefore depend on the \
          restitution chosen; Housner's law is the e = 0 limit. Small amplitudes (corner lift b·θ comparable to the \
          contact's static compression, ~10⁻⁴ R_max) scatter more (every impact down to an amplitude of 10⁻⁵ rad in \

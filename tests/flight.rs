@@ -319,8 +319,8 @@ fn flat_landings_bounce_to_e_squared_h(name: &str, cube: &Stone) {
         );
         // The apex is sampled at the step boundaries: within ½ g dt² of the true one.
         let exact = e * e * h;
-        // Rapier applies restitution point by point once per step: measured within ±3 % of e·v
-        // in plain rapier over dt 1/120–1/1440 s; the height is within twice that.
+        // Newton's law at the struck points, solved together once per (sub-)step: the rebound
+        // speed is e·v up to the step's sampling; the height is allowed twice ±2.5 %.
         assert!(
             (apex - exact).abs() < 0.05 * exact + 0.5 * GRAVITY * dt * dt,
             "{name}, e {e}, h {h}: rose {apex}, e²h = {exact}"
