@@ -289,10 +289,10 @@ fn a_flat_landing_bounces_to_e_squared_h() {
     }
 }
 
-fn flat_landings_bounce_to_e_squared_h(name: &str, cube: &Stone) {
+fn flat_landings_bounce_to_e_squared_h(name: &str, dropped: &Stone) {
     use rocking_stones::dynamics::batch::simulate_batch_observed;
     use rocking_stones::dynamics::drop::Release;
-    let rest = cube.body.support(&-Vec3::z());
+    let rest = dropped.body.support(&-Vec3::z());
     for (e, h, dt) in [(0.5, 1.0, 1.0 / 240.0), (0.3, 2.0, 1.0 / 120.0), (0.7, 0.5, 1.0 / 240.0)] {
         let mut p = Preset::Drop.params(Surface::SteelOnWood);
         (p.height, p.dt, p.flight, p.restitution) = (h, dt, Flight::Free, e);
@@ -300,7 +300,7 @@ fn flat_landings_bounce_to_e_squared_h(name: &str, cube: &Stone) {
         let (mut down, mut apex) = (false, f64::NEG_INFINITY);
         let mut last = f64::INFINITY;
         simulate_batch_observed(
-            cube,
+            dropped,
             &p,
             &rocking_stones::dynamics::run::NoCertificate,
             1,

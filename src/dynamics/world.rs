@@ -11,7 +11,8 @@
 //! not for a face that lands on several: each point's impulse also lifts the others, and the
 //! sweep does not come back to them. A box 1 × 0.8 × 0.5 landing flat on its broad face from
 //! 0.01–1 R_max left at 0.72–0.88 e (e = 0.2 and 0.5, dt 1/240 s, sampled speeds; down to 0.25 e
-//! at some heights), at any of 1–16 solver sub-steps; a cube, by its symmetry, at 0.96–1.0 e. So after rapier's step the law completes it: the
+//! at some heights), at any of 1–16 solver sub-steps; a cube, by its symmetry, at 0.96–1.0 e.
+//! So after rapier's step the law completes it: the
 //! points that carried load during the step and approached the ground at its start faster than
 //! [`STRUCK_SPEED`] are solved together, by projected Gauss–Seidel to convergence, for
 //! v_i ≥ e u_i with complementarity — Newton's law at each point, what rapier's sweep
@@ -308,12 +309,13 @@ pub fn step_world(
     stones: &[(RigidBodyHandle, ColliderHandle)],
 ) {
     // The stones' motion at the step's start: the approach speeds of Newton's law.
-    let before: Vec<Motion> = if law.restitution > 0.0 {
-        stones.iter().map(|&(handle, _)| Motion::of(&world.bodies[handle])).collect()
+    // (Read only when the law has a restitution to complete.)
+    let (before, ground_velocity): (Vec<Motion>, Vec3) = if law.restitution > 0.0 {
+        let motions = stones.iter().map(|&(handle, _)| Motion::of(&world.bodies[handle])).collect();
+        (motions, law_ground_velocity(world, ground))
     } else {
-        Vec::new()
+        (Vec::new(), Vec3::zeros())
     };
-    let ground_velocity = law_ground_velocity(world, ground);
     world.step();
     for (k, &(handle, collider)) in stones.iter().enumerate() {
         if let Some(m) = before.get(k) {
@@ -500,14 +502,15 @@ impl ContactLaw {
         let mut w = convert::vec_back(rb.angvel());
         let inv: Matrix3<f64> = body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
         let arm: [Vec3; MAX_STRUCK] = std::array::from_fn(|k| if k < len { (q * struck[k].0).cross(&n) } else { n });
+        // K_ii (m = 1 in the scaled frame), once: the sweeps only change the velocities.
+        let k_diag: [f64; MAX_STRUCK] = std::array::from_fn(|k| 1.0 + arm[k].dot(&(inv * arm[k])));
         let mut added = [0.0; MAX_STRUCK];
         for _ in 0..RESTITUTION_SWEEPS {
             let mut change: f64 = 0.0;
             for k in 0..len {
                 let (local, target, impulse) = struck[k];
                 let speed = (v + w.cross(&(q * local)) - ground_velocity).dot(&n);
-                let k_ii = 1.0 + arm[k].dot(&(inv * arm[k]));
-                let next = (added[k] + (target - speed) / k_ii).max(-impulse);
+                let next = (added[k] + (target - speed) / k_diag[k]).max(-impulse);
                 let d = next - added[k];
                 added[k] = next;
                 v += n * d;
