@@ -12,10 +12,16 @@
 //! its contact's damping ratio calibrated on a ball at 1/240 s, only the step changed (an untimed
 //! check runs it at 1/120 s with the ratio calibrated again there); it returns each drop's final
 //! body-frame down direction, classified here by the project's own rule (`Stone::rest`), so both
-//! are counted per flock identically. The drops are not the same drop by drop (each side draws
-//! its own orientations); the per-flock statistics are compared (χ² homogeneity), on the timed
-//! drops and on larger untimed samples: the project at each step against MuJoCo at each step,
-//! and MuJoCo at 1/120 s against itself at 1/240 s (is MuJoCo accurate at the longer step?).
+//! are counted per flock identically. Both engines drop the same releases (the project's
+//! orientation of each drop index, passed to MuJoCo), so the outcomes are compared drop by drop:
+//! how many drops end in the same flock, and the Stuart–Maxwell test of marginal homogeneity of
+//! the per-flock counts (`stats::stuart_maxwell`, which uses the pairing), on the timed drops and
+//! on larger untimed samples: the project at each step against MuJoCo at each step, and MuJoCo
+//! at 1/120 s against itself at 1/240 s (is MuJoCo accurate at the longer step?). Two engines
+//! that each drew their own orientations would also differ by the sampling of the orientations:
+//! numpy's stream that this experiment used before put 0.300 of the box's releases in the
+//! quasi-static basins of its 1 × 0.5 sides, whose area is 0.272 (3.4 standard deviations), and
+//! that alone made the engines' box statistics look different.
 //!
 //! Run: `cargo run --release --example drops_vs_mujoco [-- N]` (N = 300 drops per body and mode)
 //! → `results/drops_vs_mujoco/`. Needs MuJoCo's Python bindings (`pip install mujoco`) in
@@ -30,6 +36,7 @@ use cpu_time::thread_cpu_seconds;
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::DropOutcome;
+use rocking_stones::dynamics::launch::launch;
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface, REFERENCE_DT};
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::world::Simulation;
@@ -37,7 +44,8 @@ use rocking_stones::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, FlockRow, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
-use rocking_stones::stats::chi_square_homogeneity;
+use rocking_stones::rng::item_rng;
+use rocking_stones::stats::stuart_maxwell;
 use rocking_stones::Vec3;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -59,6 +67,9 @@ const SAMPLE_FACTOR: u64 = 10;
 /// Rounds of timing (each: MuJoCo's drops at both steps, then every mode of the project); the
 /// fastest round counts.
 const REPEATS: usize = 3;
+/// Rapier solver iterations (its sub-steps per step) of the untimed convergence check; the
+/// project's default is 4 (`DropParams::solver_iterations`), the last is the reference.
+const SUBSTEPS: [usize; 5] = [2, 4, 8, 16, 32];
 /// MuJoCo's default contact time constant (s), the first number of solref (`mujoco_drops.py`).
 const MJ_TIMECONST: f64 = 0.02;
 
@@ -86,9 +97,10 @@ const DIFFERENCES: &str = "
   `dynamics::world`); MuJoCo's is a spring-damper reference acceleration (time constant 0.02 s, the
   `solimp` impedance) whose under-damping *is* the restitution, calibrated at 1/240 s and kept at
   1/120 s, where the same damping ratio gives another restitution (above). Matched on a ball at
-  1/240 s (e = 0.2 by rebound height), they differ on other impacts: the box landing flat rebounds
-  differently in the two engines (above), and the edge and corner impacts of a tumbling stone are not
-  calibrated at all.
+  1/240 s (e = 0.2 by rebound height), they agree on the box landing flat at that step (above); the
+  edge and corner impacts of a tumbling stone are not calibrated at all. On the same releases the
+  outcomes of the box and the pebble are statistically the same in both engines, drop by drop; the
+  stone's rare flocks are not (Outcome statistics, and the solver sub-steps section below).
 * **Friction.** Rapier 0.36's default friction model (`FrictionModel::Simplified`) solves one Coulomb
   constraint (circular cone) per contact patch at its friction centre plus one *twist* constraint with the
   contact points' lever arms; MuJoCo with condim 3 has an elliptic-cone Coulomb constraint at each contact
@@ -98,8 +110,11 @@ const DIFFERENCES: &str = "
   (up to 100 iterations), the implicitfast integrator (damping implicit, Coriolis forces explicit).
 * **Collision.** The project's own hull collider in rapier's pipeline against MuJoCo's convex mesh–plane
   collision on the same corners (same support function, checked above).
-* **Drops.** Each engine draws its own orientations (the project its seeded streams, MuJoCo numpy's
-  generator): the statistics are compared, not the drops. Classifying a drop (`Stone::rest`, one descent
+* **Drops.** The same releases in both engines (the project's seeded stream, passed to MuJoCo): the
+  drops are compared one by one, not only their statistics. When each engine drew its own (before),
+  numpy's stream for the box put 0.300 of its 3000 releases in the quasi-static basins of the 1 × 0.5
+  sides, whose area is 0.272 (3.4 standard deviations of such a sample), and that alone made the
+  box's statistics look different from the project's (p = 0.012). Classifying a drop (`Stone::rest`, one descent
   of the support function) is inside the project's timing and outside MuJoCo's (done here afterwards).
 * **Timing.** Two different clocks of the same machine: the CPU time of the project's one worker thread
   and the CPU time of the Python process (one thread for MuJoCo; numpy's threads are limited to one).
@@ -200,6 +215,93 @@ fn timed(stone: &Stone, h: &RunHeader, batch: usize) -> Run {
     let seconds = thread_cpu_seconds() - t;
     let outcomes: BTreeMap<u64, DropOutcome> = out.into_iter().map(|o| (o.index, o)).collect();
     Run { report: summarize(&stone.model(), h, &outcomes), rise: rise(&outcomes), outcomes, seconds }
+}
+
+/// The untimed convergence check of one body: its `drops` releases in mode `m` at each of
+/// [`SUBSTEPS`] solver iterations, compared drop by drop with MuJoCo's outcomes `mj` and with
+/// the finest; a markdown table.
+fn substep_table(
+    stone: &Stone,
+    name: &str,
+    drops: u64,
+    m: &Mode,
+    pool: &rayon::ThreadPool,
+    mj: &BTreeMap<u64, DropOutcome>,
+) -> anyhow::Result<String> {
+    let runs: Vec<Run> = SUBSTEPS
+        .iter()
+        .map(|&k| {
+            let mut h = header(name, drops, m);
+            h.params.solver_iterations = k;
+            eprintln!("  {name}: {k} solver iterations (untimed)");
+            pool.install(|| timed(stone, &h, m.batch))
+        })
+        .collect();
+    let finest = &runs[runs.len() - 1];
+    let kinds = stone.flock_kinds.len();
+    let shown: Vec<usize> =
+        (0..kinds).filter(|&k| finest.report.flocks.iter().any(|f| f.id == k && f.count > 0)).collect();
+    let mut t = format!("\n### {name}\n\n| solver iterations | drops/s | same flock as MuJoCo | p vs MuJoCo | same flock as {} | p vs {} |", SUBSTEPS[SUBSTEPS.len() - 1], SUBSTEPS[SUBSTEPS.len() - 1]);
+    for k in &shown {
+        write!(t, " flock {k} |")?;
+    }
+    writeln!(t, "\n|{}", "---|".repeat(6 + shown.len()))?;
+    let mj_counts = {
+        let mut c = vec![0u64; kinds];
+        for o in mj.values().filter(|o| o.settled) {
+            if let Some(k) = flock_of(stone, o) {
+                c[k] += 1;
+            }
+        }
+        c
+    };
+    for (k, r) in SUBSTEPS.iter().zip(&runs) {
+        let (a, b) = (drop_by_drop(stone, &r.outcomes, mj), drop_by_drop(stone, &r.outcomes, &finest.outcomes));
+        write!(
+            t,
+            "| {k} | {:.0} | {} of {} | {:.3} | {} of {} | {:.3} |",
+            drops as f64 / r.seconds,
+            a.same,
+            a.both,
+            a.p,
+            b.same,
+            b.both,
+            b.p
+        )?;
+        for &f in &shown {
+            write!(t, " {:.4} |", r.report.flocks.iter().find(|g| g.id == f).map_or(0.0, |g| g.fraction))?;
+        }
+        writeln!(t)?;
+    }
+    let settled: u64 = mj_counts.iter().sum();
+    write!(t, "| MuJoCo {} | | | | | |", step_label(REFERENCE_DT))?;
+    for &f in &shown {
+        write!(t, " {:.4} |", mj_counts[f] as f64 / settled.max(1) as f64)?;
+    }
+    writeln!(t)?;
+    // Reading: is the default converged, and from how many sub-steps on are the statistics those
+    // of the finest?
+    let p_finest: Vec<f64> = runs.iter().map(|r| drop_by_drop(stone, &r.outcomes, &finest.outcomes).p).collect();
+    let p_mj: Vec<f64> = runs.iter().map(|r| drop_by_drop(stone, &r.outcomes, mj).p).collect();
+    let default = SUBSTEPS.iter().position(|&k| k == 4).expect("the default is in SUBSTEPS");
+    let converged = (0..SUBSTEPS.len() - 1).find(|&i| p_finest[i..SUBSTEPS.len() - 1].iter().all(|&p| p >= 0.05));
+    let agree: Vec<String> =
+        SUBSTEPS.iter().zip(&p_mj).filter(|(_, &p)| p >= 0.05).map(|(k, _)| k.to_string()).collect();
+    writeln!(
+        t,
+        "\nAt the default 4 iterations the per-flock statistics {} those at {} (p = {:.3}); {}. Against MuJoCo, p ≥ \
+         0.05 at {}.",
+        if p_finest[default] >= 0.05 { "are" } else { "are **not**" },
+        SUBSTEPS[SUBSTEPS.len() - 1],
+        p_finest[default],
+        match converged {
+            Some(i) =>
+                format!("from {} iterations on every p against {} is ≥ 0.05", SUBSTEPS[i], SUBSTEPS[SUBSTEPS.len() - 1]),
+            None => "no coarser count reaches them".into(),
+        },
+        if agree.is_empty() { "no iteration count".into() } else { format!("{} iterations", agree.join(", ")) },
+    )?;
+    Ok(t)
 }
 
 /// What `shared/mujoco_drops.py` writes.
@@ -345,17 +447,38 @@ fn chi_shares(a: &[u64], b: &[u64]) -> Vec<f64> {
         .collect()
 }
 
-/// A χ² homogeneity test of two samples' per-flock counts.
+/// Two runs of the same releases compared drop by drop: the Stuart–Maxwell test of marginal
+/// homogeneity of their per-flock counts (`stats::stuart_maxwell`, which uses the pairing), and
+/// how many of the drops settled in both end in the same flock.
 #[derive(Clone, Copy)]
 struct Chi {
     chi2: f64,
     dof: usize,
     p: f64,
+    same: usize,
+    both: usize,
 }
 
-fn chi(a: &[u64], b: &[u64]) -> Chi {
-    let (chi2, dof, p) = chi_square_homogeneity(a, b);
-    Chi { chi2, dof, p }
+/// The flock a drop ended in (the certificate's, or that of its rest facet).
+fn flock_of(stone: &Stone, o: &DropOutcome) -> Option<usize> {
+    o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
+}
+
+/// [`Chi`] of the runs `a` and `b` (outcomes by drop index) on the drops settled in both.
+fn drop_by_drop(stone: &Stone, a: &BTreeMap<u64, DropOutcome>, b: &BTreeMap<u64, DropOutcome>) -> Chi {
+    let k = stone.flock_kinds.len();
+    let mut table = vec![vec![0u64; k]; k];
+    let (mut same, mut both) = (0, 0);
+    for (i, x) in a {
+        let Some(y) = b.get(i) else { continue };
+        if let (true, true, Some(fx), Some(fy)) = (x.settled, y.settled, flock_of(stone, x), flock_of(stone, y)) {
+            table[fx][fy] += 1;
+            both += 1;
+            same += usize::from(fx == fy);
+        }
+    }
+    let (chi2, dof, p) = stuart_maxwell(&table);
+    Chi { chi2, dof, p, same, both }
 }
 
 /// MuJoCo at one step, for one body.
@@ -460,7 +583,12 @@ fn main() -> anyhow::Result<()> {
     let input = serde_json::json!({
         "drops": n,
         "sample_drops": n * SAMPLE_FACTOR,
-        "seed": SEED,
+        "orientations": (0..n * SAMPLE_FACTOR)
+            .map(|i| {
+                let q = launch(&mut item_rng(SEED, i), &reference).orientation;
+                [q.w, q.i, q.j, q.k]
+            })
+            .collect::<Vec<_>>(),
         "repeats": 1,
         "height": reference.height,
         "friction": reference.friction,
@@ -577,6 +705,7 @@ fn main() -> anyhow::Result<()> {
     let mut rapier_flat: Vec<(f64, f64, [f64; 2])> = Vec::new();
     let mut summaries: Vec<Summary> = Vec::new();
     let mut sample_tables = String::new();
+    let mut substep_tables = String::new();
     let mut box_pairs = String::new();
     for (b, ((name, _), stone)) in bodies.iter().zip(&stones).enumerate() {
         // MuJoCo's drops at each step, classified by the project's rule; its fastest round.
@@ -655,7 +784,6 @@ fn main() -> anyhow::Result<()> {
             rows[0].rise.1,
         )?;
         let nd = n as f64;
-        let mj_counts: Vec<Vec<u64>> = mj.iter().map(|x| counts(stone, &x.report)).collect();
         // The larger, untimed samples: the batched project at the reference step (drop by drop
         // the plain drops), the `--fast` numerics, and MuJoCo at both steps.
         let big = n * SAMPLE_FACTOR;
@@ -676,14 +804,19 @@ fn main() -> anyhow::Result<()> {
         let same_project = paired(&project_run.outcomes, &fast_run.outcomes);
         let (pc, dc) = (counts(stone, project_big), counts(stone, fast_big));
         let (m0, m1) = (counts(stone, &mj[0].big), counts(stone, &mj[1].big));
-        let big_ref = chi(&pc, &m0);
-        let big_mj_steps = chi(&m1, &m0);
-        let big_fast_same = chi(&dc, &m1);
-        let big_fast_ref = chi(&dc, &m0);
-        let big_project_steps = chi(&dc, &pc);
+        let big_ref = drop_by_drop(stone, &project_run.outcomes, &mj[0].big_outcomes);
+        let big_mj_steps = drop_by_drop(stone, &mj[1].big_outcomes, &mj[0].big_outcomes);
+        let big_fast_same = drop_by_drop(stone, &fast_run.outcomes, &mj[1].big_outcomes);
+        let big_fast_ref = drop_by_drop(stone, &fast_run.outcomes, &mj[0].big_outcomes);
+        let big_project_steps = drop_by_drop(stone, &fast_run.outcomes, &project_run.outcomes);
         let shares = chi_shares(&pc, &m0);
         let shares_mj = chi_shares(&m1, &m0);
-        let test = |what: &str, c: &Chi| format!("* {what}: χ² = {:.1} ({} dof), p = {:.3}", c.chi2, c.dof, c.p);
+        let test = |what: &str, c: &Chi| {
+            format!(
+                "* {what}: same flock in both {} of {} drops; Stuart–Maxwell χ² = {:.1} ({} dof), p = {:.3}",
+                c.same, c.both, c.chi2, c.dof, c.p
+            )
+        };
         writeln!(
             sample_tables,
             "\n### {name}\n\n{} drops per engine and step; not settled within the {} s cap: project {} at {ref_label} \
@@ -731,6 +864,7 @@ fn main() -> anyhow::Result<()> {
             )?;
         }
         let fraction = |r: &DropReport, k: usize| r.flocks.iter().find(|f| f.id == k).map_or(0.0, |f| f.fraction);
+        substep_tables.push_str(&substep_table(stone, name, big, &modes[2], &pool, &mj[0].big_outcomes)?);
         if mb0.flat_restitution.is_some() {
             // The box: its six flocks are its faces; pool the two faces of each pair (by symmetry the same).
             let axis_of = |k: usize| {
@@ -790,9 +924,9 @@ fn main() -> anyhow::Result<()> {
             let (rl, rs) = (r.rate / (nd / mj[0].loop_s), r.rate / (nd / mj[0].step_s));
             let (sl, ss) = (r.rate / (nd / mj[s].loop_s), r.rate / (nd / mj[s].step_s));
             ratios.push((rl, rs));
-            let c = counts(stone, &r.report);
-            let p = chi(&c, &mj_counts[0]).p;
-            let p_same = chi(&c, &mj_counts[s]).p;
+            let vs_same = drop_by_drop(stone, &r.outcomes, &mj[s].outcomes);
+            let (p, p_same) = (drop_by_drop(stone, &r.outcomes, &mj[0].outcomes).p, vs_same.p);
+            let agree = format!("{}/{}", vs_same.same, vs_same.both);
             if s == 1 {
                 p_fast_same = p_same;
             }
@@ -807,7 +941,7 @@ fn main() -> anyhow::Result<()> {
             writeln!(
                 table,
                 "| {name} | project, {} | {} | {:.1} | **{rl:.2}×** | {rs:.2}× | **{sl:.2}×** ({ss:.2}×) | {us:.2} | \
-                 {:.2} | {} | {} | {} | {same}/{n} | {p:.2} | {p_same:.2} |",
+                 {:.2} | {} | {} | {} | {same}/{n} | {agree} | {p:.2} | {p_same:.2} |",
                 r.label,
                 step_label(m.dt),
                 r.rate,
@@ -836,7 +970,7 @@ fn main() -> anyhow::Result<()> {
         // The `--fast` numerics against MuJoCo at the same step.
         let d = &rows[3];
         ratios.push((d.rate / (nd / mj[1].loop_s), d.rate / (nd / mj[1].step_s)));
-        let p_mj_steps = chi(&mj_counts[1], &mj_counts[0]).p;
+        let p_mj_steps = drop_by_drop(stone, &mj[1].outcomes, &mj[0].outcomes).p;
         for (s, side) in mj.iter().enumerate() {
             let p_cell = if s == 0 { String::new() } else { format!("{p_mj_steps:.2}") };
             for (label, secs) in
@@ -845,7 +979,7 @@ fn main() -> anyhow::Result<()> {
                 let us = 1e6 * secs / side.steps as f64;
                 writeln!(
                     table,
-                    "| {name} | MuJoCo, {label} | {} | {:.1} | | | | {us:.2} | {:.2} | {} | — | {} | | {p_cell} | |",
+                    "| {name} | MuJoCo, {label} | {} | {:.1} | | | | {us:.2} | {:.2} | {} | — | {} | | | {p_cell} | |",
                     step_label(side.dt),
                     nd / secs,
                     side.report.mean_time,
@@ -937,7 +1071,7 @@ fn main() -> anyhow::Result<()> {
         writeln!(flock_tables)?;
     }
 
-    let parts = Parts { table, flock_tables, checks, sample_tables, box_pairs };
+    let parts = Parts { table, flock_tables, checks, sample_tables, substep_tables, box_pairs };
     let recalibrated = recalibrated.expect("round 0 ran");
     let s = readme(n, &mj_rounds[0], &recalibrated, &modes, &parts, &bars, &summaries, &rapier_flat)?;
     std::fs::write(out.join("README.md"), s)?;
@@ -953,6 +1087,8 @@ struct Parts {
     flock_tables: String,
     checks: String,
     sample_tables: String,
+    /// The untimed convergence check in rapier's solver sub-steps.
+    substep_tables: String,
     /// The box's fractions pooled by face pair.
     box_pairs: String,
 }
@@ -1016,8 +1152,8 @@ fn readme(
          | mass, inertia | 1, `Stone::body.inertia` | `<inertial pos=\"0 0 0\" mass=\"1\" fullinertia=…/>`, the same \
          tensor (diagonal in the principal frame) |\n\
          | release | from rest, lowest point {HEIGHT} R_max above the plane, Haar-uniform orientation (the \
-         project's stream, seed {SEED}) | the same, orientations from numpy's `default_rng(seed + body)` (the \
-         statistics are compared, not drop by drop) |\n\
+         project's stream, seed {SEED}) | the same releases: the project's orientation of each drop index, carried \
+         to the principal frame (the drops are compared one by one) |\n\
          | friction | Coulomb μ = {FRICTION} (rapier, circular cone) | condim 3 (sliding only), μ = {FRICTION} on \
          both geoms, **{} cone** (MuJoCo's default is pyramidal) |\n\
          | restitution | e = {RESTITUTION} (rapier's restitution coefficient, completed by the contact law: Newton's law at every struck point, `world::ContactLaw::restitute`) | MuJoCo has none: \
@@ -1077,16 +1213,18 @@ fn readme(
         s,
         "| body | engine, mode | dt | drops/s | ratio vs MuJoCo {r_l} loop | ratio vs MuJoCo {r_l} stepping alone | \
          ratio vs MuJoCo at the same dt: loop (stepping alone) | CPU µs per step | mean simulated s per drop | settled \
-         | certified | off its facet | same flock as plain | χ² p vs MuJoCo {r_l} (flocks) | χ² p vs MuJoCo at the \
-         same dt |"
+         | certified | off its facet | same flock as plain | same flock as MuJoCo at the same dt | p vs MuJoCo {r_l} \
+         (flocks, paired) | p vs MuJoCo at the same dt |"
     )?;
-    writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")?;
+    writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")?;
     s.push_str(&parts.table);
     writeln!(
         s,
         "\n*off its facet*: settled with G more than {REST_TOLERANCE} R_max above its stable facet's rest (stopped on \
-         a slope or an edge). *χ² p*: Pearson's test of homogeneity of the per-flock counts of that row against \
-         MuJoCo's (`stats::chi_square_homogeneity`); on MuJoCo's {d_l} rows, against MuJoCo's own at {r_l}.\n"
+         a slope or an edge). Both engines drop the same releases, so the drops pair up by index: *same flock as \
+         MuJoCo* counts the drops settled in both that end in the same flock; *p*: the Stuart–Maxwell test of \
+         marginal homogeneity of the per-flock counts of that row against MuJoCo's, drop by drop \
+         (`stats::stuart_maxwell`); on MuJoCo's {d_l} rows, against MuJoCo's own at {r_l}.\n"
     )?;
     writeln!(s, "![ratio](ratio.png)\n")?;
     writeln!(s, "## Reading\n")?;
@@ -1235,11 +1373,10 @@ fn readme(
          for at least 2). MuJoCo's restitution {}: the ball that rebounds with e = {:.3} at {r_l} rebounds with \
          e = {:.3} at {d_l}. {recal_sentence} MuJoCo's loop runs {} drops/s at {d_l} against {} at {r_l} (×{}), its \
          stepping alone {} against {}; a step costs {} µs of stepping alone against {} µs at {r_l}, and a drop \
-         takes {} simulated s against {}. {settling}, {warnings}. χ² p of its per-flock counts at {d_l} against its \
-         own at {r_l}: timed drops {}; larger samples ({SAMPLE_FACTOR} × {n}, [below](#larger-samples-untimed)) {}. \
-         {mj_verdict} (Both steps start from the same orientations, numpy's stream of the body, so the samples are \
-         paired: {} drops end in the same flock at both steps; for paired samples the χ² test, which takes them as \
-         independent, is conservative.)\n",
+         takes {} simulated s against {}. {settling}, {warnings}. Paired p (Stuart–Maxwell) of its per-flock counts \
+         at {d_l} against its own at {r_l}: timed drops {}; larger samples ({SAMPLE_FACTOR} × {n}, \
+         [below](#larger-samples-untimed)) {}. {mj_verdict} (Both steps drop the same releases: {} drops end in the \
+         same flock at both steps.)\n",
         mj[1].solref[0],
         mj[1].solref[1],
         MJ_TIMECONST / dts[1],
@@ -1322,20 +1459,21 @@ fn readme(
     };
     write!(
         s,
-        "**Outcome statistics.** In the timed runs ({n} drops per engine), χ² p of the per-flock counts against \
-         MuJoCo's at {r_l}, plain / batched / flock-certified + batched / `--fast` numerics: {}; the lowest is {:.2} \
-         ({}). {shared}; the `--fast` numerics integrate at another step and are a sample of their own: against \
-         MuJoCo at the same step, {d_l}, their p is {}. Each engine draws its own orientations, and at {n} drops a \
-         flock of a few per cent has a 95 % interval about as wide as its share, so the sharper tests are on the \
-         larger untimed samples ({SAMPLE_FACTOR} × {n} drops per engine and step, [below](#larger-samples-untimed)). \
-         There, the project's batched drops at {r_l} against MuJoCo's at {r_l}: p = {}, {}. The flock with the \
-         largest share of χ² there: {}. The project's `--fast` numerics against MuJoCo at the same step {d_l}: p = \
-         {}, {}{}; against MuJoCo at {r_l}: p = {}, {}; against the project's own drops at {r_l}: p = {}, {}; these two \
-         samples are paired, as MuJoCo's two steps are ({} drops end in the same flock at both steps).",
+        "**Outcome statistics.** Both engines drop the same releases, so every comparison is drop by drop (paired \
+         p: the Stuart–Maxwell test of marginal homogeneity of the per-flock counts). In the timed runs ({n} drops), \
+         p against MuJoCo at {r_l}, plain / batched / flock-certified + batched / `--fast` numerics: {}; the lowest \
+         is {:.2} ({}). {shared}; the `--fast` numerics integrate at another step: against MuJoCo at the same step, \
+         {d_l}, their p is {}. The sharper tests are on the larger untimed samples ({SAMPLE_FACTOR} × {n} drops per \
+         engine and step, [below](#larger-samples-untimed)). There, the project's batched drops at {r_l} end in \
+         MuJoCo's flock at {r_l} in {} of the drops settled in both; p = {}, {}. The flock with the largest share \
+         of the homogeneity χ² there: {}. The project's `--fast` numerics against MuJoCo at the same step {d_l}: \
+         p = {}, {}{}; against MuJoCo at {r_l}: p = {}, {}; against the project's own drops at {r_l}: p = {}, {} \
+         ({} drops end in the same flock at both steps).",
         each(&|x| format!("{} {}", x.short, x.p.iter().map(|p| format!("{p:.2}")).collect::<Vec<_>>().join(" / "))),
         worst.0,
         worst.1,
         each(&|x| format!("{} {:.2}", x.short, x.p_fast_same)),
+        each(&|x| format!("{} {} of {}", x.short, x.big_ref.same, x.big_ref.both)),
         each(&|x| format!("{} {:.3}", x.short, x.big_ref.p)),
         verdict(big_differ(&|x| x.big_ref.p), "the two engines' per-flock statistics"),
         each(&|x| format!(
@@ -1384,9 +1522,20 @@ fn readme(
          timed ones: the project's batched drops at {r_l} (drop by drop its plain drops), its `--fast` numerics \
          (flock-certified + batched at {d_l}) and MuJoCo's drops at both steps, per flock (fraction of settled drops, \
          95 % interval; static = quasi-static basin probability), with each flock's share of two χ² statistics of \
-         homogeneity."
+         homogeneity (which take the two samples as independent: a description of where they differ; the tests \
+         use the pairing)."
     )?;
     s.push_str(&parts.sample_tables);
+    writeln!(
+        s,
+        "\n## Rapier's solver sub-steps (untimed)\n\nThe project's drops at {r_l} (flock-certified + batched) \
+         with {} solver iterations (rapier's sub-steps of a step; the default is 4), the same {SAMPLE_FACTOR} × {n} \
+         releases, each compared drop by drop with MuJoCo at {r_l} and with the project at {} iterations (paired p: \
+         Stuart–Maxwell). Drops/s here are indicative (untimed conditions).",
+        SUBSTEPS.map(|k| k.to_string()).join(", "),
+        SUBSTEPS[SUBSTEPS.len() - 1],
+    )?;
+    s.push_str(&parts.substep_tables);
     writeln!(s, "\n## Per flock, timed runs (fraction of settled drops, 95 % interval; static = quasi-static basin probability)")?;
     s.push_str(&parts.flock_tables);
     Ok(s)

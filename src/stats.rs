@@ -79,6 +79,46 @@ pub fn chi_square_homogeneity(a: &[u64], b: &[u64]) -> (f64, usize, f64) {
     (chi2, dof, p)
 }
 
+/// The Stuart–Maxwell test of marginal homogeneity of a paired sample (Stuart 1955, Maxwell
+/// 1970): `table[i][j]` counts the items classified i by the first method and j by the second
+/// (e.g. the flock of one release in two engines). With the marginal differences
+/// d_i = n_i· − n_·i and their covariance S_ii = n_i· + n_·i − 2 n_ii, S_ij = −(n_ij + n_ji),
+/// the statistic χ² = dᵀ S⁻¹ d over k − 1 of the k categories is χ² with k − 1 degrees of
+/// freedom under homogeneity (dropping any one category gives the same value, since Σ d_i = 0).
+/// Categories on which the two methods never disagree (S_ii = 0, hence d_i = 0) carry no
+/// information and are left out of k. For two categories it is McNemar's (b − c)² / (b + c).
+/// Unlike [`chi_square_homogeneity`], which takes its two samples as independent and is
+/// conservative for a paired one, this test uses the pairing: items classified alike by both
+/// methods cancel. Returns (χ², dof, p); (0, 0, 1) when the methods never disagree.
+pub fn stuart_maxwell(table: &[Vec<u64>]) -> (f64, usize, f64) {
+    let k = table.len();
+    let n = |i: usize, j: usize| table[i][j] as f64;
+    let row = |i: usize| (0..k).map(|j| n(i, j)).sum::<f64>();
+    let col = |i: usize| (0..k).map(|j| n(j, i)).sum::<f64>();
+    let informative: Vec<usize> = (0..k).filter(|&i| row(i) + col(i) - 2.0 * n(i, i) > 0.0).collect();
+    let Some((_, kept)) = informative.split_last() else { return (0.0, 0, 1.0) };
+    let m = kept.len();
+    if m == 0 {
+        return (0.0, 0, 1.0);
+    }
+    let d = nalgebra::DVector::from_fn(m, |a, _| row(kept[a]) - col(kept[a]));
+    let s = nalgebra::DMatrix::from_fn(m, m, |a, b| {
+        let (i, j) = (kept[a], kept[b]);
+        if i == j {
+            row(i) + col(i) - 2.0 * n(i, i)
+        } else {
+            -(n(i, j) + n(j, i))
+        }
+    });
+    let chi2 = match s.cholesky() {
+        Some(c) => d.dot(&c.solve(&d)),
+        None => return (f64::INFINITY, m, 0.0),
+    };
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    let p = ChiSquared::new(m as f64).map(|dist| 1.0 - dist.cdf(chi2)).unwrap_or(f64::NAN);
+    (chi2, m, p)
+}
+
 /// Kullback–Leibler divergence D(empirical ‖ static) in nats (categories with zero counts
 /// contribute 0; a count where the static probability is 0 gives ∞).
 pub fn kl_divergence(counts: &[u64], probabilities: &[f64]) -> f64 {
@@ -239,5 +279,34 @@ mod tests {
         let g = log_grid(1e-4, 1e-2, GridSize::PerDecade(5));
         assert_eq!(g.len(), 11);
         assert!((g[5] / 1e-3 - 1.0).abs() < 1e-12 && (g[10] / 1e-2 - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn stuart_maxwell_of_two_categories_is_mcnemar() {
+        // McNemar: b = 25 items change 0 → 1, c = 10 change 1 → 0: χ² = (25 − 10)² / 35.
+        let (c, dof, p) = stuart_maxwell(&[vec![40, 25], vec![10, 60]]);
+        assert!((c - 225.0 / 35.0).abs() < 1e-12 && dof == 1, "{c} {dof}");
+        assert!((p - 0.01123).abs() < 1e-4, "{p}");
+    }
+
+    #[test]
+    fn stuart_maxwell_sees_the_pairing_and_ignores_the_order_of_categories() {
+        // A symmetric table has equal marginals: χ² = 0.
+        let sym = [vec![50, 3, 4], vec![3, 40, 6], vec![4, 6, 30]];
+        assert_eq!(stuart_maxwell(&sym).0, 0.0);
+        // Permuting the categories (which one is left out changes) leaves χ² unchanged.
+        let t = [vec![50, 9, 1], vec![2, 40, 8], vec![4, 1, 30]];
+        let perm = [2usize, 0, 1];
+        let tp: Vec<Vec<u64>> = perm.iter().map(|&i| perm.iter().map(|&j| t[i][j]).collect()).collect();
+        let (a, b) = (stuart_maxwell(&t), stuart_maxwell(&tp));
+        assert!(a.0 > 1.0 && (a.0 - b.0).abs() < 1e-9 * a.0 && a.1 == 2 && b.1 == 2, "{a:?} {b:?}");
+        // Not vacuous: the same marginals as independent samples are far from significant, paired
+        // they are: 10 items move 0 → 1 and none back, among 1000 that agree.
+        let paired = [vec![500, 10], vec![0, 490]];
+        let (_, _, p_paired) = stuart_maxwell(&paired);
+        let (_, _, p_independent) = chi_square_homogeneity(&[510, 490], &[500, 500]);
+        assert!(p_paired < 0.01 && p_independent > 0.5, "{p_paired} {p_independent}");
+        // Methods that never disagree: no test.
+        assert_eq!(stuart_maxwell(&[vec![5, 0], vec![0, 7]]), (0.0, 0, 1.0));
     }
 }

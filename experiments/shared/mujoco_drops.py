@@ -4,9 +4,11 @@ Usage: python3 mujoco_drops.py IN.json OUT.json
 
 IN.json (written by the Rust experiment): the physics (release height, friction, restitution,
 damping, dt, rest rule, cap), the number of timed drops, the size of the (untimed) sample for the
-statistics, whose first drops are the timed ones, a seed, how many times to time them, and the
-bodies, each with its hull corners relative to G and its inertia tensor about G, in the scaled
-frame of the project (R_max = 1 m, mass 1, g = 9.81).
+statistics, whose first drops are the timed ones, how many times to time them, the release
+orientation of every drop of the sample (`orientations`: unit quaternions (w, x, y, z), project
+body frame → world, the project's own releases of the same drop indices, so that both engines
+drop the same stones drop by drop), and the bodies, each with its hull corners relative to G and
+its inertia tensor about G, in the scaled frame of the project (R_max = 1 m, mass 1, g = 9.81).
 
 OUT.json: the MuJoCo settings chosen, the measured restitution of a ball drop, and per body the
 final body-frame down direction of every drop (in the project's body frame), its steps, whether
@@ -23,6 +25,10 @@ How the physics is matched (the README of `results/drops_vs_mujoco/` says the sa
   damping is per degree of freedom: with the body frame on the principal axes, a rotational
   damping of dof_damping = k I_i on each axis is the torque -k I ω, i.e. a uniform angular
   damping k (rad/s per s), as rapier's. Down directions are rotated back before output.
+* release: the project's release orientation of the same drop index (IN.json `orientations`),
+  carried over to the principal frame (`principal_orientation`), from rest, the lowest corner
+  `height` above the plane: the two engines drop the same stone in the same pose, so their
+  outcomes are compared drop by drop, not only as two samples.
 * global damping: dof_damping = (c_lin · m, c_lin · m, c_lin · m, c_ang I_1, c_ang I_2, c_ang I_3)
   on the free joint; with an integrator that treats damping implicitly (implicitfast, or Euler),
   one step divides the velocity by (1 + dt c), which is exactly rapier's damping law.
@@ -157,23 +163,30 @@ def rotation_taking(a, b):
     return (q / np.linalg.norm(q)).tolist()
 
 
-def haar_quaternions(rng, n):
-    """n uniformly random rotations (Haar measure): normalised 4D Gaussians, as (w, x, y, z)."""
-    q = rng.standard_normal((n, 4))
-    return q / np.linalg.norm(q, axis=1, keepdims=True)
-
-
-def quat_rotate_inverse(q, v):
-    """R(q)ᵀ v for a unit quaternion q = (w, x, y, z)."""
+def quat_matrix(q):
+    """The rotation matrix of a unit quaternion q = (w, x, y, z)."""
     w, x, y, z = q
-    r = np.array(
+    return np.array(
         [
             [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
             [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
             [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
         ]
     )
-    return r.T @ v
+
+
+def principal_orientation(q_project, vecs):
+    """The MuJoCo body's orientation (principal frame → world, (w, x, y, z)) of the project's
+    release orientation `q_project` (project body frame → world): x_world = R(q) vecs x_principal."""
+    q = np.array(q_project, dtype=float)
+    out = np.zeros(4)
+    mujoco.mju_mat2Quat(out, (quat_matrix(q / np.linalg.norm(q)) @ vecs).flatten())
+    return out
+
+
+def quat_rotate_inverse(q, v):
+    """R(q)ᵀ v for a unit quaternion q = (w, x, y, z)."""
+    return quat_matrix(q).T @ v
 
 
 def check_placement(m, d, corners_principal):
@@ -197,7 +210,7 @@ def check_placement(m, d, corners_principal):
     return worst
 
 
-def run_body(p, body, seed, solref, integrator):
+def run_body(p, body, solref, integrator):
     corners = np.array(body["corners"], dtype=float)
     inertia = np.array(body["inertia"], dtype=float)
     lam, vecs = np.linalg.eigh(0.5 * (inertia + inertia.T))
@@ -229,8 +242,9 @@ def run_body(p, body, seed, solref, integrator):
 
     n = p["drops"]
     total = max(n, p.get("sample_drops", n))
-    rng = np.random.default_rng(seed)
-    quats = haar_quaternions(rng, total)
+    quats = [principal_orientation(q, vecs) for q in p["orientations"][:total]]
+    if len(quats) < total:
+        raise SystemExit(f"IN.json gives {len(quats)} orientations for {total} drops")
     down_world = np.array([0.0, 0.0, -1.0])
     starts = []
     for q in quats:
@@ -342,8 +356,8 @@ def main():
         file=sys.stderr,
     )
     bodies = []
-    for k, body in enumerate(p["bodies"]):
-        r = run_body(p, body, p["seed"] + k, solref, integrator)
+    for body in p["bodies"]:
+        r = run_body(p, body, solref, integrator)
         best = min(r["loop_cpu_s"])
         print(
             f"  {r['name']}: {len(r['drops']) / best:.1f} drops/s (Python loop), "
