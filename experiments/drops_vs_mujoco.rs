@@ -518,7 +518,8 @@ struct Summary {
     short: &'static str,
     /// CPU µs per simulated step of each mode.
     us: Vec<f64>,
-    /// χ² homogeneity p (timed drops) of each mode's per-flock counts against MuJoCo's at 1/240 s.
+    /// Paired p (Stuart–Maxwell, timed drops) of each mode's per-flock counts against MuJoCo's at
+    /// 1/240 s.
     p: Vec<f64>,
     /// Drops of each mode that ended in the flock of the same plain drop.
     same_flock: Vec<usize>,
@@ -526,7 +527,7 @@ struct Summary {
     t: Vec<f64>,
     /// MuJoCo at each of [`mj_dts`].
     mj: Vec<MjSummary>,
-    /// χ² p, timed drops: the `--fast` numerics against MuJoCo at the same step; MuJoCo at the
+    /// Paired p, timed drops: the `--fast` numerics against MuJoCo at the same step; MuJoCo at the
     /// `--fast` step against MuJoCo at the reference step.
     p_fast_same: f64,
     p_mj_steps: f64,
