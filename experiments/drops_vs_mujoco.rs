@@ -333,6 +333,8 @@ struct MjBody {
     loop_cpu_s: Vec<f64>,
     replay_cpu_s: Vec<f64>,
     replay_identical: bool,
+    /// Every release's initial down direction in the project's body frame, as MuJoCo placed it.
+    release_downs: Vec<[f64; 3]>,
 }
 
 #[derive(Deserialize)]
@@ -767,10 +769,24 @@ fn main() -> anyhow::Result<()> {
             let r = rise(&mj[s].outcomes);
             format!("median {:.1e}, largest {:.1e} R_max", r.0, r.1)
         });
+        // MuJoCo's releases are the project's: the largest angle between the two engines' initial
+        // down directions (body frame) over every drop of the sample, at both steps.
+        let release_angle = mj_rounds[0]
+            .iter()
+            .flat_map(|r| r.bodies[b].release_downs.iter().enumerate())
+            .map(|(i, d)| {
+                let q = launch(&mut item_rng(SEED, i as u64), &reference).orientation;
+                let own = q.inverse() * -Vec3::z();
+                let (cos, sin) = (own.dot(&Vec3::from(*d)), own.cross(&Vec3::from(*d)).norm());
+                sin.atan2(cos)
+            })
+            .fold(0.0f64, f64::max);
+        let releases = mj_rounds[0].iter().map(|r| r.bodies[b].release_downs.len()).sum::<usize>();
         writeln!(
             checks,
-            "* {name}: MuJoCo's compiled mesh has {} vertices ({} hull corners given), its support in 7 \
-             directions within {:.1e} R_max of the corners'; the replays ended bit for bit where the loop did: \
+            "* {name}: MuJoCo's initial down direction (body frame) is the project's for every one of the {releases} \
+             releases (both steps) within {release_angle:.1e} rad; MuJoCo's compiled mesh has {} vertices ({} hull \
+             corners given), its support in 7 directions within {:.1e} R_max of the corners'; the replays ended bit for bit where the loop did: \
              {}; every round gave the same drops: {}; drops with a MuJoCo warning (an instability) in the \
              larger samples: {}. How far off its stable facet a drop came to rest, h(final down) − R_F (the rise \
              of G that its tilt implies; 0 flat on the facet, counted on it up to {REST_TOLERANCE}): in MuJoCo \

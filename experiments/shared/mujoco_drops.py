@@ -333,6 +333,9 @@ def run_body(p, body, solref, integrator):
         "loop_cpu_s": loop_times,
         "replay_cpu_s": replay_times,
         "replay_identical": bool(deterministic),
+        # Every release's initial down direction, back in the project's body frame: the Rust side
+        # checks it against its own release of the same drop index.
+        "release_downs": [(vecs @ quat_rotate_inverse(q, down_world)).tolist() for q, _ in starts],
         "steps_total": int(sum(r[0] for r in results)),
     }
 
