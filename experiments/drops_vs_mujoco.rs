@@ -255,8 +255,12 @@ fn substep_table(
         }
         c
     };
-    for (k, r) in SUBSTEPS.iter().zip(&runs) {
-        let (a, b) = (drop_by_drop(stone, &r.outcomes, mj), drop_by_drop(stone, &r.outcomes, &finest.outcomes));
+    // Each run against MuJoCo and against the finest, once: the table and the reading use them.
+    let vs: Vec<(Chi, Chi)> = runs
+        .iter()
+        .map(|r| (drop_by_drop(stone, &r.outcomes, mj), drop_by_drop(stone, &r.outcomes, &finest.outcomes)))
+        .collect();
+    for ((k, r), &(a, b)) in SUBSTEPS.iter().zip(&runs).zip(&vs) {
         write!(
             t,
             "| {k} | {:.0} | {} of {} | {:.3} | {} of {} | {:.3} |",
@@ -281,8 +285,8 @@ fn substep_table(
     writeln!(t)?;
     // Reading: is the default converged, and from how many sub-steps on are the statistics those
     // of the finest?
-    let p_finest: Vec<f64> = runs.iter().map(|r| drop_by_drop(stone, &r.outcomes, &finest.outcomes).p).collect();
-    let p_mj: Vec<f64> = runs.iter().map(|r| drop_by_drop(stone, &r.outcomes, mj).p).collect();
+    let p_finest: Vec<f64> = vs.iter().map(|v| v.1.p).collect();
+    let p_mj: Vec<f64> = vs.iter().map(|v| v.0.p).collect();
     let default = SUBSTEPS.iter().position(|&k| k == 4).expect("the default is in SUBSTEPS");
     let converged = (0..SUBSTEPS.len() - 1).find(|&i| p_finest[i..SUBSTEPS.len() - 1].iter().all(|&p| p >= 0.05));
     let agree: Vec<String> =
@@ -809,12 +813,11 @@ fn main() -> anyhow::Result<()> {
         let (project_big, fast_big) = (&project_run.report, &fast_run.report);
         // The two steps of one engine start from the same orientations: drops that end in the
         // same flock at both steps.
-        let flock_of = |o: &DropOutcome| {
-            o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
-        };
         let paired = |a: &BTreeMap<u64, DropOutcome>, b: &BTreeMap<u64, DropOutcome>| {
             a.iter()
-                .filter(|(i, o)| o.settled && b.get(i).is_some_and(|p| p.settled && flock_of(p) == flock_of(o)))
+                .filter(|(i, o)| {
+                    o.settled && b.get(i).is_some_and(|p| p.settled && flock_of(stone, p) == flock_of(stone, o))
+                })
                 .count()
         };
         let same_mj = paired(&mj[0].big_outcomes, &mj[1].big_outcomes);
@@ -950,10 +953,8 @@ fn main() -> anyhow::Result<()> {
             let us = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.dt);
             us_modes.push(us);
             p_modes.push(p);
-            let flock_of = |o: &DropOutcome| {
-                o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
-            };
-            let same = r.outcomes.iter().filter(|(i, o)| flock_of(o) == flock_of(&rows[0].outcomes[*i])).count();
+            let same =
+                r.outcomes.iter().filter(|(i, o)| flock_of(stone, o) == flock_of(stone, &rows[0].outcomes[*i])).count();
             same_modes.push(same);
             writeln!(
                 table,
