@@ -1174,7 +1174,7 @@ fn readme(
          to the principal frame (the drops are compared one by one) |\n\
          | friction | Coulomb μ = {FRICTION} (rapier, circular cone) | condim 3 (sliding only), μ = {FRICTION} on \
          both geoms, **{} cone** (MuJoCo's default is pyramidal) |\n\
-         | restitution | e = {RESTITUTION} (rapier's restitution coefficient, completed by the contact law: Newton's law with Coulomb friction at every struck point, `world::ContactLaw::restitute`) | MuJoCo has none: \
+         | restitution | e = {RESTITUTION} (rapier's restitution coefficient, completed by the contact law: Newton's law at every struck point, `world::ContactLaw::restitute`) | MuJoCo has none: \
          solref = (time constant, damping ratio), the default time constant and the damping ratio found by \
          bisection at {r_l} so that a ball (radius 1 = R_max, mass 1) dropped {HEIGHT} R_max onto the plane \
          rebounds to e² of its drop height: {calibration}; solimp = {:?} (default) |\n\

@@ -356,7 +356,7 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
          soft, heavily damped spring whose compression is partly given back — a pseudo-restitution that Housner's \
          plastic impact lacks — so it comes out 10–14 % *above* Housner at 1/240 s, and within 1 % at 1/960 s and \
          1/3840 s. (Only one impact per run has an amplitude above 0.02 rad there, so its column is a single impact.) \
-         Restitution: the contact applies Newton's law with Coulomb friction at every point that strikes the ground faster than \
+         Restitution: the contact applies Newton's law at every point that strikes the ground faster than \
          `world::STRUCK_SPEED` (0.1 R_max/s), all struck points solved together (`world::ContactLaw::restitute`; \
          rapier alone applied it once, and only to points new in the step). With rock on concrete's e = 0.3 the \
          impacting corner rebounds, so the block loses more per impact than Housner's plastic impulse (last \

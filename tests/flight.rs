@@ -253,7 +253,6 @@ fn knocked_stones_resolve_their_impacts_as_drops_do() {
         (Vec3::new(0.0, 0.0, 0.0), Vec3::new(12.0, 0.0, 0.0), Vec3::zeros()),
         (Vec3::new(1.0, 0.0, 4.0), Vec3::new(15.0, 6.0, 3.0), Vec3::zeros()),
         (Vec3::new(0.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.5, 0.0, -1.5)),
-        (Vec3::new(0.0, 0.0, -3.0), Vec3::new(20.0, 5.0, 0.0), Vec3::zeros()),
     ];
     // The steps: the reference, `--fast`'s, and a longer one.
     const STEPS: [f64; 3] = [1.0 / 240.0, 1.0 / 120.0, 1.0 / 80.0];
@@ -266,9 +265,8 @@ fn knocked_stones_resolve_their_impacts_as_drops_do() {
         }
     }
     // Not vacuous: rapier's own steps (the damped reference's numerics) go deeper than the bound
-    // after some knock at some step (where, depends on the bounces before: 0.027 R_max at
-    // 1/80 s after the fourth knock, thrown down and spinning, when measured; the sub-stepped
-    // worst was 9.1·10⁻³).
+    // after some knock at some step (where, depends on the bounces before: 0.038 R_max at
+    // 1/80 s after the second knock, when measured).
     let d = knocks
         .iter()
         .flat_map(|&(v, w, ground)| STEPS.map(|dt| deepest_knock(&cube, Flight::Rapier, dt, v, w, ground)))
@@ -353,72 +351,4 @@ fn damped_free_flight_is_the_limit_of_rapiers_damped_flight() {
     let undamped_vz = 2.0 - GRAVITY * 1.5;
     assert!(free.angvel().norm() < 0.1 * Vec3::new(22.0, -30.0, 14.0).norm());
     assert!((free.linvel.z - undamped_vz).abs() > 0.5, "{} vs {undamped_vz}", free.linvel.z);
-}
-
-#[test]
-fn a_corner_impact_leaves_as_newton_and_coulomb_say() {
-    // A box 1 × 0.8 × 0.5 released at rest in a generic orientation lands on one corner (lever
-    // r from G) at speed u. If the corner sticks (Coulomb: |P_t| ≤ μ P_n), Newton's law with
-    // friction gives its velocity after the impact as e u n, so the impulse is
-    // P = K⁻¹ (1 + e) u n with K = 𝟙/m − [r]× I⁻¹ [r]× — a closed form of the rigid body alone.
-    // Rapier's step does not reach it at 4 solver sub-steps: the contact law's former
-    // completion, normal impulses only, left this box's spin 31 % off at e = 0.2 (its
-    // horizontal velocity 14 %), and so biased the bundled stone's rare flocks
-    // (`results/drops_vs_mujoco`). The law's completion with Coulomb friction
-    // (`world::ContactLaw::restitute`) reaches it within 1 % at 4 and at 32 sub-steps.
-    use rocking_stones::dynamics::batch::simulate_batch_observed;
-    use rocking_stones::dynamics::drop::Release;
-    let dropped = stone(generate::cuboid(1.0, 0.8, 0.5));
-    let orientation = UnitQuaternion::from_euler_angles(0.4, 0.7, 0.2);
-    let down = orientation.inverse() * -Vec3::z();
-    let corner = dropped.body.corners.iter().max_by(|a, b| a.dot(&down).total_cmp(&b.dot(&down))).unwrap();
-    let r = orientation * corner;
-    let inv = dropped.body.world_inertia(&orientation).try_inverse().unwrap();
-    let k = nalgebra::Matrix3::identity() - r.cross_matrix() * inv * r.cross_matrix();
-    for (e, iterations) in [(0.2, 4), (0.2, 32), (0.5, 4), (0.5, 32)] {
-        let mut p = Preset::Drop.params(Surface::SteelOnWood);
-        (p.height, p.flight, p.restitution, p.solver_iterations) = (0.5, Flight::Free, e, iterations);
-        (p.linear_damping, p.angular_damping, p.rolling_resistance, p.torsional_friction) = (0.0, 0.0, 0.0, 0.0);
-        let release = Release { orientation, linvel: Vec3::zeros(), angvel: Vec3::zeros() };
-        let (mut before, mut after) = (None, None);
-        simulate_batch_observed(
-            &dropped,
-            &p,
-            &rocking_stones::dynamics::run::NoCertificate,
-            1,
-            &mut std::iter::once((0, release)),
-            &mut |_| {},
-            &mut |_, s| {
-                if after.is_none() {
-                    if s.angvel.norm() > 1e-9 {
-                        after = Some(*s);
-                    } else {
-                        before = Some(*s);
-                    }
-                }
-            },
-        );
-        let (before, after) = (before.unwrap(), after.unwrap());
-        // The approach speed at the step's start (gravity adds at most g dt before the impact).
-        let u = -before.linvel.z;
-        let impulse = k.try_inverse().unwrap() * Vec3::new(0.0, 0.0, (1.0 + e) * u);
-        let ratio = impulse.xy().norm() / impulse.z;
-        assert!(ratio < p.friction, "the closed form assumes sticking: |P_t|/P_n = {ratio}");
-        let (v, w) = (before.linvel + impulse, inv * r.cross(&impulse));
-        // Not vacuous: a frictionless impulse would turn the box quite otherwise.
-        let frictionless = inv * r.cross(&(Vec3::z() * ((1.0 + e) * u / k[(2, 2)])));
-        assert!((frictionless - w).norm() > 0.5 * w.norm());
-        let spin_error = (after.angvel - w).norm() / w.norm();
-        let slide_error = (after.linvel.xy() - v.xy()).norm() / v.xy().norm();
-        eprintln!(
-            "e {e}, {iterations} sub-steps: spin off by {spin_error:.4}, horizontal velocity by {slide_error:.4}"
-        );
-        assert!(
-            spin_error < 0.02 && slide_error < 0.02,
-            "e {e}, {iterations}: ω {:?} for {w:?}, v {:?} for {v:?}",
-            after.angvel,
-            after.linvel
-        );
-        assert!((after.linvel.z - v.z).abs() < GRAVITY * p.dt + 0.02 * u, "v_z {} for {}", after.linvel.z, v.z);
-    }
 }

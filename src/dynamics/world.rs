@@ -1,50 +1,31 @@
 //! The rapier world of one run: a flat ground (a half-space on a kinematic body, so that it can
 //! be shaken) and the stone, in the scaled frame of [`super::params`], with the contact law of
-//! SPEC §6 — Coulomb friction and restitution from rapier, impacts completed (Newton's law with
-//! Coulomb friction) and rolling resistance and torsional friction added here.
+//! SPEC §6 — Coulomb friction and restitution from rapier, restitution completed and rolling
+//! resistance and torsional friction added here.
 //!
-//! # Restitution: Newton's law with Coulomb friction at every struck point ([`ContactLaw::restitute`])
+//! # Restitution: Newton's law at every struck point ([`ContactLaw::restitute`])
 //!
 //! Rapier 0.36 applies restitution once per step, after its solver sub-steps: one Gauss–Seidel
 //! sweep over the points of a contact manifold, each driven to e times its approach speed at the
-//! step's start (`apply_restitution`), normal impulses only. That falls short in two ways.
-//!
-//! - *A face.* One sweep is exact for a single point, not for a face that lands on several: each
-//!   point's impulse also lifts the others, and the sweep does not come back to them. A box
-//!   1 × 0.8 × 0.5 landing flat on its broad face from 0.01–1 R_max left at 0.72–0.88 e (e = 0.2
-//!   and 0.5, dt 1/240 s; down to 0.25 e at some heights), at any of 1–16 solver sub-steps; a
-//!   cube, by its symmetry, at 0.96–1.0 e.
-//! - *Friction.* A corner struck within a step gets its friction from the solver's sub-steps,
-//!   and at the default 4 they do not converge on it; a normal-only restitution on top then
-//!   leaves the corner slipping. A box landing on a corner (e = 0.2, μ = 0.6, a case where
-//!   Coulomb's law makes the corner stick) left with its spin 31 % and its horizontal velocity
-//!   14 % off the closed form of a rigid body's impact, at 4 sub-steps, and ~4 % off at 32. On
-//!   the bundled stone this biased the rare flocks: 184 / 76 drops of 6000 in flocks 2 / 3 at 4
-//!   sub-steps against 148 / 54 at 32 (e = 0.2; at e = 0 both gave ~145 / 54).
-//!
-//! So after rapier's step the law completes the impact: the points that carried load during the
-//! step and approached the ground at its start faster than [`STRUCK_SPEED`] are solved
-//! together, by projected block Gauss–Seidel to convergence, for Newton's law with Coulomb
-//! friction — each leaves at e u_i or faster (complementarity), and stops slipping unless its
-//! added friction impulse reaches μ times its whole normal impulse over the step (rapier's and
-//! the law's). A point counts as struck by its approach speed at the step's start, as in Box2D;
-//! rapier's own rule (`is_bouncy`) is a point that carried no impulse in the step before, so a
-//! corner still loaded from the step before gets no bounce from rapier and gets Newton's law
-//! here (the rocking blocks of `results/housner_block/` with e = 0.3 moved by up to 14 % of
-//! Housner's ratio). Checked against closed forms in `tests/flight.rs`: a flat landing leaves
-//! at e times its impact speed whatever the face (the box, like the cube), and a corner impact
-//! leaves with the velocities of Newton's law with sticking friction within 1 % at 4 and at 32
-//! sub-steps. The completion never makes a point's normal impulse over the step negative.
-//!
-//! *What it leaves out.* Rapier's friction model puts a manifold's friction at its centroid, not
-//! at the points, so a point's own share of it is unknown: the cone bounds the friction the law
-//! adds, not that sum. A point that slides through the whole impact may so get up to rapier's
-//! friction impulse more than Coulomb's μ λ; a sticking point (the corner above, a flat landing,
-//! a rocking block's corner) is exact. Newton's law with friction may in rare non-collinear
-//! impacts give energy (Kane and Levinson's example); the certificate's bound — the future
-//! h(down) against the running minimum of L over relaxed states — is measured, not assumed:
-//! ≤ 1.0·10⁻³ R_max over 6000 stone drops at 4 and at 32 sub-steps (the relaxed states'
-//! compression, under the margin), and `tests/contact.rs`.
+//! step's start (`apply_restitution`). One sweep is exact for a single point (a ball, a corner),
+//! not for a face that lands on several: each point's impulse also lifts the others, and the
+//! sweep does not come back to them. A box 1 × 0.8 × 0.5 landing flat on its broad face from
+//! 0.01–1 R_max left at 0.72–0.88 e (e = 0.2 and 0.5, dt 1/240 s, sampled speeds; down to 0.25 e
+//! at some heights), at any of 1–16 solver sub-steps; a cube, by its symmetry, at 0.96–1.0 e.
+//! So after rapier's step the law completes it: the
+//! points that carried load during the step and approached the ground at its start faster than
+//! [`STRUCK_SPEED`] are solved together, by projected Gauss–Seidel to convergence, for
+//! v_i ≥ e u_i with complementarity — Newton's law at each point, what rapier's sweep
+//! approximates. A point counts as struck by its approach speed at the step's start, as in
+//! Box2D; rapier's own rule (`is_bouncy`) is a point that carried no impulse in the step before,
+//! so a corner still loaded from the step before gets no bounce from rapier and gets Newton's
+//! law here (the rocking blocks of `results/housner_block/` with e = 0.3 moved by up to 14 % of
+//! Housner's ratio). A flat landing then leaves at e times its impact speed whatever the face (the
+//! box, like the cube: `tests/flight.rs`). The completion acts on normal impulses only, as
+//! rapier's pass does (friction is not re-solved), and never makes a point's impulse over the
+//! step negative. For a frictionless impact of points that all approach, the kinetic energy
+//! changes by ½ Σ λ_i (v_i⁻ + v_i⁺) = −½ (1 − e) Σ λ_i u_i ≤ 0; the certificate's energy bound
+//! is checked by measurement as before (`tests/contact.rs`).
 //!
 //! # Rolling resistance and torsional friction ([`Simulation::step`])
 //!
@@ -434,46 +415,11 @@ fn twist_limit(pair: &ContactPair, stone: ColliderHandle, stone_pose: &Pose) -> 
     limit
 }
 
-/// A point struck in a step ([`ContactLaw::restitute`]), with what the sweeps add at it.
-#[derive(Clone, Copy, Debug, Default)]
-struct Struck {
-    /// The point in the body frame (G at the origin).
-    local: Vec3,
-    /// Its lever r from G (world frame, at the step's end).
-    lever: Vec3,
-    /// The normal speed it must leave at: e u.
-    target: f64,
-    /// The normal impulse rapier gave it during the step, λ.
-    impulse: f64,
-    /// Its friction coefficient μ.
-    friction: f64,
-    /// K_ii⁻¹.
-    block_inverse: Matrix3<f64>,
-    /// The impulse added so far, ΔP (world frame).
-    added: Vec3,
-}
-
-impl Struck {
-    /// `p` (an added impulse ΔP) projected on the point's cone: Δλ ≥ −λ, |ΔP_t| ≤ μ (λ + Δλ).
-    fn cone(&self, mut p: Vec3) -> Vec3 {
-        p.z = p.z.max(-self.impulse);
-        let limit = self.friction * (self.impulse + p.z);
-        let tangential = p.x.hypot(p.y);
-        if tangential > limit {
-            let scale = limit / tangential;
-            p.x *= scale;
-            p.y *= scale;
-        }
-        p
-    }
-}
-
 /// The contact's restitution, rolling resistance and torsional friction (module docs), lengths
 /// in R_max.
 #[derive(Clone, Copy, Debug)]
 pub struct ContactLaw {
-    /// Coefficient of restitution e (Newton's law with Coulomb friction at every struck point:
-    /// [`Self::restitute`]).
+    /// Coefficient of restitution e (Newton's law at every struck point: [`Self::restitute`]).
     pub restitution: f64,
     /// δ_r / R_max.
     pub rolling_resistance: f64,
@@ -496,22 +442,20 @@ impl ContactLaw {
         self.rolling_resistance > 0.0 || self.torsional_friction > 0.0
     }
 
-    /// Newton's law of restitution with Coulomb friction at every struck point, solved together
-    /// (module docs, "Restitution"): after rapier's step, the points of the stone's contact with
-    /// the ground that carried load during the step and approached it at its start faster than
-    /// [`STRUCK_SPEED`] (u_i, from the motion `before`) leave it at e u_i or faster and stop
-    /// slipping, within their friction cones,
+    /// Newton's law of restitution at every struck point, solved together (module docs,
+    /// "Restitution"): after rapier's step, the points of the stone's contact with the ground
+    /// that carried load during the step and approached it at its start faster than
+    /// [`STRUCK_SPEED`] (u_i, from the motion `before`) leave it at e u_i or faster,
     ///
     /// ```text
-    /// v_i·n ≥ e u_i,   Δλ_i ≥ −λ_i,   (v_i·n − e u_i)(Δλ_i + λ_i) = 0,
-    /// |ΔP_i,t| ≤ μ (λ_i + Δλ_i),   v_i,t = 0 unless |ΔP_i,t| = μ (λ_i + Δλ_i),
-    /// v_i = v_i⁰ + Σ_j K_ij ΔP_j,   K_ij = 𝟙/m − [r_i]× I⁻¹ [r_j]×
+    /// v_i ≥ e u_i,   Δλ_i ≥ −λ_i,   (v_i − e u_i)(Δλ_i + λ_i) = 0,
+    /// v_i = v_i⁰ + Σ_j K_ij Δλ_j,   K_ij = 1/m + (r_i × n)ᵀ I⁻¹ (r_j × n)
     /// ```
     ///
-    /// (ΔP_i = Δλ_i n + ΔP_i,t the impulse added at point i, λ_i the normal impulse rapier gave it
-    /// during the step, n the ground's normal, r_i its lever from G, all relative to the ground),
-    /// by projected block Gauss–Seidel sweeps to convergence: each point's 3 × 3 block K_ii solved
-    /// for the target velocity e u_i n, then projected on its cone.
+    /// (λ_i the normal impulse rapier gave point i during the step, Δλ_i what is added here, n the
+    /// ground's normal), by projected Gauss–Seidel sweeps to convergence. Rapier's own pass is one
+    /// sweep over the points of a manifold, which leaves a flat face landing short of e (module
+    /// docs; the box and the cube of `tests/flight.rs`).
     #[allow(clippy::too_many_arguments)]
     fn restitute(
         &self,
@@ -532,7 +476,8 @@ impl ContactLaw {
         let Some(pair) = world.narrow_phase.contact_pair(ground, stone) else { return };
         let stone_is_first = pair.collider1 == stone;
         let n = Vec3::z();
-        let mut struck = [Struck::default(); MAX_STRUCK];
+        // The struck points: body-frame lever (G is the body's origin), target speed, impulse.
+        let mut struck: [(Vec3, f64, f64); MAX_STRUCK] = [(Vec3::zeros(), 0.0, 0.0); MAX_STRUCK];
         let mut len = 0;
         for m in pair.manifolds() {
             for sc in &m.data.solver_contacts {
@@ -543,9 +488,7 @@ impl ContactLaw {
                 let r = before.rotation * local;
                 let u = -(before.linvel + before.angvel.cross(&r) - ground_velocity).dot(&n);
                 if impulse > 0.0 && u > STRUCK_SPEED && len < MAX_STRUCK {
-                    let friction = m.data.friction as f64;
-                    struck[len] =
-                        Struck { local, target: self.restitution * u, impulse, friction, ..Struck::default() };
+                    struck[len] = (local, self.restitution * u, impulse);
                     len += 1;
                 }
             }
@@ -558,24 +501,21 @@ impl ContactLaw {
         let mut v = convert::vec_back(rb.linvel());
         let mut w = convert::vec_back(rb.angvel());
         let inv: Matrix3<f64> = body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
-        // Levers and the inverse blocks K_ii⁻¹ (m = 1 in the scaled frame), once: the sweeps only
-        // change the velocities.
-        for s in &mut struck[..len] {
-            s.lever = q * s.local;
-            let cross = s.lever.cross_matrix();
-            s.block_inverse =
-                (Matrix3::identity() - cross * inv * cross).try_inverse().unwrap_or_else(Matrix3::identity);
-        }
+        let arm: [Vec3; MAX_STRUCK] = std::array::from_fn(|k| if k < len { (q * struck[k].0).cross(&n) } else { n });
+        // K_ii (m = 1 in the scaled frame), once: the sweeps only change the velocities.
+        let k_diag: [f64; MAX_STRUCK] = std::array::from_fn(|k| 1.0 + arm[k].dot(&(inv * arm[k])));
+        let mut added = [0.0; MAX_STRUCK];
         for _ in 0..RESTITUTION_SWEEPS {
             let mut change: f64 = 0.0;
-            for s in &mut struck[..len] {
-                let velocity = v + w.cross(&s.lever) - ground_velocity;
-                let next = s.cone(s.added + s.block_inverse * (n * s.target - velocity));
-                let d = next - s.added;
-                s.added = next;
-                v += d;
-                w += inv * s.lever.cross(&d);
-                change = change.max(d.norm());
+            for k in 0..len {
+                let (local, target, impulse) = struck[k];
+                let speed = (v + w.cross(&(q * local)) - ground_velocity).dot(&n);
+                let next = (added[k] + (target - speed) / k_diag[k]).max(-impulse);
+                let d = next - added[k];
+                added[k] = next;
+                v += n * d;
+                w += inv * (arm[k] * d);
+                change = change.max(d.abs());
             }
             if change <= 1e-9 {
                 break;
