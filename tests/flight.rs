@@ -161,6 +161,9 @@ fn fast_numerics_are_free_flight_at_the_presets_longest_stable_step_and_options_
     assert!(Preset::Throw.largest_stable_dt() > 1.0 / 240.0);
     let pinned = cli_params(&["--fast", "--flight", "rapier", "--dt", "0.005"]);
     assert_eq!((pinned["flight"].as_str(), pinned["dt"].as_f64()), (Some("rapier"), Some(0.005)));
+    // The solver's sub-steps: 4 unless given.
+    assert_eq!(default["solver_iterations"].as_u64(), Some(4));
+    assert_eq!(cli_params(&["--solver-iterations", "16"])["solver_iterations"].as_u64(), Some(16));
     // A step may be given as a fraction; one that is not a positive finite time is refused.
     assert_eq!(cli_params(&["--dt", "1/120"])["dt"].as_f64(), Some(1.0 / 120.0));
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rocking")).args(["drop", "--dt", "1/0"]).output().unwrap();

@@ -80,15 +80,8 @@ pub fn default_unit(name: &str, given: Option<&String>) -> rocking_stones::repor
 /// The command line's spelling of a library parameter (`max_time` → `--max-time`); the
 /// parameters that have no option of their own are named in words.
 pub fn flag(name: &str) -> String {
-    const NO_OPTION: [&str; 7] = [
-        "rest_time",
-        "rest_linear_speed",
-        "rest_angular_speed",
-        "solver_iterations",
-        "settle_time",
-        "hold_time",
-        "degeneracy_tol",
-    ];
+    const NO_OPTION: [&str; 6] =
+        ["rest_time", "rest_linear_speed", "rest_angular_speed", "settle_time", "hold_time", "degeneracy_tol"];
     if NO_OPTION.contains(&name) {
         format!("the {} (no option)", name.replace('_', " "))
     } else {

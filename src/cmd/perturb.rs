@@ -50,6 +50,10 @@ pub struct SimArgs {
     /// Time cap per trial after the perturbation / the motion (s, scaled). Default 20 s.
     #[arg(long)]
     pub max_time: Option<f64>,
+    /// Rapier's solver sub-steps per time step (default 4; more converge rare outcomes at a cost
+    /// in proportion, as for `rocking drop`).
+    #[arg(long)]
+    pub solver_iterations: Option<usize>,
     /// Natural frequency (Hz, scaled) of the soft contact constraints. Default 120 Hz.
     #[arg(long)]
     pub contact_frequency: Option<f64>,
@@ -90,6 +94,7 @@ impl SimArgs {
         sim.rolling_resistance = self.rolling_resistance.unwrap_or(sim.rolling_resistance);
         sim.dt = self.dt.unwrap_or(sim.dt);
         sim.max_time = self.max_time.unwrap_or(sim.max_time);
+        sim.solver_iterations = self.solver_iterations.unwrap_or(sim.solver_iterations);
         p.contact_frequency = self.contact_frequency.unwrap_or(p.contact_frequency);
         p.check()?;
         Ok(p)
