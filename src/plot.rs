@@ -4,7 +4,7 @@
 //! the project bundles DejaVu Sans (`assets/`, free licence) and registers it through the
 //! `ab_glyph` backend, so PNG and SVG plots render everywhere.
 //!
-//! [`render!`](crate::plot::render) is the one place that picks the backend (SVG for a `.svg`
+//! `render!` is the one place that picks the backend (SVG for a `.svg`
 //! path, PNG otherwise) and turns plotters' errors into [`crate::Error::Plot`].
 
 use std::sync::Once;

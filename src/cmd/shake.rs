@@ -34,7 +34,7 @@ pub struct Args {
     /// settled), facet:ID (a stable micro-equilibrium) or quat:w,x,y,z.
     #[arg(long, value_parser = parse_pose)]
     pub pose: Option<shake::Pose>,
-    /// CSV records: columns time,ax[,ay[,az]] by header name or number from 1.
+    /// CSV records: columns `time,ax[,ay[,az]]` by header name or number from 1.
     #[arg(long, default_value = "1,2")]
     pub columns: String,
     /// CSV records: acceleration unit (g, m/s2, gal).

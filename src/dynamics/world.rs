@@ -3,7 +3,7 @@
 //! SPEC §6 — Coulomb friction and restitution from rapier, restitution completed and rolling
 //! resistance and torsional friction added here.
 //!
-//! # Restitution: Newton's law at every struck point ([`ContactLaw::restitute`])
+//! # Restitution: Newton's law at every struck point (`ContactLaw::restitute`)
 //!
 //! Rapier 0.36 applies restitution once per step, after its solver sub-steps: one Gauss–Seidel
 //! sweep over the points of a contact manifold, each driven to e times its approach speed at the
@@ -360,17 +360,17 @@ impl Motion {
     }
 }
 
-/// Most projected Gauss–Seidel sweeps of [`ContactLaw::restitute`] (4 points converge to 10⁻⁹
+/// Most projected Gauss–Seidel sweeps of `ContactLaw::restitute` (4 points converge to 10⁻⁹
 /// in a few tens).
 const RESTITUTION_SWEEPS: usize = 200;
 
 /// Approach speed (R_max/s, scaled) below which a contact point is resting, not struck, for the
-/// restitution of [`ContactLaw::restitute`]: a bounce from it would rise e² u²/(2g) < 5·10⁻⁴ R_max.
+/// restitution of `ContactLaw::restitute`: a bounce from it would rise e² u²/(2g) < 5·10⁻⁴ R_max.
 /// A stone at rest starts every step with a normal speed ~10⁻³ at its points (the rest rule's
 /// 2·10⁻³), far below it.
 pub const STRUCK_SPEED: f64 = 0.1;
 
-/// Most struck contact points one step resolves together ([`ContactLaw::restitute`]).
+/// Most struck contact points one step resolves together (`ContactLaw::restitute`).
 const MAX_STRUCK: usize = 16;
 
 /// [`step_world`] `n` times with a step of `dt / n` and ⌈`iterations` / n⌉ solver sub-steps
@@ -429,7 +429,7 @@ fn twist_limit(pair: &ContactPair, stone: ColliderHandle, stone_pose: &Pose) -> 
 /// in R_max.
 #[derive(Clone, Copy, Debug)]
 pub struct ContactLaw {
-    /// Coefficient of restitution e (Newton's law at every struck point: [`Self::restitute`]).
+    /// Coefficient of restitution e (Newton's law at every struck point: `Self::restitute`).
     pub restitution: f64,
     /// δ_r / R_max.
     pub rolling_resistance: f64,

@@ -202,7 +202,7 @@ pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
 /// Run member `member` of the ensemble `u` (seed `seed`) on `motion` (already scaled and
 /// sampled for the run, [`super::field::driven`]): the rock's base contact, contact and the
 /// record's azimuth and sign as drawn; where an input is not uncertain, exactly the setup's
-/// single run ([`super::field::run_record`]).
+/// single run ([`super::batch::run_record`]).
 pub fn run_member(
     stone: &Stone,
     setup: &RockSetup,
