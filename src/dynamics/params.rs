@@ -279,10 +279,11 @@ impl Preset {
     /// reference numerics' within independent samples' noise (`results/drops_certificate/`,
     /// `results/cuboid_dice/`), but not drop by drop: on the same releases the paired test tells
     /// them apart on the bundled stone (its flock 2: 0.041 against 0.031 of the drops) and on a
-    /// box (per face pair within 0.005) (`results/drops_vs_mujoco/`). Not the default: on some scanned bodies a stone that has come down on
-    /// its facet keeps jiggling on it at this step, above the rest rule's speeds, until the time
-    /// cap (10 of the 40 meshes of `results/drops_settling/` leave more than 0.5 % of their
-    /// throws unsettled without a certificate, Prometheus half of them; none at [`REFERENCE_DT`]).
+    /// box (per face pair within 0.005) (`results/drops_vs_mujoco/`). Not the default: on some
+    /// scanned bodies a stone that has come down on its facet keeps jiggling on it at this step,
+    /// above the rest rule's speeds, until the time cap (10 of the 40 meshes of
+    /// `results/drops_settling/` leave more than 0.5 % of their throws unsettled without a
+    /// certificate, Prometheus half of them; none at [`REFERENCE_DT`]).
     pub fn fast(self, p: &mut DropParams) {
         p.flight = Flight::Free;
         p.dt = self.largest_stable_dt();
