@@ -1,46 +1,57 @@
 //! The rapier world of one run: a flat ground (a half-space on a kinematic body, so that it can
 //! be shaken) and the stone, in the scaled frame of [`super::params`], with the contact law of
-//! SPEC §6 — Coulomb friction and restitution from rapier, restitution completed and rolling
-//! resistance and torsional friction added here.
+//! SPEC §6 — Coulomb friction and restitution from rapier, impacts completed (Coulomb's
+//! compression, Newton's restitution) and rolling resistance and torsional friction added here.
 //!
-//! # Restitution: Newton's law at every struck point (`ContactLaw::restitute`)
+//! # Impacts: Coulomb's compression and Newton's restitution at every struck point (`ContactLaw::restitute`)
 //!
 //! Rapier 0.36 applies restitution once per step, after its solver sub-steps: one Gauss–Seidel
 //! sweep over the points of a contact manifold, each driven to e times its approach speed at the
-//! step's start (`apply_restitution`). One sweep is exact for a single point (a ball, a corner),
-//! not for a face that lands on several: each point's impulse also lifts the others, and the
-//! sweep does not come back to them. A box 1 × 0.8 × 0.5 landing flat on its broad face from
-//! 0.01–1 R_max left at 0.72–0.88 e (e = 0.2 and 0.5, dt 1/240 s, sampled speeds; down to 0.25 e
-//! at some heights), at any of 1–16 solver sub-steps; a cube, by its symmetry, at 0.96–1.0 e.
-//! So after rapier's step the law completes it: the
-//! points that carried load during the step and approached the ground at its start faster than
-//! [`STRUCK_SPEED`] are solved together, by projected Gauss–Seidel to convergence, for
-//! v_i ≥ e u_i with complementarity — Newton's law at each point, what rapier's sweep
-//! approximates. A point counts as struck by its approach speed at the step's start, as in
-//! Box2D; rapier's own rule (`is_bouncy`) is a point that carried no impulse in the step before,
-//! so a corner still loaded from the step before gets no bounce from rapier and gets Newton's
-//! law here (the rocking blocks of `results/housner_block/` with e = 0.3 moved by up to 14 % of
-//! Housner's ratio). A flat landing then leaves at e times its impact speed whatever the face (the
-//! box, like the cube: `tests/flight.rs`). The completion acts on normal impulses only, as
-//! rapier's pass does (friction is not re-solved), and never makes a point's impulse over the
-//! step negative. For a frictionless impact of points that all approach, the kinetic energy
-//! changes by ½ Σ λ_i (v_i⁻ + v_i⁺) = −½ (1 − e) Σ λ_i u_i ≤ 0; the certificate's energy bound
-//! is checked by measurement as before (`tests/contact.rs`).
+//! step's start (`apply_restitution`), normal impulses only. That falls short twice.
 //!
-//! *What it leaves to the solver.* A corner struck within a step gets its friction from rapier's
-//! solver sub-steps, which at the default 4 do not converge on it; the completion, normal
-//! impulses only, then bounces a corner that still slips. That is the sub-step dependence of the
-//! bundled stone's rare flocks (`results/drops_vs_mujoco/`, converged from 16 sub-steps on;
-//! `--solver-iterations`). Completing with Coulomb friction as well (block Gauss–Seidel on each
-//! struck point's friction cone) removes it and matches the closed form of a rigid corner impact,
-//! but it was tried and reverted: the calibration dice then end far from their data (best rms
-//! 0.073 against 0.051; the flat die at most 0.79 on its square faces, measured 0.916). That
-//! completion gives energy in 15 % of its passes on thrown dice (Newton's law with friction at
-//! several points can; up to 0.36 R_max of level at e = 0.5, and at e = 0.85 the dice never
-//! come to rest), but capping each pass at the energy it started from removes the gains and not
-//! the dice's shift (0.77 for the flat die): what moves them is the friction it adds at points
-//! rapier's centroid friction let slip. This completion (normal impulses only) gives no energy
-//! in any pass (the same dice, e = 0.5 and 0.85: 0 of ~30 000).
+//! - *A face.* One sweep is exact for a single point, not for a face that lands on several: each
+//!   point's impulse also lifts the others, and the sweep does not come back to them. A box
+//!   1 × 0.8 × 0.5 landing flat on its broad face from 0.01–1 R_max left at 0.72–0.88 e (e = 0.2
+//!   and 0.5, dt 1/240 s; down to 0.25 e at some heights), at any of 1–16 solver sub-steps; a
+//!   cube, by its symmetry, at 0.96–1.0 e.
+//! - *A corner.* A corner struck within a step gets its friction from the solver's sub-steps,
+//!   which at the default 4 do not converge on it: what the impact does to the spin depends on
+//!   the number of sub-steps (`results/corner_impact/`: between the two closed forms below, a
+//!   box's corner sat at 0.72 (e = 0.2) and 0.89 (e = 0.5) of the way at 4 sub-steps, 0.3 and
+//!   0.7 at 32), and with it the bundled stone's rare flocks (184 / 76 drops of 6000 in flocks
+//!   2 / 3 at 4 sub-steps, 148 / 54 at 32, e = 0.2, `results/drops_vs_mujoco/`).
+//!
+//! So after rapier's step the law completes the impact of the points that carried load during
+//! the step and approached the ground at its start faster than [`STRUCK_SPEED`] (u_i), solved
+//! together, in two stages as the impact itself: a *compression* that brings them to rest with
+//! Coulomb friction — each sticks unless its whole friction impulse over the step (rapier's share
+//! and the law's) reaches μ times its whole normal impulse — and a *restitution* of normal
+//! impulses that sends each off at e u_i (Newton's law, with complementarity). For one sticking
+//! corner this is, in closed form, P = K⁻¹ u n + (e u / K_nn) n (K = 𝟙/m − [r]× I⁻¹ [r]×),
+//! reached within 1 % at 4 and at 32 sub-steps (`tests/flight.rs`; the whole range 1–32 in
+//! `results/corner_impact/`); a flat landing leaves at e times its impact speed whatever the
+//! face (`tests/flight.rs`). A point counts as struck by its approach speed at the step's start,
+//! as in Box2D; rapier's own rule (`is_bouncy`) is a point that carried no impulse in the step
+//! before, so a corner still loaded from the step before gets no bounce from rapier and gets
+//! Newton's law here. The completion never makes a point's normal impulse over the step
+//! negative, and never gives the stone energy (`ContactLaw::restitute`: a pass that would is
+//! scaled back).
+//!
+//! *Why a restitution without friction.* The other law a rigid body allows, Newton's law with
+//! Coulomb friction throughout (the corner leaves at e u n, sticking), was tried first: it too
+//! is independent of the sub-steps, but the seven calibration dice end far from their data under
+//! it (best rms 0.073 over the calibration grid; the flat die at most 0.79 on its square faces,
+//! measured 0.916), and without an energy cap at e = 0.85 the dice never come to rest. With the
+//! two stages the calibration fits better than with rapier's own blend (rms 0.039, χ² 28.7,
+//! against 0.051 and 46.8: `results/cuboid_dice/`). Real impacts of hard bodies give back part of
+//! the tangential compliance energy that a rigid Coulomb contact takes; a restitution without
+//! friction is the simplest law that does, and the dice choose it.
+//!
+//! *What it approximates.* Rapier's friction model puts a manifold's friction at its centroid,
+//! not at the points, so a point's own share of rapier's friction is not known: the law takes the
+//! stone's horizontal change of momentum over rapier's step (all of it friction, the damping
+//! aside) and shares it among the loaded points by their normal impulses — exact for a single
+//! point.
 //!
 //! # Rolling resistance and torsional friction ([`Simulation::step`])
 //!
@@ -353,6 +364,8 @@ struct Motion {
     rotation: UnitQuaternion<f64>,
     linvel: Vec3,
     angvel: Vec3,
+    /// Height of G.
+    z: f64,
 }
 
 impl Motion {
@@ -361,6 +374,7 @@ impl Motion {
             rotation: convert::quat_back(rb.rotation()),
             linvel: convert::vec_back(rb.linvel()),
             angvel: convert::vec_back(rb.angvel()),
+            z: rb.translation().z as f64,
         }
     }
 }
@@ -430,11 +444,51 @@ fn twist_limit(pair: &ContactPair, stone: ColliderHandle, stone_pose: &Pose) -> 
     limit
 }
 
+/// A point struck in a step (`ContactLaw::restitute`), with what the compression adds at it.
+#[derive(Clone, Copy, Debug, Default)]
+struct Struck {
+    /// The point in the body frame (G at the origin).
+    local: Vec3,
+    /// Its lever r from G (world frame, at the step's end).
+    lever: Vec3,
+    /// The normal speed it must leave at: e u.
+    target: f64,
+    /// The normal impulse rapier gave it during the step, λ.
+    impulse: f64,
+    /// Its friction coefficient μ.
+    friction: f64,
+    /// Its share F of the friction impulse rapier gave the stone during the step (horizontal).
+    rapier_friction: Vec3,
+    /// K_ii⁻¹.
+    block_inverse: Matrix3<f64>,
+    /// The impulse the compression has added so far, ΔP (world frame).
+    added: Vec3,
+}
+
+impl Struck {
+    /// `p` (an added impulse ΔP) projected on the point's cone: Δλ ≥ −λ and
+    /// |F + ΔP_t| ≤ μ (λ + Δλ) — the point's whole friction over the step within Coulomb's limit
+    /// of its whole normal impulse.
+    fn cone(&self, mut p: Vec3) -> Vec3 {
+        p.z = p.z.max(-self.impulse);
+        let limit = self.friction * (self.impulse + p.z);
+        let (fx, fy) = (self.rapier_friction.x + p.x, self.rapier_friction.y + p.y);
+        let total = fx.hypot(fy);
+        if total > limit {
+            let scale = limit / total;
+            p.x = fx * scale - self.rapier_friction.x;
+            p.y = fy * scale - self.rapier_friction.y;
+        }
+        p
+    }
+}
+
 /// The contact's restitution, rolling resistance and torsional friction (module docs), lengths
 /// in R_max.
 #[derive(Clone, Copy, Debug)]
 pub struct ContactLaw {
-    /// Coefficient of restitution e (Newton's law at every struck point: `Self::restitute`).
+    /// Coefficient of restitution e (Newton's law at every struck point, after a compression with
+    /// Coulomb friction: `Self::restitute`).
     pub restitution: f64,
     /// δ_r / R_max.
     pub rolling_resistance: f64,
@@ -457,20 +511,26 @@ impl ContactLaw {
         self.rolling_resistance > 0.0 || self.torsional_friction > 0.0
     }
 
-    /// Newton's law of restitution at every struck point, solved together (module docs,
-    /// "Restitution"): after rapier's step, the points of the stone's contact with the ground
-    /// that carried load during the step and approached it at its start faster than
-    /// [`STRUCK_SPEED`] (u_i, from the motion `before`) leave it at e u_i or faster,
+    /// The impact at every struck point, solved together (module docs, "Restitution"): after
+    /// rapier's step, the points of the stone's contact with the ground that carried load during
+    /// the step and approached it at its start faster than [`STRUCK_SPEED`] (u_i, from the motion
+    /// `before`) are brought to rest with Coulomb friction (*compression*), then leave at
+    /// Newton's e u_i by normal impulses (*restitution*):
     ///
     /// ```text
-    /// v_i ≥ e u_i,   Δλ_i ≥ −λ_i,   (v_i − e u_i)(Δλ_i + λ_i) = 0,
-    /// v_i = v_i⁰ + Σ_j K_ij Δλ_j,   K_ij = 1/m + (r_i × n)ᵀ I⁻¹ (r_j × n)
+    /// compression:  v_i = 0 unless a cone binds,  Δλ_i ≥ −λ_i,  |F_i + ΔP_i,t| ≤ μ (λ_i + Δλ_i)
+    /// restitution:  v_i·n ≥ e u_i,  δλ_i ≥ −(λ_i + Δλ_i),  (v_i·n − e u_i)(λ_i + Δλ_i + δλ_i) = 0
+    /// v_i = v_i⁰ + Σ_j K_ij P_j,    K_ij = 𝟙/m − [r_i]× I⁻¹ [r_j]×
     /// ```
     ///
-    /// (λ_i the normal impulse rapier gave point i during the step, Δλ_i what is added here, n the
-    /// ground's normal), by projected Gauss–Seidel sweeps to convergence. Rapier's own pass is one
-    /// sweep over the points of a manifold, which leaves a flat face landing short of e (module
-    /// docs; the box and the cube of `tests/flight.rs`).
+    /// (ΔP_i = Δλ_i n + ΔP_i,t the compression's added impulse at point i, δλ_i n the
+    /// restitution's, λ_i the normal impulse rapier gave it during the step and F_i its share of
+    /// rapier's friction impulse, n the ground's normal, r_i its lever from G, all relative to the
+    /// ground), each by projected Gauss–Seidel sweeps to convergence (3 × 3 blocks K_ii in the
+    /// compression, K_ii's normal entry in the restitution). An impact never gives energy: if the
+    /// two stages together would leave the stone with more mechanical energy than it had at the
+    /// step's start and after rapier's step, their change of velocity is scaled back to the larger
+    /// of the two (measured: 27 of 20 000 passes on thrown dice, by at most 1.4·10⁻³ R_max).
     #[allow(clippy::too_many_arguments)]
     fn restitute(
         &self,
@@ -491,19 +551,22 @@ impl ContactLaw {
         let Some(pair) = world.narrow_phase.contact_pair(ground, stone) else { return };
         let stone_is_first = pair.collider1 == stone;
         let n = Vec3::z();
-        // The struck points: body-frame lever (G is the body's origin), target speed, impulse.
-        let mut struck: [(Vec3, f64, f64); MAX_STRUCK] = [(Vec3::zeros(), 0.0, 0.0); MAX_STRUCK];
+        let mut struck = [Struck::default(); MAX_STRUCK];
         let mut len = 0;
+        let mut loads = 0.0;
         for m in pair.manifolds() {
             for sc in &m.data.solver_contacts {
                 let id = (sc.contact_id[0] & !NEW_CONTACT_BIT) as usize;
                 let tracked = &m.points[id];
                 let impulse = tracked.data.impulse as f64;
+                loads += impulse.max(0.0);
                 let local = convert::vec_back(if stone_is_first { tracked.local_p1 } else { tracked.local_p2 });
                 let r = before.rotation * local;
                 let u = -(before.linvel + before.angvel.cross(&r) - ground_velocity).dot(&n);
                 if impulse > 0.0 && u > STRUCK_SPEED && len < MAX_STRUCK {
-                    struck[len] = (local, self.restitution * u, impulse);
+                    let friction = m.data.friction as f64;
+                    struck[len] =
+                        Struck { local, target: self.restitution * u, impulse, friction, ..Struck::default() };
                     len += 1;
                 }
             }
@@ -513,21 +576,52 @@ impl ContactLaw {
         }
         let rb = &world.bodies[handle];
         let q = convert::quat_back(rb.rotation());
-        let mut v = convert::vec_back(rb.linvel());
-        let mut w = convert::vec_back(rb.angvel());
-        let inv: Matrix3<f64> = body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
-        let arm: [Vec3; MAX_STRUCK] = std::array::from_fn(|k| if k < len { (q * struck[k].0).cross(&n) } else { n });
-        // K_ii (m = 1 in the scaled frame), once: the sweeps only change the velocities.
+        let z = rb.translation().z as f64;
+        let (v_rapier, w_rapier) = (convert::vec_back(rb.linvel()), convert::vec_back(rb.angvel()));
+        let (mut v, mut w) = (v_rapier, w_rapier);
+        let inertia = body.world_inertia(&q);
+        let inv: Matrix3<f64> = inertia.try_inverse().unwrap_or_else(Matrix3::identity);
+        // The friction impulse rapier gave the stone during the step: its horizontal change of
+        // momentum (m = 1; gravity is vertical; the velocity damping, c dt ≤ 10⁻³ of the velocity,
+        // is neglected), shared among the loaded points by their normal impulses.
+        let friction = Vec3::new(v.x - before.linvel.x, v.y - before.linvel.y, 0.0);
+        // Levers and the inverse blocks K_ii⁻¹ (m = 1 in the scaled frame), once: the sweeps only
+        // change the velocities.
+        for s in &mut struck[..len] {
+            s.rapier_friction = friction * (s.impulse / loads);
+            s.lever = q * s.local;
+            let cross = s.lever.cross_matrix();
+            s.block_inverse =
+                (Matrix3::identity() - cross * inv * cross).try_inverse().unwrap_or_else(Matrix3::identity);
+        }
+        // Compression: the struck points brought to rest, within their friction cones.
+        for _ in 0..RESTITUTION_SWEEPS {
+            let mut change: f64 = 0.0;
+            for s in &mut struck[..len] {
+                let velocity = v + w.cross(&s.lever) - ground_velocity;
+                let next = s.cone(s.added - s.block_inverse * velocity);
+                let d = next - s.added;
+                s.added = next;
+                v += d;
+                w += inv * s.lever.cross(&d);
+                change = change.max(d.norm());
+            }
+            if change <= 1e-9 {
+                break;
+            }
+        }
+        // Restitution: normal impulses to e u_i.
+        let arm: [Vec3; MAX_STRUCK] = std::array::from_fn(|k| struck[k].lever.cross(&n));
         let k_diag: [f64; MAX_STRUCK] = std::array::from_fn(|k| 1.0 + arm[k].dot(&(inv * arm[k])));
-        let mut added = [0.0; MAX_STRUCK];
+        let mut bounce = [0.0; MAX_STRUCK];
         for _ in 0..RESTITUTION_SWEEPS {
             let mut change: f64 = 0.0;
             for k in 0..len {
-                let (local, target, impulse) = struck[k];
-                let speed = (v + w.cross(&(q * local)) - ground_velocity).dot(&n);
-                let next = (added[k] + (target - speed) / k_diag[k]).max(-impulse);
-                let d = next - added[k];
-                added[k] = next;
+                let s = &struck[k];
+                let speed = (v + w.cross(&s.lever) - ground_velocity).dot(&n);
+                let next = (bounce[k] + (s.target - speed) / k_diag[k]).max(-(s.impulse + s.added.z));
+                let d = next - bounce[k];
+                bounce[k] = next;
                 v += n * d;
                 w += inv * (arm[k] * d);
                 change = change.max(d.abs());
@@ -535,6 +629,26 @@ impl ContactLaw {
             if change <= 1e-9 {
                 break;
             }
+        }
+        // No energy from the impact (doc above).
+        let energy = |v: &Vec3, w: &Vec3, inertia: &Matrix3<f64>, z: f64| {
+            0.5 * v.norm_squared() + 0.5 * w.dot(&(inertia * w)) + GRAVITY * z
+        };
+        let start = energy(&before.linvel, &before.angvel, &body.world_inertia(&before.rotation), before.z);
+        let cap = start.max(energy(&v_rapier, &w_rapier, &inertia, z));
+        if energy(&v, &w, &inertia, z) > cap {
+            let (dv, dw) = (v - v_rapier, w - w_rapier);
+            // E(s) = E(rapier) + a s + b s² for the change scaled by s: the largest s ≤ 1 within the cap.
+            let a = v_rapier.dot(&dv) + w_rapier.dot(&(inertia * dw));
+            let b = 0.5 * dv.norm_squared() + 0.5 * dw.dot(&(inertia * dw));
+            let room = cap - energy(&v_rapier, &w_rapier, &inertia, z);
+            let s = if b > 0.0 {
+                ((-a + (a * a + 4.0 * b * room).max(0.0).sqrt()) / (2.0 * b)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            v = v_rapier + dv * s;
+            w = w_rapier + dw * s;
         }
         let rb = &mut world.bodies[handle];
         rb.set_linvel(convert::vec(&v), true);
