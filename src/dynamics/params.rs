@@ -238,14 +238,13 @@ pub enum Preset {
     /// Released from rest (no spin, no horizontal speed) with the lowest point 1 R_max above the
     /// ground: a stone let fall from the hand.
     Drop,
-    /// A hand throw onto a table: released 3 R_max above it with 4 m/s (scaled) of horizontal
-    /// speed and a Gaussian angular velocity of 25 rad/s rms (scaled), values calibrated with
-    /// the default numerics (exact landings, issue 25) on the seven measured dice of
-    /// `data/cuboid_dice_throws.csv` (`results/cuboid_dice/`: rms error 0.044 over the seven
-    /// dice; the likelihood is flat within Monte Carlo noise over H 2–5 R_max, Ω 15–35 rad/s,
-    /// v 2–6 m/s). For a 16 mm die: 4 cm, 0.5 m/s, 34 turns/s. (With rapier's own flight the
-    /// same fit gave H 5, Ω 35: its impacts, which started inside the table, took energy the
-    /// launch had to make up.)
+    /// A hand throw onto a table: released 2 R_max above it with 4 m/s (scaled) of horizontal
+    /// speed and a Gaussian angular velocity of 25 rad/s rms (scaled), the best grid point of the
+    /// calibration with the default numerics (exact landings and the two-stage impact law, issue
+    /// 25) on the seven measured dice of `data/cuboid_dice_throws.csv` (`results/cuboid_dice/`,
+    /// which also lists the grid points within its Monte Carlo noise band). For a 16 mm die:
+    /// 2.8 cm, 0.5 m/s, 34 turns/s. (With rapier's own flight the same fit gave H 5, Ω 35: its
+    /// impacts, which started inside the table, took energy the launch had to make up.)
     Throw,
 }
 
@@ -349,7 +348,7 @@ impl Preset {
 }
 
 /// Calibrated release height of [`Preset::Throw`] (R_max), see `results/cuboid_dice/`.
-pub const THROW_HEIGHT: f64 = 3.0;
+pub const THROW_HEIGHT: f64 = 2.0;
 /// Calibrated horizontal speed of [`Preset::Throw`] (m/s of the scaled body), see `results/cuboid_dice/`.
 pub const THROW_HORIZONTAL_SPEED: f64 = 4.0;
 /// Calibrated rms spin of [`Preset::Throw`] (rad/s of the scaled body), see `results/cuboid_dice/`.
