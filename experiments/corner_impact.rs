@@ -1,6 +1,7 @@
-//! A corner impact against the closed form of a rigid body's impact, at rapier's solver sub-steps
-//! 1–32: how far the contact law's impact is from Newton's law with Coulomb friction, and where
-//! the default numerics (4 sub-steps) leave it.
+//! A corner impact against the closed forms of a rigid body's impact, at rapier's solver sub-steps
+//! 1–32: where the contact law's impact lies between Newton's law with Coulomb friction and a
+//! sticking compression followed by a frictionless restitution (the law's two stages), and whether
+//! the solver's sub-steps move it.
 //!
 //! A box 1 × 0.8 × 0.5 released at rest in a random orientation (the drop launch's stream) lands
 //! on one corner (lever r from G) at speed u. Two closed forms of the rigid body
@@ -207,7 +208,8 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
          forms of the rigid body (K = 𝟙/m − [r]× I⁻¹ [r]×): **Newton's law with sticking friction**, \
          P = K⁻¹ (1 + e) u n (the physics of a rigid corner impact with Coulomb friction), and a **sticking \
          compression followed by a frictionless restitution**, P = K⁻¹ u n + (e u / K_nn) n. The slip fraction \
-         φ puts the simulated spin on the segment from the first (φ = 0) to the second (φ = 1).\n",
+         φ puts the simulated spin on the segment from the first (φ = 0) to the second (φ = 1); the spin error \
+         is its distance from the first, |ω − ω_N| / |ω_N|.\n",
         sticking + sliding + two_corners
     );
     let _ = writeln!(md, "| e | solver sub-steps | spin error, median | spin error, largest | φ, median | φ, range |");
@@ -220,30 +222,34 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
         );
     }
     let at = |e: f64, k: usize| rows.iter().find(|r| r.e == e && r.substeps == k).unwrap();
+    let span = |e: f64| {
+        let phi = rows.iter().filter(|r| r.e == e).map(|r| r.slip_median);
+        (phi.clone().fold(f64::INFINITY, f64::min), phi.fold(f64::NEG_INFINITY, f64::max))
+    };
+    let within = |e: f64| match span(e) {
+        (lo, hi) if format!("{lo:.2}") == format!("{hi:.2}") => format!("at {lo:.2}"),
+        (lo, hi) => format!("within {lo:.2}–{hi:.2}"),
+    };
     let _ = writeln!(
         md,
-        "\n**Reading.** At the default 4 sub-steps the contact's impact sits at φ = {:.2} (e = 0.2) and {:.2} \
-         (e = 0.5) between Newton's law with sticking friction and a frictionless restitution, with median spin \
-         errors {:.3} and {:.3} against the former; at 32 sub-steps φ = {:.2} and {:.2}, errors {:.3} and {:.3}. \
-         Rapier's friction does not converge on a corner struck within a step at few sub-steps, and the contact \
-         law's completion of the restitution (normal impulses only, `dynamics::world`, \"Restitution\") then \
-         bounces a corner that still slips. Converged (8–32 sub-steps), the impact keeps φ ≈ 0.3 at e = 0.2 and \
-         ≈ 0.7 at e = 0.5: the contact's impact is, in effect, Coulomb friction while the corner is stopped and a \
-         restitution mostly without friction — not Newton's law with Coulomb friction throughout, and the further \
-         from it the larger e. That is the model the `throw` preset is calibrated with (the seven measured dice, \
-         e = 0.5). Its dependence on the sub-steps is what biases the bundled stone's rare flocks at the default \
-         numerics (`results/drops_vs_mujoco/`, converged from 16 sub-steps on; check a stone with \
-         `--solver-iterations 16`). A completion with Coulomb friction came within 1 % of Newton's law at 4 and \
-         at 32 sub-steps (one orientation, before it was reverted), but on the seven calibration dice it ends far \
-         from the data (README, issue 25).\n",
+        "\n**Reading.** The contact law completes each impact in the two stages of an impact \
+         (`dynamics::world`, \"Impacts\"): a compression that brings the struck corner to rest with Coulomb \
+         friction, then a restitution of normal impulses to e u — the second closed form. Over 1–32 sub-steps \
+         the median φ stays {} (e = 0.2) and {} (e = 0.5); at the default 4 \
+         it is {:.2} and {:.2}, at 32 {:.2} and {:.2}: the corner leaves as the law says whatever rapier's solver \
+         sub-steps (for whole drops, the bundled stone's per-flock statistics at 2–32 sub-steps against 32: \
+         `results/drops_vs_mujoco/`). Before this law (rapier's friction within the step, then a restitution of normal \
+         impulses only) the same corners sat at φ = 0.72 (e = 0.2) and 0.89 (e = 0.5) at 4 sub-steps and 0.3 and \
+         0.7 converged: rapier's friction does not converge on a corner struck within a step at few sub-steps, \
+         and that biased the stone's rare flocks. Newton's law with Coulomb friction throughout (φ = 0) is \
+         independent of the sub-steps too, but on the seven calibration dice it ends far from the data (README, \
+         issue 25); the two-stage law fits them better than either (`results/cuboid_dice/`).\n",
+        within(0.2),
+        within(0.5),
         at(0.2, 4).slip_median,
         at(0.5, 4).slip_median,
-        at(0.2, 4).error_median,
-        at(0.5, 4).error_median,
         at(0.2, 32).slip_median,
         at(0.5, 32).slip_median,
-        at(0.2, 32).error_median,
-        at(0.5, 32).error_median,
     );
     let _ =
         writeln!(md, "Picture: `slip.png` — φ against the solver sub-steps, median and range over the orientations.");

@@ -29,7 +29,9 @@
 //! `results/cuboid_dice/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::params::{
+    DropParams, Flight, Preset, Surface, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN,
+};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
@@ -236,7 +238,7 @@ fn main() {
          y × y × x rolled by hand, 332–1011 rolls each). **This is a calibration, not a validation**: the \
          free parameters of the throw are fitted to these seven dice.\n"
     );
-    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics since issue 25: no impact starts inside the ground), the die's exact box hull, no global damping, dt 1/240 s; contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
+    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics since issue 25: no impact starts inside the ground, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::world`), the die's exact box hull, no global damping, dt 1/240 s; contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
     let _ = writeln!(md, "## Fit\n");
     let _ = writeln!(md, "| parameter | best | range over the grid points within the noise band |\n|---|---|---|");
     let _ = writeln!(md, "| H (R_max) | {} | {h_lo} – {h_hi} |", best.0);
@@ -252,6 +254,18 @@ fn main() {
         4 * n,
         noise_band,
         flat
+    );
+    let preset = grid.iter().find(|g| g.0 == THROW_HEIGHT && g.1 == THROW_SPIN && g.2 == THROW_HORIZONTAL_SPEED);
+    let _ = writeln!(
+        md,
+        "The `throw` preset (`dynamics::params`: H {THROW_HEIGHT}, Ω {THROW_SPIN}, v {THROW_HORIZONTAL_SPEED}) {}.\n",
+        match preset {
+            Some(g) if *g == best => "is the best grid point".to_string(),
+            Some(g) if g.3 >= best.3 - noise_band =>
+                format!("scores ln L {:.1} on the grid, inside the noise band", g.3),
+            Some(g) => format!("scores ln L {:.1} on the grid, **outside the noise band: refit it**", g.3),
+            None => "is not a grid point: **add it to the grid or refit it**".to_string(),
+        }
     );
     let _ = writeln!(
         md,

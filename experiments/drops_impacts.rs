@@ -146,7 +146,7 @@ fn plot(path: &Path, bars: &[(String, f64, f64)]) -> rocking_stones::plot::DrawR
     use plotters::prelude::*;
     use rocking_stones::plot::{draw_legend, legend_height, Mark};
     init_fonts();
-    let root = BitMapBackend::new(path, (1100, 700)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1100, 760)).into_drawing_area();
     root.fill(&WHITE)?;
     let (legend, area) = root.split_vertically(legend_height(1));
     let (rapier, exact) = (series_color(0), series_color(1));
@@ -161,7 +161,7 @@ fn plot(path: &Path, bars: &[(String, f64, f64)]) -> rocking_stones::plot::DrawR
     let n = bars.len();
     let mut chart = ChartBuilder::on(&area)
         .margin(20)
-        .x_label_area_size(190)
+        .x_label_area_size(250)
         .y_label_area_size(80)
         .caption("Largest compression of the contact per configuration", (FONT_FAMILY, 20))
         .build_cartesian_2d(0.0f64..n as f64, (5e-5f64..1.0).log_scale())?;

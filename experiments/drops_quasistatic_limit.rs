@@ -326,7 +326,7 @@ const READING: &str = "
 * **Box** (each stable flock is one facet): at every height up to 0.3 R_max and every restitution
   the drop shares agree with the quasi-static basin probabilities within sampling noise
   (KL ≈ (k − 1)/(2N) = 0.00125 for N = 2000, k = 6). At 1 R_max with restitution 0.6 the drops
-  bounce and tumble and the large faces gain: 0.655 of the drops end on the two 2 × 1.4 faces
+  bounce and tumble and the large faces gain: 0.660 of the drops end on the two 2 × 1.4 faces
   against 0.519 static (`box_faces.csv`).
 * **Pebble, flocks**: close to the static flock probabilities at every height (KL 0.006–0.008
   against a noise level of ≈ 0.0008: a small but significant bias), and closer with more damping

@@ -100,7 +100,8 @@ const DIFFERENCES: &str = "
   1/240 s (e = 0.2 by rebound height), they agree on the box landing flat at that step (above); the
   edge and corner impacts of a tumbling stone are not calibrated at all. On the same releases the
   outcomes of the box and the pebble are statistically the same in both engines, drop by drop; the
-  stone's rare flocks are not (Outcome statistics, and the solver sub-steps section below).
+  stone's rarest flock (a saddle flock, about 1 % of the drops) is where the two differ most (Outcome
+  statistics, and the solver sub-steps section below).
 * **Friction.** Rapier 0.36's default friction model (`FrictionModel::Simplified`) solves one Coulomb
   constraint (circular cone) per contact patch at its friction centre plus one *twist* constraint with the
   contact points' lever arms; MuJoCo with condim 3 has an elliptic-cone Coulomb constraint at each contact
@@ -1174,7 +1175,7 @@ fn readme(
          to the principal frame (the drops are compared one by one) |\n\
          | friction | Coulomb μ = {FRICTION} (rapier, circular cone) | condim 3 (sliding only), μ = {FRICTION} on \
          both geoms, **{} cone** (MuJoCo's default is pyramidal) |\n\
-         | restitution | e = {RESTITUTION} (rapier's restitution coefficient, completed by the contact law: Newton's law at every struck point, `world::ContactLaw::restitute`) | MuJoCo has none: \
+         | restitution | e = {RESTITUTION} (rapier's restitution coefficient, completed by the contact law in the two stages of an impact: the struck points brought to rest with Coulomb friction, then sent off at Newton's e u by normal impulses, `world::ContactLaw::restitute`) | MuJoCo has none: \
          solref = (time constant, damping ratio), the default time constant and the damping ratio found by \
          bisection at {r_l} so that a ball (radius 1 = R_max, mass 1) dropped {HEIGHT} R_max onto the plane \
          rebounds to e² of its drop height: {calibration}; solimp = {:?} (default) |\n\

@@ -356,15 +356,14 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
          soft, heavily damped spring whose compression is partly given back — a pseudo-restitution that Housner's \
          plastic impact lacks — so it comes out 10–14 % *above* Housner at 1/240 s, and within 1 % at 1/960 s and \
          1/3840 s. (Only one impact per run has an amplitude above 0.02 rad there, so its column is a single impact.) \
-         Restitution: the contact applies Newton's law at every point that strikes the ground faster than \
-         `world::STRUCK_SPEED` (0.1 R_max/s), all struck points solved together (`world::ContactLaw::restitute`; \
-         rapier alone applied it once, and only to points new in the step). With rock on concrete's e = 0.3 the \
-         impacting corner rebounds, so the block loses more per impact than Housner's plastic impulse (last \
-         column): little for the slender blocks, whose corners strike slowly (near or below that speed after the \
-         first impact), and much more for the squatter ones, whose corners strike at up to 2bω. The squattest \
-         (α = 38.7°, a single impact) stands apart again, as at e = 0 (above). Robustness and fragility \
-         results therefore depend on the \
-         restitution chosen; Housner's law is the e = 0 limit. Small amplitudes (corner lift b·θ comparable to the \
+         Restitution: every point that strikes the ground faster than `world::STRUCK_SPEED` (0.1 R_max/s) is \
+         brought to rest with Coulomb friction and then sent off at Newton's e u by normal impulses, all struck \
+         points solved together (`world::ContactLaw::restitute`; rapier alone applied restitution once, and only \
+         to points new in the step). With rock on concrete's e = 0.3 the impacting corner rebounds, so the block \
+         loses more per impact than Housner's plastic impulse (last column): little for the slender blocks, whose \
+         corners strike slowly (near or below that speed after the first impact), and more the squatter the \
+         block, whose corners strike at up to 2bω (down to 16 % below Housner's ratio at α = 38.7°). Robustness \
+         and fragility results therefore depend on the restitution chosen; Housner's law is the e = 0 limit. Small amplitudes (corner lift b·θ comparable to the \
          contact's static compression, ~10⁻⁴ R_max) scatter more (every impact down to an amplitude of 10⁻⁵ rad in \
          `rocking_impacts.csv`)."
     )?;

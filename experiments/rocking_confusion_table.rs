@@ -344,8 +344,8 @@ fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
             "**Reading (pushes, ε* = ν).** {} disagreements: {} rocking→regular and {} regular→rocking; {} on real \
              stones; flock types {}. Their static flock barriers are {} ν and their dynamic thresholds ε₅₀ {} ν: \
              statically within the micro scale, dynamically toppled only by energies above ν, because a push \
-             must give 5–20 times the static barrier (median ≈ 12–15, below) to topple a stone half of the \
-             time. The ordering itself is almost perfect (AUC above): the disagreement is the choice of ε* against \
+             must give 5–30 times the static barrier (median 15, quartiles 11–27 for the rocking equilibria, below) \
+             to topple a stone half of the time. The ordering itself is almost perfect (AUC above): the disagreement is the choice of ε* against \
              that factor and the small ν of the real stones (three of the seven have no clear plateau of n(ν) \
              and use the paper's hand-experimenter value 0.0035, against 0.009–0.019 on the synthetic pebbles).\n",
             dis.len(),
