@@ -71,10 +71,10 @@ pub struct Args {
     /// Time cap per drop (s of the scaled body).
     #[arg(long)]
     pub max_time: Option<f64>,
-    /// Rapier's solver sub-steps per time step (default 4). More converge rare outcomes: the
-    /// bundled stone's two rarest flocks each lose ~0.6 % of the drops between 4 and 16, which
-    /// cost 2.4× as much (released from rest with e 0.2, results/drops_vs_mujoco/). Run a stone
-    /// at both to see whether its frequencies move.
+    /// Rapier's solver sub-steps per time step (default 4). Impacts are completed by the contact
+    /// law whatever this is, so the per-flock statistics at 4 are those at 32 on the bundled
+    /// stone, a pebble and a box (paired test, results/drops_vs_mujoco/); more cost in
+    /// proportion.
     #[arg(long)]
     pub solver_iterations: Option<usize>,
     /// How the flight between contacts is integrated: free (the default: outside the physics
@@ -85,9 +85,9 @@ pub struct Args {
     #[arg(long, value_parser = parse_flight)]
     pub flight: Option<Flight>,
     /// Fast numerics: the preset's longest stable time step (1/120 s for drop and throw,
-    /// measured) with free flight; per-flock fractions within about 0.01 of the default's (the
-    /// same releases, compared drop by drop, do tell the two apart on the bundled stone and on a
-    /// box: results/drops_vs_mujoco/).
+    /// measured) with free flight; on the same releases, compared drop by drop, the paired test
+    /// does not tell its per-flock statistics from the default's on the bundled stone, a pebble
+    /// and a box (p ≥ 0.3, results/drops_vs_mujoco/).
     /// On some scanned bodies a stone resting on its facet keeps jiggling at this step: without
     /// a certificate such drops run to the time cap (results/drops_settling/). --dt and --flight
     /// still override it.

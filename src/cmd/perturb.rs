@@ -50,8 +50,8 @@ pub struct SimArgs {
     /// Time cap per trial after the perturbation / the motion (s, scaled). Default 20 s.
     #[arg(long)]
     pub max_time: Option<f64>,
-    /// Rapier's solver sub-steps per time step (default 4; more converge rare outcomes at a cost
-    /// in proportion, as for `rocking drop`).
+    /// Rapier's solver sub-steps per time step (default 4; more cost in proportion, as for
+    /// `rocking drop`).
     #[arg(long)]
     pub solver_iterations: Option<usize>,
     /// Natural frequency (Hz, scaled) of the soft contact constraints. Default 120 Hz.

@@ -101,7 +101,7 @@ pub enum Flight {
     /// instant its lowest point comes within [`super::flight::CONTACT_CLEARANCE`] of the ground;
     /// in contact, a step that could bring a hull point down by more than
     /// [`super::impact::IMPACT_APPROACH`] is sub-stepped ([`super::impact`]). Impacts start
-    /// outside the ground (deepest compression 9.5·10⁻³ R_max, under the bound of 10⁻², over
+    /// outside the ground (deepest compression 9.9·10⁻³ R_max, under the bound of 10⁻², over
     /// 7 200 drops and throws at 1/240 and 1/120 s, `results/drops_impacts/`). Runs that start at rest (pushes, shaking)
     /// sub-step their impacts the same way and keep their flight in rapier. Global damping
     /// (`--linear-damping`, `--angular-damping`) acts in free flight too, exactly
@@ -263,7 +263,7 @@ impl Preset {
 
     /// The longest time step at which this preset's statistics are those of the reference step
     /// (1/240 s), measured in `results/drops_dt/` on three bodies: per-flock χ² homogeneity
-    /// against 1/240 s (every p ≥ 0.05 up to 1/80 s), every drop settled, the contact's
+    /// against 1/240 s (2 of 54 tests below 0.05 up to 1/80 s, as chance gives), every drop settled, the contact's
     /// compression at rest and the energy rise where the certificate decides under its margin.
     /// All three presets pass up to 1/80 s; the step is capped at the longest the contact check
     /// accepts, [`MAX_STABLE_DT`] = 1/120 s.
@@ -275,14 +275,14 @@ impl Preset {
 
     /// The fast numerics of this preset (issue 16, `rocking drop --fast`): free flight between
     /// contacts ([`Flight::Free`]) and [`Preset::largest_stable_dt`]. Per-flock statistics as the
-    /// reference numerics' within independent samples' noise (`results/drops_certificate/`,
-    /// `results/cuboid_dice/`), but not drop by drop: on the same releases the paired test tells
-    /// them apart on the bundled stone (its flock 2: 0.041 against 0.031 of the drops) and on a
-    /// box (per face pair within 0.005) (`results/drops_vs_mujoco/`). Not the default: on some
-    /// scanned bodies a stone that has come down on its facet keeps jiggling on it at this step,
-    /// above the rest rule's speeds, until the time cap (10 of the 40 meshes of
-    /// `results/drops_settling/` leave more than 0.5 % of their throws unsettled without a
-    /// certificate, Prometheus half of them; none at [`REFERENCE_DT`]).
+    /// reference numerics', on independent samples (`results/drops_certificate/`,
+    /// `results/cuboid_dice/`: the seven dice's χ² p = 0.99) and drop by drop: on the same
+    /// releases the paired test does not tell them apart on the bundled stone, a pebble and a box
+    /// (p = 0.78, 0.66, 0.32, `results/drops_vs_mujoco/`). Not the default: on some scanned
+    /// bodies a stone that has come down on its facet keeps jiggling on it at this step, above the
+    /// rest rule's speeds, until the time cap (6 of the 40 meshes of `results/drops_settling/`
+    /// leave more than 0.5 % of their throws unsettled without a certificate, Prometheus half of
+    /// them; 1 of 8000 throws at [`REFERENCE_DT`]).
     pub fn fast(self, p: &mut DropParams) {
         p.flight = Flight::Free;
         p.dt = self.largest_stable_dt();

@@ -27,7 +27,7 @@
 //! Coulomb friction — each sticks unless its whole friction impulse over the step (rapier's share
 //! and the law's) reaches μ times its whole normal impulse — and a *restitution* of normal
 //! impulses that sends each off at e u_i (Newton's law, with complementarity). For one sticking
-//! corner this is, in closed form, P = K⁻¹ u n + (e u / K_nn) n (K = 𝟙/m − [r]× I⁻¹ [r]×),
+//! corner this is, in closed form, P = K⁻¹ u n + (e u / K_nn) n (K = 𝟙/m − \[r\]× I⁻¹ \[r\]×),
 //! reached within 1 % at 4 and at 32 sub-steps (`tests/flight.rs`; the whole range 1–32 in
 //! `results/corner_impact/`); a flat landing leaves at e times its impact speed whatever the
 //! face (`tests/flight.rs`). A point counts as struck by its approach speed at the step's start,
@@ -42,7 +42,7 @@
 //! is independent of the sub-steps, but the seven calibration dice end far from their data under
 //! it (best rms 0.073 over the calibration grid; the flat die at most 0.79 on its square faces,
 //! measured 0.916), and without an energy cap at e = 0.85 the dice never come to rest. With the
-//! two stages the calibration fits better than with rapier's own blend (rms 0.039, χ² 28.7,
+//! two stages the calibration fits better than with rapier's own blend (rms 0.039, χ² 28.5,
 //! against 0.051 and 46.8: `results/cuboid_dice/`). Real impacts of hard bodies give back part of
 //! the tangential compliance energy that a rigid Coulomb contact takes; a restitution without
 //! friction is the simplest law that does, and the dice choose it.
@@ -511,7 +511,7 @@ impl ContactLaw {
         self.rolling_resistance > 0.0 || self.torsional_friction > 0.0
     }
 
-    /// The impact at every struck point, solved together (module docs, "Restitution"): after
+    /// The impact at every struck point, solved together (module docs, "Impacts"): after
     /// rapier's step, the points of the stone's contact with the ground that carried load during
     /// the step and approached it at its start faster than [`STRUCK_SPEED`] (u_i, from the motion
     /// `before`) are brought to rest with Coulomb friction (*compression*), then leave at
