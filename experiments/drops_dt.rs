@@ -255,8 +255,8 @@ fn plot(path: &Path, curves: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn
         };
     }
     chart
-        .draw_series(std::iter::once(PathElement::new(vec![(60.0, 0.01), (500.0, 0.01)], BLACK)))?
-        .label("p = 0.01")
+        .draw_series(std::iter::once(PathElement::new(vec![(60.0, 0.05), (500.0, 0.05)], BLACK)))?
+        .label("p = 0.05 (the reading's level)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK));
     chart
         .configure_series_labels()
