@@ -635,13 +635,14 @@ impl ContactLaw {
             0.5 * v.norm_squared() + 0.5 * w.dot(&(inertia * w)) + GRAVITY * z
         };
         let start = energy(&before.linvel, &before.angvel, &body.world_inertia(&before.rotation), before.z);
-        let cap = start.max(energy(&v_rapier, &w_rapier, &inertia, z));
+        let after_rapier = energy(&v_rapier, &w_rapier, &inertia, z);
+        let cap = start.max(after_rapier);
         if energy(&v, &w, &inertia, z) > cap {
             let (dv, dw) = (v - v_rapier, w - w_rapier);
             // E(s) = E(rapier) + a s + b s² for the change scaled by s: the largest s ≤ 1 within the cap.
             let a = v_rapier.dot(&dv) + w_rapier.dot(&(inertia * dw));
             let b = 0.5 * dv.norm_squared() + 0.5 * dw.dot(&(inertia * dw));
-            let room = cap - energy(&v_rapier, &w_rapier, &inertia, z);
+            let room = cap - after_rapier;
             let s = if b > 0.0 {
                 ((-a + (a * a + 4.0 * b * room).max(0.0).sqrt()) / (2.0 * b)).clamp(0.0, 1.0)
             } else {
