@@ -68,13 +68,27 @@
 //! J_s = −min(δ_t N Δt, |ω_s'| / (nᵀ I⁻¹ n)) sign(ω_s') n     (torsional friction, δ_t a length)
 //! ```
 //!
-//! (I⁻¹ the world-frame inverse inertia about G, ω_s' the spin after J_r), i.e. a couple of
-//! magnitude δ N opposing the relative rotation while it rotates (kinetic), and no more than
-//! what stops the rotation's component along its own direction within the step (static: it
-//! never reverses it). Each impulse changes the kinetic energy by
-//! ΔT = −j|ω| + ½ j² ω̂ᵀI⁻¹ω̂ ≤ −½ j|ω| ≤ 0 for the clamped j, so the law only dissipates:
-//! the mechanical energy stays non-increasing and the energy certificate of
-//! [`super::run`] stays valid (tested in `tests/contact.rs`). A body in flight has N = 0 and
+//! (ω_s' the spin after J_r), i.e. a couple of magnitude δ N opposing the relative rotation while
+//! it rotates (kinetic), and no more than what stops the rotation's component along its own
+//! direction within the step (static: it never reverses it).
+//!
+//! *About the contact, not about G.* The couple acts on a body whose contact point sticks (the
+//! ground's friction supplies the reaction), so the body turns about the contact patch: with c
+//! the patch's centre (the solver contacts weighted by their normal impulses) and r = G − c,
+//! I is the inertia about c, I_c = I_G + m(|r|²𝟙 − r rᵀ), and G follows: Δω = I_c⁻¹ J,
+//! Δv_G = Δω × r, which leaves the contact point's velocity unchanged. Applied to the free body
+//! instead (Δω = I_G⁻¹ J, Δv = 0, what this law did before) the couple set the contact point
+//! slipping by |Δω| |r| after every step, which rapier's friction turned back into rotation the
+//! next step: a resting stone rocked in a limit cycle above the rest rule's speeds (measured at
+//! dt = 1/120 s on scanned stones, `results/drops_settling/`); a rolling ball's contact point
+//! slipped at δ g Δt r/(I/m), now at < 10 % of that (`tests/contact.rs`).
+//!
+//! Each impulse changes the kinetic energy about the sticking point by
+//! ΔT = −j|ω| + ½ j² ω̂ᵀI_c⁻¹ω̂ ≤ −½ j|ω| ≤ 0 for the clamped j. A slipping contact point adds
+//! m v_c·(Δω × r), which can be positive: the law computes the change of T and, where the pivot
+//! form would add energy, applies the free body's couple (ΔT ≤ 0 by the same bound with I_G). So
+//! the law only dissipates: the mechanical energy stays non-increasing and the energy certificate
+//! of [`super::run`] stays valid (tested in `tests/contact.rs`). A body in flight has N = 0 and
 //! feels nothing.
 //!
 //! # Friction about the normal, stated once
@@ -426,22 +440,42 @@ fn twist_limit(pair: &ContactPair, stone: ColliderHandle, stone_pose: &Pose) -> 
     let stone_is_first = pair.collider1 == stone;
     let mut limit = 0.0;
     for m in pair.manifolds() {
-        let contacts = &m.data.solver_contacts;
-        if contacts.len() < 2 {
+        let n = m.data.solver_contacts.len();
+        if n < 2 {
             continue;
         }
-        let point = |k: usize| {
-            let id = (m.data.solver_contacts[k].contact_id[0] & !NEW_CONTACT_BIT) as usize;
-            let tracked = &m.points[id];
-            let local = if stone_is_first { tracked.local_p1 } else { tracked.local_p2 };
-            (convert::vec_back(stone_pose.transform_point(local)), tracked.data.impulse as f64)
-        };
-        let n = contacts.len();
-        let centroid = (0..n).map(|k| point(k).0).sum::<Vec3>() / n as f64;
-        let moment: f64 = (0..n).map(point).map(|(p, jn)| jn * (p - centroid).norm()).sum();
+        let centroid = solver_points(m, stone_is_first, stone_pose).map(|(p, _)| p).sum::<Vec3>() / n as f64;
+        let moment: f64 = solver_points(m, stone_is_first, stone_pose).map(|(p, jn)| jn * (p - centroid).norm()).sum();
         limit += m.data.friction as f64 * moment;
     }
     limit
+}
+
+/// The solver contacts of manifold `m` on the stone (world frame) with the normal impulse rapier
+/// gave each in the last step.
+fn solver_points<'a>(
+    m: &'a ContactManifold,
+    stone_is_first: bool,
+    stone_pose: &'a Pose,
+) -> impl Iterator<Item = (Vec3, f64)> + 'a {
+    m.data.solver_contacts.iter().map(move |sc| {
+        let tracked = &m.points[(sc.contact_id[0] & !NEW_CONTACT_BIT) as usize];
+        let local = if stone_is_first { tracked.local_p1 } else { tracked.local_p2 };
+        (convert::vec_back(stone_pose.transform_point(local)), tracked.data.impulse as f64)
+    })
+}
+
+/// The centre of the contact patch: the solver contacts' centroid weighted by their normal
+/// impulses in the last step (world frame); `None` when they carry none.
+fn impulse_centre(pair: &ContactPair, stone: ColliderHandle, stone_pose: &Pose) -> Option<Vec3> {
+    let stone_is_first = pair.collider1 == stone;
+    let (moment, total) = pair
+        .manifolds()
+        .iter()
+        .flat_map(|m| solver_points(m, stone_is_first, stone_pose))
+        .filter(|&(_, jn)| jn > 0.0)
+        .fold((Vec3::zeros(), 0.0), |(s, t), (p, jn)| (s + p * jn, t + jn));
+    (total > 0.0).then(|| moment / total)
 }
 
 /// A point struck in a step (`ContactLaw::restitute`), with what the compression adds at it.
@@ -658,7 +692,8 @@ impl ContactLaw {
 
     /// Apply the torque impulses J_r and J_s of the module docs to the stone `handle` (collider
     /// `stone`) after a rapier step, from the normal impulse the ground (collider `ground`) gave
-    /// it during the step.
+    /// it during the step: about the contact patch's centre, or about G where that would add
+    /// kinetic energy (module docs, "About the contact, not about G").
     pub fn apply(
         &self,
         world: &mut PhysicsWorld,
@@ -678,10 +713,35 @@ impl ContactLaw {
         } else {
             0.0
         };
+        let pose = world.colliders[stone].position();
+        let centre = impulse_centre(pair, stone, pose);
         let rb = &world.bodies[handle];
         let q = convert::quat_back(rb.rotation());
         let w = convert::vec_back(rb.angvel());
-        let inv: Matrix3<f64> = body.world_inertia(&q).try_inverse().unwrap_or_else(Matrix3::identity);
+        let v = convert::vec_back(rb.linvel());
+        let inertia = body.world_inertia(&q);
+        // About the contact patch: the body pivots on its sticking contact (lever r = G − c).
+        let r = centre.map_or(Vec3::zeros(), |c| convert::vec_back(rb.translation()) - c);
+        let pivot_inertia = inertia + Matrix3::identity() * r.norm_squared() - r * r.transpose();
+        let dw = self.couple(&w, &inverse(&pivot_inertia), jn, torsion);
+        let dv = dw.cross(&r);
+        let gain = v.dot(&dv) + 0.5 * dv.norm_squared() + w.dot(&(inertia * dw)) + 0.5 * dw.dot(&(inertia * dw));
+        let (dw, dv) = if gain <= 0.0 {
+            (dw, dv)
+        } else {
+            // A slipping contact that the pivot form would speed up: the free body's couple.
+            (self.couple(&w, &inverse(&inertia), jn, torsion), Vec3::zeros())
+        };
+        let rb = &mut world.bodies[handle];
+        rb.set_angvel(convert::vec(&(w + dw)), true);
+        rb.set_linvel(convert::vec(&(v + dv)), true);
+    }
+
+    /// The change of ω that the rolling-resistance and torsional impulses J_r, J_s of the module
+    /// docs give a body of angular velocity `w` and inverse inertia `inv` (about the point it
+    /// turns about), for the normal impulse `jn` and the torsional limit `torsion` (already less
+    /// rapier's twist).
+    fn couple(&self, w: &Vec3, inv: &Matrix3<f64>, jn: f64, torsion: f64) -> Vec3 {
         let n = Vec3::z();
         let mut dw = Vec3::zeros();
         // Rolling: the part of ω in the ground's plane.
@@ -701,8 +761,13 @@ impl ContactLaw {
             let j = torsion.min(stop);
             dw -= inv * (n * (j * ws.signum()));
         }
-        world.bodies[handle].set_angvel(convert::vec(&(w + dw)), true);
+        dw
     }
+}
+
+/// `m`⁻¹, or 𝟙 for a singular `m` (never for an inertia tensor).
+fn inverse(m: &Matrix3<f64>) -> Matrix3<f64> {
+    m.try_inverse().unwrap_or_else(Matrix3::identity)
 }
 
 /// The state of a stone's rigid body `rb` (scaled frame).

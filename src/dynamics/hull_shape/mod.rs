@@ -36,9 +36,10 @@
 //!   one shape is shared by simulations on several threads.
 //! * **Support feature** ([`PolygonalFeatureMap`]): always a facet, as for parry's own polyhedra
 //!   and cuboids — the facet at the support vertex v whose normal is closest to the direction
-//!   (compared by |n × d|, well conditioned for the tiny angles between micro-facets). Looking only
-//!   at the facets around v keeps it O(1) and guarantees that the deepest point is a contact
-//!   point. The feature ids are the polyhedron's facet, edge and corner indices.
+//!   (compared by |n × d|, well conditioned for the tiny angles between micro-facets), unless the
+//!   body touches a stable facet there (next section). Looking only at the facets around v keeps
+//!   it O(1) and guarantees that the deepest point is a contact point. The feature ids are the
+//!   polyhedron's facet, edge and corner indices.
 //!
 //!   *Why never an edge or a vertex.* The contact points are the feature's corners (those within
 //!   the prediction distance), and the corners that are about to touch are what give the solver
@@ -49,6 +50,36 @@
 //!   `ColliderBuilder::cuboid`. The face / edge / vertex classification with an angle tolerance
 //!   (default 1°, parry's) is still available as [`HullShape::support_feature_id`], which point
 //!   queries report.
+//!
+//! # Resting on a stable facet
+//!
+//! A scanned stone often rests on a stable facet F whose neighbour F′ (sharing an edge) is within
+//! 10⁻⁴–10⁻³ rad of it and unstable (G projects outside F′). The soft contact lets the body tilt
+//! by that much (a compression of 10⁻⁴ R_max across a micro-facet of 0.1 R_max), so "the facet
+//! closest to the direction" flips between F and F′ from one step to the next; each flip renews
+//! the loaded contact points (warm starts lost, the load moved to other corners) and kicks the
+//! body. Measured on the stones that would not settle at dt = 1/120 s (`results/drops_settling/`):
+//! Prometheus, Itokawa, quarry stone A0 and Tempel 1 rocked on such a pair for the whole 60 s cap,
+//! the contact facet flipping every second step (Prometheus: facets 1814/1815, 1.0·10⁻³ rad apart,
+//! the body tilted 4.8–5.6·10⁻⁴ rad from 1814 — across their bisector).
+//!
+//! So the contact comes from a stable facet whenever the body touches one: among the facets at the
+//! support vertex v, a stable facet all of whose kept corners lie within the touch tolerance
+//! (10⁻³ of the bounding radius, the penetration the solver allows) of the support plane is
+//! preferred to the closest facet; among several, the closest. The body can rest only on a stable
+//! facet, and when it touches one with every corner its load is on those corners; tilted off it by
+//! more than the tolerance (rolling), or once the lowest corner is not one of its corners, the
+//! closest facet is used as before. Towards a stable facet's own normal its own feature is
+//! returned (it touches with tolerance 0 and is the closest), so every stable facet stays a
+//! distinct rest. Measured: with this rule (and the rolling resistance of `dynamics::world` about
+//! the contact patch) every one of the 40 meshes of `results/drops_settling/` settles at 1/120 s.
+//!
+//! *Only the facets at v.* Extending the candidates to the facets at corners tied with v (within
+//! 10⁻⁴ of the radius) also caught a stone that pivots between v and a tied neighbour, but on a
+//! scanned flat base (hundreds of micro-facets 10⁻⁴ h deep) it handed the contact to the stable
+//! facet under G while the load sat on the base's outer corners, and a rock pushed sideways
+//! tipped below Housner's threshold (`tests/shake_rock.rs`); so the deepest corner stays a
+//! contact point.
 //!
 //! # Facets with more than four corners
 //!
@@ -121,6 +152,10 @@ pub const DEFAULT_FEATURE_ANGLE: f64 = std::f64::consts::PI / 180.0;
 /// A reduced facet polygon is rebuilt around the lowest corner when that corner is lower than the
 /// precomputed quadrilateral by more than this fraction of the bounding radius.
 const REDUCE_TOL_REL: f64 = 1e-4;
+/// A body touches a facet with its whole support polygon when every corner of that polygon is
+/// within this fraction of the bounding radius of the support plane: the penetration the contact
+/// solver allows (`world::ALLOWED_PENETRATION`, 10⁻³ R_max). See "Resting on a stable facet".
+const TOUCH_TOL_REL: f64 = 1e-3;
 /// Most cells per side of a cube-map face (6 · 32² = 6144 start vertices).
 const MAX_CUBE_RES: usize = 32;
 
@@ -157,6 +192,8 @@ pub struct HullShape {
     /// quadrilateral and the point (body frame) it is built to cover.
     quads: Vec<[u32; 4]>,
     targets: Vec<[f64; 3]>,
+    /// Per facet: whether the origin (G) projects strictly inside it (a stable facet).
+    stable: Vec<bool>,
     local_aabb: Aabb,
     local_sphere: BoundingSphere,
     /// Cube map of start vertices: `cube_res²` cells per face, faces ordered +x, −x, +y, −y, +z, −z.
@@ -165,6 +202,8 @@ pub struct HullShape {
     feature_angle: f64,
     sin_eps: Real,
     reduce_tol: f64,
+    /// [`TOUCH_TOL_REL`] times the bounding radius.
+    touch_tol: f64,
     /// The input-frame origin and scale of [`HullShape::new`] (identity after [`HullShape::scaled`]).
     frame_origin: Point3,
     frame_scale: f64,
@@ -277,6 +316,7 @@ impl HullShape {
             normals,
             quads: Vec::new(),
             targets: Vec::new(),
+            stable: Vec::new(),
             local_aabb,
             local_sphere,
             cube_res,
@@ -284,6 +324,7 @@ impl HullShape {
             feature_angle,
             sin_eps: feature_angle.sin() as Real,
             reduce_tol: REDUCE_TOL_REL * radius as f64,
+            touch_tol: TOUCH_TOL_REL * radius as f64,
             frame_origin: Point3::origin(),
             frame_scale: 1.0,
             unit_volume: 0.0,
@@ -302,6 +343,7 @@ impl HullShape {
         let nf = shape.normals.len();
         shape.targets = (0..nf).map(|f| shape.facet_target(f)).collect();
         shape.quads = (0..nf).map(|f| shape.static_quad(f)).collect();
+        shape.stable = (0..nf).map(|f| shape.origin_projection_inside(f).is_some()).collect();
         shape.compute_unit_mass();
         shape
     }
@@ -339,6 +381,19 @@ impl HullShape {
     /// The feature angle (radians), see [`HullShape::with_feature_angle`].
     pub fn feature_angle(&self) -> f64 {
         self.feature_angle
+    }
+
+    /// Whether the origin (G) projects strictly inside facet `f`: the body can rest on it (a
+    /// stable facet, SPEC §2).
+    pub fn rests_on(&self, f: usize) -> bool {
+        self.stable[f]
+    }
+
+    /// How far (body units) a corner may be from the support plane and still touch it: what
+    /// decides whether the body touches a stable facet with its whole support polygon ("Resting
+    /// on a stable facet").
+    pub fn touch_tolerance(&self) -> f64 {
+        self.touch_tol
     }
 
     /// Corners of facet `f` kept in its support polygon when the body rests on it (all of them for

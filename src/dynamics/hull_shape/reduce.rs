@@ -18,6 +18,20 @@ impl HullShape {
     /// projection of the origin (G) on the facet plane when it lies strictly inside the facet,
     /// else the centroid of the corners.
     pub(super) fn facet_target(&self, f: usize) -> [f64; 3] {
+        self.origin_projection_inside(f).unwrap_or_else(|| {
+            let cs = self.facet_corners(f);
+            let s = cs
+                .iter()
+                .map(|&c| to64(self.points[c as usize]))
+                .fold([0.0; 3], |a, p| [a[0] + p[0], a[1] + p[1], a[2] + p[2]]);
+            let k = cs.len() as f64;
+            [s[0] / k, s[1] / k, s[2] / k]
+        })
+    }
+
+    /// The projection of the origin (G) on facet `f`'s plane (body frame, f64) if it lies strictly
+    /// inside the facet: then the body can rest on `f` (SPEC §2: `f` is a stable facet).
+    pub(super) fn origin_projection_inside(&self, f: usize) -> Option<[f64; 3]> {
         let cs = self.facet_corners(f);
         let n = self.normals64[f];
         let pts: Vec<[f64; 3]> = cs.iter().map(|&c| to64(self.points[c as usize])).collect();
@@ -27,13 +41,7 @@ impl HullShape {
         let p2 = |p: [f64; 3]| [dot3(p, e1), dot3(p, e2)];
         let t = p2(proj);
         let inside = (0..pts.len()).all(|k| left_dist(p2(pts[k]), p2(pts[(k + 1) % pts.len()]), t) > 0.0);
-        if inside {
-            proj
-        } else {
-            let s = pts.iter().fold([0.0; 3], |a, p| [a[0] + p[0], a[1] + p[1], a[2] + p[2]]);
-            let k = pts.len() as f64;
-            [s[0] / k, s[1] / k, s[2] / k]
-        }
+        inside.then_some(proj)
     }
 
     /// The quadrilateral of facet `f`'s corners containing corner `apex` (a loop position) that

@@ -55,9 +55,35 @@ impl HullShape {
         best
     }
 
+    /// The facet the contact comes from at the support vertex `v` towards the unit direction `d`
+    /// ("Resting on a stable facet" in the parent module): among the facets at `v` with n·d > 0,
+    /// the stable one closest to `d` that the body touches with its whole support polygon (every
+    /// kept corner within the touch tolerance of the support plane); failing one, the facet whose
+    /// normal is closest to `d`. O(facets at `v` · 4).
     #[inline]
-    fn closest_facet_at(&self, v: u32, d: Vector) -> Option<u32> {
-        self.closest_facet_at_with_sin2(v, d).map(|b| b.0)
+    fn contact_facet(&self, v: u32, d: Vector) -> Option<u32> {
+        let d64 = to64(d);
+        let floor = dot64(self.points[v as usize], &d64) - self.touch_tol;
+        let touches = |f: u32| {
+            let cs = self.facet_corners(f as usize);
+            let kept = |i: usize| if cs.len() <= 4 { cs[i] } else { cs[self.quads[f as usize][i] as usize] };
+            (0..cs.len().min(4)).all(|i| dot64(self.points[kept(i) as usize], &d64) >= floor)
+        };
+        let mut closest: Option<(u32, Real)> = None;
+        let mut resting: Option<(u32, Real)> = None;
+        for &f in self.faces_at(v) {
+            let n = self.normals[f as usize];
+            if n.dot(d) > 0.0 {
+                let s2 = n.cross(d).length_squared();
+                if closest.is_none_or(|b| s2 < b.1) {
+                    closest = Some((f, s2));
+                }
+                if self.stable[f as usize] && resting.is_none_or(|b| s2 < b.1) && touches(f) {
+                    resting = Some((f, s2));
+                }
+            }
+        }
+        resting.or(closest).map(|b| b.0)
     }
 
     /// The corners joined to corner `v` by a hull edge.
@@ -91,12 +117,13 @@ impl HullShape {
     }
 
     /// The facet rapier's contacts come from towards `dir` (the facet of
-    /// [`PolygonalFeatureMap::local_support_feature`]): among the facets at the support vertex,
-    /// the one whose normal is closest to `dir`. O(1); for a body at rest, `dir` = down in the body
-    /// frame gives the facet it rests on.
+    /// [`PolygonalFeatureMap::local_support_feature`]): among the facets at the support vertex, a
+    /// stable one the body touches with its whole support polygon, else the one whose normal is
+    /// closest to `dir`. O(1); for a body at rest, `dir` = down in the body frame gives the facet
+    /// it rests on.
     pub fn support_facet(&self, dir: Vector) -> u32 {
         let v = self.support_vertex(dir);
-        self.closest_facet_at(v, dir.normalize_or_zero()).unwrap_or(self.faces_at(v)[0])
+        self.contact_facet(v, dir.normalize_or_zero()).unwrap_or(self.faces_at(v)[0])
     }
 
     /// The support feature towards `dir`: `Face(f)` for the facet at the support vertex whose
@@ -122,7 +149,7 @@ impl SupportMap for HullShape {
 impl PolygonalFeatureMap for HullShape {
     fn local_support_feature(&self, dir: Vector, out: &mut PolygonalFeature) {
         let v = self.support_vertex(dir);
-        let f = self.closest_facet_at(v, dir.normalize_or_zero()).unwrap_or(self.faces_at(v)[0]);
+        let f = self.contact_facet(v, dir.normalize_or_zero()).unwrap_or(self.faces_at(v)[0]);
         self.write_face(f as usize, v, dir, out);
     }
 }
