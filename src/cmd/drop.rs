@@ -87,10 +87,8 @@ pub struct Args {
     /// Fast numerics: the preset's longest stable time step (1/120 s for drop and throw,
     /// measured) with free flight; on the same releases, compared drop by drop, the paired test
     /// does not tell its per-flock statistics from the default's on the bundled stone, a pebble
-    /// and a box (p ≥ 0.3, results/drops_vs_mujoco/).
-    /// On some scanned bodies a stone resting on its facet keeps jiggling at this step: without
-    /// a certificate such drops run to the time cap (results/drops_settling/). --dt and --flight
-    /// still override it.
+    /// and a box (p ≥ 0.3, results/drops_vs_mujoco/), and every throw of the 40 shared meshes
+    /// settles at it (results/drops_settling/). --dt and --flight still override it.
     #[arg(long)]
     pub fast: bool,
     /// End drops early once the energy certificate decides the facet (facet), the flock (flock),
