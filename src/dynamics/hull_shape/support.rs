@@ -69,21 +69,13 @@ impl HullShape {
             let kept = |i: usize| if cs.len() <= 4 { cs[i] } else { cs[self.quads[f as usize][i] as usize] };
             (0..cs.len().min(4)).all(|i| dot64(self.points[kept(i) as usize], &d64) >= floor)
         };
-        let mut closest: Option<(u32, Real)> = None;
-        let mut resting: Option<(u32, Real)> = None;
-        for &f in self.faces_at(v) {
-            let n = self.normals[f as usize];
-            if n.dot(d) > 0.0 {
-                let s2 = n.cross(d).length_squared();
-                if closest.is_none_or(|b| s2 < b.1) {
-                    closest = Some((f, s2));
-                }
-                if self.stable[f as usize] && resting.is_none_or(|b| s2 < b.1) && touches(f) {
-                    resting = Some((f, s2));
-                }
-            }
-        }
-        resting.or(closest).map(|b| b.0)
+        let resting = self
+            .faces_at(v)
+            .iter()
+            .filter(|&&f| self.stable[f as usize] && self.normals[f as usize].dot(d) > 0.0 && touches(f))
+            .map(|&f| (f, self.normals[f as usize].cross(d).length_squared()))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        resting.or_else(|| self.closest_facet_at_with_sin2(v, d)).map(|b| b.0)
     }
 
     /// The corners joined to corner `v` by a hull edge.
