@@ -40,7 +40,8 @@ impl ContactLaw {
         let w = convert::vec_back(rb.angvel());
         let v = convert::vec_back(rb.linvel());
         let inertia = body.world_inertia(&q);
-        // About the contact patch: the body pivots on its sticking contact (lever r = G − c).
+        // About the contact patch: the body pivots on its sticking contact (lever r = G − c;
+        // I_c = I_G + m(|r|²𝟙 − r rᵀ) with m = 1, the stone's mass in the scaled frame).
         let r = centre.map_or(Vec3::zeros(), |c| convert::vec_back(rb.translation()) - c);
         let pivot_inertia = inertia + Matrix3::identity() * r.norm_squared() - r * r.transpose();
         let dw = self.couple(&w, &inverse(&pivot_inertia), jn, torsion);
