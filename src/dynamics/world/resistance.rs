@@ -28,12 +28,12 @@ impl ContactLaw {
         if !(jn > 0.0) {
             return;
         }
+        let pose = world.colliders[stone].position();
         let torsion = if self.torsional_friction > 0.0 {
-            (self.torsional_friction * jn - twist_limit(pair, stone, world.colliders[stone].position())).max(0.0)
+            (self.torsional_friction * jn - twist_limit(pair, stone, pose)).max(0.0)
         } else {
             0.0
         };
-        let pose = world.colliders[stone].position();
         let centre = impulse_centre(pair, stone, pose);
         let rb = &world.bodies[handle];
         let q = convert::quat_back(rb.rotation());
