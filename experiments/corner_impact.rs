@@ -196,12 +196,13 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
     let mut md = String::new();
     let _ = writeln!(md, "# A corner impact against the closed form of a rigid body's impact\n");
     let _ = writeln!(md, "Regenerate: `cargo run --release --example corner_impact` (a few seconds).\n");
+    let inv_dt = 1.0 / Preset::Drop.params(Surface::SteelOnWood).dt;
     let _ = writeln!(
         md,
         "A box 1 × 0.8 × 0.5 (R_max units, m = 1) released at rest {HEIGHT} R_max above the ground in {} random \
          orientations (the drop launch's stream, seed {SEED}; {two_corners} with a second corner within \
          {SECOND_CORNER} R_max of the lowest are left out, the others land on one corner); the default `drop` numerics \
-         (exact landing, sub-stepped impacts, dt 1/240 s), μ = {FRICTION}, no damping, no rolling resistance, at \
+         (exact landing, sub-stepped impacts, dt 1/{inv_dt:.0} s), μ = {FRICTION}, no damping, no rolling resistance, at \
          rapier's solver sub-steps 1–32 (the default is 4). {sticking} orientations have a sticking impact by \
          Coulomb's law (|P_t| ≤ μ P_n for Newton's impulse at both e) and are measured; {sliding} slide and are \
          left out (no closed form as simple). The spin after the first impact step is compared with two closed \

@@ -30,7 +30,7 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::params::{
-    DropParams, Flight, Preset, Surface, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN,
+    DropParams, Flight, Preset, Surface, REFERENCE_DT, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN,
 };
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
@@ -184,11 +184,13 @@ fn main() {
     std::fs::write(out.join("fit.csv"), fit_csv).expect("write fit.csv");
 
     // Other numerics at the best point: the same 4N throws (seed 2) with rapier's own flight
-    // (contacts at the step boundaries, the numerics before issue 25) and at the longest accepted
-    // step (`--fast`), against the counts of the default numerics.
-    let fast = [(Flight::Rapier, None), (Flight::Free, Some(Preset::Throw.largest_stable_dt()))];
+    // (contacts at the step boundaries, the numerics before issue 25, at their step 1/240 s) and
+    // with free flight at the reference step
+    // the default is checked against (`--reference`), against the counts of the default numerics.
+    let others = [(Flight::Rapier, Some(REFERENCE_DT)), (Flight::Free, Some(REFERENCE_DT))];
+    let default_dt = Preset::Throw.params(Surface::SteelOnWood).dt;
     let mut numerics = Vec::new();
-    for &(flight, dt) in &fast {
+    for &(flight, dt) in &others {
         let t = Instant::now();
         let per_die: Vec<(f64, f64)> = dice
             .iter()
@@ -204,7 +206,7 @@ fn main() {
             })
             .collect();
         drops += 28 * n;
-        numerics.push((flight, dt.unwrap_or(1.0 / 240.0), per_die, t.elapsed().as_secs_f64()));
+        numerics.push((flight, dt.unwrap_or(default_dt), per_die, t.elapsed().as_secs_f64()));
     }
     let ll_fit = log_likelihood(&dice, &rows.iter().map(|r| r.3).collect::<Vec<_>>());
     let noise_band = 2.0 * (best.3 - ll_fit).abs().max(2.0);
@@ -238,7 +240,8 @@ fn main() {
          y × y × x rolled by hand, 332–1011 rolls each). **This is a calibration, not a validation**: the \
          free parameters of the throw are fitted to these seven dice.\n"
     );
-    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics since issue 25: no impact starts inside the ground, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::world`), the die's exact box hull, no global damping, dt 1/240 s; contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
+    let inv_dt = 1.0 / default_dt;
+    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics since issue 25: no impact starts inside the ground, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::world`), the die's exact box hull, no global damping, dt 1/{inv_dt:.0} s (the preset's longest stable step, `Preset::largest_stable_dt`); contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
     let _ = writeln!(md, "## Fit\n");
     let _ = writeln!(md, "| parameter | best | range over the grid points within the noise band |\n|---|---|---|");
     let _ = writeln!(md, "| H (R_max) | {} | {h_lo} – {h_hi} |", best.0);
@@ -315,13 +318,13 @@ fn main() {
         md,
         "The best point's {} throws per die again (same seed, same launches), with rapier's own flight (`--flight \
          rapier`: contacts found at the step boundaries, impacts starting up to 0.1–0.2 R_max inside the ground — the \
-         numerics of this calibration before issue 25) and with the default numerics at the throw preset's longest \
-         stable time step (1/120 s, `--fast`). Not a calibration: the parameters are those fitted above; the question \
+         numerics of this calibration before issue 25, at their step 1/240 s) and with free flight at the reference step the default is \
+         checked against (1/240 s, `--reference`). Not a calibration: the parameters are those fitted above; the question \
          is only whether the numerics change the answer. χ² of homogeneity of each die's square/other counts against \
          the default numerics (1 dof each; summed over the 7 dice, 7 dof).\n",
         4 * n
     );
-    let _ = write!(md, "| x/y | measured | default (exact landings, 1/240 s) |");
+    let _ = write!(md, "| x/y | measured | default (exact landings, 1/{:.0} s) |", 1.0 / default_dt);
     for (flight, dt, ..) in &numerics {
         let _ = write!(md, " {flight} flight, 1/{:.0} s | χ² |", 1.0 / dt);
     }
@@ -336,12 +339,12 @@ fn main() {
     for (flight, dt, per_die, seconds) in &numerics {
         let chi2: f64 = per_die.iter().map(|x| x.1).sum();
         let p_value = 1.0 - ChiSquared::new(7.0).expect("7 dof").cdf(chi2);
-        let rms_fast =
+        let rms_other =
             (rows.iter().zip(per_die).map(|(r, x)| (x.0 - r.1).powi(2)).sum::<f64>() / rows.len() as f64).sqrt();
         let _ = writeln!(
             md,
             "\n* {flight} flight at 1/{:.0} s: summed χ² {chi2:.1} (7 dof, p = {p_value:.2}); rms error against the \
-             measured dice {rms_fast:.3} (default numerics {rms:.3}); {:.1} s for the {} throws.",
+             measured dice {rms_other:.3} (default numerics {rms:.3}); {:.1} s for the {} throws.",
             1.0 / dt,
             seconds,
             28 * n

@@ -17,7 +17,7 @@ use benchmark_bodies::benchmark_bodies;
 use cpu_time::thread_cpu_seconds;
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::params::{Flight, Preset, Surface, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
@@ -30,26 +30,27 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 /// One mode: stones per world (1 = plain), certificate, flight, and whether it runs the
-/// preset's fast numerics (`Preset::fast`: free flight at the preset's longest stable step).
+/// preset's default step (its longest stable one, 1/120 s, `Preset::largest_stable_dt`) rather
+/// than the reference step [`REFERENCE_DT`] = 1/240 s.
 #[derive(Clone, Copy)]
 struct Mode {
     name: &'static str,
     batch: usize,
     cert: CertificateMode,
     flight: Flight,
-    fast: bool,
+    default_step: bool,
 }
 
 impl Mode {
     /// The reference numerics (rapier flight, 1/240 s): outcomes comparable drop by drop, bit
     /// for bit, with plain.
     fn reference(&self) -> bool {
-        self.flight == Flight::Rapier && !self.fast
+        self.flight == Flight::Rapier && !self.default_step
     }
 }
 
 const fn mode(name: &'static str, batch: usize, cert: CertificateMode, flight: Flight) -> Mode {
-    Mode { name, batch, cert, flight, fast: false }
+    Mode { name, batch, cert, flight, default_step: false }
 }
 
 const MODES: [Mode; 9] = [
@@ -62,11 +63,11 @@ const MODES: [Mode; 9] = [
     mode("facet-certified + batched + free flight", DEFAULT_BATCH, CertificateMode::Facet, Flight::Free),
     mode("flock-certified + batched + free flight", DEFAULT_BATCH, CertificateMode::Flock, Flight::Free),
     Mode {
-        name: "flock-certified + batched, --fast (free flight, dt 1/120 s)",
+        name: "flock-certified + batched, default numerics (free flight, dt 1/120 s)",
         batch: DEFAULT_BATCH,
         cert: CertificateMode::Flock,
         flight: Flight::Free,
-        fast: true,
+        default_step: true,
     },
 ];
 
@@ -79,8 +80,9 @@ const READING: &str = r"
   plain ones drop by drop (the *same outcome* column compares the whole outcome record, floats as
   bits; `tests/batch.rs` checks batch sizes 1, 7, 32 and 1–2 threads); certified outcomes have
   the plain drop's facet / flock in every case.
-* **Free flight** (`--flight free`) and **`--fast`** (free flight at the preset's longest stable
-  step, 1/120 s for `drop` and `throw`, `Preset::largest_stable_dt`) integrate differently from
+* **Free flight** (`--flight free`) and the **default numerics** (free flight at the preset's
+  longest stable step, 1/120 s for `drop` and `throw`, `Preset::largest_stable_dt`; `--fast` before
+  it became the default) integrate differently from
   plain, so a chaotic throw ends elsewhere drop by drop (the *same outcome* column then compares
   the facet or flock only); their per-flock statistics are compared with plain's by Pearson's χ²
   test of homogeneity (the *χ² p* column: no p below 0.05 in this run means no difference this
@@ -98,7 +100,7 @@ const READING: &str = r"
   count.
 * **Noise.** CPU times move with the load of this shared machine: the two timings of the same
   plain run can differ by 20 % or more (see the plain rows), and before every mode was timed
-  twice one `--fast` run came out a third slower than in the runs before and after it; with the
+  twice one run at 1/120 s came out a third slower than in the runs before and after it; with the
   faster of two timings per mode, read a single ratio as ± 15 %.
 ";
 
@@ -111,8 +113,8 @@ struct ModeRun {
 fn header(name: &str, n: u64, preset: Preset, m: &Mode) -> RunHeader {
     let mut params = preset.params(Surface::SteelOnWood);
     params.flight = m.flight;
-    if m.fast {
-        preset.fast(&mut params);
+    if !m.default_step {
+        params.dt = REFERENCE_DT;
     }
     RunHeader {
         format: FORMAT.into(),
@@ -292,7 +294,7 @@ fn main() -> anyhow::Result<()> {
         writeln!(
             csv,
             "\"{name}\",throw,batch sweep,{batch},none,rapier,{:.6},{n},{:.3},{:.2},{:.3},{:.4},{},0,,,",
-            1.0 / 240.0,
+            REFERENCE_DT,
             r.seconds,
             n as f64 / r.seconds,
             b / r.seconds,
@@ -315,7 +317,7 @@ fn main() -> anyhow::Result<()> {
     writeln!(
         s,
         "\n* **The 7× target** (certified + batched against plain): with the reference numerics, \
-         {} — flock-certified + batched + free flight, {}; with `--fast`, {}.",
+         {} — flock-certified + batched + free flight, {}; with the default numerics (1/120 s), {}.",
         target(4),
         target(7),
         target(8)

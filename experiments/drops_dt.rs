@@ -3,7 +3,7 @@
 //! dt, on the bundled stone, a ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5,
 //!
 //! * the per-flock statistics of N fully settled drops (batched worlds) against those at the
-//!   default dt = 1/240 s, by Pearson's χ² test of homogeneity (independent seeds per dt, so the
+//!   reference dt = 1/240 s (`REFERENCE_DT`), by Pearson's χ² test of homogeneity (independent seeds per dt, so the
 //!   two samples are independent);
 //! * on the first M drops, stepped one at a time with an observer: the largest compression of
 //!   the soft contact h(down) − z_G (R_max) over the whole run and at rest, and the largest rise
@@ -75,10 +75,9 @@ impl Stability {
              * **The longest stable step** of every preset is therefore the longest `DropParams::check` accepts, \
              1/120 s (`Preset::largest_stable_dt`; the check's cap, four steps per period of the stiffest contact, \
              is kept although 1/80 s passes too). It gives ×{r_lo:.1}–{r_hi:.1} the drops/s of 1/240 s here and is \
-             what `rocking drop --fast` uses (with free flight; `results/drops_certificate/`). The reference step \
-             stays 1/240 s: every calibrated and published result of the project (the throw preset's fit in \
-             `results/cuboid_dice/`, `presets_flocks`, `thick_coin`) was made with it; the fit's dice are \
-             re-thrown with `--fast` in `results/cuboid_dice/`.\n",
+             the default of every preset (with free flight; `results/drops_certificate/`); 1/240 s stays the \
+             reference it is checked against (`rocking drop --reference`): the throw preset's dice are re-thrown at \
+             it in `results/cuboid_dice/`, the same releases compared drop by drop in `results/drops_vs_mujoco/`.\n",
             self.unsettled,
             self.drops,
             self.compression_at_rest,

@@ -2,9 +2,10 @@
 //! with the default preset (the calibrated `throw` on steel on wood) and **no certificate**: how
 //! many come to rest before the time cap, how long it takes, how many stop off their stable
 //! facet, and where the quasi-static descent puts them (no drop can land on a non-stable facet:
-//! outcomes are read by the static theory). The same throws again with `--fast` (the preset's
-//! longest stable step, 1/120 s, `Preset::fast`): whether that step, measured on three bodies in
-//! `results/drops_dt/`, also settles every mesh — the condition for making it the default.
+//! outcomes are read by the static theory). The default step is the preset's longest stable one
+//! (1/120 s, measured on three bodies in `results/drops_dt/`); the same throws again at the
+//! reference step 1/240 s (`--reference`, `Preset::reference`) show that the longer step does not
+//! leave a mesh unsettled that the shorter one settles.
 //!
 //! Run: `cargo run --release --example drops_settling [-- N]` (N = 200) →
 //! `results/drops_settling/`.
@@ -30,14 +31,14 @@ fn main() {
     meshes.sort();
     meshes.push(PathBuf::from("data/default_pebble.ply"));
     let p = DropParams::default();
-    let mut fast = p.clone();
-    Preset::Throw.fast(&mut fast);
+    let mut reference = p.clone();
+    Preset::Throw.reference(&mut reference);
     let mut csv = String::from(
         "mesh,hull_facets,stable_facets,flocks,drops,settled,unsettled,settled_fraction,off_equilibrium,mean_time_s,max_time_s,wall_s,\
-         fast_settled_fraction,fast_unsettled,fast_unsettled_median_height_above\n",
+         reference_settled_fraction,reference_unsettled,reference_unsettled_median_height_above\n",
     );
     let mut worst = (1.0f64, String::new());
-    let mut worst_fast = (1.0f64, String::new());
+    let mut worst_ref = (1.0f64, String::new());
     let mut rows = Vec::new();
     let t_all = Instant::now();
     for m in &meshes {
@@ -66,18 +67,18 @@ fn main() {
         let t0 = Instant::now();
         let (r, outcomes) = run_report(&stone, &header);
         let wall = t0.elapsed().as_secs_f64();
-        let (rf, fast_outcomes) = run_report(&stone, &RunHeader { params: fast.clone(), ..header.clone() });
-        let frac_fast = rf.settled as f64 / rf.drops as f64;
-        let h_fast = unsettled_height(fast_outcomes.values());
-        if frac_fast < worst_fast.0 || worst_fast.1.is_empty() {
-            worst_fast = (frac_fast, name.clone());
+        let (rf, ref_outcomes) = run_report(&stone, &RunHeader { params: reference.clone(), ..header.clone() });
+        let frac_ref = rf.settled as f64 / rf.drops as f64;
+        let h_ref = unsettled_height(ref_outcomes.values());
+        if frac_ref < worst_ref.0 || worst_ref.1.is_empty() {
+            worst_ref = (frac_ref, name.clone());
         }
         let frac = r.settled as f64 / r.drops as f64;
         let max_t = outcomes.values().map(|o| o.time).fold(0.0, f64::max);
         let stable = stone.facet_equilibrium.iter().filter(|e| e.is_some()).count();
         let _ = writeln!(
             csv,
-            "{name},{},{stable},{},{},{},{},{frac:.4},{},{:.2},{max_t:.2},{wall:.1},{frac_fast:.4},{},{h_fast:.2e}",
+            "{name},{},{stable},{},{},{},{},{frac:.4},{},{:.2},{max_t:.2},{wall:.1},{frac_ref:.4},{},{h_ref:.2e}",
             stone.body.facet_normals.len(),
             stone.flock_kinds.len(),
             r.drops,
@@ -94,11 +95,11 @@ fn main() {
         if frac < worst.0 || worst.1.is_empty() {
             worst = (frac, name.clone());
         }
-        rows.push((name, frac, r.unsettled, r.off_equilibrium, r.mean_time, frac_fast, rf.unsettled, h_fast));
+        rows.push((name, frac, r.unsettled, r.off_equilibrium, r.mean_time, frac_ref, rf.unsettled, h_ref));
     }
     std::fs::write(out.join("settling.csv"), csv).expect("write csv");
     let below = rows.iter().filter(|r| r.1 < 0.995).count();
-    let below_fast = rows.iter().filter(|r| r.5 < 0.995).count();
+    let below_ref = rows.iter().filter(|r| r.5 < 0.995).count();
     let mut md = String::new();
     let _ = writeln!(md, "# Do drops settle? {} meshes × {n} throws, certificate off\n", rows.len());
     let _ = writeln!(md, "Regenerate: `cargo run --release --example drops_settling`.\n");
@@ -131,23 +132,23 @@ fn main() {
     );
     let _ = writeln!(
         md,
-        "**With `--fast`** (the same throws at dt = {:.5} s, the preset's longest stable step): {} of {} meshes reach \
+        "**With `--reference`** (the same throws at the reference step dt = {:.5} s): {} of {} meshes reach \
          the target; the lowest settled fraction is {:.3} ({}). The last column is how far above its rest on the facet the \
          quasi-static descent reaches a drop still moving at the cap stands (median per mesh, R_max): near 0 for \
          a stone jiggling on its facet with speeds above the rest rule's {} m/s and {} rad/s, large for one still \
          rolling.\n",
-        fast.dt,
-        rows.len() - below_fast,
+        reference.dt,
+        rows.len() - below_ref,
         rows.len(),
-        worst_fast.0,
-        worst_fast.1,
+        worst_ref.0,
+        worst_ref.1,
         p.rest_linear_speed,
         p.rest_angular_speed,
     );
     let _ = writeln!(
         md,
-        "| mesh | settled | unsettled | off equilibrium | mean time (s) | `--fast`: settled | `--fast`: unsettled | \
-         `--fast` unsettled: height above the facet |\n|---|---|---|---|---|---|---|---|"
+        "| mesh | settled | unsettled | off equilibrium | mean time (s) | `--reference`: settled | `--reference`: unsettled | \
+         `--reference` unsettled: height above the facet |\n|---|---|---|---|---|---|---|---|"
     );
     for r in &rows {
         let h = if r.6 == 0 { "—".to_string() } else { format!("{:.1e}", r.7) };

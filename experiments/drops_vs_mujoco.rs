@@ -6,9 +6,9 @@
 //! (linear) and 1 s⁻¹ (angular), the same rest rule and 60 s cap, in the scaled frame (R_max =
 //! 1 m, mass 1, g = 9.81) with the same hull corners and inertia tensor. The project runs plain,
 //! batched and flock-certified + batched at the reference step `REFERENCE_DT` = 1/240 s, and
-//! flock-certified + batched with its `--fast` numerics (`Preset::largest_stable_dt`, 1/120 s).
+//! flock-certified + batched with its default numerics (`Preset::largest_stable_dt`, 1/120 s).
 //! MuJoCo runs from Python (`shared/mujoco_drops.py`, which documents its settings) at both steps,
-//! 1/240 s (the issue's protocol) and 1/120 s (the project's `--fast` step): one model,
+//! 1/240 s (the issue's protocol) and 1/120 s (the project's default step): one model,
 //! its contact's damping ratio calibrated on a ball at 1/240 s, only the step changed (an untimed
 //! check runs it at 1/120 s with the ratio calibrated again there); it returns each drop's final
 //! body-frame down direction, classified here by the project's own rule (`Stone::rest`), so both
@@ -73,12 +73,12 @@ const SUBSTEPS: [usize; 5] = [2, 4, 8, 16, 32];
 /// MuJoCo's default contact time constant (s), the first number of solref (`mujoco_drops.py`).
 const MJ_TIMECONST: f64 = 0.02;
 
-/// The project's `--fast` drop step, `Preset::largest_stable_dt` (1/120 s).
+/// The project's default drop step, `Preset::largest_stable_dt` (1/120 s).
 fn fast_dt() -> f64 {
     Preset::Drop.largest_stable_dt()
 }
 
-/// The steps MuJoCo runs at: the reference step (the issue's protocol) and the project's `--fast` step.
+/// The steps MuJoCo runs at: the reference step (the issue's protocol) and the project's default step.
 fn mj_dts() -> [f64; 2] {
     [REFERENCE_DT, fast_dt()]
 }
@@ -130,13 +130,13 @@ struct Mode {
     short: String,
     batch: usize,
     cert: CertificateMode,
-    /// Time step (s, scaled): [`REFERENCE_DT`] for the reference modes, the preset's `--fast` step
-    /// for the `--fast` numerics.
+    /// Time step (s, scaled): [`REFERENCE_DT`] for the reference modes, the preset's default step
+    /// for the default numerics.
     dt: f64,
 }
 
 /// The project's modes: three at the reference step (MuJoCo's step of the issue's protocol) and
-/// the `--fast` numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
+/// the default numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
 fn modes() -> [Mode; 4] {
     let mode =
         |name: &str, short: &str, batch, cert, dt| Mode { name: name.into(), short: short.into(), batch, cert, dt };
@@ -146,8 +146,8 @@ fn modes() -> [Mode; 4] {
         mode("batched", "batched", DEFAULT_BATCH, CertificateMode::None, REFERENCE_DT),
         mode("flock-certified + batched", "flock-cert. + batched", DEFAULT_BATCH, CertificateMode::Flock, REFERENCE_DT),
         mode(
-            &format!("flock-certified + batched, `--fast` numerics (dt {d})"),
-            &format!("flock-cert. + batched, `--fast` numerics (dt {d})"),
+            &format!("flock-certified + batched, default numerics (dt {d})"),
+            &format!("flock-cert. + batched, default numerics (dt {d})"),
             DEFAULT_BATCH,
             CertificateMode::Flock,
             fast_dt(),
@@ -534,26 +534,26 @@ struct Summary {
     t: Vec<f64>,
     /// MuJoCo at each of [`mj_dts`].
     mj: Vec<MjSummary>,
-    /// Paired p, timed drops: the `--fast` numerics against MuJoCo at the same step; MuJoCo at the
-    /// `--fast` step against MuJoCo at the reference step.
+    /// Paired p, timed drops: the default numerics against MuJoCo at the same step; MuJoCo at the
+    /// default step against MuJoCo at the reference step.
     p_fast_same: f64,
     p_mj_steps: f64,
     /// Larger samples: the reference project (batched) against MuJoCo at the reference step, and
     /// the flock with the largest share of χ² there.
     big_ref: Chi,
     widest: Widest,
-    /// Larger samples: MuJoCo at the `--fast` step against MuJoCo at the reference step.
+    /// Larger samples: MuJoCo at the default step against MuJoCo at the reference step.
     big_mj_steps: Chi,
     widest_mj_steps: Widest,
-    /// Larger samples: the `--fast` numerics against MuJoCo at the same step, against MuJoCo at the
+    /// Larger samples: the default numerics against MuJoCo at the same step, against MuJoCo at the
     /// reference step, against the project at the reference step.
     big_fast_same: Chi,
-    /// The flock with the largest share of χ² between the `--fast` numerics and MuJoCo at the
+    /// The flock with the largest share of χ² between the default numerics and MuJoCo at the
     /// same step (larger samples).
     widest_fast_same: Widest,
     big_fast_ref: Chi,
     big_project_steps: Chi,
-    /// Larger samples' unsettled drops: the project's reference (batched) and `--fast` numerics.
+    /// Larger samples' unsettled drops: the project's reference (batched) and default numerics.
     big_unsettled: (u64, u64),
     /// Larger samples, paired by their orientations: drops that end in the same flock at both
     /// steps, in MuJoCo and in the project, of this many.
@@ -706,7 +706,7 @@ fn main() -> anyhow::Result<()> {
     );
     let mut table = String::new();
     let mut flock_tables = String::new();
-    // Per body: the four modes against MuJoCo at the reference step, then the `--fast` numerics
+    // Per body: the four modes against MuJoCo at the reference step, then the default numerics
     // against MuJoCo at the same step; each (against the loop, against the stepping alone).
     let mut bars: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     let mut checks = String::new();
@@ -807,7 +807,7 @@ fn main() -> anyhow::Result<()> {
         )?;
         let nd = n as f64;
         // The larger, untimed samples: the batched project at the reference step (drop by drop
-        // the plain drops), the `--fast` numerics, and MuJoCo at both steps.
+        // the plain drops), the default numerics, and MuJoCo at both steps.
         let big = n * SAMPLE_FACTOR;
         let project_run = pool.install(|| timed(stone, &header(name, big, &modes[1]), DEFAULT_BATCH));
         let fast_run = pool.install(|| timed(stone, &header(name, big, &modes[3]), modes[3].batch));
@@ -841,7 +841,7 @@ fn main() -> anyhow::Result<()> {
         writeln!(
             sample_tables,
             "\n### {name}\n\n{} drops per engine and step; not settled within the {} s cap: project {} at {ref_label} \
-             (batched), {} at {def_label} (`--fast` numerics); MuJoCo {} at {ref_label}, {} at {def_label}.\n\n{}\n{}\n{}\n{}\n{}\n",
+             (batched), {} at {def_label} (default numerics); MuJoCo {} at {ref_label}, {} at {def_label}.\n\n{}\n{}\n{}\n{}\n{}\n",
             big,
             reference.max_time,
             project_big.unsettled,
@@ -851,14 +851,14 @@ fn main() -> anyhow::Result<()> {
             test(&format!("project {ref_label} against MuJoCo {ref_label}"), &big_ref),
             test(&format!("MuJoCo {def_label} against MuJoCo {ref_label}"), &big_mj_steps)
                 + &format!(" (the same orientations at both steps: {same_mj} of {big} drops end in the same flock)"),
-            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {def_label}"), &big_fast_same),
-            test(&format!("project `--fast` numerics ({def_label}) against MuJoCo {ref_label}"), &big_fast_ref),
-            test(&format!("project `--fast` numerics ({def_label}) against project {ref_label}"), &big_project_steps)
+            test(&format!("project default numerics ({def_label}) against MuJoCo {def_label}"), &big_fast_same),
+            test(&format!("project default numerics ({def_label}) against MuJoCo {ref_label}"), &big_fast_ref),
+            test(&format!("project default numerics ({def_label}) against project {ref_label}"), &big_project_steps)
                 + &format!(" (the same orientations at both steps: {same_project} of {big} drops end in the same flock)"),
         )?;
         writeln!(
             sample_tables,
-            "| flock | type | static | project {ref_label} (batched) | MuJoCo {ref_label} | project {def_label} (`--fast` \
+            "| flock | type | static | project {ref_label} (batched) | MuJoCo {ref_label} | project {def_label} (default \
              numerics) | MuJoCo {def_label} | share of χ², project {ref_label} vs MuJoCo {ref_label} | share of χ², \
              MuJoCo {def_label} vs {ref_label} |\n|---|---|---|---|---|---|---|---|---|"
         )?;
@@ -901,7 +901,7 @@ fn main() -> anyhow::Result<()> {
             };
             box_pairs = format!(
                 " By face pair, the box rests on its 0.8 × 0.5 ends, 1 × 0.5 sides and 1 × 0.8 faces with fractions \
-                 {} in the project at {ref_label} and {} in MuJoCo at {ref_label}; {} in the project's `--fast` \
+                 {} in the project at {ref_label} and {} in MuJoCo at {ref_label}; {} in the project's default \
                  numerics and {} in MuJoCo at {def_label} (static {}).",
                 pooled(project_big, false),
                 pooled(&mj[0].big, false),
@@ -986,7 +986,7 @@ fn main() -> anyhow::Result<()> {
                 r.report.fit_flocks.kl_divergence
             )?;
         }
-        // The `--fast` numerics against MuJoCo at the same step.
+        // The default numerics against MuJoCo at the same step.
         let d = &rows[3];
         ratios.push((d.rate / (nd / mj[1].loop_s), d.rate / (nd / mj[1].step_s)));
         let p_mj_steps = drop_by_drop(stone, &mj[1].outcomes, &mj[0].outcomes).p;
@@ -1137,9 +1137,9 @@ fn readme(
          MuJoCo's drops at {r_l} and at {d_l}, then every mode of the project, so that both see the same load of \
          this shared machine), and each side's fastest round is used. The project runs plain, batched and \
          flock-certified + batched at the reference step {r_l} (`REFERENCE_DT`, MuJoCo's step in the issue's \
-         protocol), and flock-certified + batched with its **`--fast` numerics** at dt {d_l} \
-         (`Preset::largest_stable_dt`, `rocking drop --fast`; the default step stays {r_l}, `results/drops_settling/`). MuJoCo runs at both steps: at {r_l} (the issue's \
-         protocol) and at {d_l}, the project's `--fast` step. The *ratio* is the project's drops/s over \
+         protocol), and flock-certified + batched with its **default numerics** at dt {d_l} \
+         (`Preset::largest_stable_dt`, what `rocking drop` runs; `--reference` takes {r_l}). MuJoCo runs at both steps: at {r_l} (the issue's \
+         protocol) and at {d_l}, the project's default step. The *ratio* is the project's drops/s over \
          MuJoCo's for the same body. The per-flock statistics are compared on the timed drops and on larger \
          untimed samples ({SAMPLE_FACTOR} × {n} drops per engine, step and body).\n",
         mj[0].mujoco_version, mj[0].python_version, mj[0].numpy_version
@@ -1185,7 +1185,7 @@ fn readme(
          principal rotations (the torque −c I ω), treated implicitly by the integrator, which is the same \
          v ← v / (1 + dt c) |\n\
          | numerics | the `drop` preset's (exact landings, sub-stepped impacts), 4 solver iterations; dt = {r_l} \
-         (plain, batched, flock-certified + batched) or {d_l} (the `--fast` numerics) | opt.timestep = {r_l} or \
+         (plain, batched, flock-certified + batched) or {d_l} (the default numerics) | opt.timestep = {r_l} or \
          {d_l} (one run each; the contact's time constant {MJ_TIMECONST} s is at least twice either, as MuJoCo \
          asks of a soft contact), **{}** integrator (MuJoCo's default is {}), {} solver ({} iterations, tolerance \
          {:e}), one thread |\n\
@@ -1224,7 +1224,7 @@ fn readme(
          MuJoCo would spend. The ratios in bold are against the loop, the others against stepping alone. The \
          columns *vs MuJoCo {r_l}* divide by MuJoCo at {r_l} for every mode (the issue's protocol); the column *vs \
          MuJoCo at the same dt* divides by MuJoCo at the mode's own step: {r_l} for plain, batched and \
-         flock-certified + batched (so the same numbers), **{d_l} for the `--fast` numerics** — the comparison at \
+         flock-certified + batched (so the same numbers), **{d_l} for the default numerics** — the comparison at \
          equal steps.\n"
     )?;
     writeln!(s, "## Drops per second per core\n")?;
@@ -1387,7 +1387,7 @@ fn readme(
     };
     writeln!(
         s,
-        "**MuJoCo at the project's `--fast` step, {d_l}.** The same MuJoCo model as at {r_l}, solref ({}, {:.4}), \
+        "**MuJoCo at the project's default step, {d_l}.** The same MuJoCo model as at {r_l}, solref ({}, {:.4}), \
          only the step changed; the contact's time constant {MJ_TIMECONST} s is {:.1} steps of {d_l} (MuJoCo asks \
          for at least 2). MuJoCo's restitution {}: the ball that rebounds with e = {:.3} at {r_l} rebounds with \
          e = {:.3} at {d_l}. {recal_sentence} MuJoCo's loop runs {} drops/s at {d_l} against {} at {r_l} (×{}), its \
@@ -1423,13 +1423,13 @@ fn readme(
         s,
         "**The large ratios are the project's algorithms, not a faster engine.** Batching ({} per step, against \
          plain's {}) shares a rapier world's fixed cost per step between {DEFAULT_BATCH} stones; the flock \
-         certificate ends a drop once its flock is certain, after {} simulated s instead of {}; the `--fast` \
+         certificate ends a drop once its flock is certain, after {} simulated s instead of {}; the default \
          numerics take the step {d_l} instead of {r_l}. Exact landings and sub-stepped impacts (the `drop` preset's \
          numerics, in every mode here) cost little: only a step in which some hull corner could come down by more \
          than its clearance plus 0.01 R_max is cut, in a world of the stone's own, outside the batch \
          (`dynamics::impact`). None of this is specific to rapier: the certificate needs only the body's energy and \
          down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and MuJoCo too takes the \
-         longer step (above). So {} (flock-certified + batched, both engines at {r_l}) and {} (the `--fast` numerics \
+         longer step (above). So {} (flock-certified + batched, both engines at {r_l}) and {} (the default numerics \
          against MuJoCo at {r_l}, the issue's protocol) — **{} against MuJoCo at the same step {d_l}**{} — are what \
          this project's drop pipeline gains over a plain MuJoCo loop (outcome statistics compared below), not a \
          property of the engines.\n",
@@ -1480,12 +1480,12 @@ fn readme(
         s,
         "**Outcome statistics.** Both engines drop the same releases, so every comparison is drop by drop (paired \
          p: the Stuart–Maxwell test of marginal homogeneity of the per-flock counts). In the timed runs ({n} drops), \
-         p against MuJoCo at {r_l}, plain / batched / flock-certified + batched / `--fast` numerics: {}; the lowest \
-         is {:.2} ({}). {shared}; the `--fast` numerics integrate at another step: against MuJoCo at the same step, \
+         p against MuJoCo at {r_l}, plain / batched / flock-certified + batched / default numerics: {}; the lowest \
+         is {:.2} ({}). {shared}; the default numerics integrate at another step: against MuJoCo at the same step, \
          {d_l}, their p is {}. The sharper tests are on the larger untimed samples ({SAMPLE_FACTOR} × {n} drops per \
          engine and step, [below](#larger-samples-untimed)). There, the project's batched drops at {r_l} end in \
          MuJoCo's flock at {r_l} in {} of the drops settled in both; p = {}, {}. The flock with the largest share \
-         of the homogeneity χ² there: {}. The project's `--fast` numerics against MuJoCo at the same step {d_l}: \
+         of the homogeneity χ² there: {}. The project's default numerics against MuJoCo at the same step {d_l}: \
          p = {}, {}{}; against MuJoCo at {r_l}: p = {}, {}; against the project's own drops at {r_l}: p = {}, {} \
          ({} drops end in the same flock at both steps).",
         each(&|x| format!("{} {}", x.short, x.p.iter().map(|p| format!("{p:.2}")).collect::<Vec<_>>().join(" / "))),
@@ -1517,7 +1517,7 @@ fn readme(
             }
         },
         each(&|x| format!("{} {:.3}", x.short, x.big_fast_ref.p)),
-        verdict(big_differ(&|x| x.big_fast_ref.p), "the project's `--fast` numerics and MuJoCo at the reference step"),
+        verdict(big_differ(&|x| x.big_fast_ref.p), "the project's default numerics and MuJoCo at the reference step"),
         each(&|x| format!("{} {:.3}", x.short, x.big_project_steps.p)),
         verdict(big_differ(&|x| x.big_project_steps.p), "the project's two steps"),
         each(&|x| format!("{} {} of {}", x.short, x.same_big.1, x.same_big.2)),
@@ -1538,7 +1538,7 @@ fn readme(
     writeln!(
         s,
         "\n## Larger samples (untimed)\n\n{SAMPLE_FACTOR} × {n} drops per engine, step and body, the first {n} the \
-         timed ones: the project's batched drops at {r_l} (drop by drop its plain drops), its `--fast` numerics \
+         timed ones: the project's batched drops at {r_l} (drop by drop its plain drops), its default numerics \
          (flock-certified + batched at {d_l}) and MuJoCo's drops at both steps, per flock (fraction of settled drops, \
          95 % interval; static = quasi-static basin probability), with each flock's share of two χ² statistics of \
          homogeneity (which take the two samples as independent: a description of where they differ; the tests \
@@ -1565,7 +1565,7 @@ fn plot(path: &Path, modes: &[Mode], bars: &[(String, Vec<(f64, f64)>)]) -> Resu
     init_fonts();
     let dts = mj_dts();
     let (r_l, d_l) = (step_label(dts[0]), step_label(dts[1]));
-    // One bar per mode against MuJoCo at the reference step, then the `--fast` numerics against
+    // One bar per mode against MuJoCo at the reference step, then the default numerics against
     // MuJoCo at the same step.
     let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l}", m.short)).collect();
     series.push(format!("{} ÷ MuJoCo at {d_l}, the same step", modes[3].short));

@@ -12,7 +12,7 @@
 //! * the quasi-static basins (exact basin areas on the sphere of down directions, no dynamics);
 //! * the `throw` preset calibrated on the steel cuboid dice (`results/cuboid_dice/`), on
 //!   `Surface::SteelOnWood` at the die's assumed size, with the default numerics it was
-//!   calibrated with (exact landings and sub-stepped impacts), 1/240 s;
+//!   calibrated with (exact landings and sub-stepped impacts, the preset's default step 1/120 s);
 //! * the same throw with rapier's own flight (`Flight::Rapier`, impacts found at the step
 //!   boundaries: the numerics before issue 25), to show what the numerics change;
 //! * the `drop` preset as the library gives it (released at rest, 1 R_max above the table).
@@ -766,7 +766,7 @@ fn readme(results: &[ShapeResult], n: u64, command: &str, elapsed: f64) -> Strin
         "* **Predictors.** (a) quasi-static basins: the basin area of each stable facet on the sphere of down \
          directions / 4π (exact, no interval); (b) the `throw` preset on steel-on-wood at the assumed size with \
          the numerics it was calibrated with in `results/cuboid_dice/` (`Flight::Free`: exact landings and \
-         sub-stepped impacts, dt 1/240 s), energy certificate per facet; (c) the same throw with rapier's own \
+         sub-stepped impacts, the preset's default dt listed below), energy certificate per facet; (c) the same throw with rapier's own \
          flight (`Flight::Rapier`: impacts found at the step boundaries, the numerics before issue 25); (d) the \
          `drop` preset as the library gives it (released at rest, 1 R_max above the table; its flight is the \
          library's default, listed below). Every simulated predictor uses the same launches (seed {SEED}, stream i \

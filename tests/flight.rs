@@ -6,7 +6,7 @@ use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::flight::{Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE};
-use rocking_stones::dynamics::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::params::{Flight, Preset, Surface, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::world::{ground_world, Simulation};
 use rocking_stones::generate;
@@ -151,15 +151,18 @@ fn cli_params(extra: &[&str]) -> serde_json::Value {
 }
 
 #[test]
-fn fast_numerics_are_free_flight_at_the_presets_longest_stable_step_and_options_override_them() {
-    // The default is exact landings (free flight) at 1/240 s; --fast takes the longer step.
+fn default_numerics_are_free_flight_at_the_presets_longest_stable_step_and_options_override_them() {
+    // The default is exact landings (free flight) at the preset's longest stable step;
+    // --reference takes the reference step it is checked against, --fast (older command lines)
+    // is the default.
     let default = cli_params(&[]);
-    assert_eq!((default["flight"].as_str(), default["dt"].as_f64()), (Some("free"), Some(1.0 / 240.0)));
-    let fast = cli_params(&["--fast"]);
-    assert_eq!(fast["flight"].as_str(), Some("free"));
-    assert_eq!(fast["dt"].as_f64(), Some(Preset::Throw.largest_stable_dt()));
-    assert!(Preset::Throw.largest_stable_dt() > 1.0 / 240.0);
-    let pinned = cli_params(&["--fast", "--flight", "rapier", "--dt", "0.005"]);
+    assert_eq!((default["flight"].as_str(), default["dt"].as_f64()), (Some("free"), Some(1.0 / 120.0)));
+    assert_eq!(default["dt"].as_f64(), Some(Preset::Throw.largest_stable_dt()));
+    assert_eq!(cli_params(&["--fast"]), default);
+    let reference = cli_params(&["--reference"]);
+    assert_eq!((reference["flight"].as_str(), reference["dt"].as_f64()), (Some("free"), Some(REFERENCE_DT)));
+    assert!(Preset::Throw.largest_stable_dt() > REFERENCE_DT);
+    let pinned = cli_params(&["--reference", "--flight", "rapier", "--dt", "0.005"]);
     assert_eq!((pinned["flight"].as_str(), pinned["dt"].as_f64()), (Some("rapier"), Some(0.005)));
     // The solver's sub-steps: 4 unless given.
     assert_eq!(default["solver_iterations"].as_u64(), Some(4));
@@ -257,7 +260,7 @@ fn knocked_stones_resolve_their_impacts_as_drops_do() {
         (Vec3::new(1.0, 0.0, 4.0), Vec3::new(15.0, 6.0, 3.0), Vec3::zeros()),
         (Vec3::new(0.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.5, 0.0, -1.5)),
     ];
-    // The steps: the reference, `--fast`'s, and a longer one.
+    // The steps: the reference, the default (the preset's longest stable), and a longer one.
     const STEPS: [f64; 3] = [1.0 / 240.0, 1.0 / 120.0, 1.0 / 80.0];
     let mut worst: f64 = 0.0;
     for (v, w, ground) in knocks {

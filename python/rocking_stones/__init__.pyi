@@ -301,6 +301,7 @@ def drop(
     surface: Literal["steel-on-wood", "stone-on-stone", "rock-on-concrete", "rock-on-steel"] = "steel-on-wood",
     size: Optional[float] = None,
     certificate: Literal["none", "facet", "flock"] = "facet",
+    reference: bool = False,
     fast: bool = False,
     nu: Optional[float] = None,
     name: Optional[str] = None,
@@ -318,8 +319,10 @@ def drop(
     solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time, flight
     (``"free"``, the default: exact landings and sub-stepped impacts, so no impact starts inside
     the ground, or ``"rapier"``: contacts found at rapier's step boundaries; the CLI's
-    ``--flight``). ``fast=True`` is the CLI's ``--fast``: the preset's longest stable time step
-    with free flight (``**params`` still override it).
+    ``--flight``). The time step is the preset's longest stable one (1/120 s); ``reference=True``
+    is the CLI's ``--reference``: free flight at the reference step 1/240 s it is checked against
+    (``**params`` still override it). ``fast=True`` (the old ``--fast``, now the default) is
+    accepted so that older scripts run.
     Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
     ``progress``: ``callable(done, total)`` called about every 0.1 s (a tqdm bar's ``update``).

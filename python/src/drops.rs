@@ -156,13 +156,14 @@ impl PyDropResult {
 /// rest_angular_speed, rest_time, flight ("free", the default: exact landings and sub-stepped
 /// impacts, or "rapier": contacts found at rapier's step boundaries; the CLI's --flight).
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
-/// fast: the CLI's --fast (the preset's longest stable time step with free flight; **params
-/// still override it).
+/// reference: the CLI's --reference (free flight at the reference step 1/240 s, the one the
+/// default 1/120 s is checked against; **params still override it). fast: accepted so that
+/// older scripts run; the preset's longest stable step is the default.
 /// threads: threads of this run (default:
 /// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
 /// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", fast = false, nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", reference = false, fast = false, nu = None, name = None, threads = None, progress = None, **params))]
 #[pyo3(name = "drop")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn drop_stone(
@@ -174,6 +175,7 @@ pub(crate) fn drop_stone(
     surface: &str,
     size: Option<f64>,
     certificate: &str,
+    reference: bool,
     fast: bool,
     nu: Option<f64>,
     name: Option<String>,
@@ -187,8 +189,13 @@ pub(crate) fn drop_stone(
     let preset: Preset = preset.parse().map_err(py_err)?;
     let surface: Surface = surface.parse().map_err(py_err)?;
     let mut base = preset.params_for(surface, size).map_err(py_err)?;
-    if fast {
-        preset.fast(&mut base);
+    if reference && fast {
+        return Err(PyValueError::new_err(
+            "reference and fast exclude each other: the reference step is 1/240 s, fast's (the default) 1/120 s",
+        ));
+    }
+    if reference {
+        preset.reference(&mut base);
     }
     let p: DropParams = with_params("drop", &base, params)?;
     p.check().map_err(py_err)?;

@@ -41,9 +41,13 @@ def test_flight_is_the_cli_flight_option(cli, box_file):
     assert expected["params"]["flight"] == "rapier"
     default = rs.drop(box_file, 16, 4)
     assert default.to_dict()["params"]["flight"] == "free"
-    fast = rs.drop(box_file, 16, 4, fast=True)
-    assert fast.to_dict() == cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--fast"])
-    assert fast.to_dict()["params"]["dt"] == pytest.approx(1 / 120)
+    assert default.to_dict()["params"]["dt"] == pytest.approx(1 / 120)
+    assert rs.drop(box_file, 16, 4, fast=True).to_dict() == default.to_dict()
+    reference = rs.drop(box_file, 16, 4, reference=True)
+    assert reference.to_dict() == cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--reference"])
+    assert reference.to_dict()["params"]["dt"] == pytest.approx(1 / 240)
+    with pytest.raises(ValueError, match="exclude each other"):
+        rs.drop(box_file, 4, 4, reference=True, fast=True)
 
 
 def test_presets_and_surfaces_are_the_cli_ones(cli, box_file):

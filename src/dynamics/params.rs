@@ -66,7 +66,9 @@ pub struct DropParams {
     pub linear_damping: f64,
     /// Global angular velocity damping (1/s). Default 0 (see `linear_damping`).
     pub angular_damping: f64,
-    /// Time step (s of the scaled body). Default [`REFERENCE_DT`] = 1/240 s.
+    /// Time step (s of the scaled body). Default [`Preset::largest_stable_dt`] = 1/120 s, checked
+    /// against [`REFERENCE_DT`] = 1/240 s (`results/drops_dt/`, `results/cuboid_dice/`,
+    /// `results/drops_vs_mujoco/`).
     pub dt: f64,
     /// Velocity iterations of rapier's contact solver per step. Default 4 (rapier's).
     pub solver_iterations: usize,
@@ -194,7 +196,8 @@ impl DropParams {
                 self.dt,
                 format!(
                     "at most {MAX_STABLE_DT} s of the scaled body for the contact solver (the soft contacts oscillate \
-                     at 30–60 Hz and need ≥ 4 steps per period; the default is 1/240 s)"
+                     at 30–60 Hz and need ≥ 4 steps per period; the drop presets take this longest step, runs from \
+                     rest 1/240 s)"
                 ),
             ));
         }
@@ -219,9 +222,10 @@ impl DropParams {
 /// at dt = 1 s 4 of 5 drops never settle.
 pub const MAX_STABLE_DT: f64 = 1.0 / 120.0;
 
-/// The reference time step (s, scaled): the default of every preset, the step every longer one
-/// is checked against (`results/drops_dt/`, `results/drops_settling/`), and the step of runs that
-/// start at rest ([`super::resting::RESTING_DT`]).
+/// The reference time step (s, scaled): the step the presets' default
+/// ([`Preset::largest_stable_dt`]) and every longer one are checked against
+/// (`results/drops_dt/`, `results/drops_settling/`), `rocking drop --reference`'s, and the step
+/// of runs that start at rest ([`super::resting::RESTING_DT`]).
 pub const REFERENCE_DT: f64 = 1.0 / 240.0;
 
 /// Named, documented launch protocols (SPEC §6). Each sets the launch and the numerics; the
@@ -239,10 +243,11 @@ pub enum Preset {
     /// ground: a stone let fall from the hand.
     Drop,
     /// A hand throw onto a table: released 2 R_max above it with 4 m/s (scaled) of horizontal
-    /// speed and a Gaussian angular velocity of 25 rad/s rms (scaled), the best grid point of the
-    /// calibration with the default numerics (exact landings and the two-stage impact law, issue
-    /// 25) on the seven measured dice of `data/cuboid_dice_throws.csv` (`results/cuboid_dice/`,
-    /// which also lists the grid points within its Monte Carlo noise band). For a 16 mm die:
+    /// speed and a Gaussian angular velocity of 25 rad/s rms (scaled): fitted to the seven measured
+    /// dice of `data/cuboid_dice_throws.csv` with exact landings (issue 25), and inside the
+    /// calibration's Monte Carlo noise band with the default numerics of every later change
+    /// (`results/cuboid_dice/`, which lists the grid points within the band; a point within it is
+    /// not moved to the grid's best, that would fit noise). For a 16 mm die:
     /// 2.8 cm, 0.5 m/s, 34 turns/s. (With rapier's own flight the same fit gave H 5, Ω 35: its
     /// impacts, which started inside the table, took energy the launch had to make up.)
     Throw,
@@ -261,9 +266,10 @@ impl Preset {
         }
     }
 
-    /// The longest time step at which this preset's statistics are those of the reference step
-    /// (1/240 s), measured in `results/drops_dt/` on three bodies: per-flock χ² homogeneity
-    /// against 1/240 s (2 of 54 tests below 0.05 up to 1/80 s, as chance gives), every drop settled, the contact's
+    /// The default time step of this preset: the longest at which its statistics are those of the
+    /// reference step [`REFERENCE_DT`] (1/240 s), measured in `results/drops_dt/` on three bodies:
+    /// per-flock χ² homogeneity against 1/240 s (as many tests below 0.05 up to 1/80 s as chance
+    /// gives), every drop settled, the contact's
     /// compression at rest and the energy rise where the certificate decides under its margin.
     /// All three presets pass up to 1/80 s; the step is capped at the longest the contact check
     /// accepts, [`MAX_STABLE_DT`] = 1/120 s.
@@ -273,20 +279,17 @@ impl Preset {
         }
     }
 
-    /// The fast numerics of this preset (issue 16, `rocking drop --fast`): free flight between
-    /// contacts ([`Flight::Free`]) and [`Preset::largest_stable_dt`]. Per-flock statistics as the
-    /// reference numerics', on independent samples (`results/drops_certificate/`,
-    /// `results/cuboid_dice/`: the seven dice's χ² p = 0.90) and drop by drop: on the same
-    /// releases the paired test does not tell them apart on the bundled stone, a pebble and a box
-    /// (`results/drops_vs_mujoco/`). Every throw of the 40 shared meshes settles at this step
-    /// (0 of 8000 left moving at the cap without a certificate, 1 at [`REFERENCE_DT`],
-    /// `results/drops_settling/`) since a stone resting on a stable facet is carried by it and
-    /// rolling resistance turns it about its contact (`dynamics::hull_shape`,
-    /// `dynamics::world`); before, stones on 6 scanned meshes jiggled on their facet to the cap.
-    /// Not yet the default: making it so moves every result computed at the default step.
-    pub fn fast(self, p: &mut DropParams) {
+    /// The reference numerics of this preset (`rocking drop --reference`): free flight
+    /// ([`Flight::Free`]) at [`REFERENCE_DT`] = 1/240 s, the step its default
+    /// ([`Preset::largest_stable_dt`], 1/120 s, issue 16's `--fast` before it became the default)
+    /// is checked against: per-flock statistics the same on independent samples
+    /// (`results/cuboid_dice/`) and drop by drop (the paired test on the same releases,
+    /// `results/drops_vs_mujoco/`); every throw of the 40 shared meshes settles at both steps
+    /// (`results/drops_settling/`) since a stone resting on a stable facet is carried by it and
+    /// rolling resistance turns it about its contact (`dynamics::hull_shape`, `dynamics::world`).
+    pub fn reference(self, p: &mut DropParams) {
         p.flight = Flight::Free;
-        p.dt = self.largest_stable_dt();
+        p.dt = REFERENCE_DT;
     }
 
     /// The parameters of this preset on `surface`, for a stone of the reference size
@@ -328,7 +331,7 @@ impl Preset {
             torsional_friction: c.rolling_resistance_m / r_max_m,
             linear_damping: 0.0,
             angular_damping: 0.0,
-            dt: REFERENCE_DT,
+            dt: self.largest_stable_dt(),
             solver_iterations: 4,
             max_time: 60.0,
             rest_linear_speed: 2e-3,

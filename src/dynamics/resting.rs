@@ -195,6 +195,7 @@ impl PerturbParams {
             linear_damping: 0.1,
             angular_damping: 1.0,
             max_time: RESTING_MAX_TIME,
+            dt: RESTING_DT,
             // The old numerics with the old contact: rapier's own steps, impacts not sub-stepped.
             flight: Flight::Rapier,
             ..DropParams::default()
