@@ -32,6 +32,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// Which drops a process runs: indices `index`, `index + count`, `index + 2 count`, …
@@ -216,8 +217,8 @@ pub fn run(
 
 /// [`run`] with `batch` stones per rapier world ([`crate::dynamics::batch`]); 1: every drop
 /// alone in its own world ([`simulate`]). Every drop's outcome is the same for any batch size
-/// and thread count (`tests/batch.rs`). The pending drops are cut into contiguous chunks of a
-/// few batches, one world per chunk, run in parallel.
+/// and thread count (`tests/batch.rs`). One world per thread takes the pending drops from a
+/// shared queue.
 pub fn run_batched(
     stone: &Stone,
     header: &RunHeader,
@@ -239,21 +240,25 @@ pub fn run_batched(
             })
             .collect()
     } else {
-        // A world drains at the end of its chunk (fewer stones per step): chunks of several
-        // batches keep that tail short while leaving every thread work.
-        let per_thread = todo.len().div_ceil(4 * rayon::current_num_threads()).max(1);
-        let chunk = per_thread.clamp(batch, 16 * batch);
-        todo.par_chunks(chunk)
-            .flat_map_iter(|part| {
-                let mut outcomes = Vec::with_capacity(part.len());
-                let mut queue = part.iter().map(|&i| (i, release(i)));
+        // One world per thread, each taking the next pending drop as one of its stones comes to
+        // rest: a world drains (fewer stones per step) once, at the end of the run, where
+        // contiguous chunks drained at the end of every chunk.
+        let next = AtomicUsize::new(0);
+        let workers = rayon::current_num_threads().min(todo.len().div_ceil(batch)).max(1);
+        let per_world: Vec<Vec<DropOutcome>> = (0..workers)
+            .into_par_iter()
+            .map(|_| {
+                let mut outcomes = Vec::new();
+                let mut queue =
+                    std::iter::from_fn(|| todo.get(next.fetch_add(1, Ordering::Relaxed))).map(|&i| (i, release(i)));
                 simulate_batch(stone, &header.params, cert, batch, &mut queue, &mut |o| {
                     record(&o);
                     outcomes.push(o);
                 });
                 outcomes
             })
-            .collect()
+            .collect();
+        per_world.into_iter().flatten().collect()
     };
     out.sort_by_key(|o| o.index);
     out
