@@ -18,7 +18,7 @@
 
 use crate::dynamics::batch::simulate_batch;
 use crate::dynamics::drop::{launch, simulate, DropOutcome};
-use crate::dynamics::params::DropParams;
+use crate::dynamics::params::{DropParams, REFERENCE_DT};
 pub use crate::dynamics::run::CertificateMode;
 use crate::dynamics::run::{Certificate, EnergyCertificate, NoCertificate};
 pub use crate::dynamics::stone::StaticModel;
@@ -264,6 +264,20 @@ pub fn run_batched(
     out
 }
 
+/// What to say when a checkpoint's time step is not this run's: drops written before the default
+/// step became the presets' longest stable one (1/120 s, issue 25) ran at [`REFERENCE_DT`].
+fn step_hint(checkpoint_dt: f64, run_dt: f64) -> String {
+    if checkpoint_dt == run_dt {
+        return String::new();
+    }
+    let reference = if checkpoint_dt == REFERENCE_DT {
+        " (1/240 s: the reference step, the default before the drop presets took their longest stable step 1/120 s)"
+    } else {
+        ""
+    };
+    format!("; to resume it, run at its time step dt = {checkpoint_dt} s{reference}")
+}
+
 /// Append-only JSON-lines checkpoint of a run.
 pub struct Checkpoint {
     file: std::io::BufWriter<std::fs::File>,
@@ -294,9 +308,10 @@ impl Checkpoint {
             }
             if !differ.is_empty() {
                 return Err(Error::Usage(format!(
-                    "{}: this checkpoint belongs to a different run; it differs in {}",
+                    "{}: this checkpoint belongs to a different run; it differs in {}{}",
                     path.display(),
-                    differ.join(", ")
+                    differ.join(", "),
+                    step_hint(h.params.dt, header.params.dt)
                 )));
             }
             done = outcomes;

@@ -98,6 +98,12 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
     assert!(Checkpoint::open(&path, &h, false).is_err(), "an existing checkpoint must not be overwritten");
     let other = header(30, 10, CertificateMode::Facet);
     assert!(Checkpoint::open(&path, &other, true).is_err(), "a checkpoint of another run must be refused");
+    // A run at another time step is refused with the checkpoint's step in the message (a run
+    // written at the old default 1/240 s is told how to resume).
+    let mut longer = h.clone();
+    longer.params.dt = 1.0 / 120.0;
+    let err = Checkpoint::open(&path, &longer, true).err().expect("another step is another run").to_string();
+    assert!(err.contains("run at its time step") && err.contains("the reference step"), "{err}");
     let (c, done) = Checkpoint::open(&path, &h, true).unwrap();
     assert_eq!(done.len(), 15);
     {
