@@ -509,7 +509,8 @@ pub struct Fit {
     pub chi_square: f64,
     /// Degrees of freedom of the χ² test.
     pub dof: usize,
-    /// p-value of the χ² test.
+    /// p-value of the χ² test (NaN, `null` in JSON, when it has no degree of freedom: no drop
+    /// came to rest, or all fell in one category).
     pub p_value: f64,
     /// Kullback–Leibler divergence D(empirical ‖ static) in nats.
     pub kl_divergence: f64,
@@ -528,7 +529,9 @@ pub struct DropReport {
     pub drops: u64,
     /// Drops that came to rest (or were decided by the certificate).
     pub settled: u64,
-    /// Drops still moving at the time cap.
+    /// Drops still moving at the time cap: left out of every count, fraction and fit (a drop that
+    /// has not come to rest has no resting position; assigning it the quasi-static descent from
+    /// where it was would count a guess as an outcome).
     pub unsettled: u64,
     /// Settled drops that stopped above their stable facet by more than the contact tolerance
     /// ([`crate::dynamics::stone::REST_TOLERANCE`]): held on a slope by friction or rolling
@@ -536,6 +539,11 @@ pub struct DropReport {
     pub off_equilibrium: u64,
     /// Drops ended by the energy certificate.
     pub certified: u64,
+    /// The deepest any hull corner went below the ground after any step or sub-step of any drop
+    /// of the run (R_max; [`crate::dynamics::world::penetration`]).
+    pub deepest_penetration: f64,
+    /// Drops whose deepest penetration exceeded [`crate::dynamics::impact::DEPTH_BOUND`].
+    pub drops_beyond_depth_bound: u64,
     /// Mean simulated time per drop (s, scaled frame), whatever ended it.
     pub mean_time: f64,
     /// Mean simulated time to rest of the drops that came to rest without the certificate.
@@ -572,8 +580,11 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
     let mut flock_counts = vec![0u64; model.flock_kinds.len()];
     let (mut settled, mut unsettled, mut off, mut certified, mut time) = (0, 0, 0, 0, 0.0);
     let (mut rest_time, mut rested, mut decision_time) = (0.0, 0u64, 0.0);
+    let (mut deepest, mut beyond) = (0.0f64, 0u64);
     for o in outcomes.values() {
         time += o.time;
+        deepest = deepest.max(o.deepest_penetration);
+        beyond += u64::from(o.deepest_penetration > crate::dynamics::impact::DEPTH_BOUND);
         certified += u64::from(o.certified);
         if o.certified {
             decision_time += o.time;
@@ -625,9 +636,17 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
             static_probability: flock_probability[k],
         })
         .collect();
+    // A test with no degrees of freedom (no drop, or one category) has no p-value (null in
+    // JSON), and a divergence that rounds below zero is zero.
     let fit = |counts: &[u64], p: &[f64]| {
         let (chi_square, dof, p_value) = chi_square(counts, p);
-        Fit { chi_square, dof, p_value, kl_divergence: kl_divergence(counts, p) }
+        let kl = kl_divergence(counts, p);
+        Fit {
+            chi_square,
+            dof,
+            p_value: if dof > 0 { p_value } else { f64::NAN },
+            kl_divergence: if kl > 0.0 { kl } else { 0.0 },
+        }
     };
     let fit_facets = facets_determined.then(|| fit(&facet_counts, &model.facet_probability));
     let mean = |t: f64, n: u64| (n > 0).then(|| t / n as f64);
@@ -640,6 +659,8 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         unsettled,
         off_equilibrium: off,
         certified,
+        deepest_penetration: deepest,
+        drops_beyond_depth_bound: beyond,
         mean_time: if outcomes.is_empty() { 0.0 } else { time / outcomes.len() as f64 },
         mean_time_to_rest: mean(rest_time, rested),
         mean_time_to_decision: mean(decision_time, certified),

@@ -242,8 +242,9 @@ fn the_stone_never_climbs_above_the_level_the_certificate_reads() {
         let (worst, asked) = later_rise_above_level(&stone, &p, 40);
         assert!(asked > 10_000, "only {asked} states where the certificate may be asked");
         assert!(worst < CERTIFICATE_MARGIN, "{flight}: h(down) later rose {worst} R_max above the level L read");
-        // Not vacuous: at rest h(down) − L is the rest compression, > 0 only by the contact's sink.
-        assert!(worst > 0.0, "{worst}");
+        // Not vacuous: the measurement sees the contact's sink at rest (h(down) − L is the rest
+        // compression, 10⁻⁵–10⁻³ R_max), so a measurement that read nothing would fail here.
+        assert!(worst > 1e-5, "{worst}");
     }
 }
 

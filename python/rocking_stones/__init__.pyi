@@ -200,7 +200,10 @@ class DropResult:
         """Drops that came to rest (or were decided by the energy certificate)."""
     @property
     def unsettled(self) -> int:
-        """Drops still moving at the time cap."""
+        """Drops still moving at the time cap (left out of every count and fit)."""
+    @property
+    def deepest_penetration(self) -> float:
+        """The deepest any hull corner went below the ground at any step or sub-step (R_max)."""
     @property
     def certified(self) -> int:
         """Drops ended early by the energy certificate."""
@@ -221,7 +224,8 @@ class DropResult:
         """Columns ``id, type, count, fraction, ci95_lo, ci95_hi, static_probability``."""
     @property
     def outcomes(self) -> Dict[str, npt.NDArray[Any]]:
-        """Every drop: ``index, settled, facet, flock (-1: none), time, certified``."""
+        """Every drop: ``index, settled, facet, flock (-1: none), time, certified,
+        deepest_penetration`` (R_max)."""
     @property
     def fit_facets(self) -> Optional[Dict[str, Any]]: ...
     @property

@@ -37,10 +37,15 @@ impl PyDropResult {
     fn settled(&self) -> u64 {
         self.report.settled
     }
-    /// Drops still moving at the time cap.
+    /// Drops still moving at the time cap (left out of every count and fit).
     #[getter]
     fn unsettled(&self) -> u64 {
         self.report.unsettled
+    }
+    /// The deepest any hull corner went below the ground at any step or sub-step (R_max).
+    #[getter]
+    fn deepest_penetration(&self) -> f64 {
+        self.report.deepest_penetration
     }
     /// Drops ended early by the energy certificate.
     #[getter]
@@ -96,7 +101,8 @@ impl PyDropResult {
         d.set_item("static_probability", f64s(py, f.iter().map(|x| x.static_probability).collect()))?;
         Ok(d)
     }
-    /// Every drop as columns: index, settled, facet, flock (-1: none), time, certified.
+    /// Every drop as columns: index, settled, facet, flock (-1: none), time, certified,
+    /// deepest_penetration (R_max).
     #[getter]
     fn outcomes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let o = &self.outcomes;
@@ -107,6 +113,7 @@ impl PyDropResult {
         d.set_item("flock", i64s(py, o.iter().map(|x| opt_index(x.flock)).collect()))?;
         d.set_item("time", f64s(py, o.iter().map(|x| x.time).collect()))?;
         d.set_item("certified", bools(py, o.iter().map(|x| x.certified).collect()))?;
+        d.set_item("deepest_penetration", f64s(py, o.iter().map(|x| x.deepest_penetration).collect()))?;
         Ok(d)
     }
     /// χ² and KL of the facet counts against the static probabilities (dict, or None in flock

@@ -24,6 +24,9 @@ def test_drop_with_a_seed_gives_the_cli_counts(cli, box_file):
     assert d.drops == 20 and d.settled + d.unsettled == 20
     assert list(d.facets["count"]) == [f["count"] for f in expected["facets"]]
     assert int(d.facets["count"].sum()) == d.settled
+    # The run's depth is the deepest of its drops', measured after every step and sub-step.
+    assert d.deepest_penetration == float(d.outcomes["deepest_penetration"].max())
+    assert 0.0 < d.deepest_penetration < 0.02
 
 
 def test_drop_parameters_map_to_the_cli_options(cli, box_file):

@@ -58,6 +58,9 @@ struct Slot {
     /// How far (s) the stone's clock runs behind the step count: the unused parts of the steps
     /// in which it landed ([`flight::FreeBody::fly`]).
     lag: f64,
+    /// The deepest penetration of the ground after any of its steps or sub-steps so far (R_max,
+    /// [`super::world::penetration`]).
+    deepest: f64,
 }
 
 /// Simulate the drops of `queue` (drop index and release, in the order given) with at most
@@ -111,7 +114,7 @@ pub fn simulate_batch_observed(
             } else {
                 enter_world(&mut world, &mut spare, &stone.body, p, &free)
             };
-            slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds), lag: 0.0 });
+            slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds), lag: 0.0, deepest: 0.0 });
         }
         if slots.is_empty() {
             return;
@@ -129,7 +132,12 @@ pub fn simulate_batch_observed(
             let s = &mut slots[k];
             let mut landed = false;
             let state = match &mut s.place {
-                Place::World { handle, .. } => body_state(&world.bodies[*handle], &stone.body),
+                Place::World { handle, .. } => {
+                    // The ground of a drop is the fixed plane z = 0.
+                    let state = body_state(&world.bodies[*handle], &stone.body);
+                    s.deepest = s.deepest.max(stone.body.support_climb(&state.down) - state.z);
+                    state
+                }
                 Place::Air(b) => {
                     if let flight::Flew::Landed(t) = b.fly(p.dt, &inertia, damping, &|d| stone.body.support_climb(d)) {
                         s.lag += p.dt - t;
@@ -142,7 +150,7 @@ pub fn simulate_batch_observed(
                         let (s, q) = w.state(&stone.body);
                         impact::substeps(&stone.body, &q, s.z, &s.linvel, &s.angvel, p.dt)
                     };
-                    w.step(n, &law, &stone.body);
+                    s.deepest = s.deepest.max(w.step(n, &law, &stone.body));
                     w.state(&stone.body).0
                 }
             };
@@ -172,6 +180,7 @@ pub fn simulate_batch_observed(
                     }
                     let mut o = outcome(stone, p, &end, s.index);
                     o.time -= s.lag;
+                    o.deepest_penetration = s.deepest;
                     on_done(o);
                 }
             }

@@ -23,5 +23,5 @@ pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, ce
     let z0 = release_height(stone, p, release);
     let mut sim = Simulation::new(&stone.body, p, &release.orientation, z0, &release.linvel, &release.angvel);
     let end = run(&mut sim, p, &mut Passive, cert, RestKind::Speeds, &mut |_| {});
-    outcome(stone, p, &end, index)
+    DropOutcome { deepest_penetration: sim.deepest_penetration(), ..outcome(stone, p, &end, index) }
 }

@@ -87,8 +87,18 @@ use nalgebra::UnitQuaternion;
 /// contact or about to be: half rapier's contact prediction distance (0.02 R_max).
 pub const IMPACT_APPROACH: f64 = 0.01;
 
-/// Most sub-steps of one step (a stone at 60 m/s of the scaled body and 1/120 s would need 50).
-pub const MAX_SUBSTEPS: u32 = 64;
+/// Most sub-steps of one step: enough for a stone approaching the ground at 400 R_max/s with a
+/// 1/120 s step (n = 334) with room to spare; a launch that would need more is stepped with this
+/// many, and what that does shows in the measured depth ([`DEPTH_BOUND`]).
+pub const MAX_SUBSTEPS: u32 = 4096;
+
+/// The deepest (R_max) a hull corner may go below the ground at any step or sub-step before a
+/// run warns: rapier's contact prediction distance ([`super::flight::LANDING_CLEARANCE`]), the
+/// depth beyond which the solver no longer sees a corner's contact before it is inside the ground.
+/// Not a proof: the depth is measured after every step and sub-step of every run
+/// ([`super::world::penetration`]), reported (`deepest_penetration`), and a run whose depth
+/// exceeds this bound says so.
+pub const DEPTH_BOUND: f64 = super::flight::LANDING_CLEARANCE;
 
 /// Most corners the walk over the cap of corners that could come down too far visits; a larger
 /// cap counts as needing sub-steps (module docs).

@@ -38,6 +38,10 @@ pub struct DropOutcome {
     /// facet G stopped, in R_max ([`super::stone::Rest::height_above`]); None when certified.
     #[serde(default)]
     pub height_above: Option<f64>,
+    /// The deepest any hull corner went below the ground after any step or sub-step of the drop
+    /// (R_max, [`super::world::penetration`]); 0 in checkpoints written before it was measured.
+    #[serde(default)]
+    pub deepest_penetration: f64,
 }
 
 impl DropOutcome {
@@ -80,7 +84,8 @@ pub fn release_height(stone: &Stone, p: &DropParams, release: &Release) -> f64 {
 }
 
 /// The outcome of drop `index` from how its run ended: the certificate's decision, or where the
-/// stone rests by [`Stone::rest`].
+/// stone rests by [`Stone::rest`]. Its `deepest_penetration` is left at 0 for the caller, which
+/// stepped the stone, to fill in.
 pub fn outcome(stone: &Stone, p: &DropParams, end: &RunEnd, index: u64) -> DropOutcome {
     let time = end.steps as f64 * p.dt;
     let outcome = |facet, flock, height_above| DropOutcome {
@@ -91,6 +96,7 @@ pub fn outcome(stone: &Stone, p: &DropParams, end: &RunEnd, index: u64) -> DropO
         time,
         certified: end.decided.is_some(),
         height_above,
+        deepest_penetration: 0.0,
     };
     match end.decided {
         Some(Decided::Facet(f)) => outcome(Some(f), None, None),

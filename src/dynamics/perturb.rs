@@ -194,6 +194,9 @@ pub struct Trial {
     /// Largest rise of the energy level above its value just after the kick (R_max): a passive
     /// body has none; the contact solver's penetration correction gives a little.
     pub max_level_rise: f64,
+    /// The deepest any hull corner went below the ground after any step or sub-step of the run
+    /// (R_max, [`crate::dynamics::world::penetration`]), the stone's settling included.
+    pub deepest_penetration: f64,
 }
 
 /// The random stream of trial `trial` on stable micro-equilibrium `start` for `family`:
@@ -263,6 +266,7 @@ pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, eps
         non_stable_facet: off,
         time: end.steps as f64 * p.sim.dt,
         max_level_rise: max_rise,
+        deepest_penetration: sim.deepest_penetration(),
     }
 }
 
@@ -446,6 +450,9 @@ pub struct PerturbReport {
     pub barrier_check: BarrierCheck,
     /// Static against dynamic class of the equilibria.
     pub confusion: Confusion,
+    /// The deepest any hull corner went below the ground after any step or sub-step of any trial
+    /// (R_max, [`crate::dynamics::world::penetration`]).
+    pub deepest_penetration: f64,
     /// Every trial (sorted by start, ε, trial).
     #[serde(skip)]
     pub trials: Vec<Trial>,
@@ -569,6 +576,7 @@ pub fn report(
         params: cfg.params.clone(),
         equilibria,
         barrier_check: BarrierCheck::of(&trials, stone),
+        deepest_penetration: trials.iter().map(|t| t.deepest_penetration).fold(0.0, f64::max),
         confusion,
         trials,
     }

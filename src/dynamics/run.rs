@@ -1,6 +1,6 @@
 //! The one run loop of every simulation (drops, pushes, ground shaking, the simulated hand
-//! experimenter): step → state → certificate → rest → cap, and the energy certificate of
-//! SPEC §6.
+//! experimenter): step → state → certificate → rest → cap, and the energy certificate that may
+//! end a drop early.
 //!
 //! ```text
 //! for each step:   drive (ground motion)  →  rapier step + contact law  →  state
@@ -10,17 +10,19 @@
 //!                  → cap: max_time (after the drive has ended)
 //! ```
 //!
-//! **Certificate.** A passive body never gains mechanical energy, and z_G ≥ h(down) (the support
-//! function), so E/(m g) bounds h(down) for the rest of the motion; when the sublevel component
-//! of h that holds the current down direction contains a single stable facet (or a single flock)
-//! of the merge tree, the outcome is decided ([`EnergyCertificate`]). The rolling resistance of
-//! [`super::world`] only dissipates, so the certificate holds with it. It is never asked while a
-//! ground motion drives the stone (that system is not passive), nor while the soft contact is
-//! compressed ([`CERTIFICATE_MAX_COMPRESSION`]). Above the merge tree's decision ceiling
+//! **Certificate: an argument whose one gap is measured, not a proof.** A rigid body on a passive
+//! contact never gains mechanical energy, and z_G ≥ h(down) (the support function), so E/(m g)
+//! bounds h(down) for the rest of the motion; when the sublevel component of h that holds the
+//! current down direction contains a single stable facet (or a single flock) of the merge tree,
+//! the outcome is decided ([`EnergyCertificate`]). The parts of the contact this project writes
+//! only dissipate (the rolling resistance of [`super::world`], and its impact law, which adds no
+//! energy beyond what the step's start or rapier's own step had). Rapier's soft-constraint solver
+//! is not proven to: what it may give back is covered by a margin ([`CERTIFICATE_MARGIN`]) whose
+//! size is measured, not derived. The certificate is never asked while a ground motion drives the
+//! stone (that system is not passive), nor while the soft contact is compressed
+//! ([`CERTIFICATE_MAX_COMPRESSION`]). Above the merge tree's decision ceiling
 //! ([`crate::basins::MergeTree::decision_ceiling`]) nothing can be decided and a check costs O(1);
-//! below it, a check is a descent of h (issue 16). Measured in `results/drops_dt/`: between
-//! relaxed states with L ≤ R_max, L never rose by more than 10⁻³ R_max for dt from 1/480 to
-//! 1/80 s, and the rest compression stayed below 8·10⁻⁴ R_max — together under the margin.
+//! below it, a check is a descent of h.
 //!
 //! **Measured limit.** With rapier's own flight (`--flight rapier`, impacts found after the stone
 //! is already up to 0.2 R_max inside the ground), rapier's contact solver (4 iterations) does not
@@ -88,12 +90,13 @@ impl CertificateMode {
 /// Safety margin added to the energy level before asking the merge tree, in units of R_max: the
 /// body sinks into the ground by the contact's compression (the certificate is asked only up to
 /// [`CERTIFICATE_MAX_COMPRESSION`]), so h(down) can be above z_G, and hence above L, by that
-/// much, plus what the solver gives back. Measured where it matters — the largest later rise of
-/// h(down) above the L read at any state where the certificate may be asked: 1.1·10⁻³ R_max over
-/// 72 000 drops on 40 bodies, 3 presets and both numerics, with 0 wrong decisions in 18 million
-/// (`results/certificate_decisions/`). Without a margin the tree decides wrongly (11 of 11 472
-/// decisions in `results/certificate_margin/`, none from 3·10⁻⁴ on); a sharper margin would save
-/// at most 11 % of the simulated time there at the facet level and 7 % at the flock level.
+/// much, plus what the solver gives back. **Measured, not proven** — the largest later rise of
+/// h(down) above the L read at any state where the certificate may be asked is 1.46·10⁻³ R_max
+/// over 72 000 drops at the default step (the bundled stone and 39 scanned meshes, 3 presets,
+/// rapier's flight and free flight), so the margin is 2.1 times it, and 0 of 7 940 691 decisions
+/// there (103 282 of them the first of their drop) name another facet or flock than full settling
+/// reaches (`results/certificate_decisions/`). Without a margin the tree decides wrongly (11 of
+/// 11 472 decisions in `results/certificate_margin/`, none from 3·10⁻⁴ on).
 pub const CERTIFICATE_MARGIN: f64 = 3e-3;
 
 /// Steps between two certificate checks (a check every step would save at most 6 ms of
@@ -104,19 +107,18 @@ pub const CERTIFICATE_EVERY: u64 = 4;
 /// below h(down), i.e. the contact compressed by at most 10⁻³ R_max. In a hard impact the contact
 /// is compressed and L = z_G + KE/(m g) does not count what the compression will give back.
 ///
-/// *What the compression can give back.* Read as a linear spring of rapier's natural frequency f,
-/// a compression c would store ½ (2π f)² c² / g per unit weight: 7.2·10⁻³ R_max at f = 60 Hz and
-/// c = 10⁻³ R_max (2.9·10⁻² at the 120 Hz of runs that start at rest) — more than the margin,
-/// and the figure 7·10⁻⁴ this comment used to give was an arithmetic slip. But rapier's contact is
-/// not that spring: its soft constraint (TGS-soft, rapier 0.36) pushes a penetration out with a
-/// bias velocity that the relaxation pass of every sub-step takes away again, so a compression is
-/// restored as height (at most c, which L counts once the contact has relaxed) and not as kinetic
-/// energy. What is left is the solver's own error, which no formula bounds; it is measured, on
-/// the quantity the certificate needs: over the whole future of every state where the
-/// certificate may be asked (relaxed, L ≤ 1 R_max), the support height h(down) stays below
-/// L + 2.2·10⁻⁴ R_max (61 474 states of 40 pebble throws, `tests/contact.rs`), under
-/// [`CERTIFICATE_MARGIN`]; and certified outcomes equal full settling drop by drop
-/// (`results/certificate_margin/`, `results/drops_certificate/`).
+/// *What the compression can give back: not bounded by a formula.* Read as a linear spring of
+/// rapier's natural frequency f, a compression c would store ½ (2π f)² c² / g per unit weight:
+/// 7.2·10⁻³ R_max at f = 60 Hz and c = 10⁻³ R_max (2.9·10⁻² at the 120 Hz of runs that start at
+/// rest) — more than the margin. Rapier's contact is not that spring: its soft constraint
+/// (TGS-soft, rapier 0.36) pushes a penetration out with a bias velocity that the relaxation pass
+/// of every sub-step takes away again, so a compression is restored mostly as height (which L
+/// counts once the contact has relaxed). That is an argument about the solver, not a bound; what
+/// is left is the solver's own error, and it is measured on the quantity the certificate needs:
+/// over the whole future of every state where the certificate may be asked (relaxed,
+/// L ≤ 1 R_max), how far the support height h(down) rises above the L read there
+/// (`tests/contact.rs` on pebble throws; `results/certificate_decisions/` on 72 000 drops of 40
+/// bodies, largest 1.46·10⁻³ R_max, under [`CERTIFICATE_MARGIN`]).
 pub const CERTIFICATE_MAX_COMPRESSION: f64 = 1e-3;
 
 /// The merge-tree certificate of SPEC §6 on a prepared stone, at the facet or flock level.

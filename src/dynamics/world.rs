@@ -1,6 +1,6 @@
 //! The rapier world of one run: a flat ground (a half-space on a kinematic body, so that it can
 //! be shaken) and the stone, in the scaled frame of [`super::params`], with the contact law of
-//! SPEC §6 — Coulomb friction and restitution from rapier, impacts completed (Coulomb's
+//! this project — Coulomb friction and restitution from rapier, impacts completed (Coulomb's
 //! compression, Newton's restitution) and rolling resistance and torsional friction added here.
 //!
 //! # Impacts: Coulomb's compression and Newton's restitution at every struck point (`ContactLaw::restitute`)
@@ -34,8 +34,10 @@
 //! as in Box2D; rapier's own rule (`is_bouncy`) is a point that carried no impulse in the step
 //! before, so a corner still loaded from the step before gets no bounce from rapier and gets
 //! Newton's law here. The completion never makes a point's normal impulse over the step
-//! negative, and never gives the stone energy (`ContactLaw::restitute`: a pass that would is
-//! scaled back).
+//! negative, and adds no energy of its own: a pass that would leave the stone with more
+//! mechanical energy than the larger of the step's start and rapier's own step is scaled back
+//! (`ContactLaw::restitute`). What rapier's step itself adds is not taken back: that is the
+//! solver's error, measured, not bounded ([`super::run::CERTIFICATE_MARGIN`]).
 //!
 //! *Why a restitution without friction.* The other law a rigid body allows, Newton's law with
 //! Coulomb friction throughout (the corner leaves at e u n, sticking), was tried first: it too
@@ -87,9 +89,8 @@
 //! ΔT = −j|ω| + ½ j² ω̂ᵀI_c⁻¹ω̂ ≤ −½ j|ω| ≤ 0 for the clamped j. A slipping contact point adds
 //! m v_c·(Δω × r), which can be positive: the law computes the change of T and, where the pivot
 //! form would add energy, applies the free body's couple (ΔT ≤ 0 by the same bound with I_G). So
-//! the law only dissipates: the mechanical energy stays non-increasing and the energy certificate
-//! of [`super::run`] stays valid (tested in `tests/contact.rs`). A body in flight has N = 0 and
-//! feels nothing.
+//! the couple only dissipates (tested in `tests/contact.rs`): it takes nothing from the energy
+//! argument of the certificate in [`super::run`]. A body in flight has N = 0 and feels nothing.
 //!
 //! # Friction about the normal, stated once
 //!
@@ -166,6 +167,8 @@ pub struct Simulation<'a> {
     /// The run's time step and solver iterations (restored after a sub-stepped step).
     dt: f64,
     iterations: usize,
+    /// The deepest any hull corner has been below the ground after any (sub-)step so far (R_max).
+    deepest: f64,
 }
 
 impl<'a> Simulation<'a> {
@@ -192,6 +195,7 @@ impl<'a> Simulation<'a> {
             resolve_impacts: p.flight == Flight::Free,
             dt: p.dt,
             iterations: p.solver_iterations,
+            deepest: 0.0,
         }
     }
 
@@ -213,11 +217,30 @@ impl<'a> Simulation<'a> {
             1
         };
         if n == 1 {
-            return step_world(&mut self.world, &self.law, self.body, self.ground_collider, &stone);
+            step_world(&mut self.world, &self.law, self.body, self.ground_collider, &stone);
+            let depth = penetration(&self.world, self.body, self.body_handle, self.ground_collider);
+            self.deepest = self.deepest.max(depth);
+            return;
         }
-        step_substeps(&mut self.world, n, self.dt, self.iterations, &self.law, self.body, self.ground_collider, &stone);
+        let depth = step_substeps(
+            &mut self.world,
+            n,
+            self.dt,
+            self.iterations,
+            &self.law,
+            self.body,
+            self.ground_collider,
+            stone[0],
+        );
+        self.deepest = self.deepest.max(depth);
         self.world.integration_parameters.dt = self.dt as f32;
         self.world.integration_parameters.num_solver_iterations = self.iterations;
+    }
+
+    /// The deepest any hull corner has been below the ground after any step or sub-step of the
+    /// run so far, in R_max ([`penetration`]; 0 if it never touched).
+    pub fn deepest_penetration(&self) -> f64 {
+        self.deepest
     }
 
     /// Advance `steps` time steps with nothing but gravity and the contact (settling).
@@ -408,9 +431,15 @@ pub const STRUCK_SPEED: f64 = 0.1;
 /// Most struck contact points one step resolves together (`ContactLaw::restitute`).
 const MAX_STRUCK: usize = 16;
 
-/// [`step_world`] `n` times with a step of `dt / n` and ⌈`iterations` / n⌉ solver sub-steps
-/// each: one step of length `dt` cut for an impact ([`super::impact`] says why not all the
-/// solver sub-steps in each). Leaves the world's step and iterations at the sub-step's.
+/// One step of length `dt` of one stone, cut for an impact into `n` sub-steps of `dt / n` with
+/// ⌈`iterations` / n⌉ solver sub-steps each ([`super::impact`] says why not all the solver
+/// sub-steps in each), each a [`step_world`]. After every sub-step the bound of
+/// [`impact::substeps`] is read again off the stone's new motion (an impulse within the sub-step
+/// may have turned it faster than the motion at its start allowed for): where one more sub-step
+/// of the current length could bring a corner down by more than [`impact::IMPACT_APPROACH`], the
+/// rest of the step is cut finer (at most [`impact::MAX_SUBSTEPS`] sub-steps in all). Leaves the
+/// world's step and iterations at the last sub-step's. Returns the deepest [`penetration`] after
+/// any of the sub-steps (R_max, ≥ 0).
 #[allow(clippy::too_many_arguments)]
 pub fn step_substeps(
     world: &mut PhysicsWorld,
@@ -420,13 +449,53 @@ pub fn step_substeps(
     law: &ContactLaw,
     body: &Body,
     ground: ColliderHandle,
-    stones: &[(RigidBodyHandle, ColliderHandle)],
-) {
-    world.integration_parameters.dt = (dt / n as f64) as f32;
-    world.integration_parameters.num_solver_iterations = iterations.div_ceil(n as usize);
-    for _ in 0..n {
-        step_world(world, law, body, ground, stones);
+    stone: (RigidBodyHandle, ColliderHandle),
+) -> f64 {
+    let (mut left, mut taken, mut tau) = (n, 0u32, dt / n as f64);
+    let set = |world: &mut PhysicsWorld, tau: f64, count: u32| {
+        world.integration_parameters.dt = tau as f32;
+        world.integration_parameters.num_solver_iterations = iterations.div_ceil(count as usize);
+    };
+    set(world, tau, n);
+    let mut deepest: f64 = 0.0;
+    while left > 0 {
+        step_world(world, law, body, ground, &[stone]);
+        (left, taken) = (left - 1, taken + 1);
+        deepest = deepest.max(penetration(world, body, stone.0, ground));
+        if left > 0 && taken + left < impact::MAX_SUBSTEPS {
+            let finer = substeps_now(world, body, stone.0, ground, tau).min(impact::MAX_SUBSTEPS / (taken + left));
+            if finer > 1 {
+                (left, tau) = (left * finer, tau / finer as f64);
+                set(world, tau, taken + left);
+            }
+        }
     }
+    deepest
+}
+
+/// [`impact::substeps`] for a step of length `tau` from the current motion of the stone `handle`
+/// (relative to the ground collider `ground`, which may move).
+fn substeps_now(world: &PhysicsWorld, body: &Body, handle: RigidBodyHandle, ground: ColliderHandle, tau: f64) -> u32 {
+    let rb = &world.bodies[handle];
+    let q = convert::quat_back(rb.rotation());
+    let ground_z = world.colliders[ground].translation().z as f64;
+    let ground_v = law_ground_velocity(world, ground);
+    let v = convert::vec_back(rb.linvel()) - ground_v;
+    impact::substeps(body, &q, rb.translation().z as f64 - ground_z, &v, &convert::vec_back(rb.angvel()), tau)
+}
+
+/// How deep the deepest hull corner of the stone `handle` (a `body`) lies below the ground's
+/// plane (the collider `ground`, which may have been moved by a drive), in R_max: h(d) − (z_G −
+/// z_ground) with d the body-frame down direction and h the support function of the hull
+/// ([`Body::support_climb`], exact to the collider's f32 rounding); 0 when every corner is above
+/// the ground. Measured after every step and sub-step of every run: the depth at which an impact
+/// or a resting contact is resolved (a figure of the run's numerics, not of the stone).
+pub fn penetration(world: &PhysicsWorld, body: &Body, handle: RigidBodyHandle, ground: ColliderHandle) -> f64 {
+    let rb = &world.bodies[handle];
+    let q = convert::quat_back(rb.rotation());
+    let down = q.inverse() * -Vec3::z();
+    let ground_z = world.colliders[ground].translation().z as f64;
+    (body.support_climb(&down) - (rb.translation().z as f64 - ground_z)).max(0.0)
 }
 
 /// Total normal impulse between two colliders during the last step.
@@ -517,10 +586,12 @@ impl ContactLaw {
     /// restitution's, λ_i the normal impulse rapier gave it during the step and F_i its share of
     /// rapier's friction impulse, n the ground's normal, r_i its lever from G, all relative to the
     /// ground), each by projected Gauss–Seidel sweeps to convergence (3 × 3 blocks K_ii in the
-    /// compression, K_ii's normal entry in the restitution). An impact never gives energy: if the
-    /// two stages together would leave the stone with more mechanical energy than it had at the
-    /// step's start and after rapier's step, their change of velocity is scaled back to the larger
-    /// of the two (measured: 27 of 20 000 passes on thrown dice, by at most 1.4·10⁻³ R_max).
+    /// compression, K_ii's normal entry in the restitution). The completion adds no energy of its
+    /// own: if the two stages together would leave the stone with more mechanical energy than the
+    /// larger of its energy at the step's start and after rapier's step, their change of velocity
+    /// is scaled back to that larger one (measured: 27 of 20 000 passes on thrown dice, by at most
+    /// 1.4·10⁻³ R_max). Energy that rapier's step itself added (after it exceeds the start) is
+    /// kept, not taken back.
     #[allow(clippy::too_many_arguments)]
     fn restitute(
         &self,
@@ -695,9 +766,18 @@ impl ImpactWorld {
     /// 6.25 m/s with e = 0.3 leaves at 1.77 m/s with 4 solver sub-steps at dt = 1/720 s (plain
     /// rapier, before the contact law completed its restitution, [`ContactLaw`]; e·v = 1.88) and
     /// at 1.86 m/s with one.
-    pub fn step(&mut self, n: u32, law: &ContactLaw, body: &Body) {
-        let stone = [(self.handle, self.collider)];
-        step_substeps(&mut self.world, n, self.dt, self.iterations, law, body, self.ground, &stone);
+    /// Returns the deepest [`penetration`] after any of the sub-steps (R_max).
+    pub fn step(&mut self, n: u32, law: &ContactLaw, body: &Body) -> f64 {
+        step_substeps(
+            &mut self.world,
+            n,
+            self.dt,
+            self.iterations,
+            law,
+            body,
+            self.ground,
+            (self.handle, self.collider),
+        )
     }
 
     /// The stone's state and orientation.

@@ -14,7 +14,7 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     let plural = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     let _ = writeln!(
         s,
-        "{}: {} of {} (seed {}), preset {}; {} settled, {} ended by the {} certificate",
+        "{}: {} of {} (seed {}), preset {}; {} settled, {} ended by the {} certificate{}",
         r.mesh,
         r.drops,
         plural(r.drops_requested, "drop", "drops"),
@@ -22,7 +22,8 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
         r.preset.as_deref().unwrap_or("custom"),
         r.settled,
         r.certified,
-        r.certificate.name()
+        r.certificate.name(),
+        if r.unsettled > 0 { format!(", {} still moving (left out)", r.unsettled) } else { String::new() }
     );
     let _ = writeln!(
         s,
@@ -54,11 +55,21 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
         mean(r.mean_time_to_rest),
         mean(r.mean_time_to_decision)
     );
+    s += &super::depth_line(r.deepest_penetration);
+    if r.drops_beyond_depth_bound > 0 {
+        let _ = writeln!(
+            s,
+            "  ({} of {} went deeper than the bound; with --flight rapier impacts are found only after the stone \
+             is inside the ground: keep the default --flight free)",
+            r.drops_beyond_depth_bound, r.drops
+        );
+    }
     if r.unsettled > 0 {
         let _ = writeln!(
             s,
-            "  WARNING: {} still moving at the {} s cap (counted where the quasi-static descent from their last \
-             position leads). Raise --max-time, lower --dt, or add --rolling-resistance.",
+            "  WARNING: {} still moving at the {} s cap: left out of every count, fraction and fit below (a drop \
+             that has not come to rest has no resting position). Raise --max-time, lower --dt, or add \
+             --rolling-resistance.",
             plural(r.unsettled, "drop", "drops"),
             p.max_time
         );
@@ -71,7 +82,12 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
             plural(r.off_equilibrium, "drop", "drops")
         );
     }
-    let _ = writeln!(s, "  flocks at ν = {:.4e}:", r.nu);
+    if r.settled == 0 {
+        let _ =
+            writeln!(s, "  no drop came to rest: no fractions, nothing to compare with the quasi-static probabilities");
+        return s;
+    }
+    let _ = writeln!(s, "  flocks at ν = {:.4e} (fractions of the {} drops at rest):", r.nu, r.settled);
     let _ = writeln!(
         s,
         "    {:>5} {:<9} {:>7} {:>9} {:>18} {:>9}",
@@ -125,6 +141,9 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
         );
     }
     let fit = |name: &str, f: &crate::montecarlo::Fit| {
+        if f.dof == 0 {
+            return format!("{name}: no χ² test (every drop in one category), KL = {:.4} nats", f.kl_divergence);
+        }
         format!(
             "{name}: χ² = {:.2} ({} dof, p = {:.3}), KL = {:.4} nats",
             f.chi_square, f.dof, f.p_value, f.kl_divergence

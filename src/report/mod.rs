@@ -50,6 +50,25 @@ impl Folder {
     }
 }
 
+/// The line every simulation summary ends its header with: the deepest penetration of the
+/// ground measured at any step or sub-step (R_max), against
+/// [`crate::dynamics::impact::DEPTH_BOUND`], with a warning and what to change when it was
+/// exceeded.
+pub fn depth_line(deepest: f64) -> String {
+    let bound = crate::dynamics::impact::DEPTH_BOUND;
+    if deepest > bound {
+        format!(
+            "  WARNING: a hull corner went {deepest:.3} R_max into the ground (bound {bound} R_max): an impact was \
+             resolved inside the ground and the outcome is less reliable. Lower --dt, or the launch speed and spin, \
+             or the motion's amplitude.\n"
+        )
+    } else {
+        format!(
+            "  deepest penetration of the ground: {deepest:.2e} R_max at any step or sub-step (bound {bound} R_max)\n"
+        )
+    }
+}
+
 /// The file name of a mesh path for captions (the whole string if it has none).
 pub fn short_name(name: &str) -> String {
     Path::new(name).file_name().map_or(name.to_string(), |f| f.to_string_lossy().into_owned())

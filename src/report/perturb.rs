@@ -61,6 +61,7 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
         r.nu, r.epsilon_star
     );
     let _ = writeln!(s, "{}", contact_line(&r.params));
+    s += &super::depth_line(r.deepest_penetration);
     let _ = writeln!(
         s,
         "{:>5} {:>6} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}",

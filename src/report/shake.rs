@@ -39,6 +39,7 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{mesh}: ground shaking, {}, scaled to each PGA", describe_motion(&r.motion));
     let _ = writeln!(s, "  stone of R_max = {:.3} m; {}", r.r_max_m, super::perturb::contact_line(&r.params));
+    s += &super::depth_line(r.deepest_penetration);
     let _ = writeln!(
         s,
         "{} trials per PGA on {} PGAs from {:.3} g to {:.3} g, seed {}; flocks at ν = {:.3e}",
@@ -403,7 +404,7 @@ pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
         r.rock.max_tilt_deg,
         r.rock.slide_m,
         if r.rock.settled { "" } else { " (still moving at the time cap)" }
-    )
+    ) + &super::depth_line(r.rock.deepest_penetration)
 }
 
 /// A readable summary of a batch of runs and its fragility surface.
@@ -433,6 +434,7 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         (None, None) => {}
     }
     s += &super::ensemble::batch_lines(b);
+    s += &super::depth_line(b.runs.iter().map(|r| r.rock.deepest_penetration).fold(0.0, f64::max));
     if b.unsettled > 0 {
         s += &format!(
             "{} of {n} runs were still moving at the time cap: classified by the quasi-static descent in runs.csv \

@@ -308,6 +308,7 @@ mod tests {
                 r_max_m: 1.0,
                 time_s: 1.0,
                 steps: 1,
+                deepest_penetration: 0.0,
             },
         }
     }

@@ -110,6 +110,9 @@ pub struct Shaken {
     pub max_tilt: f64,
     /// Horizontal displacement of G relative to the ground from the start to the end (R_max).
     pub slide: f64,
+    /// The deepest any hull corner went below the ground after any step or sub-step of the run
+    /// (R_max, [`crate::dynamics::world::penetration`]), the stone's settling included.
+    pub deepest_penetration: f64,
 }
 
 /// Shake a placed stone with `record` (real time, SI, x axis along `azimuth` rad in the world
@@ -131,5 +134,12 @@ pub fn shake_placed(
     let end = run_loop::run(&mut sim, &p.sim, &mut ground, &NoCertificate, RestKind::Positions, &mut |st| {
         max_tilt = max_tilt.max(n.dot(&st.down).clamp(-1.0, 1.0).acos())
     });
-    Shaken { start, settling_tilt, end, max_tilt, slide: (sim.ground_offset() - x0).norm() }
+    Shaken {
+        start,
+        settling_tilt,
+        end,
+        max_tilt,
+        slide: (sim.ground_offset() - x0).norm(),
+        deepest_penetration: sim.deepest_penetration(),
+    }
 }

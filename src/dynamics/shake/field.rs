@@ -209,6 +209,10 @@ pub struct RockRun {
     pub time_s: f64,
     /// Steps simulated (placement excluded).
     pub steps: u64,
+    /// The deepest any hull corner went below the ground after any step or sub-step of the run
+    /// (in units of the rock's R_max, [`crate::dynamics::world::penetration`]), the stone's settling included.
+    #[serde(default)]
+    pub deepest_penetration: f64,
 }
 
 /// Shake a placed rock with `record` (real time, SI, x axis turned by `azimuth` rad in the world
@@ -241,6 +245,7 @@ pub fn shake_record(
         r_max_m,
         time_s: run.end.steps as f64 * p.sim.dt * r_max_m.sqrt(),
         steps: run.end.steps,
+        deepest_penetration: run.deepest_penetration,
     }
 }
 

@@ -52,6 +52,9 @@ pub struct ShakeTrial {
     pub max_tilt: f64,
     /// Simulated time from the start of the motion (s, scaled).
     pub time: f64,
+    /// The deepest any hull corner went below the ground after any step or sub-step of the run
+    /// (R_max, [`crate::dynamics::world::penetration`]), the stone's settling included.
+    pub deepest_penetration: f64,
 }
 
 /// The sine pulse of the sweep: `cycles` cycles of a(t) = A sin(2π f t) along x, A = `amplitude_g`
@@ -137,6 +140,7 @@ pub fn shake_trial(
         non_stable_facet: !rest.on_equilibrium(),
         max_tilt: run.max_tilt,
         time: run.end.steps as f64 * p.sim.dt,
+        deepest_penetration: run.deepest_penetration,
     }
 }
 
@@ -242,6 +246,9 @@ pub struct ShakeReport {
     pub r_max_m: f64,
     /// Fragility of each stable micro-equilibrium.
     pub fragility: Vec<Fragility>,
+    /// The deepest any hull corner went below the ground after any step or sub-step of any trial
+    /// (R_max, [`crate::dynamics::world::penetration`]).
+    pub deepest_penetration: f64,
     /// Every trial.
     #[serde(skip)]
     pub trials: Vec<ShakeTrial>,
@@ -277,6 +284,7 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dy
         params: cfg.params.clone(),
         r_max_m: cfg.r_max_m,
         fragility,
+        deepest_penetration: trials.iter().map(|t| t.deepest_penetration).fold(0.0, f64::max),
         trials,
     })
 }
