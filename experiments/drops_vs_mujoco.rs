@@ -372,6 +372,7 @@ fn classify(stone: &Stone, name: &str, drops: &[MjDrop], dt: f64) -> (DropReport
                 time: d.steps as f64 * dt,
                 certified: false,
                 height_above: rest.as_ref().map(|r| r.height_above),
+                deepest_penetration: 0.0,
             };
             (i as u64, o)
         })
