@@ -3,7 +3,7 @@
     pip install ./python trimesh matplotlib
     python examples/analyze_with_trimesh.py [MESH] [-o n_nu.png]
 
-MESH defaults to the scanned quarry stone E34 in ../shared/meshes (next to the repository).
+MESH defaults to the scanned quarry stone E34 in the repository's data/meshes.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import trimesh  # noqa: E402
 import rocking_stones as rs  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
-DEFAULT = REPO.parent / "shared" / "meshes" / "stone_quarry_ibois_E34_lowres_bin.ply"
+DEFAULT = REPO / "data" / "meshes" / "stone_quarry_ibois_E34_lowres_bin.ply"
 
 
 def main() -> None:

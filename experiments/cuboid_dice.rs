@@ -1,5 +1,5 @@
 //! Calibration of the `throw` preset on real dice (issue 10): square cuboid steel dice
-//! y × y × x thrown by hand, `../shared/data/cuboid_dice_throws.csv` (Mathematical Gazette 97,
+//! y × y × x thrown by hand, `data/cuboid_dice_throws.csv` (Mathematical Gazette 97,
 //! note 97.16, Table 1: seven of its fifteen dice).
 //!
 //! The throw has three free parameters, the release height H (in R_max), the rms angular speed
@@ -115,7 +115,7 @@ fn main() {
     let n: u64 = std::env::args().nth(1).map_or(400, |s| s.parse().expect("N"));
     let out = Path::new("results/cuboid_dice");
     std::fs::create_dir_all(out).expect("results folder");
-    let dice = read_dice(Path::new("../shared/data/cuboid_dice_throws.csv"));
+    let dice = read_dice(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/cuboid_dice_throws.csv")));
     let stones: Vec<(Stone, f64)> = dice.iter().map(|d| die(d.x)).collect();
     let list = |k: usize, default: &[f64]| -> Vec<f64> {
         std::env::args()
@@ -236,7 +236,7 @@ fn main() {
     let _ = writeln!(md, "Regenerate: `cargo run --release --example cuboid_dice`.\n");
     let _ = writeln!(
         md,
-        "Data: `../shared/data/cuboid_dice_throws.csv` (Mathematical Gazette 97, note 97.16, Table 1; steel dice \
+        "Data: `data/cuboid_dice_throws.csv` (Mathematical Gazette 97, note 97.16, Table 1; steel dice \
          y × y × x rolled by hand, 332–1011 rolls each). **This is a calibration, not a validation**: the \
          free parameters of the throw are fitted to these seven dice.\n"
     );

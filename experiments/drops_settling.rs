@@ -1,4 +1,4 @@
-//! Do drops settle? (issue 10, item 5.) Every shared mesh and the bundled stone, thrown N times
+//! Do drops settle? Every mesh of `data/meshes` and the bundled stone, thrown N times
 //! with the default preset (the calibrated `throw` on steel on wood) and **no certificate**: how
 //! many come to rest before the time cap, how long it takes, how many stop off their stable
 //! facet, and where the quasi-static descent puts them (no drop can land on a non-stable facet:
@@ -23,8 +23,8 @@ fn main() {
     let n: u64 = std::env::args().nth(1).map_or(200, |s| s.parse().expect("N"));
     let out = Path::new("results/drops_settling");
     std::fs::create_dir_all(out).expect("results folder");
-    let mut meshes: Vec<PathBuf> = std::fs::read_dir("../shared/meshes")
-        .expect("../shared/meshes")
+    let mut meshes: Vec<PathBuf> = std::fs::read_dir("data/meshes")
+        .expect("data/meshes")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| rocking_stones::study::is_mesh_file(p))
         .collect();

@@ -294,8 +294,7 @@ fn run_block(b: &Block, records: &[Record]) -> anyhow::Result<BlockResult> {
 /// forecast members, held-out truth members and the deterministic run.
 fn run_stone() -> anyhow::Result<(Vec<Case>, String, f64)> {
     let t0 = Instant::now();
-    let path =
-        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
     let a = Analysis::of_file(path, &Options::default())?;
     let (nu, _) = a.macro_nu(&Options::default());
     let stone = Stone::new(&a, nu)?;

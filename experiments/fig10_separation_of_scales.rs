@@ -17,7 +17,7 @@ fn main() -> anyhow::Result<()> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/fig10");
     std::fs::create_dir_all(&out)?;
-    let shared = root.join("../shared/meshes");
+    let meshes = root.join("data/meshes");
     let opts = Options::default();
     let mut runs: Vec<(String, Analysis)> = Vec::new();
     for f in [
@@ -26,7 +26,7 @@ fn main() -> anyhow::Result<()> {
         "stone_quarry_ibois_E22_lowres_bin.ply",
     ] {
         let name = f.trim_end_matches("_bin.ply").trim_start_matches("stone_quarry_ibois_").to_string();
-        runs.push((format!("stone {name}"), Analysis::of_file(&shared.join(f), &opts)?));
+        runs.push((format!("stone {name}"), Analysis::of_file(&meshes.join(f), &opts)?));
     }
     let (mesh, rep) = generate::pebble([1.0, 0.72, 0.48], 0.02, 6000, 3).into_solid_boundary()?;
     runs.push(("synthetic pebble 1:0.72:0.48, roughness 0.02".into(), Analysis::of_solid(mesh, rep, &opts)?));

@@ -6,7 +6,7 @@
 //!   against E (Fig. 12B), computed against hand.
 //! * The dynamic experimenter: the 5 scanned samples (20 synthetic pebbles each, as the paper's
 //!   computer experiments), each pebble set down 5, 20 and 100 times from 0.05 R_max.
-//! * A field study of the scanned quarry stones in `../shared/meshes` with a metadata CSV, as
+//! * A field study of the scanned quarry stones in `data/meshes` with a metadata CSV, as
 //!   `rocking study FOLDER --meta META.csv --dynamic` would write it, Zingg diagram included.
 //!
 //! Run: `cargo run --release --example fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`.
@@ -29,7 +29,7 @@ fn main() -> anyhow::Result<()> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/fig12_hand_vs_computer");
     std::fs::create_dir_all(&out)?;
-    let hand = study::read_table2(&root.join("../shared/data/table2_hand_experiments.csv"))?;
+    let hand = study::read_table2(&root.join("data/table2_hand_experiments.csv"))?;
     let quick = FitOptions { bootstrap: 0, ..FitOptions::default() };
     let mut best = (f64::INFINITY, 0.0);
     for r in ROUGHNESS_SCAN {
@@ -249,7 +249,7 @@ fn dynamic_section(s: &mut String, hand: &[HandSample], params: &PopulationParam
 }
 
 fn field_study(s: &mut String, root: &Path, out: &Path) -> anyhow::Result<()> {
-    let meshes = root.join("../shared/meshes");
+    let meshes = root.join("data/meshes");
     let files: Vec<PathBuf> =
         study::mesh_files(&meshes)?.into_iter().filter(|f| study::pebble_id(f).starts_with("stone_quarry")).collect();
     let dir = out.join("field_study");
@@ -258,7 +258,7 @@ fn field_study(s: &mut String, root: &Path, out: &Path) -> anyhow::Result<()> {
     for f in &files {
         let id = study::pebble_id(f);
         let sample = if id.contains("lowres") { "IBOIS lowres" } else { "IBOIS other" };
-        writeln!(meta, "{id};{sample};EPFL IBOIS stone scans;limestone;see shared/meshes/SOURCES.md")?;
+        writeln!(meta, "{id};{sample};EPFL IBOIS stone scans;limestone;see data/meshes/SOURCES.md")?;
     }
     let meta_path = dir.join("metadata.csv");
     std::fs::write(&meta_path, &meta)?;
@@ -290,7 +290,7 @@ fn field_study(s: &mut String, root: &Path, out: &Path) -> anyhow::Result<()> {
     writeln!(
         s,
         "What `rocking study FOLDER --meta metadata.csv --dynamic` writes for a folder holding the {} IBOIS quarry stones\n\
-         of `../shared/meshes` (see `SOURCES.md` there), in [`field_study/`](field_study/): `pebbles.csv` (the `rocking analyze`\n\
+         of `data/meshes` (see `SOURCES.md` there), in [`field_study/`](field_study/): `pebbles.csv` (the `rocking analyze`\n\
          columns unchanged, then S/U/H at ν = 0.0035 and the dynamic experimenter's 20 set-downs), `samples.csv`,\n\
          `zingg.png` (Zingg diagram coloured by the {{S,U}} class at ν = 0.0035).\n",
         files.len()

@@ -204,7 +204,7 @@ fn part_b(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     let (nu, _) = bundled.macro_nu(&Options::default());
     let pebble = Stone::new(&bundled, nu)?;
     let quarry_path =
-        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
     let quarry_a = Analysis::of_file(quarry_path, &Options::default())?;
     let (nu_q, _) = quarry_a.macro_nu(&Options::default());
     let quarry = Stone::new(&quarry_a, nu_q)?;
@@ -275,8 +275,7 @@ fn part_b(out: &Path, readme: &mut String) -> anyhow::Result<()> {
 /// Part C: time per run of a 60 s, 800 Hz, three-component record on the 1 872-vertex quarry stone
 /// (one thread), at its true size and as a 1 m rock.
 fn part_c(readme: &mut String) -> anyhow::Result<()> {
-    let path =
-        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
     let a = Analysis::of_file(path, &Options::default())?;
     let (nu, _) = a.macro_nu(&Options::default());
     let stone = Stone::new(&a, nu)?;

@@ -3,7 +3,7 @@
 //! analysed with panics caught. Every case must end in an answer or a named error; a panic or a
 //! failed internal check is a bug and is listed with the case number that reproduces it
 //! (`mutate::run_case(&sources, SEED, i, ..)`). Also times the self-intersection check on the
-//! largest shared scan and on a synthetic pebble of 10⁶ triangles.
+//! largest scan of `data/meshes` and on a synthetic pebble of 10⁶ triangles.
 //!
 //! Run: `cargo run --release --example fuzz_mutations` → `results/fuzz_mutations/`.
 
@@ -19,9 +19,9 @@ use std::time::Instant;
 const SEED: u64 = 2026;
 const CASES: u64 = 100_000;
 
-/// The mutated sources: small shared scans in each stored format, and a small synthetic pebble
+/// The mutated sources: small scans of `data/meshes` in each stored format, and a small synthetic pebble
 /// written as OBJ, binary STL, ascii STL and ascii PLY.
-fn sources(shared: &Path, tmp: &Path) -> Vec<(String, Vec<u8>)> {
+fn sources(meshes: &Path, tmp: &Path) -> Vec<(String, Vec<u8>)> {
     let mut out: Vec<(String, Vec<u8>)> = [
         "stone_quarry_ibois_E34_decimated500_bin.ply",
         "stone_quarry_ibois_A0_decimated500_bin.ply",
@@ -30,7 +30,7 @@ fn sources(shared: &Path, tmp: &Path) -> Vec<(String, Vec<u8>)> {
         "kbo_486958_arrokoth_stern2019_bin.ply",
     ]
     .iter()
-    .map(|n| (n.to_string(), std::fs::read(shared.join(n)).expect("shared mesh")))
+    .map(|n| (n.to_string(), std::fs::read(meshes.join(n)).expect("a mesh of data/meshes")))
     .collect();
     let small = generate::pebble([1.0, 0.7, 0.5], 0.02, 300, 3);
     for name in ["pebble.obj", "pebble.stl"] {
@@ -49,11 +49,11 @@ fn sources(shared: &Path, tmp: &Path) -> Vec<(String, Vec<u8>)> {
 
 fn main() -> anyhow::Result<()> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let shared = root.join("../shared/meshes");
+    let meshes = root.join("data/meshes");
     let dir = root.join("results/fuzz_mutations");
     std::fs::create_dir_all(&dir)?;
     let tmp = tempfile::tempdir()?;
-    let sources = sources(&shared, tmp.path());
+    let sources = sources(&meshes, tmp.path());
     let opts = Options::default();
 
     // `--timing-only`: skip the campaign (for tuning the self-intersection check).
@@ -107,12 +107,12 @@ fn main() -> anyhow::Result<()> {
         std::fs::write(dir.join("outcomes.csv"), &outcome_csv)?;
     }
 
-    // Self-intersection check timing: the largest shared scan and a 10⁶-triangle pebble.
-    let largest = std::fs::read_dir(&shared)?
+    // Self-intersection check timing: the largest scan and a 10⁶-triangle pebble.
+    let largest = std::fs::read_dir(&meshes)?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("ply" | "obj")))
         .max_by_key(|p| std::fs::metadata(p).map(|m| m.len()).unwrap_or(0))
-        .expect("a shared mesh");
+        .expect("a mesh of data/meshes");
     let mut timing = String::from("mesh,triangles,threads,seconds,crossing_pairs\n");
     let mut rows = Vec::new();
     let (big, _) = io::load_solid(&largest)?;

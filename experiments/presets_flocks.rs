@@ -20,11 +20,7 @@ fn main() {
     std::fs::create_dir_all(out).expect("results folder");
     let meshes = [
         ("bundled stone E34", "data/default_pebble.ply", Surface::StoneOnStone),
-        (
-            "asteroid Castalia",
-            "../shared/meshes/asteroid_4769_castalia_radar_hudson1994_pdstab.obj",
-            Surface::StoneOnStone,
-        ),
+        ("asteroid Castalia", "data/meshes/asteroid_4769_castalia_radar_hudson1994_pdstab.obj", Surface::StoneOnStone),
     ];
     let mut md = String::from(
         "# Flock distributions under the three launch presets\n\nRegenerate: `cargo run --release --example presets_flocks`.\n\n",

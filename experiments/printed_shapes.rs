@@ -1,5 +1,5 @@
 //! Validation on three 3D-printed dice thrown by hand (binom3, binom4, dragon_d3):
-//! `../shared/data/printed_shapes/` (Baktash et al., "Putting Rigid Bodies to Rest", ACM TOG
+//! `data/printed_shapes/` (Baktash et al., "Putting Rigid Bodies to Rest", ACM TOG
 //! 2025, and its data repository `hbaktash/resting-rigid-bodies`).
 //!
 //! For each die: its hull (OBJ, a normalised frame) is analysed with the printed solid's centre of
@@ -30,7 +30,7 @@
 //! at half and twice that size.
 //!
 //! Run: `cargo run --release --example printed_shapes [-- N [DATA_DIR]]` (N = 2000 throws per
-//! shape and predictor, seed 1; DATA_DIR = `../shared/data/printed_shapes`) →
+//! shape and predictor, seed 1; DATA_DIR = `data/printed_shapes`) →
 //! `results/printed_shapes/`.
 
 use anyhow::{bail, ensure, Context, Result};
@@ -590,7 +590,7 @@ fn main() -> Result<()> {
     };
     ensure!(n > 0, "N must be at least 1");
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let data = std::env::args().nth(2).map_or_else(|| root.join("../shared/data/printed_shapes"), PathBuf::from);
+    let data = std::env::args().nth(2).map_or_else(|| root.join("data/printed_shapes"), PathBuf::from);
     let out = root.join("results/printed_shapes");
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
     let t0 = Instant::now();
@@ -709,7 +709,7 @@ fn readme(results: &[ShapeResult], n: u64, command: &str, elapsed: f64) -> Strin
     let _ = writeln!(
         md,
         "**Validation only, nothing fitted to these data.** The three dice of \
-         `../shared/data/printed_shapes/` (Baktash et al., *Putting Rigid Bodies to Rest*, ACM TOG 2025; \
+         `data/printed_shapes/` (Baktash et al., *Putting Rigid Bodies to Rest*, ACM TOG 2025; \
          data repository `hbaktash/resting-rigid-bodies`, MIT) were 3D-printed and thrown by hand onto a table \
          329–406 times each. The predictors below are the project's as they are: the quasi-static basins, and \
          the `throw` preset whose launch was calibrated on seven steel cuboid dice (`results/cuboid_dice/`) on \

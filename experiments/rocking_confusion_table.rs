@@ -9,8 +9,8 @@
 //! than a random regular one (Mann–Whitney, ties ½).
 //!
 //! Stones: synthetic pebbles (`generate::pebble`, 600 points, several axes, roughness and
-//! seeds) and the real quarry stones of `/work/shared/meshes` (IBOIS, EPFL; MIT licence, see
-//! `meshes/SOURCES.md`). Every stable micro-equilibrium that stays at rest in the simulation.
+//! seeds) and the real quarry stones of `data/meshes` (IBOIS, EPFL; MIT licence, see
+//! `data/meshes/SOURCES.md`). Every stable micro-equilibrium that stays at rest in the simulation.
 //!
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
 
@@ -31,7 +31,7 @@ const PEBBLE_R_MAX_M: f64 = 0.05;
 /// The surface pair: stones on rock.
 const SURFACE: Surface = Surface::StoneOnStone;
 const SEED: u64 = 77;
-const MESHES: &str = "/work/shared/meshes";
+const MESHES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes");
 
 struct StoneRun {
     name: String,
@@ -284,7 +284,7 @@ fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
     writeln!(
         s,
         "Every stable micro-equilibrium of {} stones ({} synthetic pebbles, {} real quarry stones from \
-         `/work/shared/meshes`, IBOIS/EPFL, MIT licence), flocks at each stone's automatic ν. Perturbations: \
+         `data/meshes`, IBOIS/EPFL, MIT licence), flocks at each stone's automatic ν. Perturbations: \
          {TRIALS} trials per ε on 13 ε from 10⁻⁶ to 1 (half-decade steps), pushes and spins, seed {SEED}, on the \
          contact of every resting run: stones on rock ({SURFACE}: friction 0.6, restitution 0.3, rolling resistance \
          and torsional friction δ = 0.1 mm through the contact, no global damping), the synthetic pebbles at \

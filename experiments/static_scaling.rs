@@ -105,13 +105,13 @@ fn main() -> anyhow::Result<()> {
         let reps = if n >= 300_000 { 1 } else { 3 };
         rows.push(measure(&format!("pebble n={n}"), &path, reps));
     }
-    let shared = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
+    let meshes = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data/meshes");
     for f in [
         "asteroid_101955_bennu_osirisrex2019_bin.ply",
         "comet_67P_churyumov_gerasimenko_spc_shap5_bin.ply",
         "stone_quarry_ibois_E34_lowres_bin.ply",
     ] {
-        let p = shared.join(f);
+        let p = meshes.join(f);
         if p.exists() {
             rows.push(measure(f.trim_end_matches(".ply"), &p, 3));
         }

@@ -39,7 +39,7 @@ fn main() -> anyhow::Result<()> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let out = root.join("results/table2_fit_nu");
     std::fs::create_dir_all(&out)?;
-    let hand = study::read_table2(&root.join("../shared/data/table2_hand_experiments.csv"))?;
+    let hand = study::read_table2(&root.join("data/table2_hand_experiments.csv"))?;
     let scanned: Vec<HandSample> = hand.iter().filter(|h| h.computer.is_some()).cloned().collect();
     let opts = FitOptions::default();
     let base = PopulationParams { spread: 0.08, points: 2000, count: 50, seed: 1, calibrate: true, roughness: 0.0 };

@@ -587,12 +587,12 @@ fn timing_500_corner_pebble() {
     }
 }
 
-/// Every shared real mesh (release): exact basins with nothing unresolved, and the time taken.
+/// Every real mesh of `data/meshes` (release): exact basins with nothing unresolved, and the time taken.
 /// `cargo test --release --test basins -- --ignored --nocapture real_meshes`.
 #[test]
 #[ignore]
 fn real_meshes_basins() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes"));
     let mut paths: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())

@@ -1,4 +1,4 @@
-//! Mesh input/output: every real mesh in `../shared/meshes/` against `SOURCES.md`, round trips
+//! Mesh input/output: every real mesh in `data/meshes/` against `SOURCES.md`, round trips
 //! through every writer, the awkward-but-valid variants of each format, and one test per kind of
 //! malformed input (each checking the error variant, the file name and what is said).
 
@@ -7,8 +7,8 @@ use rocking_stones::mesh::TriMesh;
 use rocking_stones::{Error, Point3};
 use std::path::{Path, PathBuf};
 
-fn shared_meshes() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes")
+fn meshes() -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes")).to_path_buf()
 }
 
 /// One row of the table in `SOURCES.md`.
@@ -21,7 +21,7 @@ struct Source {
 }
 
 fn sources() -> Vec<Source> {
-    let text = std::fs::read_to_string(shared_meshes().join("SOURCES.md")).unwrap();
+    let text = std::fs::read_to_string(meshes().join("SOURCES.md")).unwrap();
     text.lines()
         .filter(|l| l.starts_with("| ") && (l.contains(".ply |") || l.contains(".obj |")))
         .map(|l| {
@@ -47,9 +47,9 @@ fn matches_4_digits(value: f64, printed: &str) -> bool {
 }
 
 #[test]
-fn every_shared_mesh_loads_with_the_documented_vertex_count_and_volume() {
+fn every_bundled_mesh_loads_with_the_documented_vertex_count_and_volume() {
     let table = sources();
-    let mut on_disk: Vec<String> = std::fs::read_dir(shared_meshes())
+    let mut on_disk: Vec<String> = std::fs::read_dir(meshes())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".ply") || n.ends_with(".obj"))
@@ -60,7 +60,7 @@ fn every_shared_mesh_loads_with_the_documented_vertex_count_and_volume() {
     assert_eq!(on_disk, listed, "SOURCES.md and the folder disagree");
     assert_eq!(table.len(), 39);
     for s in &table {
-        let path = shared_meshes().join(&s.file);
+        let path = meshes().join(&s.file);
         let raw = read(&path).unwrap();
         assert_eq!((raw.vertices.len(), raw.triangles.len()), (s.raw_vertices, s.raw_faces), "{}", s.file);
         let (mesh, repairs) = load_solid(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -80,14 +80,14 @@ fn documented_extra_vertices_are_welded_or_dropped() {
         ("comet_67P_churyumov_gerasimenko_spc_shap5_bin.ply", 0, 1),
         ("kbo_486958_arrokoth_stern2019_bin.ply", 68, 0),
     ] {
-        let (_, repairs) = load_solid(&shared_meshes().join(file)).unwrap();
+        let (_, repairs) = load_solid(&meshes().join(file)).unwrap();
         assert_eq!((repairs.welded_vertices, repairs.unreferenced_vertices), (welded, unreferenced), "{file}");
     }
 }
 
 #[test]
 fn rhino_ply_with_bare_cr_header_normals_colours_and_material_element() {
-    let path = shared_meshes().join("stone_quarry_ibois_073ac15d_rhino_CRheader_bin.ply");
+    let path = meshes().join("stone_quarry_ibois_073ac15d_rhino_CRheader_bin.ply");
     let raw = read(&path).unwrap();
     assert_eq!((raw.vertices.len(), raw.triangles.len()), (13491, 26978));
     let (mesh, repairs) = load_solid(&path).unwrap();
@@ -330,7 +330,7 @@ fn obj_with_quads_negative_indices_and_slash_forms() {
 
 #[test]
 fn pds_tab_obj_files_read_with_crlf_and_trailing_spaces() {
-    let raw = read(&shared_meshes().join("asteroid_4769_castalia_radar_hudson1994_pdstab.obj")).unwrap();
+    let raw = read(&meshes().join("asteroid_4769_castalia_radar_hudson1994_pdstab.obj")).unwrap();
     assert_eq!((raw.vertices.len(), raw.triangles.len()), (2048, 4092));
     assert_eq!(raw.vertices[1], Point3::new(0.734214, 0.0, 0.0));
 }

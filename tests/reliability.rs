@@ -1,6 +1,6 @@
 //! Reliability (issue 13): every reproducer of the issue ends in a named error or in the unchanged
 //! answer; scale does not change counts or ν; batch runs report failures in their exit code; a
-//! bounded mutation campaign over the shared meshes finds no panic and no failed internal check.
+//! bounded mutation campaign over the bundled meshes finds no panic and no failed internal check.
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::generate;
@@ -15,8 +15,8 @@ fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn shared_meshes() -> PathBuf {
-    repo().join("../shared/meshes")
+fn meshes() -> PathBuf {
+    repo().join("data/meshes")
 }
 
 fn default_pebble() -> TriMesh {
@@ -118,12 +118,12 @@ fn two_vertices_pushed_into_each_other_are_reported_not_analysed() {
 }
 
 #[test]
-fn shared_scans_cross_themselves_only_hair_thin_and_are_accepted_with_a_count() {
-    // Every shared scan still loads; the three that cross themselves (checked independently with
+fn bundled_scans_cross_themselves_only_hair_thin_and_are_accepted_with_a_count() {
+    // Every bundled scan still loads; the three that cross themselves (checked independently with
     // exact rational arithmetic) do so far below the refusal depth and are counted in `Repairs`.
     let mut crossing = Vec::new();
     let mut checked = 0;
-    let mut names: Vec<PathBuf> = std::fs::read_dir(shared_meshes()).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut names: Vec<PathBuf> = std::fs::read_dir(meshes()).unwrap().map(|e| e.unwrap().path()).collect();
     names.sort();
     for p in names {
         if matches!(p.extension().and_then(|e| e.to_str()), Some("ply" | "obj")) {
@@ -400,7 +400,7 @@ fn nonsense_options_are_refused_with_a_message() {
 
 #[test]
 fn thousands_of_mutated_files_end_in_an_answer_or_a_named_error() {
-    // The small shared meshes (binary and ascii PLY), plus an OBJ and an STL of a small pebble.
+    // The small bundled meshes (binary and ascii PLY), plus an OBJ and an STL of a small pebble.
     let mut sources: Vec<(String, Vec<u8>)> = [
         "stone_quarry_ibois_E34_decimated500_bin.ply",
         "stone_quarry_ibois_A0_decimated500_bin.ply",
@@ -408,7 +408,7 @@ fn thousands_of_mutated_files_end_in_an_answer_or_a_named_error() {
         "stone_quarry_ibois_stone0_ascii.ply",
     ]
     .iter()
-    .map(|n| (n.to_string(), std::fs::read(shared_meshes().join(n)).unwrap()))
+    .map(|n| (n.to_string(), std::fs::read(meshes().join(n)).unwrap()))
     .collect();
     let dir = tempfile::tempdir().unwrap();
     let small = generate::pebble([1.0, 0.7, 0.5], 0.02, 300, 3);

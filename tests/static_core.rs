@@ -11,7 +11,7 @@ use rocking_stones::{Point3, Vec3};
 use std::path::{Path, PathBuf};
 
 fn meshes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes")
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes")).to_path_buf()
 }
 
 fn counts(eq: &Equilibria) -> (usize, usize, usize) {
@@ -94,7 +94,7 @@ fn moving_g_towards_c_swaps_the_unstable_side_face() {
 
 fn real_meshes() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(meshes_dir())
-        .expect("shared/meshes")
+        .expect("data/meshes")
         .map(|e| e.unwrap().path())
         .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("ply" | "obj" | "stl")))
         .collect();
@@ -105,7 +105,7 @@ fn real_meshes() -> Vec<PathBuf> {
 #[test]
 fn poincare_hopf_on_every_real_mesh() {
     let files = real_meshes();
-    assert!(files.len() >= 30, "expected the shared meshes, found {}", files.len());
+    assert!(files.len() >= 30, "expected the meshes of data/meshes, found {}", files.len());
     for f in files {
         let a = Analysis::of_file(&f, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
         let (s, u, h) = counts(&a.equilibria);

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Small shared meshes (≤ 20 kB each).
+/// Small meshes of `data/meshes` (≤ 20 kB each).
 const SMALL: [&str; 4] = [
     "stone_quarry_ibois_A0_decimated500_bin.ply",
     "stone_quarry_ibois_E34_decimated500_bin.ply",
@@ -19,15 +19,15 @@ const SMALL: [&str; 4] = [
     "asteroid_2_pallas_hanus2017_bin.ply",
 ];
 
-fn shared(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared").join(rel)
+fn data(rel: &str) -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data")).join(rel)
 }
 
 fn scans_folder(dir: &Path) -> PathBuf {
     let scans = dir.join("scans");
     std::fs::create_dir_all(&scans).unwrap();
     for f in SMALL {
-        std::fs::copy(shared(&format!("meshes/{f}")), scans.join(f)).unwrap();
+        std::fs::copy(data(&format!("meshes/{f}")), scans.join(f)).unwrap();
     }
     scans
 }
@@ -146,7 +146,7 @@ fn metadata_ids_without_a_scan_and_duplicate_ids_are_errors() {
     let dir = tempfile::tempdir().unwrap();
     let scans = dir.path().join("scans");
     std::fs::create_dir_all(&scans).unwrap();
-    std::fs::copy(shared(&format!("meshes/{}", SMALL[0])), scans.join(SMALL[0])).unwrap();
+    std::fs::copy(data(&format!("meshes/{}", SMALL[0])), scans.join(SMALL[0])).unwrap();
     let files = mesh_files(&scans).unwrap();
     let meta = Metadata::parse(&format!("id,sample\n{},A\nghost,A\n", stem(SMALL[0])), Path::new("m.csv")).unwrap();
     let e = run_files(&files, Some(&meta), &StudyOptions::default(), &|| {}).unwrap_err().to_string();
@@ -166,7 +166,7 @@ fn metadata_ids_without_a_scan_and_duplicate_ids_are_errors() {
 fn analyses() -> Vec<(String, Analysis)> {
     let mut out: Vec<(String, Analysis)> = SMALL
         .iter()
-        .map(|f| (f.to_string(), Analysis::of_file(&shared(&format!("meshes/{f}")), &Options::default()).unwrap()))
+        .map(|f| (f.to_string(), Analysis::of_file(&data(&format!("meshes/{f}")), &Options::default()).unwrap()))
         .collect();
     let (m, r) = generate::pebble([1.0, 0.8, 0.6], 0.05, 1500, 4).into_solid_boundary().unwrap();
     out.push(("synthetic pebble".into(), Analysis::of_solid(m, r, &Options::default()).unwrap()));
@@ -244,13 +244,15 @@ fn log_fit_and_sample_standard_deviation() {
 
 #[test]
 fn table2_is_read_with_its_five_scanned_samples() {
-    let t = read_table2(&shared("data/table2_hand_experiments.csv")).unwrap();
+    let t = read_table2(&data("table2_hand_experiments.csv")).unwrap();
     assert_eq!(t.len(), 22);
     assert_eq!(t.iter().filter(|h| h.computer.is_some()).count(), 5);
     let t1 = &t[0];
     assert_eq!((t1.id.as_str(), t1.n, t1.hand), ("T1", 50, [3.36, 4.12, 1.10, 1.08]));
     assert_eq!(t1.computer, Some([3.05, 3.68, 1.00, 1.13]));
     assert!(t.iter().all(|h| h.c_over_a <= h.c_over_b));
+    // The table compiled into the library (the default of `rocking study fit-nu`) is this file.
+    assert_eq!(bundled_table2().unwrap(), t);
 }
 
 #[test]
@@ -361,35 +363,33 @@ fn the_fit_recovers_the_nu_of_synthetic_hand_data() {
 #[test]
 fn fit_nu_cli_writes_the_loss_the_comparison_and_the_figure_12_plots() {
     let dir = tempfile::tempdir().unwrap();
-    let table = shared("data/table2_hand_experiments.csv");
+    let fit = |table: Option<&Path>, out: &Path| {
+        let mut args = vec!["study", "fit-nu"];
+        if let Some(t) = table {
+            args.extend(["--table", t.to_str().unwrap()]);
+        }
+        args.extend(["--scanned-only", "--count", "6", "--points", "500", "--bootstrap", "5", "--per-decade", "5"]);
+        args.extend(["-o", out.to_str().unwrap()]);
+        let o = rocking(&args);
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(stdout.contains("fitted ν ="), "{stdout}");
+        let (_, rows) = read_csv(&out.join("comparison_paper_nu.csv"));
+        rows.iter().map(|r| r[0].clone()).collect::<Vec<String>>()
+    };
+    // No --table: the bundled Table 2, whose five scanned samples are fitted.
     let out = dir.path().join("fit");
-    let o = rocking(&[
-        "study",
-        "fit-nu",
-        "--table",
-        table.to_str().unwrap(),
-        "--scanned-only",
-        "--count",
-        "6",
-        "--points",
-        "500",
-        "--bootstrap",
-        "5",
-        "--per-decade",
-        "5",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains("fitted ν ="), "{stdout}");
+    assert_eq!(fit(None, &out), ["T1", "A1", "K1", "K3", "K4"]);
     for f in ["loss.csv", "fit.json", "loss.png", "comparison_fitted.csv", "comparison_paper_nu.csv"] {
         assert!(out.join(f).exists(), "{f}");
     }
     for f in ["fig12a_S.png", "fig12a_U.svg", "fig12b.png", "hand_vs_computed.png"] {
         assert!(out.join("fitted").join(f).exists(), "{f}");
     }
-    let (_, rows) = read_csv(&out.join("comparison_paper_nu.csv"));
-    assert_eq!(rows.len(), 5);
+    // --table reads another file: the bundled table cut to its first three samples.
+    let three: Vec<&str> = TABLE2_CSV.lines().take(4).collect();
+    let table = dir.path().join("three.csv");
+    std::fs::write(&table, three.join("\n") + "\n").unwrap();
+    assert_eq!(fit(Some(&table), &dir.path().join("three")), ["T1", "A1", "K1"]);
 }
 
 /// A field study's report skips the quasi-static basins (their exact areas were most of a

@@ -65,7 +65,10 @@ fn platonic_solids_are_fair_under_the_throw() {
 fn castalia_throws_rest_on_stable_facets_and_fill_its_large_flocks() {
     // Before issue 10, 39 of 100 Castalia drops were counted on a non-stable facet 5·10⁻⁵ rad
     // from the stable one, and flock 1 (35 % static probability) showed no drop.
-    let path = std::path::Path::new("../shared/meshes/asteroid_4769_castalia_radar_hudson1994_pdstab.obj");
+    let path = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/meshes/asteroid_4769_castalia_radar_hudson1994_pdstab.obj"
+    ));
     let a = Analysis::of_file(path, &Options::default()).unwrap();
     let s = stone_of(&a);
     let h = header(100, 1, CertificateMode::None);

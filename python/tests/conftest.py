@@ -1,4 +1,4 @@
-"""Shared fixtures: the repository, the shared meshes and the `rocking` CLI to compare with."""
+"""Common fixtures: the repository, its test meshes (`data/meshes`) and the `rocking` CLI."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ from typing import List
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
-# The shared meshes live next to the repository (`../shared/meshes`); `ROCKING_SHARED` overrides.
-SHARED = Path(os.environ.get("ROCKING_SHARED", REPO.parent / "shared")) / "meshes"
+# The real test meshes bundled with the repository (see data/README.md).
+MESH_DIR = REPO / "data" / "meshes"
 
 
 def rocking_binary() -> Path | None:
@@ -57,8 +57,8 @@ def cli() -> Cli:
     return Cli(path)
 
 
-def shared(name: str) -> Path:
-    p = SHARED / name
-    if not p.exists():
-        pytest.skip(f"shared mesh {p} is not available")
+def mesh(name: str) -> Path:
+    """The path of a mesh of `data/meshes`; it must be there."""
+    p = MESH_DIR / name
+    assert p.exists(), f"{p} is missing from the repository"
     return p

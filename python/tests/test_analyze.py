@@ -9,7 +9,7 @@ import pytest
 import trimesh
 
 import rocking_stones as rs
-from conftest import shared
+from conftest import mesh
 
 MESHES = [
     "stone_quarry_ibois_E34_decimated500_bin.ply",
@@ -22,7 +22,7 @@ MESHES = [
 
 @pytest.mark.parametrize("name", MESHES)
 def test_mass_properties_match_trimesh(name):
-    path = shared(name)
+    path = mesh(name)
     # As stored: trimesh's default processing merges vertices closer than 1e-8, which moves them.
     tm = trimesh.load(path, force="mesh", process=False)
     assert tm.is_watertight
@@ -43,7 +43,7 @@ def test_mass_properties_match_trimesh(name):
 
 @pytest.mark.parametrize("name", MESHES)
 def test_trimesh_object_gives_the_same_solid_as_the_file(name):
-    path = shared(name)
+    path = mesh(name)
     from_file = rs.analyze(path)
     from_trimesh = rs.analyze(trimesh.load(path, force="mesh", process=False), name="tm")
     assert from_trimesh.name == "tm"
@@ -56,22 +56,22 @@ def test_trimesh_object_gives_the_same_solid_as_the_file(name):
 
 @pytest.mark.parametrize("name", MESHES[:3] + [None])
 def test_to_dict_is_the_cli_json(cli, name):
-    args = ["analyze"] if name is None else ["analyze", str(shared(name))]
-    a = rs.analyze(None if name is None else str(shared(name)))
+    args = ["analyze"] if name is None else ["analyze", str(mesh(name))]
+    a = rs.analyze(None if name is None else str(mesh(name)))
     assert a.to_dict() == cli.json(args)
     # Byte for byte: the same serde value, pretty-printed the same way.
     assert a.to_json() + "\n" == cli.run([*args, "--json"]).stdout
 
 
 def test_to_dict_with_nu_and_tolerance_is_the_cli_json(cli):
-    path = str(shared(MESHES[0]))
+    path = str(mesh(MESHES[0]))
     a = rs.analyze(path, nu=0.0035, coplanar_tol=1e-6)
     assert a.nu_source == "user" and a.nu == 0.0035
     assert a.to_dict() == cli.json(["analyze", path, "--nu", "0.0035", "--coplanar-tol", "1e-6"])
 
 
 def test_arrays_and_columns_agree_with_the_report():
-    a = rs.analyze(shared(MESHES[0]))
+    a = rs.analyze(mesh(MESHES[0]))
     d = a.to_dict()
     eq = a.equilibria
     n = len(d["equilibria"])

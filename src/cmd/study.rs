@@ -3,7 +3,7 @@
 //!
 //! * `rocking study FOLDER [--meta META.csv] [--nu X] [-o DIR] [--dynamic …]`
 //! * `rocking study synthetic (--table TABLE2.csv | --c-over-b X --c-over-a Y) [-o DIR] …`
-//! * `rocking study fit-nu --table TABLE2.csv [-o DIR] …`
+//! * `rocking study fit-nu [--table TABLE2.csv] [-o DIR] …` (default: the bundled Table 2)
 
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
@@ -161,9 +161,10 @@ pub struct SyntheticArgs {
 
 #[derive(clap::Args)]
 pub struct FitArgs {
-    /// The paper's Table 2 (data/table2_hand_experiments.csv in the shared folder).
+    /// A Table 2 CSV to fit (columns as in the paper's Table 2); default: the paper's Table 2,
+    /// bundled (data/table2_hand_experiments.csv).
     #[arg(long)]
-    pub table: PathBuf,
+    pub table: Option<PathBuf>,
     /// Fit only the samples with computer columns (the paper's 5 scanned samples).
     #[arg(long)]
     pub scanned_only: bool,
@@ -318,12 +319,15 @@ fn fit(args: FitArgs) -> Result<()> {
         anyhow::bail!("need --nu-min < --nu-max and --per-decade ≥ 1");
     }
     let params = args.population.params(args.seed)?;
-    let mut hand = study::read_table2(&args.table)?;
+    let (mut hand, table) = match &args.table {
+        Some(path) => (study::read_table2(path)?, path.display().to_string()),
+        None => (study::bundled_table2()?, study::TABLE2_NAME.to_string()),
+    };
     if args.scanned_only {
         hand.retain(|h| h.computer.is_some());
     }
     if hand.is_empty() {
-        anyhow::bail!("{}: no sample to fit", args.table.display());
+        anyhow::bail!("{table}: no sample to fit");
     }
     let opts = FitOptions {
         grid: log_grid(args.nu_min, args.nu_max, GridSize::PerDecade(args.per_decade)),

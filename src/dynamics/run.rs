@@ -212,7 +212,7 @@ pub struct RestSample<'s> {
 /// stones shaken where they stand: positions); both read the same [`RestSample`] and neither is
 /// ever asked while a drive acts. Why not by the stone, from whether its hull has a flat base of
 /// near-coplanar micro-facets: every hull measured has them — the smallest angle between
-/// adjacent facets is 1.2·10⁻⁵–9.9·10⁻⁴ rad on the seven scanned stones of `shared/meshes` (the
+/// adjacent facets is 1.2·10⁻⁵–9.9·10⁻⁴ rad on the seven scanned stones of `data/meshes` (the
 /// bundled stone 6.9·10⁻⁵) and 9·10⁻⁶–9·10⁻⁵ on synthetic pebbles — so such a rule would give
 /// every stone positions, and change every calibrated drop result.
 pub trait RestRule: Send {

@@ -41,7 +41,7 @@ pub struct Repairs {
 
 /// Self-intersections deeper ([`intersect::depth`]) than this fraction of the bounding-box
 /// diagonal are refused ([`Error::SelfIntersecting`]); shallower ones are accepted and counted in
-/// [`Repairs`]. Of the 39 shared scans three cross themselves: Arrokoth 1.4·10⁻³ and Phobos
+/// [`Repairs`]. Of the 39 scans of `data/meshes` three cross themselves: Arrokoth 1.4·10⁻³ and Phobos
 /// 2.6·10⁻⁴ of their size deep (seams), the 500-facet decimation of stone A0 1.4·10⁻² (a fold of
 /// a fifth of a facet). A vertex pulled through the body or a coordinate read from the wrong
 /// column crosses by a sizeable fraction of the size.

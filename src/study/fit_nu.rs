@@ -57,12 +57,29 @@ fn standard_errors(m: &[f64; 4], n: usize) -> [f64; 4] {
     [m[2] / n.sqrt(), m[3] / n.sqrt(), m[2] / (2.0 * (n - 1.0)).sqrt(), m[3] / (2.0 * (n - 1.0)).sqrt()]
 }
 
+/// The paper's Table 2 as bundled with the project (`data/table2_hand_experiments.csv`, see
+/// `data/README.md`), compiled into the library: the table `rocking study fit-nu` fits by default.
+pub const TABLE2_CSV: &str = include_str!("../../data/table2_hand_experiments.csv");
+
+/// The name errors give the bundled Table 2.
+pub const TABLE2_NAME: &str = "table2_hand_experiments.csv (bundled)";
+
+/// The bundled Table 2 ([`TABLE2_CSV`]), read as [`read_table2`] reads a file.
+pub fn bundled_table2() -> Result<Vec<HandSample>> {
+    parse_table2(TABLE2_CSV, Path::new(TABLE2_NAME))
+}
+
 /// Read Table 2: columns `id, location, n_hand, n_computer, rock_type, mean_b_mm, ES_hand,
 /// ES_computer, EU_hand, EU_computer, sS_hand, sS_computer, sU_hand, sU_computer, c_over_b,
 /// c_over_a` (computer columns may be empty).
 pub fn read_table2(path: &Path) -> Result<Vec<HandSample>> {
-    let parse = |what: String| Error::Parse { path: path.into(), what };
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), error: e })?;
+    parse_table2(&text, path)
+}
+
+/// Parse the text of a Table 2 CSV (see [`read_table2`]); `path` names it in errors.
+pub fn parse_table2(text: &str, path: &Path) -> Result<Vec<HandSample>> {
+    let parse = |what: String| Error::Parse { path: path.into(), what };
     let mut r = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
     let header: Vec<String> = r.headers().map_err(|e| parse(e.to_string()))?.iter().map(String::from).collect();
     let col = |name: &str| header.iter().position(|h| h == name).ok_or_else(|| parse(format!("no column {name:?}")));
