@@ -108,6 +108,27 @@ fn drop_and_perturb_state_the_size_they_assume() {
 }
 
 #[test]
+fn the_study_says_the_size_its_experimenter_sets_pebbles_down_at() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = dir.path().join("scans");
+    std::fs::create_dir(&scans).unwrap();
+    copy_and_record(&scans);
+    std::fs::remove_file(scans.join("pulse.csv")).unwrap();
+    let scans = scans.to_str().unwrap();
+    let out = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (ok, _, err) = rocking(&["study", scans, "--dynamic", "--trials", "1", "-o", &out("a")]);
+    assert!(ok, "{err}");
+    assert!(err.contains("the scans' length unit is not known") && err.contains("R_max = 10 mm"), "{err}");
+    let (ok, _, err) = rocking(&["study", scans, "--dynamic", "--trials", "1", "--length-unit", "m", "-o", &out("b")]);
+    assert!(ok && !err.contains("note:") && err.contains(IMPLAUSIBLE), "{err}");
+    let (ok, _, err) = rocking(&["study", scans, "--dynamic", "--trials", "1", "--length-unit", "mm", "-o", &out("c")]);
+    assert!(ok && !err.contains("note:") && !err.contains("warning:"), "{err}");
+    // The static study needs no size.
+    let (ok, _, err) = rocking(&["study", scans, "-o", &out("d")]);
+    assert!(ok && !err.contains("note:"), "{err}");
+}
+
+#[test]
 fn the_help_says_what_the_size_defaults_to_and_where_it_does_not_matter() {
     let help = |cmd: &str| {
         let out = Command::new(env!("CARGO_BIN_EXE_rocking")).args([cmd, "--help"]).output().unwrap();
