@@ -304,6 +304,7 @@ def drop(
     preset: Literal["quasi-static", "drop", "throw"] = "throw",
     surface: Literal["steel-on-wood", "stone-on-stone", "rock-on-concrete", "rock-on-steel"] = "steel-on-wood",
     size: Optional[float] = None,
+    length_unit: Union[str, float, None] = None,
     certificate: Literal["none", "facet", "flock"] = "facet",
     reference: bool = False,
     fast: bool = False,
@@ -317,7 +318,9 @@ def drop(
     --surface S``; drop i depends only on (seed, i).
 
     ``preset`` and ``surface`` choose the parameters as the CLI does (``size``: R_max of the real
-    stone in metres, scaling the contact like ``--size``); ``**params`` override single ones, as
+    stone in metres, scaling the contact like ``--size``, or ``length_unit``; default the bundled
+    stone's 178 mm, for any other mesh R_max = 1 cm, assumed with a ``UserWarning``, as is an
+    R_max outside 2 mm–20 m); ``**params`` override single ones, as
     the CLI's options: height, horizontal_speed, spin, spin_distribution, friction, restitution,
     rolling_resistance, torsional_friction, linear_damping, angular_damping, dt,
     solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time, flight
@@ -360,7 +363,8 @@ def perturb(
     The contact of drops and field rocks: ``preset`` "surface" (default) or "damped" (the
     overdamped reference), ``surface`` (default "stone-on-stone"), the real size by
     ``length_unit`` (mm, cm, m, km or metres per unit; default mm for the bundled stone, m
-    otherwise) or ``size`` (R_max in metres). ``**params``: friction, restitution,
+    otherwise, assumed with a ``UserWarning``) or ``size`` (R_max in metres); an R_max outside
+    2 mm–20 m is warned about; ``to_dict()`` has ``r_max_m`` and ``size_assumed``. ``**params``: friction, restitution,
     rolling_resistance, dt, max_time, contact_frequency, settle_time, hold_time, rest thresholds."""
 
 def shake(
@@ -412,7 +416,8 @@ def shake_rock(
 ) -> Dict[str, Any]:
     """A field rock at true size under one ground motion, as ``rocking shake --pose ... --json``:
     ``pose`` "as-scanned", "facet:ID" or "quat:w,x,y,z"; ``length_unit`` default mm for the
-    bundled stone, m otherwise; ``motion`` a CSV or 1–3 .AT2 files, or
+    bundled stone, m otherwise (assumed with a ``UserWarning``; the dict's ``size_assumed``);
+    ``motion`` a CSV or 1–3 .AT2 files, or
     ``accel`` an (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s; ``azimuth`` degrees of the
     record's x axis (default 0). Returns overturned, max_tilt_deg, slide_m, pga_g, pgv_m_s,
     pgv_over_pga_s, ...
@@ -434,6 +439,7 @@ def study(
     coplanar_tol: float = ...,
     allow_unmatched: bool = False,
     dynamic: bool = False,
+    length_unit: Union[str, float, None] = None,
     trials: int = ...,
     height: float = ...,
     seed: int = 1,
@@ -441,7 +447,9 @@ def study(
     progress: Optional[Callable[[int, int], Any]] = None,
 ) -> Study:
     """Field study over a folder of scans, as ``rocking study FOLDER --meta META``: one row per
-    pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``."""
+    pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``. ``dynamic=True`` adds the
+    simulated hand experimenter, who sets each pebble down at its real size with ``length_unit``
+    (the scans' unit), else as a stone of R_max = 1 cm, which a ``UserWarning`` says."""
 
 def generate(
     shape: Literal[

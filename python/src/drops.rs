@@ -2,6 +2,7 @@
 //! chunks so that the caller's Ctrl-C is answered between them.
 
 use crate::convert::{bools, f64s, i64s, kind_name, opt_index, py_err, strs, to_json, to_py};
+use crate::dynamics::real_size;
 use crate::kwargs::{enum_from_str, with_params};
 use crate::long_run::{interruptible, Cancelled};
 use crate::mesh_input::analysed;
@@ -10,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone as Body;
 use rocking_stones::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
 use std::collections::BTreeMap;
@@ -20,6 +22,23 @@ use std::time::Instant;
 pub(crate) struct PyDropResult {
     report: DropReport,
     outcomes: Vec<DropOutcome>,
+    size: RealSize,
+}
+
+/// The JSON of `rocking drop --json`: the report, the stone's real size and whether it was
+/// assumed.
+#[derive(serde::Serialize)]
+struct Sized<'a> {
+    #[serde(flatten)]
+    report: &'a DropReport,
+    r_max_m: f64,
+    size_assumed: bool,
+}
+
+impl PyDropResult {
+    fn sized(&self) -> Sized<'_> {
+        Sized { report: &self.report, r_max_m: self.size.r_max_m, size_assumed: self.size.assumed() }
+    }
 }
 
 #[pymethods]
@@ -129,12 +148,12 @@ impl PyDropResult {
     }
     /// The report as a dict: equal to `json.loads` of `rocking drop MESH -n N --seed S --json`.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_py(py, &self.report)
+        to_py(py, &self.sized())
     }
     /// The report as JSON text (`pretty=True`: as `rocking drop --json` prints it).
     #[pyo3(signature = (pretty = true))]
     fn to_json(&self, pretty: bool) -> PyResult<String> {
-        to_json(&self.report, pretty)
+        to_json(&self.sized(), pretty)
     }
     /// The human summary `rocking drop` prints.
     fn summary(&self) -> String {
@@ -156,7 +175,9 @@ impl PyDropResult {
 ///
 /// preset: "quasi-static", "drop" or "throw" (the CLI's default); surface: "steel-on-wood" (the
 /// default), "stone-on-stone", "rock-on-concrete", "rock-on-steel"; size: R_max of the real
-/// stone in metres (scales the contact as --size does).
+/// stone in metres (scales the contact as --size does), or length_unit: the mesh's unit ("mm",
+/// "cm", "m", "km" or metres per unit); default: the bundled stone's R_max = 178 mm, for any
+/// other mesh R_max = 1 cm, assumed with a UserWarning (as is a size outside R_max 2 mm to 20 m).
 /// **params override single parameters, as the CLI's options: height, horizontal_speed, spin,
 /// spin_distribution, friction, restitution, rolling_resistance, torsional_friction,
 /// linear_damping, angular_damping, dt, solver_iterations, max_time, rest_linear_speed,
@@ -170,7 +191,7 @@ impl PyDropResult {
 /// RAYON_NUM_THREADS or all cores). progress: callable(done, total), called about every 0.1 s
 /// (e.g. to update a tqdm bar). Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, certificate = "facet", reference = false, fast = false, nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(signature = (mesh = None, n = 1000, seed = 1, *, preset = "throw", surface = "steel-on-wood", size = None, length_unit = None, certificate = "facet", reference = false, fast = false, nu = None, name = None, threads = None, progress = None, **params))]
 #[pyo3(name = "drop")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn drop_stone(
@@ -181,6 +202,7 @@ pub(crate) fn drop_stone(
     preset: &str,
     surface: &str,
     size: Option<f64>,
+    length_unit: Option<&Bound<'_, PyAny>>,
     certificate: &str,
     reference: bool,
     fast: bool,
@@ -195,20 +217,21 @@ pub(crate) fn drop_stone(
     }
     let preset: Preset = preset.parse().map_err(py_err)?;
     let surface: Surface = surface.parse().map_err(py_err)?;
-    let mut base = preset.params_for(surface, size).map_err(py_err)?;
     if reference && fast {
         return Err(PyValueError::new_err(
             "reference and fast exclude each other: the reference step is 1/240 s, fast's (the default) 1/120 s",
         ));
     }
+    let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
+    let stone = analysed(py, mesh, name, nu)?;
+    let body = py.detach(|| Body::new(&stone.analysis, stone.nu())).map_err(py_err)?;
+    let real = real_size(py, &stone.name, body.body.r_max, length_unit, size, ASSUMED_DROP_SIZE)?;
+    let mut base = preset.params_for(surface, Some(real.r_max_m)).map_err(py_err)?;
     if reference {
         preset.reference(&mut base);
     }
     let p: DropParams = with_params("drop", &base, params)?;
     p.check().map_err(py_err)?;
-    let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
-    let stone = analysed(py, mesh, name, nu)?;
-    let body = py.detach(|| Body::new(&stone.analysis, stone.nu())).map_err(py_err)?;
     let header = RunHeader::new(&stone.name, &stone.analysis.mesh, seed, n, p, certificate, (preset, surface));
     let progress = progress.map(|f| (f, n));
     let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
@@ -236,5 +259,5 @@ pub(crate) fn drop_stone(
     })?
     .map_err(|_| PyKeyboardInterrupt::new_err("interrupted"))?;
     let report = montecarlo::summarize(&body.model(), &header, &outcomes);
-    Ok(PyDropResult { report, outcomes: outcomes.into_values().collect() })
+    Ok(PyDropResult { report, outcomes: outcomes.into_values().collect(), size: real })
 }

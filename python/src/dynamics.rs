@@ -12,6 +12,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::dynamics::params::Surface;
+use rocking_stones::dynamics::size::{RealSize, Size, ASSUMED_UNIT};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -90,42 +91,55 @@ fn resting_params(
     Ok(p)
 }
 
-/// The real R_max (m) of `stone` (named `name`), from `length_unit=` or `size=` ([`real_size`]).
-fn real_r_max(
+/// The real size of the stone `name` whose R_max is `r_max` mesh units, as the CLI's
+/// `--length-unit` / `--size`: `size=` (R_max in metres) or `length_unit=` (a name or metres per
+/// unit) if given, else the bundled stone's millimetres, else `assumed`
+/// ([`RealSize::resolve`]); an assumed size, and one that is not plausible for a stone, are
+/// told with a `UserWarning` before the run.
+pub(crate) fn real_size(
+    py: Python<'_>,
     name: &str,
-    stone: &rocking_stones::dynamics::perturb::Stone,
+    r_max: f64,
     length_unit: Option<&Bound<'_, PyAny>>,
     size: Option<f64>,
-) -> PyResult<f64> {
-    let unit = real_size(name, length_unit, size)?.length_unit_m(stone.body.r_max).map_err(py_err)?;
-    Ok(stone.body.r_max * unit)
+    assumed: Size,
+) -> PyResult<RealSize> {
+    let given = match (length_unit, size) {
+        (Some(_), Some(_)) => return Err(PyValueError::new_err("give length_unit= or size=, not both")),
+        (None, Some(r)) => Some(Size::RMax(r)),
+        (Some(u), None) => Some(Size::Unit(length_unit_m(u)?)),
+        (None, None) => None,
+    };
+    let real = RealSize::resolve(name, r_max, given, assumed).map_err(py_err)?;
+    if let Some(note) = real.assumption(name) {
+        warn(py, &format!("{note}; pass length_unit='mm'|'cm'|'m'|'km' or size=R_MAX_M."))?;
+    }
+    if let Some(warning) = real.implausibility(name) {
+        warn(py, &format!("{warning}."))?;
+    }
+    Ok(real)
 }
 
-/// The real size of a stone from `length_unit=` (a name or metres per unit) or `size=` (R_max in
-/// metres), as the CLI's `--length-unit` / `--size`; by default mm for the bundled stone, m
-/// otherwise.
-fn real_size(
-    name: &str,
-    length_unit: Option<&Bound<'_, PyAny>>,
-    size: Option<f64>,
-) -> PyResult<rocking_stones::dynamics::resting::Size> {
-    use rocking_stones::dynamics::resting::Size;
+/// `length_unit=`: "mm", "cm", "m", "km" or metres per mesh unit (a number or its text).
+pub(crate) fn length_unit_m(u: &Bound<'_, PyAny>) -> PyResult<f64> {
     use rocking_stones::dynamics::shake::parse_length_unit;
-    match (length_unit, size) {
-        (Some(_), Some(_)) => Err(PyValueError::new_err("give length_unit= or size=, not both")),
-        (None, Some(r)) => Ok(Size::RMax(r)),
-        (Some(u), None) => Ok(Size::Unit(match u.extract::<f64>() {
-            Ok(x) => parse_length_unit(&x.to_string()).map_err(py_err)?,
-            Err(_) => parse_length_unit(&u.extract::<String>()?).map_err(py_err)?,
-        })),
-        (None, None) => Ok(Size::Unit(rocking_stones::bundled::default_length_unit_m(name))),
+    match u.extract::<f64>() {
+        Ok(x) => parse_length_unit(&x.to_string()).map_err(py_err),
+        Err(_) => parse_length_unit(&u.extract::<String>()?).map_err(py_err),
     }
+}
+
+/// A `UserWarning` with `message`, raised at the caller's line.
+pub(crate) fn warn(py: Python<'_>, message: &str) -> PyResult<()> {
+    let message = std::ffi::CString::new(message.replace('\0', " ")).expect("no NUL left");
+    PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &message, 1)
 }
 
 /// Push or spin the stone resting on its stable micro-equilibria, as `rocking perturb`;
 /// returns a `DynamicsResult` whose to_dict() is the CLI's --json. preset: "surface" (default)
 /// or "damped"; surface: the pair (default "stone-on-stone"); length_unit= or size=: the real
-/// size (default mm for the bundled stone, m otherwise). **params: friction, restitution,
+/// size (default mm for the bundled stone; m otherwise, assumed with a UserWarning, as is a
+/// size outside R_max 2 mm to 20 m). **params: friction, restitution,
 /// rolling_resistance, dt, max_time, contact_frequency, settle_time, hold_time, rest thresholds.
 #[pyfunction]
 #[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = false, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
@@ -159,8 +173,8 @@ pub(crate) fn perturb(
     }
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let r_max_m = real_r_max(&s.name, &stone, length_unit, size)?;
-    let params = resting_params("perturb", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
+    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
+    let params = resting_params("perturb", preset, surface, Surface::StoneOnStone, real.r_max_m, params)?;
     let params = pt::PerturbParams { certificate, ..params };
     let cfg = PerturbConfig {
         params,
@@ -174,6 +188,7 @@ pub(crate) fn perturb(
     let starts = stone.select(&equilibria.unwrap_or_default(), flock).map_err(py_err)?;
     let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
     let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
+    let report = pt::PerturbReport { r_max_m: Some(real.r_max_m), size_assumed: Some(real.assumed()), ..report };
     dynamics_result("perturb", &report, &report.trials, rocking_stones::report::perturb::summary(&report, &s.name))
 }
 
@@ -215,7 +230,8 @@ pub(crate) fn shake(
     }
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let r_max_m = real_r_max(&s.name, &stone, length_unit, size)?;
+    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
+    let r_max_m = real.r_max_m;
     let params = resting_params("shake", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
     let real_dt = params.sim.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (pulse, motion) {
@@ -232,6 +248,7 @@ pub(crate) fn shake(
     };
     let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
     let report = interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
+    let report = sh::ShakeReport { size_assumed: Some(real.assumed()), ..report };
     dynamics_result("shake", &report, &report.trials, rocking_stones::report::shake::summary(&report, &s.name))
 }
 
@@ -258,7 +275,8 @@ fn read_motion_arg(
 /// The motion is `motion=` a CSV path (read with `columns` and `accel_unit`) or a list of one to
 /// three PEER `.AT2` paths (x, y, z), or `accel=` an array of shape (n,) or (n, k ≤ 3) in m/s²
 /// (x, y horizontal, z up) sampled every `dt` seconds. `length_unit`: "mm", "cm", "m", "km" or
-/// metres per mesh unit (default mm for the bundled stone, m otherwise, as the CLI). `azimuth`:
+/// metres per mesh unit (default mm for the bundled stone; m otherwise, assumed with a
+/// UserWarning, as the CLI says it). `azimuth`:
 /// degrees (world frame) of the record's x axis (default 0); `scale`: factor on the record.
 ///
 /// `ensemble=N` (as `--ensemble N`): N members over what is not known about the rock, each
@@ -347,9 +365,11 @@ pub(crate) fn shake_rock<'py>(
     };
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let unit = real_size(&s.name, length_unit, None)?.length_unit_m(stone.body.r_max).map_err(py_err)?;
+    let real = real_size(py, &s.name, stone.body.r_max, length_unit, None, ASSUMED_UNIT)?;
+    let sized = |setup: RockSetup| RockSetup { size_assumed: Some(real.assumed()), ..setup };
+    let unit = real.length_unit_m;
     if let (Some(members), Some(given)) = (ensemble, given) {
-        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth).map_err(py_err)?;
+        let setup = sized(RockSetup::new(&stone, pose, unit, surface, azimuth).map_err(py_err)?);
         // As the command line (`ensemble_spec` of `rocking shake`): nothing is pinned, since
         // shake_rock takes no friction / restitution / rolling-resistance override.
         let uncertainty = Uncertainty::stated(&given, surface, setup.length_unit_m, [false; 3]);
@@ -360,7 +380,7 @@ pub(crate) fn shake_rock<'py>(
         return to_py(py, &run.map_err(py_err)?);
     }
     let run = py.detach(|| -> rocking_stones::Result<sh::RecordRun> {
-        let setup = RockSetup::new(&stone, pose, unit, surface, azimuth)?;
+        let setup = sized(RockSetup::new(&stone, pose, unit, surface, azimuth)?);
         sh::run_record(&stone, &setup, &record, scale)
     });
     to_py(py, &run.map_err(py_err)?)

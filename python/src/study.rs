@@ -8,7 +8,8 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::analysis::{check_nu, Report, PAPER_NU};
-use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::params::{DropParams, REFERENCE_R_MAX_M};
+use rocking_stones::dynamics::size::format_length;
 use std::path::PathBuf;
 
 /// A field study: one row per scan with the columns of `pebbles.csv`.
@@ -98,9 +99,11 @@ impl PyStudy {
 
 /// A field study over a folder of scans, as `rocking study FOLDER --meta META`; returns a
 /// `Study` with one row per pebble (the columns of pebbles.csv). dynamic=True adds the
-/// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble).
+/// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble), each pebble
+/// set down at its real size with `length_unit=` (the scans' unit: "mm", "cm", "m", "km" or
+/// metres per unit), else as a stone of R_max = 1 cm, which a UserWarning says.
 #[pyfunction]
-#[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
+#[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, length_unit = None, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn study(
     py: Python<'_>,
@@ -110,6 +113,7 @@ pub(crate) fn study(
     coplanar_tol: f64,
     allow_unmatched: bool,
     dynamic: bool,
+    length_unit: Option<&Bound<'_, PyAny>>,
     trials: u64,
     height: f64,
     seed: u64,
@@ -127,7 +131,27 @@ pub(crate) fn study(
         if trials == 0 {
             return Err(PyValueError::new_err("trials must be at least 1"));
         }
-        Some(Experimenter { trials, params, seed })
+        let length_unit_m = match length_unit {
+            Some(u) => Some(crate::dynamics::length_unit_m(u)?),
+            None => {
+                crate::dynamics::warn(
+                    py,
+                    &format!(
+                        "{}: the scans' length unit is not known; the simulated experimenter sets every pebble down as \
+                         a stone of R_max = {}. The dynamic counts depend on the real size (the rolling resistance \
+                         δ/R_max); pass length_unit='mm'|'cm'|'m'|'km'.",
+                        folder.display(),
+                        format_length(REFERENCE_R_MAX_M)
+                    ),
+                )?;
+                None
+            }
+        };
+        Some(Experimenter { trials, params, seed, length_unit_m })
+    } else if length_unit.is_some() {
+        return Err(PyValueError::new_err(
+            "length_unit= sets the size of the dynamic experimenter: it needs dynamic=True",
+        ));
     } else {
         None
     };
@@ -138,6 +162,13 @@ pub(crate) fn study(
         st::run_files(&files, meta.as_ref(), &opts, c)
     })?
     .map_err(py_err)?;
+    if let Some(u) = opts.experimenter.as_ref().and_then(|e| e.length_unit_m) {
+        let odd = study.implausible_sizes(u).map_err(py_err)?;
+        if let Some(first) = odd.first() {
+            let more = if odd.len() > 1 { format!(" (and {} more pebbles)", odd.len() - 1) } else { String::new() };
+            crate::dynamics::warn(py, &format!("{first}{more}."))?;
+        }
+    }
     fn text<E: std::fmt::Display>(r: Result<(), E>, buf: Vec<u8>) -> PyResult<String> {
         r.map_err(|e| PyRuntimeError::new_err(format!("{e:#}")))?;
         String::from_utf8(buf).map_err(|e| PyRuntimeError::new_err(e.to_string()))

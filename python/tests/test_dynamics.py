@@ -259,3 +259,34 @@ def test_shake_rock_ensemble_bad_input(box_file, tmp_path):
         shake(ensemble=2, azimuth=30, uncertainty={"azimuth": "unknown"})
     with pytest.raises(ValueError, match="ensemble"):
         shake(ensemble=0)
+
+
+def test_an_assumed_size_is_told_with_a_warning_and_recorded(cli, tmp_path):
+    import warnings
+    from pathlib import Path
+
+    # A byte-identical copy of the bundled stone under another name: its unit is not known.
+    copy = tmp_path / "mystone.ply"
+    copy.write_bytes((Path(__file__).resolve().parents[2] / "data" / "default_pebble.ply").read_bytes())
+    with pytest.warns(UserWarning) as told:
+        d = rs.drop(copy, 1)
+    said = [str(w.message) for w in told]
+    assert any("mystone.ply: its real size is not known; assuming R_max = 10 mm" in m for m in said), said
+    assert (d.to_dict()["size_assumed"], d.to_dict()["r_max_m"]) == (True, 0.01)
+    assert d.to_dict() == cli.json(["drop", str(copy), "-n", "1"])
+    rec = pulse_csv(tmp_path / "pulse.csv", amplitude=0.3)
+    rock = dict(pose="facet:3", motion=rec, columns="time_s,ax_g")
+    with pytest.warns(UserWarning) as told:
+        r = rs.shake_rock(copy, **rock)
+    said = [str(w.message) for w in told]
+    assert any("its length unit is not known; assuming metres (R_max = 178.3 m)" in m for m in said), said
+    assert any("R_max = 178.3 m is outside the plausible sizes" in m for m in said), said
+    assert r["size_assumed"] is True and r["r_max_m"] == pytest.approx(178.323, abs=1e-3)
+    # In millimetres, and the bundled stone itself: nothing to say, and the same run.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mm = rs.shake_rock(copy, length_unit="mm", **rock)
+        bundled = rs.shake_rock(**rock)
+    assert mm == bundled and mm["size_assumed"] is False
+    assert mm == cli.json(["shake", str(copy), "--length-unit", "mm", "--pose", "facet:3", "--motion", str(rec),
+                           "--columns", "time_s,ax_g"])

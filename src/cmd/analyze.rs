@@ -32,7 +32,9 @@ pub struct Args {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Length unit of the mesh coordinates (mm, cm, m, in, …): labels volume (unit³), area
-    /// (unit²), G, axes and R in the summary and report.html. Default: "mesh units".
+    /// (unit²), G, axes and R in the summary and report.html. Default: "mesh units" ("mm" for the
+    /// bundled stone). A label only: no count, ν, flock or basin depends on the real size (the
+    /// dynamics commands do, and take --length-unit / --size).
     #[arg(long, value_name = "UNIT")]
     pub unit: Option<String>,
     /// CSV file for a batch (several files or a folder); default: standard output.

@@ -5,6 +5,7 @@ use anyhow::{bail, Context, Result};
 use rocking_stones::analysis::{check_nu, Options};
 use rocking_stones::dynamics::drop::DropOutcome;
 use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::montecarlo::{
     certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
@@ -36,10 +37,16 @@ pub struct Args {
     /// stone-on-stone, rock-on-concrete, rock-on-steel.
     #[arg(long, default_value = "steel-on-wood", value_parser = parse_surface)]
     pub surface: Surface,
-    /// Real size of the stone, R_max in metres (the surface's rolling-resistance length is
-    /// divided by it); default 0.01 m.
+    /// The stone's real size as R_max in metres: the surface's rolling-resistance length is
+    /// divided by it. Default: the bundled stone's (R_max = 178 mm); for any other mesh
+    /// R_max = 1 cm (the presets' reference size, a die) is assumed, and the command says so
+    /// before running. A size outside R_max 2 mm to 20 m is warned about.
     #[arg(long)]
     pub size: Option<f64>,
+    /// The mesh's length unit (mm, cm, m, km or metres per unit), instead of --size; default as
+    /// --size's.
+    #[arg(long, conflicts_with = "size")]
+    pub length_unit: Option<String>,
     /// Release height of the lowest point, in units of R_max.
     #[arg(long)]
     pub height: Option<f64>,
@@ -183,8 +190,9 @@ pub struct MergeArgs {
     pub output: Option<PathBuf>,
 }
 
-fn params(a: &Args) -> Result<DropParams> {
-    let mut p = a.preset.params_for(a.surface, a.size)?;
+/// The parameters of the run for a stone of real size R_max = `r_max_m` metres.
+fn params(a: &Args, r_max_m: f64) -> Result<DropParams> {
+    let mut p = a.preset.params_for(a.surface, Some(r_max_m))?;
     if a.reference {
         a.preset.reference(&mut p);
     }
@@ -216,12 +224,13 @@ pub fn run_drop(args: Args) -> Result<()> {
     if args.drops == 0 {
         bail!("-n/--drops must be at least 1");
     }
-    let p = params(&args)?;
     let opts =
         Options { nu: args.nu.map(check_nu).transpose()?, center_of_mass: args.center_of_mass, ..Options::default() };
     let (analysis, name) = load_analysis(args.mesh.as_deref(), &opts)?;
     let (nu, _) = analysis.macro_nu(&opts);
     let stone = Stone::new(&analysis, nu)?;
+    let size = super::real_size(&name, stone.body.r_max, args.length_unit.as_deref(), args.size, ASSUMED_DROP_SIZE)?;
+    let p = params(&args, size.r_max_m)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     let header = RunHeader {
         center_of_mass: args.center_of_mass.map(|c| [c.x, c.y, c.z]),
@@ -259,7 +268,7 @@ pub fn run_drop(args: Args) -> Result<()> {
     let mut all = done;
     all.extend(new.into_iter().map(|o| (o.index, o)));
     let report = summarize(&model, &header, &all);
-    emit(&report, args.json, args.output.as_deref(), &analysis, nu)
+    emit(&report, Some(&size), args.json, args.output.as_deref(), &analysis, nu)
 }
 
 pub fn run_merge(args: MergeArgs) -> Result<()> {
@@ -305,19 +314,33 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
         };
         eprintln!("note: {missing} of {} drops are not in these partial results{shards}", header.drops);
     }
-    emit(&summarize(&model, &header, &outcomes), args.json, args.output.as_deref(), &analysis, nu)
+    emit(&summarize(&model, &header, &outcomes), None, args.json, args.output.as_deref(), &analysis, nu)
+}
+
+/// The JSON of a drop run: the report, and the stone's real size with whether it was assumed
+/// (none for merged shards, whose size is in their parameters' rolling resistance).
+#[derive(serde::Serialize)]
+struct Sized<'a> {
+    #[serde(flatten)]
+    report: &'a DropReport,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    r_max_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    size_assumed: Option<bool>,
 }
 
 fn emit(
     report: &DropReport,
+    size: Option<&RealSize>,
     json: bool,
     output: Option<&std::path::Path>,
     analysis: &rocking_stones::analysis::Analysis,
     nu: f64,
 ) -> Result<()> {
     use rocking_stones::report;
+    let sized = Sized { report, r_max_m: size.map(|s| s.r_max_m), size_assumed: size.map(RealSize::assumed) };
     super::emit(
-        report,
+        &sized,
         json,
         || report::drop_summary(report),
         output,

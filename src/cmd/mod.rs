@@ -6,6 +6,7 @@ pub mod planar;
 pub mod shake;
 pub mod study;
 
+use rocking_stones::dynamics::size::{RealSize, Size};
 use std::path::{Path, PathBuf};
 
 /// The progress bar of every long command: `n` steps, counted as `what` ("drops", "trials", or
@@ -43,6 +44,32 @@ pub fn emit<R: serde::Serialize>(
         }
     }
     Ok(())
+}
+
+/// The real size of the stone `name` whose R_max is `r_max` mesh units: `--size` (R_max in
+/// metres) or `--length-unit` if given, else the bundled stone's millimetres, else `assumed`
+/// ([`RealSize::resolve`]). What was assumed, and a size that is not plausible for a stone, are
+/// said on standard error before anything runs.
+pub fn real_size(
+    name: &str,
+    r_max: f64,
+    length_unit: Option<&str>,
+    size: Option<f64>,
+    assumed: Size,
+) -> anyhow::Result<RealSize> {
+    let given = match (size, length_unit) {
+        (Some(r), _) => Some(Size::RMax(r)),
+        (None, Some(u)) => Some(Size::Unit(rocking_stones::dynamics::shake::parse_length_unit(u)?)),
+        (None, None) => None,
+    };
+    let real = RealSize::resolve(name, r_max, given, assumed)?;
+    if let Some(note) = real.assumption(name) {
+        eprintln!("note: {note}; give --length-unit mm|cm|m|km or --size R_MAX_M.");
+    }
+    if let Some(warning) = real.implausibility(name) {
+        eprintln!("warning: {warning}.");
+    }
+    Ok(real)
 }
 
 /// Parse `x,y,z` (three finite numbers) as a point.

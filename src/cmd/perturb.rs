@@ -4,11 +4,9 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::bundled::default_length_unit_m;
 use rocking_stones::dynamics::params::Surface;
 use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, RestingPreset, Stone};
-use rocking_stones::dynamics::resting::Size;
-use rocking_stones::dynamics::shake::parse_length_unit;
+use rocking_stones::dynamics::size::{RealSize, ASSUMED_UNIT};
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
@@ -27,12 +25,15 @@ pub struct SimArgs {
     /// stone-on-stone (a stone on rock); with `shake --pose`, rock-on-concrete (a shake table).
     #[arg(long, value_parser = parse_surface)]
     pub surface: Option<Surface>,
-    /// The mesh's length unit (mm, cm, m, km or metres per unit): the stone's real size. Default:
-    /// mm for the bundled stone (a 30 cm quarry stone, R_max = 178 mm), m for any other mesh.
+    /// The mesh's length unit (mm, cm, m, km or metres per unit): the stone's real size, on which
+    /// the result depends (the rolling resistance δ/R_max; with shaking, the real frequencies of
+    /// the motion). Default: mm for the bundled stone (a 30 cm quarry stone, R_max = 178 mm);
+    /// for any other mesh m is assumed, and the command says so before running. A size outside
+    /// R_max 2 mm to 20 m is warned about.
     #[arg(long, conflicts_with = "size")]
     pub length_unit: Option<String>,
     /// The stone's real size as R_max in metres (the largest distance from G to the hull),
-    /// instead of --length-unit.
+    /// instead of --length-unit; default as --length-unit's.
     #[arg(long)]
     pub size: Option<f64>,
     /// Coulomb friction coefficient (default: the surface pair's).
@@ -67,27 +68,18 @@ pub struct SimArgs {
 }
 
 impl SimArgs {
-    /// Metres per mesh unit: --size / R_max, --length-unit, else mm for the bundled stone and m
-    /// otherwise.
-    pub fn length_unit_m(&self, stone: &Stone, name: &str) -> Result<f64> {
-        let size = match (self.size, &self.length_unit) {
-            (Some(r), _) => Size::RMax(r),
-            (None, Some(u)) => Size::Unit(parse_length_unit(u)?),
-            (None, None) => Size::Unit(default_length_unit_m(name)),
-        };
-        Ok(size.length_unit_m(stone.body.r_max)?)
+    /// The stone's real size: --size, --length-unit, else the bundled stone's millimetres, else
+    /// metres, said on standard error when assumed or implausible ([`super::real_size`]). Call it
+    /// once per run.
+    pub fn real_size(&self, stone: &Stone, name: &str) -> Result<RealSize> {
+        super::real_size(name, stone.body.r_max, self.length_unit.as_deref(), self.size, ASSUMED_UNIT)
     }
 
-    /// The stone's real R_max (m): its R_max in mesh units times [`SimArgs::length_unit_m`].
-    pub fn r_max_m(&self, stone: &Stone, name: &str) -> Result<f64> {
-        Ok(stone.body.r_max * self.length_unit_m(stone, name)?)
-    }
-
-    /// The parameters of the run for `stone` (named `name`), the surface defaulting to
+    /// The parameters of the run for a stone of real size `size`, the surface defaulting to
     /// `default_surface`, with every override given.
-    pub fn params(&self, stone: &Stone, name: &str, default_surface: Surface) -> Result<PerturbParams> {
+    pub fn params(&self, size: &RealSize, default_surface: Surface) -> Result<PerturbParams> {
         let surface = self.surface.unwrap_or(default_surface);
-        let mut p = PerturbParams::of(self.preset, surface, self.r_max_m(stone, name)?)?;
+        let mut p = PerturbParams::of(self.preset, surface, size.r_max_m)?;
         let sim = &mut p.sim;
         sim.friction = self.friction.unwrap_or(sim.friction);
         sim.restitution = self.restitution.unwrap_or(sim.restitution);
@@ -166,7 +158,8 @@ pub fn run(args: Args) -> Result<()> {
         bail!("need 0 < --eps-min ≤ --eps-max and --eps-steps ≥ 1");
     }
     let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
-    let params = args.sim.params(&stone, &name, Surface::StoneOnStone)?;
+    let size = args.sim.real_size(&stone, &name)?;
+    let params = args.sim.params(&size, Surface::StoneOnStone)?;
     let cfg = PerturbConfig {
         params: PerturbParams { certificate: args.certificate, ..params },
         family: args.family,
@@ -180,6 +173,7 @@ pub fn run(args: Args) -> Result<()> {
     let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
     let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
+    let report = perturb::PerturbReport { r_max_m: Some(size.r_max_m), size_assumed: Some(size.assumed()), ..report };
     super::emit(
         &report,
         args.json,

@@ -128,8 +128,9 @@ pub fn run(args: Args) -> Result<()> {
         return field(args, pose);
     }
     let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
-    let params = args.sim.params(&stone, &name, Surface::StoneOnStone)?;
-    let r_max_m = args.sim.r_max_m(&stone, &name)?;
+    let size = args.sim.real_size(&stone, &name)?;
+    let params = args.sim.params(&size, Surface::StoneOnStone)?;
+    let r_max_m = size.r_max_m;
     let real_dt = params.sim.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (&args.pulse, args.motion.is_empty()) {
         (Some([a, f, c]), _) => (shake::sine_pulse(*a, *f, *c, real_dt)?, false),
@@ -153,6 +154,7 @@ pub fn run(args: Args) -> Result<()> {
     cfg.check()?;
     let bar = super::progress_bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64, "trials");
     let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
+    let report = shake::ShakeReport { size_assumed: Some(size.assumed()), ..report };
     bar.finish_and_clear();
     super::emit(
         &report,
@@ -201,8 +203,13 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
     }
     let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let azimuth = args.azimuth.unwrap_or(0.0).to_radians();
-    let params = args.sim.params(&stone, &name, Surface::RockOnConcrete)?;
-    let setup = RockSetup::with_params(&stone, pose, args.sim.length_unit_m(&stone, &name)?, azimuth, params);
+    let size = args.sim.real_size(&stone, &name)?;
+    let params = args.sim.params(&size, Surface::RockOnConcrete)?;
+    let setup = RockSetup {
+        r_max_m: size.r_max_m,
+        size_assumed: Some(size.assumed()),
+        ..RockSetup::with_params(&stone, pose, size.length_unit_m, azimuth, params)
+    };
     let ensemble = ensemble_spec(&args, &setup)?;
     if let (Some(e), [record], [scale]) = (&ensemble, &records[..], &args.scales[..]) {
         let bar = super::progress_bar(e.members, "members");

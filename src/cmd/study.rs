@@ -7,7 +7,8 @@
 
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
-use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::params::{DropParams, REFERENCE_R_MAX_M};
+use rocking_stones::dynamics::size::format_length;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::study::{
@@ -38,7 +39,9 @@ pub enum Sub {
 pub struct DynamicArgs {
     /// Also run the simulated hand experimenter: set each pebble down `--trials` times in random
     /// orientations and count the distinct stable flocks found (dynamic S; unstable positions
-    /// cannot be found by setting a pebble down).
+    /// cannot be found by setting a pebble down). Each pebble is set down as a stone of
+    /// R_max = 1 cm (the rolling resistance δ/R_max depends on the size), unless the scans'
+    /// --length-unit is given; the static counts do not depend on the size.
     #[arg(long)]
     pub dynamic: bool,
     /// Set-downs per pebble.
@@ -62,7 +65,7 @@ impl DynamicArgs {
         if self.trials == 0 {
             anyhow::bail!("--trials must be at least 1");
         }
-        Ok(Some(Experimenter { trials: self.trials, params, seed: self.seed }))
+        Ok(Some(Experimenter { trials: self.trials, params, seed: self.seed, length_unit_m: None }))
     }
 }
 
@@ -88,6 +91,11 @@ pub struct BatchArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub dynamic: DynamicArgs,
+    /// With --dynamic: the scans' length unit (mm, cm, m, km or metres per unit), so that each
+    /// pebble is set down at its real size. Default: every pebble is set down as R_max = 1 cm
+    /// whatever its mesh size, and the command says so before running.
+    #[arg(long, requires = "dynamic")]
+    pub length_unit: Option<String>,
 }
 
 /// Population options shared by `synthetic` and `fit-nu`.
@@ -249,10 +257,22 @@ fn batch(args: BatchArgs) -> Result<()> {
     }
     let files = study::mesh_files(folder)?;
     let meta = args.meta.as_deref().map(Metadata::read).transpose()?;
+    let length_unit_m =
+        args.length_unit.as_deref().map(rocking_stones::dynamics::shake::parse_length_unit).transpose()?;
+    let experimenter = args.dynamic.experimenter()?.map(|e| Experimenter { length_unit_m, ..e });
+    if experimenter.is_some() && length_unit_m.is_none() {
+        eprintln!(
+            "note: {}: the scans' length unit is not known; the simulated experimenter sets every pebble down as a \
+             stone of R_max = {}. The dynamic counts depend on the real size (the rolling resistance δ/R_max); give \
+             --length-unit mm|cm|m|km.",
+            folder.display(),
+            format_length(REFERENCE_R_MAX_M)
+        );
+    }
     let opts = StudyOptions {
         analysis: Options { nu: None, coplanar_tol: args.coplanar_tol, ..Options::default() },
         nu: args.nu,
-        experimenter: args.dynamic.experimenter()?,
+        experimenter,
         allow_unmatched: args.allow_unmatched,
     };
     let bar = super::progress_bar(files.len() as u64, "");
@@ -260,6 +280,13 @@ fn batch(args: BatchArgs) -> Result<()> {
     bar.finish_and_clear();
     for id in &unmatched {
         eprintln!("warning: metadata id {id:?} has no scan");
+    }
+    if let Some(u) = length_unit_m {
+        let odd = study.implausible_sizes(u)?;
+        if let Some(first) = odd.first() {
+            let more = if odd.len() > 1 { format!(" (and {} more pebbles)", odd.len() - 1) } else { String::new() };
+            eprintln!("warning: {first}{more}.");
+        }
     }
     let failed: Vec<_> = study.pebbles.iter().filter_map(|p| p.result.as_ref().err()).collect();
     for e in &failed {
@@ -281,13 +308,20 @@ fn synthetic(args: SyntheticArgs) -> Result<()> {
         _ => anyhow::bail!("give --table TABLE2.csv or both --c-over-b and --c-over-a"),
     };
     eprintln!(
-        "{} sample(s) × {} pebbles, {} points, roughness {}, spread {}, seed {}",
+        "{} sample(s) × {} pebbles, {} points, roughness {}, spread {}, seed {}{}",
         targets.len(),
         params.count,
         params.points,
         params.roughness,
         params.spread,
-        params.seed
+        params.seed,
+        match exp {
+            Some(_) => format!(
+                "; the experimenter sets each pebble down as a stone of R_max = {}",
+                format_length(REFERENCE_R_MAX_M)
+            ),
+            None => String::new(),
+        }
     );
     let t = std::time::Instant::now();
     let study = study::synthetic_study(&targets, &params, args.nu, exp.as_ref())?;

@@ -9,6 +9,8 @@
 //! * [`params`] — launch, contact and numerics; named presets and surface pairs.
 //! * [`resting`] — a stone put at rest on a stable micro-equilibrium, and the contact of every
 //!   run that starts at rest (the surface pair at the stone's real size).
+//! * [`size`] — the real size of a stone: given, known (the bundled stone) or assumed, and
+//!   said when assumed or implausible.
 //! * [`world`] — the rapier world of one run and the contact law (rolling resistance, torsional
 //!   friction).
 //! * [`run`] — the one run loop, its two rest rules and the energy certificate.
@@ -36,5 +38,6 @@ pub mod perturb;
 pub mod resting;
 pub mod run;
 pub mod shake;
+pub mod size;
 pub mod stone;
 pub mod world;

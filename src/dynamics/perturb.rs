@@ -444,6 +444,15 @@ pub struct PerturbReport {
     pub epsilon_star: f64,
     /// Simulation parameters.
     pub params: PerturbParams,
+    /// Real size of the stone, R_max in metres, and whether it was assumed (the mesh's unit
+    /// neither given nor known): set by the command line and the Python binding
+    /// ([`crate::dynamics::size::RealSize::resolve`]); absent when the caller set the
+    /// parameters directly.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub r_max_m: Option<f64>,
+    /// See `r_max_m`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
     /// Robustness of each stable micro-equilibrium.
     pub equilibria: Vec<Robustness>,
     /// Trials below a static barrier that crossed it (SPEC §6).
@@ -574,6 +583,8 @@ pub fn report(
         nu: stone.nu,
         epsilon_star,
         params: cfg.params.clone(),
+        r_max_m: None,
+        size_assumed: None,
         equilibria,
         barrier_check: BarrierCheck::of(&trials, stone),
         deepest_penetration: trials.iter().map(|t| t.deepest_penetration).fold(0.0, f64::max),

@@ -114,35 +114,7 @@ pub struct PerturbParams {
     pub certificate: bool,
 }
 
-/// How the real size of a stone is given: the length of its mesh unit, or its R_max directly.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Size {
-    /// Metres per mesh unit.
-    Unit(f64),
-    /// R_max in metres.
-    RMax(f64),
-}
-
-impl Size {
-    /// Metres per mesh unit for a stone whose R_max is `r_max` mesh units; a size that is not a
-    /// positive finite length is refused.
-    pub fn length_unit_m(self, r_max: f64) -> Result<f64> {
-        let unit = match self {
-            Size::Unit(u) => u,
-            Size::RMax(r) => r / r_max,
-        };
-        match self {
-            Size::Unit(u) if !(unit > 0.0 && unit.is_finite()) => {
-                return Err(Error::parameter("length_unit", u, "a positive length in metres per mesh unit"))
-            }
-            Size::RMax(r) if !(unit > 0.0 && unit.is_finite()) => {
-                return Err(Error::parameter("size", r, "a positive length in metres (R_max)"))
-            }
-            _ => {}
-        }
-        Ok(unit)
-    }
-}
+pub use super::size::Size;
 
 /// Time cap (s, scaled) after a perturbation or a ground motion.
 pub const RESTING_MAX_TIME: f64 = 20.0;

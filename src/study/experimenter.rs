@@ -2,7 +2,8 @@
 //! orientations and notes the distinct stable flocks it comes to rest in.
 
 use crate::analysis::Analysis;
-use crate::dynamics::params::{DropParams, Preset, Surface};
+use crate::dynamics::params::{DropParams, Preset, Surface, REFERENCE_R_MAX_M};
+use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
 use crate::dynamics::stone::Stone;
 use crate::equilibria::Kind;
 use crate::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
@@ -19,6 +20,13 @@ pub struct Experimenter {
     pub params: DropParams,
     /// Seed of the experimenter's hands (mixed with each pebble's id).
     pub seed: u64,
+    /// Metres per mesh unit of the pebbles: each is set down at its real size, the rolling
+    /// resistance and torsional friction of `params` (set for R_max = [`REFERENCE_R_MAX_M`])
+    /// rescaled to it through [`RealSize::resolve`]. None: every pebble is set down as a stone of
+    /// R_max = [`REFERENCE_R_MAX_M`] whatever its mesh size (the size is then assumed, which the
+    /// command line and the Python binding say).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_unit_m: Option<f64>,
 }
 
 /// Default budget of the simulated experimenter.
@@ -34,7 +42,7 @@ pub fn set_down_params() -> DropParams {
 
 impl Default for Experimenter {
     fn default() -> Self {
-        Experimenter { trials: DEFAULT_TRIALS, params: set_down_params(), seed: 1 }
+        Experimenter { trials: DEFAULT_TRIALS, params: set_down_params(), seed: 1, length_unit_m: None }
     }
 }
 
@@ -59,13 +67,19 @@ pub struct DynamicCounts {
 /// flock its steepest descent drains to; a trial still moving at the time cap counts for nothing.
 pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> Result<DynamicCounts> {
     let stone = Stone::new(a, nu)?;
+    let mut params = exp.params.clone();
+    if let Some(u) = exp.length_unit_m {
+        let size = RealSize::resolve("", stone.body.r_max, Some(Size::Unit(u)), ASSUMED_DROP_SIZE)?;
+        params.rolling_resistance *= REFERENCE_R_MAX_M / size.r_max_m;
+        params.torsional_friction *= REFERENCE_R_MAX_M / size.r_max_m;
+    }
     let header = RunHeader {
         format: FORMAT.into(),
         mesh: String::new(),
         mesh_fingerprint: String::new(),
         seed,
         drops: exp.trials,
-        params: exp.params.clone(),
+        params,
         certificate: CertificateMode::Flock,
         preset: None,
         center_of_mass: None,

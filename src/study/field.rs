@@ -5,6 +5,7 @@ use super::experimenter::{hand_experiment, DynamicCounts, Experimenter};
 use super::metadata::Metadata;
 use super::{CountCurve, Moments};
 use crate::analysis::{Analysis, Options, Report, PAPER_NU};
+use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
 use crate::hierarchy::Counts;
 use crate::rng::fnv1a_str;
 use crate::stats::{mean, sample_sd};
@@ -67,6 +68,23 @@ pub struct Study {
     pub pebbles: Vec<Pebble>,
     /// Whether the dynamic experimenter ran.
     pub dynamic: bool,
+}
+
+impl Study {
+    /// For a study whose scans are in units of `length_unit_m` metres, the warning
+    /// ([`RealSize::implausibility`]) of each analysed pebble whose real size is not plausible.
+    pub fn implausible_sizes(&self, length_unit_m: f64) -> Result<Vec<String>> {
+        let mut odd = Vec::new();
+        for p in &self.pebbles {
+            if let Ok(c) = &p.result {
+                let given = Some(Size::Unit(length_unit_m));
+                odd.extend(
+                    RealSize::resolve(&p.file, c.report.micro.r_max, given, ASSUMED_DROP_SIZE)?.implausibility(&p.file),
+                );
+            }
+        }
+        Ok(odd)
+    }
 }
 
 /// Options of a field study.

@@ -42,7 +42,7 @@ pub fn run_record(stone: &Stone, setup: &RockSetup, record: &Record, scale: f64)
     let (m, motion) = scaled_motion(record, scale, setup)?;
     let placed = place(stone, &setup.pose, &setup.params)?;
     let rock = shake_record(stone, placed, &setup.params, &motion, setup.azimuth, setup.r_max_m);
-    Ok(RecordRun::of(record, scale, &m, None, rock))
+    Ok(RecordRun::of(record, scale, &m, None, RockRun { size_assumed: setup.size_assumed, ..rock }))
 }
 
 /// Member `member` of the ensemble `ensemble` on `record` × `scale` ([`run_member`]), as a run of
@@ -306,6 +306,7 @@ mod tests {
                 settled,
                 azimuth_deg: 0.0,
                 r_max_m: 1.0,
+                size_assumed: None,
                 time_s: 1.0,
                 steps: 1,
                 deepest_penetration: 0.0,

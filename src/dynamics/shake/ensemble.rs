@@ -230,7 +230,10 @@ pub fn run_member(
     let motion: Cow<Record> = if d.sign < 0.0 { Cow::Owned(motion.scaled(-1.0)) } else { Cow::Borrowed(motion) };
     let azimuth = if u.azimuth_deg.is_some() { d.azimuth_deg.to_radians() } else { setup.azimuth };
     let placed = place(&rock, &setup.pose, &p).map_err(|e| Error::Usage(format!("ensemble member {member}: {e}")))?;
-    let run = shake_record(&rock, placed, &p, &motion, azimuth, setup.r_max_m);
+    let run = RockRun {
+        size_assumed: setup.size_assumed,
+        ..shake_record(&rock, placed, &p, &motion, azimuth, setup.r_max_m)
+    };
     Ok(Member { draw: d, run })
 }
 
@@ -384,6 +387,10 @@ pub struct Ensemble {
     pub pgv_over_pga_s: f64,
     /// Peak vertical ground acceleration (g).
     pub pga_vertical_g: f64,
+    /// Whether the rock's size was assumed ([`RockSetup::size_assumed`]; each member's run says
+    /// its R_max).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
     /// Seed of the members' draws.
     pub seed: u64,
     /// What was uncertain.
@@ -427,6 +434,7 @@ pub fn run_ensemble(
         pgv_m_s: m.pgv_m_s,
         pgv_over_pga_s: m.pgv_over_pga_s,
         pga_vertical_g: m.pga_vertical_g,
+        size_assumed: setup.size_assumed,
         seed,
         uncertainty: u.clone(),
         probability: Probability::of(members.iter().map(|m| &m.run)),

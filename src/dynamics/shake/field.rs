@@ -205,6 +205,11 @@ pub struct RockRun {
     pub azimuth_deg: f64,
     /// Real R_max of the rock (m).
     pub r_max_m: f64,
+    /// Whether that size was assumed, the mesh's unit being neither given nor known
+    /// ([`crate::dynamics::size`]); set from [`RockSetup::size_assumed`] by the runs that have a
+    /// setup, absent when the caller gave the unit as a bare number.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
     /// Real time simulated from the start of the motion (s).
     pub time_s: f64,
     /// Steps simulated (placement excluded).
@@ -243,6 +248,7 @@ pub fn shake_record(
         settled: run.end.settled,
         azimuth_deg: azimuth.to_degrees(),
         r_max_m,
+        size_assumed: None,
         time_s: run.end.steps as f64 * p.sim.dt * r_max_m.sqrt(),
         steps: run.end.steps,
         deepest_penetration: run.deepest_penetration,
@@ -266,6 +272,11 @@ pub struct RockSetup {
     pub length_unit_m: f64,
     /// Real R_max of the rock (m): the body's R_max (mesh units) times `length_unit_m`.
     pub r_max_m: f64,
+    /// Whether that size was assumed, the mesh's unit being neither given nor known: set by the
+    /// command line and the Python binding, which decide the size with
+    /// [`crate::dynamics::size::RealSize::resolve`]; absent when the unit was given as a number.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
     /// Azimuth (rad, world frame) of the records' x axis.
     pub azimuth: f64,
     /// Simulation parameters (scaled frame, see [`shake_record`]).
@@ -276,7 +287,14 @@ impl RockSetup {
     /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres on `surface`.
     pub fn new(stone: &Stone, pose: Pose, length_unit_m: f64, surface: Surface, azimuth: f64) -> Result<RockSetup> {
         let r_max_m = stone.body.r_max * length_unit_m;
-        Ok(RockSetup { pose, length_unit_m, r_max_m, azimuth, params: rock_params(surface, r_max_m)? })
+        Ok(RockSetup {
+            pose,
+            length_unit_m,
+            r_max_m,
+            size_assumed: None,
+            azimuth,
+            params: rock_params(surface, r_max_m)?,
+        })
     }
 
     /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres and the simulation
@@ -288,7 +306,8 @@ impl RockSetup {
         azimuth: f64,
         params: PerturbParams,
     ) -> RockSetup {
-        RockSetup { pose, length_unit_m, r_max_m: stone.body.r_max * length_unit_m, azimuth, params }
+        let r_max_m = stone.body.r_max * length_unit_m;
+        RockSetup { pose, length_unit_m, r_max_m, size_assumed: None, azimuth, params }
     }
 
     /// Real time step of the simulation (s): dt·√(R_max / 1 m).

@@ -244,6 +244,11 @@ pub struct ShakeReport {
     pub params: PerturbParams,
     /// Real size of the stone, R_max in metres.
     pub r_max_m: f64,
+    /// Whether that size was assumed, the mesh's unit being neither given nor known: set by the
+    /// command line and the Python binding ([`crate::dynamics::size::RealSize::resolve`]);
+    /// absent when the caller gave R_max as a number.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
     /// Fragility of each stable micro-equilibrium.
     pub fragility: Vec<Fragility>,
     /// The deepest any hull corner went below the ground after any step or sub-step of any trial
@@ -283,6 +288,7 @@ pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dy
         nu: stone.nu,
         params: cfg.params.clone(),
         r_max_m: cfg.r_max_m,
+        size_assumed: None,
         fragility,
         deepest_penetration: trials.iter().map(|t| t.deepest_penetration).fold(0.0, f64::max),
         trials,
