@@ -164,6 +164,8 @@ pub struct Simulation<'a> {
     body: &'a Body,
     /// Sub-step impacts ([`Flight::Free`]).
     resolve_impacts: bool,
+    /// Read the sub-step bound again after every sub-step ([`DropParams::strict_impacts`]).
+    strict_impacts: bool,
     /// The run's time step and solver iterations (restored after a sub-stepped step).
     dt: f64,
     iterations: usize,
@@ -193,6 +195,7 @@ impl<'a> Simulation<'a> {
             law: ContactLaw::of(p),
             body,
             resolve_impacts: p.flight == Flight::Free,
+            strict_impacts: p.strict_impacts,
             dt: p.dt,
             iterations: p.solver_iterations,
             deepest: 0.0,
@@ -225,7 +228,7 @@ impl<'a> Simulation<'a> {
         let depth = step_substeps(
             &mut self.world,
             n,
-            self.dt,
+            (self.dt, self.strict_impacts),
             self.iterations,
             &self.law,
             self.body,
@@ -433,18 +436,19 @@ const MAX_STRUCK: usize = 16;
 
 /// One step of length `dt` of one stone, cut for an impact into `n` sub-steps of `dt / n` with
 /// ⌈`iterations` / n⌉ solver sub-steps each ([`super::impact`] says why not all the solver
-/// sub-steps in each), each a [`step_world`]. After every sub-step the bound of
-/// [`impact::substeps`] is read again off the stone's new motion (an impulse within the sub-step
-/// may have turned it faster than the motion at its start allowed for): where one more sub-step
-/// of the current length could bring a corner down by more than [`impact::IMPACT_APPROACH`], the
-/// rest of the step is cut finer (at most [`impact::MAX_SUBSTEPS`] sub-steps in all). Leaves the
-/// world's step and iterations at the last sub-step's. Returns the deepest [`penetration`] after
-/// any of the sub-steps (R_max, ≥ 0).
+/// sub-steps in each), each a [`step_world`]. `(dt, strict)`: with `strict`
+/// ([`DropParams::strict_impacts`]), after every sub-step the bound of [`impact::substeps`] is
+/// read again off the stone's new motion (an impulse within the sub-step may have turned it
+/// faster than the motion at its start allowed for): where one more sub-step of the current
+/// length could bring a corner down by more than [`impact::IMPACT_APPROACH`], the rest of the
+/// step is cut finer (at most [`impact::MAX_SUBSTEPS`] sub-steps in all). Leaves the world's step
+/// and iterations at the last sub-step's. Returns the deepest [`penetration`] after any of the
+/// sub-steps (R_max, ≥ 0).
 #[allow(clippy::too_many_arguments)]
 pub fn step_substeps(
     world: &mut PhysicsWorld,
     n: u32,
-    dt: f64,
+    (dt, strict): (f64, bool),
     iterations: usize,
     law: &ContactLaw,
     body: &Body,
@@ -462,7 +466,7 @@ pub fn step_substeps(
         step_world(world, law, body, ground, &[stone]);
         (left, taken) = (left - 1, taken + 1);
         deepest = deepest.max(penetration(world, body, stone.0, ground));
-        if left > 0 && taken + left < impact::MAX_SUBSTEPS {
+        if strict && left > 0 && taken + left < impact::MAX_SUBSTEPS {
             let finer = substeps_now(world, body, stone.0, ground, tau).min(impact::MAX_SUBSTEPS / (taken + left));
             if finer > 1 {
                 (left, tau) = (left * finer, tau / finer as f64);
@@ -740,6 +744,8 @@ pub struct ImpactWorld {
     dt: f64,
     /// The run's solver iterations (rapier's sub-steps of one step).
     iterations: usize,
+    /// [`DropParams::strict_impacts`].
+    strict: bool,
 }
 
 impl ImpactWorld {
@@ -748,7 +754,15 @@ impl ImpactWorld {
     pub fn new(body: &Body, p: &DropParams, q: &UnitQuaternion<f64>, s: &BodyState) -> Self {
         let (mut world, _, ground) = ground_world(p);
         let (handle, collider) = insert_stone(&mut world, body, p, q, s.z, &s.linvel, &s.angvel);
-        ImpactWorld { world, handle, collider, ground, dt: p.dt, iterations: p.solver_iterations }
+        ImpactWorld {
+            world,
+            handle,
+            collider,
+            ground,
+            dt: p.dt,
+            iterations: p.solver_iterations,
+            strict: p.strict_impacts,
+        }
     }
 
     /// Put the stone in state `s` with orientation `q` in this world instead of the one it held
@@ -768,16 +782,8 @@ impl ImpactWorld {
     /// at 1.86 m/s with one.
     /// Returns the deepest [`penetration`] after any of the sub-steps (R_max).
     pub fn step(&mut self, n: u32, law: &ContactLaw, body: &Body) -> f64 {
-        step_substeps(
-            &mut self.world,
-            n,
-            self.dt,
-            self.iterations,
-            law,
-            body,
-            self.ground,
-            (self.handle, self.collider),
-        )
+        let stone = (self.handle, self.collider);
+        step_substeps(&mut self.world, n, (self.dt, self.strict), self.iterations, law, body, self.ground, stone)
     }
 
     /// The stone's state and orientation.

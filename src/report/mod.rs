@@ -59,8 +59,9 @@ pub fn depth_line(deepest: f64) -> String {
     if deepest > bound {
         format!(
             "  WARNING: a hull corner went {deepest:.3} R_max into the ground (bound {bound} R_max): an impact was \
-             resolved inside the ground and the outcome is less reliable. Lower --dt, or the launch speed and spin, \
-             or the motion's amplitude.\n"
+             resolved inside the ground and the outcome is less reliable. Add --strict-impacts (drops: the \
+             sub-steps re-read after every impact), or lower --dt, the launch speed and spin, or the motion's \
+             amplitude.\n"
         )
     } else {
         format!(
