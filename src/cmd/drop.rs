@@ -88,8 +88,8 @@ pub struct Args {
     /// How the flight between contacts is integrated: free (the default: outside the physics
     /// engine, exactly as a free rigid body, handed to it at the exact instant of touch-down,
     /// and hard impacts sub-stepped so that no impact starts inside the ground) or rapier
-    /// (every step in the physics engine, contacts found at the step boundaries: the numerics
-    /// before issue 25, kept to compare).
+    /// (every step in the physics engine, contacts found at the step boundaries: the former
+    /// numerics, kept to compare).
     #[arg(long, value_parser = parse_flight)]
     pub flight: Option<Flight>,
     /// The reference numerics: free flight at dt 1/240 s, the step the default 1/120 s (the
