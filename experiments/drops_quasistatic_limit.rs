@@ -1,5 +1,6 @@
-//! Drops at vanishing energy converge to the quasi-static basin probabilities ([`rocking_stones::basins`]), and
-//! move away from them as the drop height and the restitution grow (large faces gain).
+//! Drops at vanishing energy converge to the quasi-static basin probabilities
+//! ([`rocking_stones::basins`]), and move away from them as the drop height and the restitution
+//! grow (large faces gain).
 //!
 //! Bodies: a box 2 × 1.4 × 1 (six faces, unequal basins) and a synthetic pebble with micro-facets.
 //! For each drop height (and restitution), N drops with the same seed; per flock and per facet:
