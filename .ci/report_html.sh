@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Headless-browser test of report.html (issue 14): `rocking analyze -o DIR` on the bundled stone,
+# Headless-browser test of report.html: `rocking analyze -o DIR` on the bundled stone,
 # then Debian's Chromium opens DIR/report.html with no network and
 #  * --dump-dom: the page's own check must have run (#status data-status="drawn", set after the
 #    3D canvas is drawn; "error" if window.onerror fired), #errors must be empty, the canvas

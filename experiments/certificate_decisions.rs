@@ -1,4 +1,4 @@
-//! Does the energy certificate ever decide wrongly (issue 25, item 4)? On the bundled stone and
+//! Does the energy certificate ever decide wrongly? On the bundled stone and
 //! the 39 meshes of `data/meshes` (stones, asteroids, comets, moons), with the `drop`,
 //! `throw` and `quasi-static` presets and both numerics (rapier's flight; exact landings and
 //! sub-stepped impacts, `--flight free`), every drop is simulated to rest without a certificate,

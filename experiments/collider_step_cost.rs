@@ -1,4 +1,4 @@
-//! Per-step cost of the pebble collider in rapier3d (SPEC §9 "Per-step cost cliff"): the
+//! Per-step cost of the pebble collider in rapier3d (the per-step cost cliff): the
 //! project's `HullShape` (exact facets, O(1) bounds, hill-climbing support) against parry's
 //! `ConvexPolyhedron` (`ColliderBuilder::convex_hull`: bounds and support points scan every hull
 //! point), on synthetic pebbles with ~10², 10³, 10⁴ and 3·10⁴ hull corners, same run, same

@@ -243,8 +243,8 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
          impulses only) the same corners sat at φ = 0.72 (e = 0.2) and 0.89 (e = 0.5) at 4 sub-steps and 0.3 and \
          0.7 converged: rapier's friction does not converge on a corner struck within a step at few sub-steps, \
          and that biased the stone's rare flocks. Newton's law with Coulomb friction throughout (φ = 0) is \
-         independent of the sub-steps too, but on the seven calibration dice it ends far from the data (README, \
-         issue 25); the two-stage law fits them better than either (`results/cuboid_dice/`).\n",
+         independent of the sub-steps too, but on the seven calibration dice it ends far from the data; \
+         the two-stage law fits them better than either (`results/cuboid_dice/`).\n",
         within(0.2),
         within(0.5),
         at(0.2, 4).slip_median,

@@ -1,4 +1,4 @@
-//! Calibration of the `throw` preset on real dice (issue 10): square cuboid steel dice
+//! Calibration of the `throw` preset on real dice: square cuboid steel dice
 //! y × y × x thrown by hand, `data/cuboid_dice_throws.csv` (Mathematical Gazette 97,
 //! note 97.16, Table 1: seven of its fifteen dice).
 //!
@@ -184,7 +184,7 @@ fn main() {
     std::fs::write(out.join("fit.csv"), fit_csv).expect("write fit.csv");
 
     // Other numerics at the best point: the same 4N throws (seed 2) with rapier's own flight
-    // (contacts at the step boundaries, the numerics before issue 25, at their step 1/240 s) and
+    // (contacts at the step boundaries, the former numerics, at their step 1/240 s) and
     // with free flight at the reference step
     // the default is checked against (`--reference`), against the counts of the default numerics.
     let others = [(Flight::Rapier, Some(REFERENCE_DT)), (Flight::Free, Some(REFERENCE_DT))];
@@ -241,7 +241,7 @@ fn main() {
          free parameters of the throw are fitted to these seven dice.\n"
     );
     let inv_dt = 1.0 / default_dt;
-    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics since issue 25: no impact starts inside the ground, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::world`), the die's exact box hull, no global damping, dt 1/{inv_dt:.0} s (the preset's longest stable step, `Preset::largest_stable_dt`); contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
+    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics: no impact starts inside the ground, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::world`), the die's exact box hull, no global damping, dt 1/{inv_dt:.0} s (the preset's longest stable step, `Preset::largest_stable_dt`); contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
     let _ = writeln!(md, "## Fit\n");
     let _ = writeln!(md, "| parameter | best | range over the grid points within the noise band |\n|---|---|---|");
     let _ = writeln!(md, "| H (R_max) | {} | {h_lo} – {h_hi} |", best.0);
@@ -318,7 +318,7 @@ fn main() {
         md,
         "The best point's {} throws per die again (same seed, same launches), with rapier's own flight (`--flight \
          rapier`: contacts found at the step boundaries, impacts starting up to 0.1–0.2 R_max inside the ground — the \
-         numerics of this calibration before issue 25, at their step 1/240 s) and with free flight at the reference step the default is \
+         former numerics of this calibration, at their step 1/240 s) and with free flight at the reference step the default is \
          checked against (1/240 s, `--reference`). Not a calibration: the parameters are those fitted above; the question \
          is only whether the numerics change the answer. χ² of homogeneity of each die's square/other counts against \
          the default numerics (1 dof each; summed over the 7 dice, 7 dof).\n",

@@ -1,4 +1,4 @@
-//! Drops per second per core (issue 16) for the `drop` and `throw` presets, one drop per rapier
+//! Drops per second per core for the `drop` and `throw` presets, one drop per rapier
 //! world (plain) or many (batched, [`rocking_stones::dynamics::batch`]), with full settling or
 //! the energy certificate (facet and flock level), same drops (same seed) in every mode, on the
 //! bundled stone, a ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5; every mode's

@@ -1,4 +1,4 @@
-//! The largest stable time step of the presets (issue 16, `Preset::largest_stable_dt`), measured:
+//! The largest stable time step of the presets (`Preset::largest_stable_dt`), measured:
 //! for each
 //! dt, on the bundled stone, a ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5,
 //!

@@ -1,4 +1,4 @@
-//! Why quasi-static drops on a smooth pebble "rest" above their facet (issue 25, item 5), and
+//! Why quasi-static drops on a smooth pebble "rest" above their facet, and
 //! what it does to the outcome. The quasi-static preset damps every velocity at 10 s⁻¹, so a
 //! stone on a gentle slope of its support function creeps down it at a terminal speed set by
 //! the damping — below the speed rule's thresholds (2·10⁻³ m/s, 5·10⁻³ rad/s, scaled) once the

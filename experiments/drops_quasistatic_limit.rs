@@ -1,5 +1,6 @@
-//! Drops at vanishing energy converge to the quasi-static basin probabilities (SPEC §6), and
-//! move away from them as the drop height and the restitution grow (large faces gain).
+//! Drops at vanishing energy converge to the quasi-static basin probabilities
+//! ([`rocking_stones::basins`]), and move away from them as the drop height and the restitution
+//! grow (large faces gain).
 //!
 //! Bodies: a box 2 × 1.4 × 1 (six faces, unequal basins) and a synthetic pebble with micro-facets.
 //! For each drop height (and restitution), N drops with the same seed; per flock and per facet:
@@ -338,7 +339,7 @@ const READING: &str = "
   above the micro barriers inside a flock, so the pebble rocks across them and ends on the deeper
   micro-facets — the micro-scale rocking of the paper. Quasi-static rolling is the overdamped
   limit, and the damping sweep shows the convergence: at 10 1/s the micro-facet KL falls to 0.008
-  (from 0.20–0.28 at 0.3–3 1/s) and stays there at 30 1/s. (Before issue 10 the outcome was the
+  (from 0.20–0.28 at 0.3–3 1/s) and stays there at 30 1/s. (Formerly the outcome was the
   facet closest to the resting normal, and at 30 1/s a quarter of the bodies, stopped by the speed
   thresholds while still creeping, counted on non-stable facets; the quasi-static descent that now
   reads the outcome sends them to their basin's equilibrium: 1 of 1000 off equilibrium.)

@@ -8,7 +8,7 @@
 //! batched and flock-certified + batched at the reference step `REFERENCE_DT` = 1/240 s, and
 //! flock-certified + batched with its default numerics (`Preset::largest_stable_dt`, 1/120 s).
 //! MuJoCo runs from Python (`shared/mujoco_drops.py`, which documents its settings) at both steps,
-//! 1/240 s (the issue's protocol) and 1/120 s (the project's default step): one model,
+//! 1/240 s (the benchmark protocol) and 1/120 s (the project's default step): one model,
 //! its contact's damping ratio calibrated on a ball at 1/240 s, only the step changed (an untimed
 //! check runs it at 1/120 s with the ratio calibrated again there); it returns each drop's final
 //! body-frame down direction, classified here by the project's own rule (`Stone::rest`), so both
@@ -78,7 +78,7 @@ fn fast_dt() -> f64 {
     Preset::Drop.largest_stable_dt()
 }
 
-/// The steps MuJoCo runs at: the reference step (the issue's protocol) and the project's default step.
+/// The steps MuJoCo runs at: the reference step (the benchmark protocol) and the project's default step.
 fn mj_dts() -> [f64; 2] {
     [REFERENCE_DT, fast_dt()]
 }
@@ -135,7 +135,7 @@ struct Mode {
     dt: f64,
 }
 
-/// The project's modes: three at the reference step (MuJoCo's step of the issue's protocol) and
+/// The project's modes: three at the reference step (MuJoCo's step of the benchmark protocol) and
 /// the default numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
 fn modes() -> [Mode; 4] {
     let mode =
@@ -1137,9 +1137,9 @@ fn readme(
          its process CPU time; the two run one after the other, never at the same time, in {REPEATS} rounds (each: \
          MuJoCo's drops at {r_l} and at {d_l}, then every mode of the project, so that both see the same load of \
          this shared machine), and each side's fastest round is used. The project runs plain, batched and \
-         flock-certified + batched at the reference step {r_l} (`REFERENCE_DT`, MuJoCo's step in the issue's \
+         flock-certified + batched at the reference step {r_l} (`REFERENCE_DT`, MuJoCo's step in the benchmark \
          protocol), and flock-certified + batched with its **default numerics** at dt {d_l} \
-         (`Preset::largest_stable_dt`, what `rocking drop` runs; `--reference` takes {r_l}). MuJoCo runs at both steps: at {r_l} (the issue's \
+         (`Preset::largest_stable_dt`, what `rocking drop` runs; `--reference` takes {r_l}). MuJoCo runs at both steps: at {r_l} (the benchmark \
          protocol) and at {d_l}, the project's default step. The *ratio* is the project's drops/s over \
          MuJoCo's for the same body. The per-flock statistics are compared on the timed drops and on larger \
          untimed samples ({SAMPLE_FACTOR} × {n} drops per engine, step and body).\n",
@@ -1223,7 +1223,7 @@ fn readme(
          as one `mj_step(m, d, nstep=steps)` call each (MuJoCo is deterministic: the replay ends bit for bit where \
          the loop did), i.e. MuJoCo's C stepping without the interpreter — a lower bound of what a C program driving \
          MuJoCo would spend. The ratios in bold are against the loop, the others against stepping alone. The \
-         columns *vs MuJoCo {r_l}* divide by MuJoCo at {r_l} for every mode (the issue's protocol); the column *vs \
+         columns *vs MuJoCo {r_l}* divide by MuJoCo at {r_l} for every mode (the benchmark protocol); the column *vs \
          MuJoCo at the same dt* divides by MuJoCo at the mode's own step: {r_l} for plain, batched and \
          flock-certified + batched (so the same numbers), **{d_l} for the default numerics** — the comparison at \
          equal steps.\n"
@@ -1257,7 +1257,7 @@ fn readme(
     };
     let list = |k: usize| bars.iter().map(|(b, v)| format!("{b} {:.2}× ({:.2}×)", v[k].0, v[k].1)).collect::<Vec<_>>();
     for (k, m) in modes.iter().enumerate() {
-        let protocol = if k == 3 { ", the issue's protocol" } else { "" };
+        let protocol = if k == 3 { ", the benchmark protocol" } else { "" };
         writeln!(
             s,
             "* **{}** against MuJoCo's loop at {r_l}{protocol} (in parentheses: against its stepping alone): {}.",
@@ -1431,7 +1431,7 @@ fn readme(
          (`dynamics::impact`). None of this is specific to rapier: the certificate needs only the body's energy and \
          down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and MuJoCo too takes the \
          longer step (above). So {} (flock-certified + batched, both engines at {r_l}) and {} (the default numerics \
-         against MuJoCo at {r_l}, the issue's protocol) — **{} against MuJoCo at the same step {d_l}**{} — are what \
+         against MuJoCo at {r_l}, the benchmark protocol) — **{} against MuJoCo at the same step {d_l}**{} — are what \
          this project's drop pipeline gains over a plain MuJoCo loop (outcome statistics compared below), not a \
          property of the engines.\n",
         each(&|x| format!("{} {:.2} µs", x.short, x.us[1])),

@@ -1,4 +1,4 @@
-//! How good are ensemble probabilities of toppling (issue 24, item 4 and its scores)?
+//! How good are ensemble probabilities of toppling, and how do they score?
 //!
 //! **A. Freestanding blocks against Housner and the published fragility form.** Purvance,
 //! Anooshehpoor & Brune (2008, Earthquake Engng Struct. Dyn. 37, 791) give the overturning
@@ -367,7 +367,7 @@ fn main() -> anyhow::Result<()> {
     let mut readme = String::new();
     writeln!(
         readme,
-        "# Ensemble fragility: blocks against Housner and the published form, and scores (issue 24)\n\n\
+        "# Ensemble fragility: blocks against Housner and the published form, and scores\n\n\
          Regenerate: `cargo run --release --example ensemble_fragility` (about {:.0} min on 2 cores).\n",
         (blocks.iter().map(|b| b.seconds).sum::<f64>() + stone_seconds) / 60.0
     )?;

@@ -1,4 +1,4 @@
-//! Fragility of field rocks under ground motion (issue 11), and the checks behind it.
+//! Fragility of field rocks under ground motion, and the checks behind it.
 //!
 //! A. **One-sine pulses on a slender block** (b/h = 0.25, R = 1.03 m, p = √(3g/4R) = 2.67 rad/s):
 //!    the minimum overturning acceleration a_p/(g tan α) against ω_p/p — the spectrum of
@@ -348,7 +348,7 @@ fn main() -> anyhow::Result<()> {
     init_fonts();
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_surface");
     std::fs::create_dir_all(&out)?;
-    let mut readme = String::from("# Fragility of field rocks under ground motion (issue 11)\n\nRegenerate: `cargo run --release --example fragility_surface`.\n\n");
+    let mut readme = String::from("# Fragility of field rocks under ground motion\n\nRegenerate: `cargo run --release --example fragility_surface`.\n\n");
     part_a(&out, &mut readme)?;
     part_c(&mut readme)?;
     part_b(&out, &mut readme)?;

@@ -1,4 +1,4 @@
-//! Robustness under mutation (issue 13): 10⁵ seeded mutations of real and synthetic mesh files —
+//! Robustness under mutation: 10⁵ seeded mutations of real and synthetic mesh files —
 //! half on the bytes of the file (any format), half on the parsed mesh — each read, checked and
 //! analysed with panics caught. Every case must end in an answer or a named error; a panic or a
 //! failed internal check is a bug and is listed with the case number that reproduces it
@@ -157,7 +157,7 @@ fn write_readme(
     timing: &[(String, usize, usize, f64, usize)],
 ) -> anyhow::Result<PathBuf> {
     let mut s = String::new();
-    let _ = writeln!(s, "# Mutation campaign and self-intersection timing (issue 13)\n");
+    let _ = writeln!(s, "# Mutation campaign and self-intersection timing\n");
     let _ = writeln!(
         s,
         "`cargo run --release --example fuzz_mutations`: {CASES} seeded cases (seed {SEED}) over {} source files \

@@ -20,7 +20,8 @@ use rocking_stones::GRAVITY;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-const ASPECTS: [f64; 6] = [0.15, 0.25, 0.4, 0.5, 0.667, 0.8];
+/// The blocks' slenderness tan α = b/h.
+const TAN_ALPHAS: [f64; 6] = [0.15, 0.25, 0.4, 0.5, 0.667, 0.8];
 const DEPTH: f64 = 0.3;
 
 fn block(b: f64) -> (Stone, usize) {
@@ -118,7 +119,7 @@ fn main() -> anyhow::Result<()> {
     ];
     let mut tips = Vec::new();
     let mut decays = Vec::new();
-    for &tan_a in &ASPECTS {
+    for &tan_a in &TAN_ALPHAS {
         let (stone, start) = block(tan_a);
         let r_max = stone.body.r_max;
         let (bs, hs) = (tan_a / r_max, 1.0 / r_max);
@@ -332,7 +333,7 @@ fn readme(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> 
     }
     writeln!(s)?;
     writeln!(s, "|---|---|---|{}", "---|".repeat(settings.len()))?;
-    for &t in &ASPECTS {
+    for &t in &TAN_ALPHAS {
         write!(s, "| {t} | {:.1} | {:.4} |", t.atan().to_degrees(), housner_ratio(t, 1.0))?;
         for st in settings {
             let d = decays.iter().find(|d| d.tan_a == t && d.setting == st.name);

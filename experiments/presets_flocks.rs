@@ -1,4 +1,4 @@
-//! Where do stones come to rest under each launch preset? (issue 10, item 7.) The bundled
+//! Where do stones come to rest under each launch preset? The bundled
 //! quarry stone and the scanned asteroid Castalia, N drops under `quasi-static`, `drop` and the
 //! calibrated `throw` (flock certificate), the flock distributions side by side with the
 //! quasi-static basin probabilities, with χ² and KL against them.

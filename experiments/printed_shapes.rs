@@ -14,7 +14,7 @@
 //!   `Surface::SteelOnWood` at the die's assumed size, with the default numerics it was
 //!   calibrated with (exact landings and sub-stepped impacts, the preset's default step 1/120 s);
 //! * the same throw with rapier's own flight (`Flight::Rapier`, impacts found at the step
-//!   boundaries: the numerics before issue 25), to show what the numerics change;
+//!   boundaries: the former numerics), to show what the numerics change;
 //! * the `drop` preset as the library gives it (released at rest, 1 R_max above the table).
 //!
 //! Per shape and predictor: the total variation distance TV = ½ Σ |p_pred − p_meas|, Pearson's
@@ -767,7 +767,7 @@ fn readme(results: &[ShapeResult], n: u64, command: &str, elapsed: f64) -> Strin
          directions / 4π (exact, no interval); (b) the `throw` preset on steel-on-wood at the assumed size with \
          the numerics it was calibrated with in `results/cuboid_dice/` (`Flight::Free`: exact landings and \
          sub-stepped impacts, the preset's default dt listed below), energy certificate per facet; (c) the same throw with rapier's own \
-         flight (`Flight::Rapier`: impacts found at the step boundaries, the numerics before issue 25); (d) the \
+         flight (`Flight::Rapier`: impacts found at the step boundaries, the former numerics); (d) the \
          `drop` preset as the library gives it (released at rest, 1 R_max above the table; its flight is the \
          library's default, listed below). Every simulated predictor uses the same launches (seed {SEED}, stream i \
          for throw i). Parameters as run (scaled body, R_max = 1 m; `binom3`'s δ / R_max, the others' in the \

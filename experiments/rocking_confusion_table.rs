@@ -1,4 +1,4 @@
-//! Rocking vs regular, statically and dynamically, over many stones (SPEC §7; paper §4.1).
+//! Rocking vs regular, statically and dynamically, over many stones (paper §4.1).
 //!
 //! Static class (paper): a stable micro-equilibrium in a stable flock is regular, in an
 //! unstable or saddle flock rocking (`hierarchy.rocking_at(ν)` at the stone's automatic ν).

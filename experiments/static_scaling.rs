@@ -1,4 +1,4 @@
-//! Speed of the static analysis (issues 2 and 3): load → check → mass → hull → facets →
+//! Speed of the static analysis: load → check → mass → hull → facets →
 //! equilibria → Morse–Smale graph → hierarchy, on synthetic pebbles from 10³ to 10⁶ vertices
 //! and on the 98k-vertex Bennu model. The hull is also timed against parry3d's quickhull on the
 //! same points (f32, no exact predicates) as an in-run baseline; figures are reported as times

@@ -1,4 +1,4 @@
-//! The thick coin (issue 10): a cylinder of height h and diameter d (a prism over a regular
+//! The thick coin: a cylinder of height h and diameter d (a prism over a regular
 //! 32-gon), P(lands on its edge) against h/d, under the calibrated `throw` and the
 //! `quasi-static` preset, beside the quasi-static basin probability and two published
 //! predictions:

@@ -1,5 +1,5 @@
-//! Micro-equilibria: the critical points of R(x) = |x − G| on the hull surface (SPEC §2,
-//! paper §2.2.2).
+//! Micro-equilibria: the critical points of R(x) = |x − G| on the hull surface (paper
+//! §2.2.2).
 //!
 //! Every predicate is a sign test of one of two families of scalars, each computed **once**:
 //!

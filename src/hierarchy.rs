@@ -1,5 +1,5 @@
 //! The ν-hierarchy of a Morse–Smale graph, its scales, flocks and rocking equilibria (paper
-//! §2.2.3, SPEC §4). Generic: the 3D graph of a hull ([`crate::morse_smale`]) and the planar
+//! §2.2.3). Generic: the 3D graph of a hull ([`crate::morse_smale`]) and the planar
 //! cycle of a polygon ([`crate::planar`]) both produce a [`Hierarchy`], and every question
 //! asked of it — S(ν), U(ν), H(ν), N(ν), the staircase n(ν), the plateau, the flocks — is
 //! answered here, once, for both.

@@ -1,4 +1,4 @@
-//! Exact convex hull in f64 and the polyhedron of its facets (SPEC §1).
+//! Exact convex hull in f64 and the polyhedron of its facets.
 //!
 //! * [`convex_hull`] is an incremental (quickhull-ordered) hull whose every visibility decision is
 //!   Shewchuk's exact `orient3d` (crate `robust`), so its topology is always a valid, closed,

@@ -17,7 +17,7 @@
 //! * [`mesh`] — reading/writing scans (STL, OBJ, PLY), welding, closedness/orientation checks.
 //! * [`solid`] — volume, centre of mass G and inertia of the solid bounded by the mesh (f64).
 //! * [`hull`] — exact convex hull with exactly-coplanar triangles merged into polygonal facets.
-//! * [`equilibria`] — micro-equilibria (critical points of R = |x − G| on the hull), SPEC §2.
+//! * [`equilibria`] — micro-equilibria (critical points of R = |x − G| on the hull).
 //! * [`shape`] — axes a ≥ b ≥ c, Zingg class, isoperimetric ratio.
 //! * [`tipping`] — a pose's support polygon (with a contact tolerance) and its quasi-static
 //!   tipping acceleration tan α against azimuth.

@@ -1,4 +1,4 @@
-//! Monte Carlo drops (SPEC §6): many drops in parallel, reproducible per drop, sharded,
+//! Monte Carlo drops: many drops in parallel, reproducible per drop, sharded,
 //! checkpointed, merged, and summarised against the static theory.
 //!
 //! * **Reproducibility.** Drop i of a run with seed s draws everything from its own generator,
@@ -7,7 +7,7 @@
 //!   order of execution, or how the run is sharded: counts from any sharding merged with
 //!   [`merge`] equal those of one big run.
 //! * **Batches.** Drops run [`DEFAULT_BATCH`] stones per rapier world
-//!   ([`crate::dynamics::batch`], issue 16), which amortises rapier's per-step cost; each drop's
+//!   ([`crate::dynamics::batch`]), which amortises rapier's per-step cost; each drop's
 //!   outcome is bit-identical to the same drop alone in its world, for any batch size
 //!   (`tests/batch.rs`).
 //! * **Checkpoints.** A run appends every finished drop to a JSON-lines file (first line: the
@@ -265,7 +265,7 @@ pub fn run_batched(
 }
 
 /// What to say when a checkpoint's time step is not this run's: drops written before the default
-/// step became the presets' longest stable one (1/120 s, issue 25) ran at [`REFERENCE_DT`].
+/// step became the presets' longest stable one (1/120 s) ran at [`REFERENCE_DT`].
 fn step_hint(checkpoint_dt: f64, run_dt: f64) -> String {
     if checkpoint_dt == run_dt {
         return String::new();

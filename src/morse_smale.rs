@@ -1,5 +1,5 @@
-//! The Morse–Smale graph of R on the hull (paper §2.2.2, SPEC §3) and its cancellation
-//! hierarchy (paper §2.2.3, SPEC §4).
+//! The Morse–Smale graph of R on the hull (paper §2.2.2) and its cancellation
+//! hierarchy (paper §2.2.3).
 //!
 //! **Flow on a facet.** On facet F with q_F the projection of G onto F's plane,
 //! R² = |x − q_F|² + dist(G, F)², so the gradient flow runs radially away from q_F (ascent) or
@@ -350,7 +350,7 @@ impl MorseSmaleGraph {
     }
 }
 
-/// The cancellation hierarchy of G(0) (paper §2.2.3, SPEC §4).
+/// The cancellation hierarchy of G(0) (paper §2.2.3).
 ///
 /// Repeatedly cancel the cheapest valid arc (saddle h, extremum e), weight
 /// v = |R_h − R_e| / R_max, ties broken by (h, e): valid when h and e are joined by exactly one

@@ -1,5 +1,5 @@
 //! The quasi-static tipping acceleration of a stone standing on flat ground, against azimuth
-//! (issue 24, item 3): what a field geologist checks first.
+//! (the quasi-static side of a field rock): what a field geologist checks first.
 //!
 //! A rigid stone with centre of mass G stands on the plane with body-frame down direction d.
 //! Its *support polygon* P is the convex hull of the hull corners that touch the ground,

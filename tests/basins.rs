@@ -1,4 +1,4 @@
-//! Quasi-static basin probabilities and the merge-tree certificate (issue 5, SPEC §6), checked
+//! Quasi-static basin probabilities and the merge-tree certificate, checked
 //! against symmetry, against a second, independent method (brute-force integration of the
 //! flow ODE with h as a plain maximum over all hull corners), against the planar theory, and
 //! against random walks that respect the energy bound.
@@ -526,7 +526,7 @@ fn flock_certificate_and_barriers_across_flocks() {
 
 #[test]
 fn decision_ceiling_is_exact_and_tight() {
-    // Issue 16: above the ceiling nothing decides (from any direction), just below it the facet
+    // Above the ceiling nothing decides (from any direction), just below it the facet
     // that attains it decides from its own normal; at facet and at flock level.
     let a = analyse(pebble([1.0, 0.7, 0.5], 0.03, 300, 4));
     let g = a.mass.center_of_mass;

@@ -1,4 +1,4 @@
-//! Many drops in one rapier world (issue 16): every drop's outcome is bit-identical to the same
+//! Many drops in one rapier world (batched drops): every drop's outcome is bit-identical to the same
 //! drop alone in its world, for any batch size and thread count, with and without the certificate.
 
 use rocking_stones::analysis::{Analysis, Options};

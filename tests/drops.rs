@@ -1,4 +1,4 @@
-//! Drop Monte Carlo (issue 5): the engine against symmetry, determinism across threads and
+//! Drop Monte Carlo: the engine against symmetry, determinism across threads and
 //! shards, checkpoints, and the energy bound of the static theory.
 
 use rocking_stones::analysis::{Analysis, Options};
@@ -177,7 +177,7 @@ fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
 
 #[test]
 fn damaged_or_foreign_checkpoints_are_refused_naming_file_line_and_field() {
-    // The reproducers of issue 13: every line is checked against its run before it counts.
+    // Damaged and foreign checkpoints: every line is checked against its run before it counts.
     let (_, s) = setup(generate::cuboid(1.0, 0.8, 0.5));
     let model = s.model();
     let h = header(10, 3, CertificateMode::Facet);

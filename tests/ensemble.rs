@@ -1,4 +1,4 @@
-//! Field-rock ensembles (issue 24): an ensemble without uncertainty is the single run, bit for
+//! Field-rock ensembles: an ensemble without uncertainty is the single run, bit for
 //! bit; members do not depend on threads or ensemble size; the base-contact tolerance changes the
 //! rock's support as the quasi-static polar says, and the dynamics follows it.
 

@@ -1,4 +1,4 @@
-//! Free flight outside rapier (`--flight free`, issue 16): it is the motion rapier computes in
+//! Free flight outside rapier (`--flight free`): it is the motion rapier computes in
 //! the air, it hands the stone back before rapier could make a contact, its outcomes do not
 //! depend on the batch or the threads, and its statistics are those of the reference.
 

@@ -1,4 +1,4 @@
-//! The Morse–Smale graph and the ν-hierarchy against known macro structures (issue 3).
+//! The Morse–Smale graph and the ν-hierarchy against known macro structures.
 
 use nalgebra::Rotation3;
 use rocking_stones::analysis::{Analysis, Options};

@@ -1,4 +1,4 @@
-//! Perturbations and ground shaking (issue 6): Housner's rigid block against its closed forms,
+//! Perturbations and ground shaking: Housner's rigid block against its closed forms,
 //! the static barriers of the merge tree as a bound on what a perturbation can do, rocking vs
 //! regular equilibria, and reproducibility independent of the thread count.
 

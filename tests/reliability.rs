@@ -1,5 +1,5 @@
-//! Reliability (issue 13): every reproducer of the issue ends in a named error or in the unchanged
-//! answer; scale does not change counts or ν; batch runs report failures in their exit code; a
+//! Reliability: every reproducer of a damaged or hostile input ends in a named error or in the
+//! unchanged answer; scale does not change counts or ν; batch runs report failures in their exit code; a
 //! bounded mutation campaign over the bundled meshes finds no panic and no failed internal check.
 
 use rocking_stones::analysis::{Analysis, Options};
@@ -237,7 +237,7 @@ fn quantities_that_overflow_f64_in_input_units_are_infinite_not_wrong() {
 
 #[test]
 fn tiny_stone_gets_the_same_nu_as_the_unscaled_one() {
-    // The issue's case: at ×10^-79.5 ν came out 3.38e-2 instead of 2.48e-2.
+    // The reported case: at ×10^-79.5 ν came out 3.38e-2 instead of 2.48e-2.
     let (m, _) = default_pebble().into_solid_boundary().unwrap();
     let nu = |s: f64| analyse_scaled(&m, s).report("x", &Options::default()).r#macro.nu;
     let (a, b) = (nu(1.0), nu(10f64.powf(-79.5)));

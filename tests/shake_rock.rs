@@ -1,4 +1,4 @@
-//! Field rocks under recorded ground motion (issue 11): true size, poses, three components,
+//! Field rocks under recorded ground motion: true size, poses, three components,
 //! sliding vs rocking, flat scanned bases, and the one-sine-pulse overturning boundary against
 //! Housner's rocking equation.
 
@@ -362,7 +362,7 @@ fn housners_impact_ratio_holds_at_true_size() {
     }
 }
 
-/// The command line of issue 11: one record → one JSON object with the outcome and the record's
+/// The command line of field rocks: one record → one JSON object with the outcome and the record's
 /// measures; a folder × scales → runs.csv with one row per run; a missing column is a clear error.
 #[test]
 fn the_shake_command_runs_a_field_rock() {
@@ -487,7 +487,7 @@ fn poses_print_as_the_command_line_spells_them() {
     assert!("facet:x".parse::<Pose>().is_err() && "upright".parse::<Pose>().is_err());
 }
 
-/// The command line says what it does not apply (issue 23): options of the PGA sweep are refused
+/// The command line says what it does not apply: options of the PGA sweep are refused
 /// with a field rock, options of field rocks without one, and --length-unit with --size; the
 /// bundled stone knows it is in millimetres (R_max = 178 mm in the JSON of a pushed run).
 #[test]
@@ -526,7 +526,7 @@ fn options_that_do_not_apply_are_refused() {
     assert_eq!(sim["angular_damping"].as_f64(), Some(0.0), "no global damping");
 }
 
-/// A ball under a one-sine pulse against its closed form, at two sizes (issue 23): rolling
+/// A ball under a one-sine pulse against its closed form, at two sizes: rolling
 /// without slipping on a ground accelerating at a_g, the ball's centre accelerates at (2/7) a_g
 /// (m a = F, I α = −F r, a = α r + a_g with I = (2/5) m r²), so at the end of the pulse, when the
 /// ground is back at rest after moving D = a_p T²/(2π), the ball has rolled −(5/7) D relative to

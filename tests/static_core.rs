@@ -1,4 +1,4 @@
-//! The static core against hand calculations, Poincaré–Hopf and invariance (issue 2).
+//! The static core against hand calculations, Poincaré–Hopf and invariance.
 
 use nalgebra::{Rotation3, Vector3};
 use proptest::prelude::*;

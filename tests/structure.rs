@@ -1,4 +1,4 @@
-//! The shape of the code that issue 23 asks for, checked on the source itself: no source file
+//! The shape of the code, checked on the source itself: no source file
 //! over 800 lines, and the modules of `dynamics/` import each other without a cycle (launch and
 //! outcome in their own modules, the glam boundary in `convert`).
 
@@ -34,7 +34,7 @@ fn no_source_file_is_over_800_lines() {
     assert!(long.is_empty(), "files over 800 lines: {long:?}");
 }
 
-/// The library speaks in its own words (issue 23): no string in it names a command-line flag
+/// The library speaks in its own words: no string in it names a command-line flag
 /// (`--dt`); parameter errors name the parameter as the library does ([`Error::Parameter`]) and the
 /// CLI and Python spell it. `cmd/` and `main.rs` are the command line; `report/` writes its
 /// summaries.
@@ -64,6 +64,93 @@ fn the_library_names_no_command_line_flag() {
     }
     assert!(files.len() > 40);
     assert!(found.is_empty(), "flag names in library strings:\n{}", found.join("\n"));
+}
+
+/// Where `text` names something outside the product: an internal ticket ("issue 25", "issues 2
+/// and 3", "Issue #16"), the design document that is not in the repository ("SPEC", as a word),
+/// a folder outside the repository the meshes once came from, or a path of the machine it was
+/// written on.
+fn outside_references(text: &str) -> Vec<String> {
+    let word = |c: char| c.is_alphanumeric() || c == '_';
+    let mut found = Vec::new();
+    let lower = text.to_lowercase();
+    for (i, _) in lower.match_indices("issue") {
+        if lower[..i].chars().next_back().is_some_and(word) {
+            continue;
+        }
+        let after = &lower[i + "issue".len()..];
+        let rest = after.strip_prefix('s').unwrap_or(after);
+        if rest.trim_start_matches([' ', '#']).starts_with(|c: char| c.is_ascii_digit()) {
+            found.push(lower[i..].chars().take(12).collect());
+        }
+    }
+    for (i, m) in text.match_indices("SPEC") {
+        if !text[..i].chars().next_back().is_some_and(word) && !text[i + m.len()..].starts_with(word) {
+            found.push(text[i..].chars().take(10).collect());
+        }
+    }
+    for bad in ["../shared", "shared folder", "shared mesh", "/work/"] {
+        if lower.contains(bad) {
+            found.push(bad.to_string());
+        }
+    }
+    found
+}
+
+/// Every text file under `dir` (build outputs, caches and fuzzing corpora left out).
+fn text_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for e in entries {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        if p.is_dir() {
+            let skip = ["target", "__pycache__", ".venv", "corpus", "artifacts", "coverage", ".pytest_cache"];
+            if !skip.contains(&name.as_str()) {
+                text_files(&p, out);
+            }
+        } else {
+            out.push(p);
+        }
+    }
+}
+
+/// The product speaks of itself alone: no line of its code, help texts, tests, experiments or
+/// results names an internal ticket, the design document that is not in the repository, a
+/// folder outside the repository or a path of the machine it was written on (the README and
+/// `docs/` are not scanned here). This file is left out: it has to spell what it looks for.
+#[test]
+fn the_product_names_no_issue_number_or_outside_document() {
+    // The detector itself: it finds what it must and nothing else.
+    for bad in
+        ["(issue 16)", "Issues 2 and 3", "issue #13's", "SPEC §6", "(SPEC)", "../shared/x.ply", "the shared meshes"]
+    {
+        assert!(!outside_references(bad).is_empty(), "{bad:?} not found");
+    }
+    for good in
+        ["ASPECTS", "SPECTRA", "the issue's protocol", "tissue 3", "issues of size", "shared/benchmark_bodies.rs"]
+    {
+        assert!(outside_references(good).is_empty(), "{good:?} found: {:?}", outside_references(good));
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = vec![root.join("CHANGELOG.md")];
+    for dir in ["src", "python", "experiments", "tests", "results", ".ci", "fuzz", "examples"] {
+        text_files(&root.join(dir), &mut files);
+    }
+    let me = root.join(file!());
+    let mut read = 0;
+    let mut found = Vec::new();
+    for f in files.iter().filter(|f| **f != me) {
+        let Ok(text) = std::fs::read_to_string(f) else { continue };
+        read += 1;
+        let rel = f.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+        for (k, line) in text.lines().enumerate() {
+            for hit in outside_references(line) {
+                found.push(format!("{rel}:{}: {hit}", k + 1));
+            }
+        }
+    }
+    assert!(read > 300, "only {read} text files read");
+    assert!(found.is_empty(), "{} outside references:\n{}", found.len(), found.join("\n"));
 }
 
 /// The module of `dynamics/` a file is (`run`, `shake`, `shake/drive`, …).

@@ -1,4 +1,4 @@
-//! Field studies, synthetic hand experiments and the fit of ν (issue 7).
+//! Field studies, synthetic hand experiments and the fit of ν.
 
 use rocking_stones::analysis::{Analysis, Options, PAPER_NU};
 use rocking_stones::generate;

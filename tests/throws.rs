@@ -1,4 +1,4 @@
-//! Drops under the physical defaults of issue 10 (the calibrated `throw` on steel on wood, rolling
+//! Drops under the physical defaults (the calibrated `throw` on steel on wood, rolling
 //! resistance, no global damping): symmetry, real scans, the certificate, determinism.
 
 use rocking_stones::analysis::{Analysis, Options};
@@ -49,7 +49,7 @@ fn platonic_solids_are_fair_under_the_throw() {
         let s = stone_of(&a);
         let n = 60 * faces as u64;
         let (r, _) = run_report(&s, &header(n, 7, CertificateMode::Facet));
-        // The settling target of issue 10: at least 99.5 % at rest within the cap.
+        // The settling target: at least 99.5 % at rest within the cap.
         assert!(r.settled * 1000 >= n * 995, "{p:?}: only {} of {n} throws came to rest", r.settled);
         assert_eq!(r.facets.len(), faces, "{p:?}");
         for f in &r.facets {
@@ -63,7 +63,7 @@ fn platonic_solids_are_fair_under_the_throw() {
 
 #[test]
 fn castalia_throws_rest_on_stable_facets_and_fill_its_large_flocks() {
-    // Before issue 10, 39 of 100 Castalia drops were counted on a non-stable facet 5·10⁻⁵ rad
+    // Formerly, 39 of 100 Castalia drops were counted on a non-stable facet 5·10⁻⁵ rad
     // from the stable one, and flock 1 (35 % static probability) showed no drop.
     let path = std::path::Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),

@@ -1,4 +1,4 @@
-//! What a person reads (issue 14): every enum value the CLI prints has a user-facing name (no
+//! What a person reads: every enum value the CLI prints has a user-facing name (no
 //! Rust `Debug` form), the summaries use correct plurals and units, `planar` and `analyze` read
 //! the macro scale by the same rule (an unclear plateau falls back to the paper's ν = 0.0035),
 //! and `report.html` is one self-contained file.
@@ -106,7 +106,7 @@ fn plurals_and_units() {
 }
 
 /// planar and analyze share one macro-scale rule: an unclear plateau is not a macro scale, the
-/// paper's ν = 0.0035 is used instead (README, SPEC §3).
+/// paper's ν = 0.0035 is used instead (README, `hierarchy::macro_nu`).
 #[test]
 fn planar_uses_the_same_unclear_plateau_rule_as_analyze() {
     // an ellipse 1 : 1.2 cut at random: its longest step is not clear

@@ -1,4 +1,4 @@
-//! The three benchmark bodies of issue 16 (drop throughput), shared by `drops_certificate_speed`,
+//! The three benchmark bodies of drop throughput, shared by `drops_certificate_speed`,
 //! `drops_dt` and `certificate_margin`: the bundled stone, a ≈500-hull-vertex synthetic pebble
 //! and a box 1 × 0.8 × 0.5, each analysed with the default options.
 

@@ -135,7 +135,7 @@ def test_shake_rock_is_the_cli_run(cli, box_file, tmp_path):
         rs.shake_rock(box_file, pose="upright", motion=rec)
 
 
-# Ensembles of a field rock (issue 24): the 1 cm box (tips at 0.5 g) under 2 cycles at 2 Hz.
+# Ensembles of a field rock: the 1 cm box (tips at 0.5 g) under 2 cycles at 2 Hz.
 ROCK = dict(pose="facet:0", length_unit="cm", columns="time_s,ax_g")
 
 

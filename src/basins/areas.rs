@@ -219,7 +219,7 @@ pub struct QuasiStatic {
     pub method: String,
 }
 
-/// Quasi-static basin probabilities of the stable facets of `poly` (SPEC §6 "Static reference").
+/// Quasi-static basin probabilities of the stable facets of `poly` (the static reference of drops).
 pub fn basin_probabilities(poly: &Polyhedron, g: &Point3, eq: &Equilibria) -> QuasiStatic {
     SupportFlow::new(poly, g, eq).basins()
 }

@@ -201,8 +201,8 @@ impl MergeTree {
     /// largest, over the stable facets f, of the level of f's lowest ancestor whose stable facets
     /// are not all f (facet level: f's `unique_level`) or not all in f's flock (flock level); ∞
     /// if the whole tree is one facet / one flock. A run whose energy level is at or above it
-    /// needs no descent to know that the certificate cannot decide yet (issue 16: the check
-    /// costs O(1) until then). Tight: just below it, the facet that attains it decides from its
+    /// needs no descent to know that the certificate cannot decide yet (so the check costs
+    /// O(1) until then). Tight: just below it, the facet that attains it decides from its
     /// own normal.
     pub fn decision_ceiling(&self, facet_flock: Option<&[Option<usize>]>) -> f64 {
         #[derive(Clone, Copy, PartialEq)]

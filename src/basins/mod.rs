@@ -1,6 +1,6 @@
 //! Quasi-static basins of the stable facets on the sphere of down directions, and the merge tree
-//! of the support function that decides a drop's final facet early (SPEC §6, "Static reference"
-//! and "Certificates from the static theory").
+//! of the support function that decides a drop's final facet early (the static pipeline and the
+//! energy certificate, `docs/methods.md`).
 //!
 //! # The support function and its flow
 //!
@@ -27,7 +27,7 @@
 //!   perpendicular from G to E's line lies on E) both neighbouring flows run into the arc — a
 //!   *valley* of h — and the flow slides along it, away from u_P = (P − G)/|P − G|, to one of its
 //!   end normals. (The fourth case, a ridge, would need |e|² < 0.) A valley arc containing u_P
-//!   carries a saddle of h, h(u_P) = R of the saddle on E (SPEC §2);
+//!   carries a saddle of h, h(u_P) = R of the saddle on E ([`crate::equilibria`]);
 //! * at a facet normal n_F, h near n_F is h(n_F) plus the support function of the polygon F − q_F
 //!   (q_F the projection of G onto F's plane). It is a minimum iff q_F is inside F (F stable; the
 //!   stable set is taken from [`Equilibria`], so degenerate decisions agree with the rest of the
@@ -89,10 +89,10 @@
 //!
 //! Hence two normals are in one component of S_L iff a chain of arcs of weight ≤ L joins them,
 //! and Kruskal on the arcs (facets as leaves, each internal node at the weight of the arc that
-//! joined its two children) is the merge tree of h. (The weight is the arc's *largest* h, as SPEC
-//! §6 says; on a ridge edge whose foot lies outside the edge, u_P can lie on the arc and exceed
-//! both end values. A smaller weight would only be conservative.) The component of S_L that
-//! contains d contains the facet `settle(d)` reaches (the flow does not raise h), so
+//! joined its two children) is the merge tree of h. (The weight is the arc's *largest* h, as the
+//! certificate needs; on a ridge edge whose foot lies outside the edge, u_P can lie on the arc
+//! and exceed both end values. A smaller weight would only be conservative.) The component of
+//! S_L that contains d contains the facet `settle(d)` reaches (the flow does not raise h), so
 //! [`MergeTree::decided`] climbs from that leaf to its highest ancestor with level ≤ L.
 //! [`MergeTree::entry_barrier`] is the level of the lowest common ancestor. The caller must add
 //! its own margin to L for what the simulation breaks (penetration, f32 rounding); a level below

@@ -88,8 +88,8 @@ pub struct Args {
     /// How the flight between contacts is integrated: free (the default: outside the physics
     /// engine, exactly as a free rigid body, handed to it at the exact instant of touch-down,
     /// and hard impacts sub-stepped so that no impact starts inside the ground) or rapier
-    /// (every step in the physics engine, contacts found at the step boundaries: the numerics
-    /// before issue 25, kept to compare).
+    /// (every step in the physics engine, contacts found at the step boundaries: the former
+    /// numerics, kept to compare).
     #[arg(long, value_parser = parse_flight)]
     pub flight: Option<Flight>,
     /// Strict impacts: read the impact sub-step bound again after every sub-step, so that an

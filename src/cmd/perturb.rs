@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 pub struct SimArgs {
     /// Contact: `surface` (the surface pair of --surface at the stone's real size, with rolling
     /// resistance through the contact: the physics of drops and field rocks) or `damped` (the
-    /// overdamped reference of the results before issue 23: friction 0.6, restitution 0.2, global
+    /// overdamped reference of the former results: friction 0.6, restitution 0.2, global
     /// angular damping 1 s⁻¹; ignores --surface and the size).
     #[arg(long, default_value = "surface", value_parser = parse_resting_preset)]
     pub preset: RestingPreset,

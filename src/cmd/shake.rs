@@ -74,7 +74,7 @@ pub struct Args {
     /// Seed of the random azimuths; with --pose --ensemble, of the members' draws.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Field rock: an ensemble of N members over what is not known (issue 24): every member
+    /// Field rock: an ensemble of N members over what is not known: every member
     /// draws the uncertain inputs below uniformly from their ranges; the result is P(overturn)
     /// with its 95 % interval and the inputs it is most sensitive to. Friction, restitution and
     /// rolling resistance range over the surface pair's published ranges unless pinned (--friction,

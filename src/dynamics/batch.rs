@@ -1,6 +1,6 @@
-//! Many independent drops in one rapier world (issue 16): the per-step cost of rapier's pipeline
-//! (broad phase, island bookkeeping, solver set-up and its worker stages) is paid once per step
-//! for the whole batch instead of once per drop.
+//! Many independent drops in one rapier world (batched drops): the per-step cost of rapier's
+//! pipeline (broad phase, island bookkeeping, solver set-up and its worker stages) is paid once per
+//! step for the whole batch instead of once per drop.
 //!
 //! The stones of a batch meet only the ground (collision groups [`super::world::stone_groups`]),
 //! so each stone is its own island and its contact constraints involve only itself and the

@@ -1,4 +1,4 @@
-//! One drop or throw of a stone onto flat ground, from release to rest (SPEC §6).
+//! One drop or throw of a stone onto flat ground, from release to rest (drops, `docs/methods.md`).
 //!
 //! The launch and the outcome rule are [`super::launch`]'s; the run itself is the one loop of
 //! [`super::run`] (speed rest rule, [`RestKind::Speeds`]), or a batch of one

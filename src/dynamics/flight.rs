@@ -1,4 +1,4 @@
-//! Free flight between contacts, integrated outside rapier (issue 16): a stone that does not
+//! Free flight between contacts, integrated outside rapier: a stone that does not
 //! touch the ground moves as a free rigid body under gravity, and that motion needs no contact
 //! pipeline at all.
 //!

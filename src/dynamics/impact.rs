@@ -1,4 +1,4 @@
-//! Impacts resolved, not discovered (issue 25): a stone whose hull could move into the ground by
+//! Impacts resolved, not discovered: a stone whose hull could move into the ground by
 //! more than [`IMPACT_APPROACH`] within one time step is stepped in sub-steps short enough that
 //! it cannot, in a world of its own.
 //!

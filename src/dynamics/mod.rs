@@ -1,5 +1,5 @@
-//! Rigid-body dynamics of a stone on the ground (rapier3d), SPEC §6–7. The stages, in the order
-//! data flows through them:
+//! Rigid-body dynamics of a stone on the ground (rapier3d); `docs/methods.md` describes the
+//! methods. The stages, in the order data flows through them:
 //!
 //! * [`convert`] — nalgebra (f64) ↔ glam (f32), the one boundary with rapier.
 //! * [`hull_shape`] — the hull as a parry collider with constant-time bounds and hill-climbing

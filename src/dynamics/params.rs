@@ -1,5 +1,5 @@
 //! Parameters of a simulated run: the launch, the contact, the numerics — and the named presets
-//! and surface pairs that set them (SPEC §6 "Launches", "Contact physics").
+//! and surface pairs that set them (drops, `docs/methods.md`).
 //!
 //! **Units.** Every run is simulated in the stone's scaled frame: lengths in units of R_max (the
 //! largest distance from G to a hull corner), mass 1, g = 9.81 m/s². Rigid-body dynamics with
@@ -83,8 +83,8 @@ pub struct DropParams {
     /// … for this long (s). Default 0.25 s.
     pub rest_time: f64,
     /// How a drop's flight between contacts is integrated, and how its impacts start. Default
-    /// [`Flight::Free`]: exact landings and sub-stepped impacts (issue 25), at which the throw is
-    /// calibrated (`results/cuboid_dice/`).
+    /// [`Flight::Free`]: exact landings and sub-stepped impacts ([`super::impact`]), at which the
+    /// throw is calibrated (`results/cuboid_dice/`).
     #[serde(default = "Flight::rapier")]
     pub flight: Flight,
     /// Strict impacts: read the sub-step bound of [`super::impact`] again after every impact
@@ -98,14 +98,14 @@ pub struct DropParams {
     pub strict_impacts: bool,
 }
 
-/// How the flight of a dropped stone between contacts is integrated (issue 16), and with it
-/// how impacts start (issue 25).
+/// How the flight of a dropped stone between contacts is integrated ([`super::flight`]), and
+/// with it how impacts start ([`super::impact`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Flight {
     /// Every step in rapier's pipeline, in the air as on the ground: contacts are found only at
     /// the step boundaries, so an impact can start 0.1–0.2 R_max inside the ground in a throw
-    /// (`results/drops_impacts/`). The reference numerics before issue 25, kept to compare.
+    /// (`results/drops_impacts/`). The former reference numerics, kept to compare.
     Rapier,
     /// The default. Out of rapier while the stone is clear of the ground: G on its parabola and
     /// the rotation by Euler's equations ([`super::flight`]), handed to rapier at the exact
@@ -237,8 +237,8 @@ pub const MAX_STABLE_DT: f64 = 1.0 / 120.0;
 /// of runs that start at rest ([`super::resting::RESTING_DT`]).
 pub const REFERENCE_DT: f64 = 1.0 / 240.0;
 
-/// Named, documented launch protocols (SPEC §6). Each sets the launch and the numerics; the
-/// contact comes from a [`Surface`]. Every field can still be overridden.
+/// Named, documented launch protocols (drops, `docs/methods.md`). Each sets the launch and the
+/// numerics; the contact comes from a [`Surface`]. Every field can still be overridden.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
@@ -253,7 +253,7 @@ pub enum Preset {
     Drop,
     /// A hand throw onto a table: released 2 R_max above it with 4 m/s (scaled) of horizontal
     /// speed and a Gaussian angular velocity of 25 rad/s rms (scaled): fitted to the seven measured
-    /// dice of `data/cuboid_dice_throws.csv` with exact landings (issue 25), and inside the
+    /// dice of `data/cuboid_dice_throws.csv` with exact landings ([`Flight::Free`]), and inside the
     /// calibration's Monte Carlo noise band with the default numerics of every later change
     /// (`results/cuboid_dice/`, which lists the grid points within the band; a point within it is
     /// not moved to the grid's best, that would fit noise). For a 16 mm die:
@@ -290,12 +290,13 @@ impl Preset {
 
     /// The reference numerics of this preset (`rocking drop --reference`): free flight
     /// ([`Flight::Free`]) at [`REFERENCE_DT`] = 1/240 s, the step its default
-    /// ([`Preset::largest_stable_dt`], 1/120 s, issue 16's `--fast` before it became the default)
+    /// ([`Preset::largest_stable_dt`], 1/120 s, the former `--fast` before it became the default)
     /// is checked against: per-flock statistics the same on independent samples
     /// (`results/cuboid_dice/`) and drop by drop (the paired test on the same releases,
-    /// `results/drops_vs_mujoco/`); every throw of the 40 shared meshes settles at both steps
-    /// (`results/drops_settling/`) since a stone resting on a stable facet is carried by it and
-    /// rolling resistance turns it about its contact (`dynamics::hull_shape`, `dynamics::world`).
+    /// `results/drops_vs_mujoco/`); every throw of every mesh of `data/meshes` and of the bundled
+    /// stone settles at both steps (`results/drops_settling/`) since a stone resting on a stable
+    /// facet is carried by it and rolling resistance turns it about its contact
+    /// (`dynamics::hull_shape`, `dynamics::world`).
     pub fn reference(self, p: &mut DropParams) {
         p.flight = Flight::Free;
         p.dt = REFERENCE_DT;

@@ -1,4 +1,4 @@
-//! Perturbation robustness of stable micro-equilibria (paper §3, §4.1 and Figure 11; SPEC §6–7).
+//! Perturbation robustness of stable micro-equilibria (paper §3, §4.1 and Figure 11).
 //!
 //! A stone is put **exactly at rest** on one stable micro-equilibrium — its facet F on the
 //! ground (the orientation maps F's outward normal to −z, with no turn about the vertical), G at
@@ -297,7 +297,8 @@ pub struct Robustness {
     pub dynamic_class: Option<Class>,
 }
 
-/// No trial below a static barrier may cross it (SPEC §6: energy never grows).
+/// No trial below a static barrier may cross it (energy never grows: the energy certificate,
+/// `docs/methods.md`).
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct BarrierCheck {
     /// Trials with ε below the basin barrier, and how many of them left the micro-equilibrium.
@@ -455,7 +456,7 @@ pub struct PerturbReport {
     pub size_assumed: Option<bool>,
     /// Robustness of each stable micro-equilibrium.
     pub equilibria: Vec<Robustness>,
-    /// Trials below a static barrier that crossed it (SPEC §6).
+    /// Trials below a static barrier that crossed it (energy never grows, [`BarrierCheck`]).
     pub barrier_check: BarrierCheck,
     /// Static against dynamic class of the equilibria.
     pub confusion: Confusion,

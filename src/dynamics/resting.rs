@@ -1,5 +1,6 @@
 //! A stone put exactly at rest on one of its stable micro-equilibria — the start of every push,
-//! spin and shaking run — and the parameters of those runs (SPEC §6–7).
+//! spin and shaking run — and the parameters of those runs (pushes and shaking,
+//! `docs/methods.md`).
 //!
 //! The stone is placed with its facet F on the ground (the orientation maps F's outward normal
 //! to −z, with no turn about the vertical), G at height R_F above the ground, zero velocity, and
@@ -49,8 +50,9 @@ pub enum RestingPreset {
     Surface,
     /// The overdamped reference ([`PerturbParams::damped`]): friction 0.6, restitution 0.2,
     /// global damping 0.1 s⁻¹ linear and 1 s⁻¹ angular on the scaled body, no rolling
-    /// resistance — what the perturbation and shaking results were computed with before
-    /// issue 23; kept to compare with them, never a default.
+    /// resistance — what the perturbation and shaking results were computed with before they
+    /// moved to the surface contact (`results/one_physics/`); kept to compare with them, never a
+    /// default.
     Damped,
 }
 

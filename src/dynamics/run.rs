@@ -121,7 +121,8 @@ pub const CERTIFICATE_EVERY: u64 = 4;
 /// bodies, largest 1.46·10⁻³ R_max, under [`CERTIFICATE_MARGIN`]).
 pub const CERTIFICATE_MAX_COMPRESSION: f64 = 1e-3;
 
-/// The merge-tree certificate of SPEC §6 on a prepared stone, at the facet or flock level.
+/// The merge-tree energy certificate ([`crate::basins`], `docs/methods.md`) on a prepared stone,
+/// at the facet or flock level.
 pub struct EnergyCertificate<'a> {
     stone: &'a Stone,
     flock_level: bool,

@@ -5,7 +5,7 @@
 //!
 //! * the rigid [`Body`] in the scaled frame (lengths / R_max, mass 1, g = 9.81 m/s²), with the
 //!   hull as its collider and the solid's G and inertia;
-//! * the merge tree of the support function h ([`MergeTree`], SPEC §6), which carries the
+//! * the merge tree of the support function h ([`MergeTree`]), which carries the
 //!   quasi-static descent and the energy certificate;
 //! * the maps facet → stable micro-equilibrium → flock at the chosen ν, and each flock's type;
 //! * on demand, the quasi-static basin probabilities and every stable micro-equilibrium with its
@@ -102,7 +102,7 @@ impl Body {
         best.1
     }
 
-    /// This body with its base flattened (issue 24): every corner x within `tolerance` (R_max)
+    /// This body with its base flattened: every corner x within `tolerance` (R_max)
     /// of the lowest plane in direction `down` — h(down) − x·down ≤ tolerance — moved along
     /// `down` onto that plane, the collider rebuilt on the new hull. Those corners then carry
     /// load: the support polygon is [`crate::tipping::TippingPolar`]'s at that tolerance. Mass,

@@ -1,5 +1,5 @@
 //! Recorded and synthetic ground motion: three-component acceleration histories, their readers,
-//! intensity measures and the fragility surface of precariously balanced rocks (SPEC §7).
+//! intensity measures and the fragility surface of precariously balanced rocks.
 //!
 //! A [`Record`] is the ground acceleration of a site sampled at a uniform interval `dt` (s, real
 //! time), in m/s², with components `[x, y, z]`: two horizontal components and the vertical one (z

@@ -1,4 +1,4 @@
-//! The planar case (paper §1.1, Table 1, Figures 2, 4, 5; SPEC §5): convex polygons, their
+//! The planar case (paper §1.1, Table 1, Figures 2, 4, 5): convex polygons, their
 //! micro-equilibria, the cycle Morse–Smale graph and its ν-hierarchy, and discretised ellipses.
 //!
 //! # Micro-equilibria

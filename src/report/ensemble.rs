@@ -1,4 +1,4 @@
-//! Field-rock ensembles (issue 24): summaries, the members' table, the tipping polar and the
+//! Field-rock ensembles: summaries, the members' table, the tipping polar and the
 //! banded fragility contours of [`crate::dynamics::shake::ensemble`].
 
 use super::shake::write_runs_csv;
@@ -9,7 +9,7 @@ use crate::dynamics::shake::{Ensemble, RecordRun, ShakeBatch};
 use crate::tipping::TippingSummary;
 use std::path::{Path, PathBuf};
 
-/// A readable summary of an ensemble of one field rock under one record (issue 24).
+/// A readable summary of an ensemble of one field rock under one record.
 pub fn ensemble_summary(e: &Ensemble, mesh: &str) -> String {
     let p = &e.probability;
     let mut s = format!(

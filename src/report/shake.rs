@@ -302,7 +302,7 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
     Ok(out.written)
 }
 
-// --- Field rocks under records (issue 11) ---------------------------------------------------
+// --- Field rocks under records --------------------------------------------------------------
 
 use crate::dynamics::shake::{RecordRun, ShakeBatch};
 use crate::ground_motion::surface::FragilitySurface;

@@ -6,7 +6,7 @@ use super::HullShape;
 
 impl HullShape {
     /// The same shape reporting the *solid's* mass properties (volume, G and inertia of the
-    /// scanned body, SPEC §1, in the input frame as computed by
+    /// scanned body, in the input frame as computed by
     /// [`crate::solid::MassProperties::of`]) from [`Shape::mass_properties`], mapped to the body
     /// frame of [`HullShape::new`], instead of those of the hull. A collider built with a density
     /// then gets the right mass, G and inertia without further setting.

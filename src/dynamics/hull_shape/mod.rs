@@ -6,7 +6,7 @@
 //! [`PolygonalFeatureMap`]), `reduce` (the support polygons of facets with more than four
 //! corners), `mass` (mass properties) and `parry_shape` ([`Shape`], [`RayCast`], [`PointQuery`]).
 //!
-//! parry's `ConvexPolyhedron` is unfit as the collider of a pebble for two reasons (SPEC §1, §9):
+//! parry's `ConvexPolyhedron` is unfit as the collider of a pebble for two reasons:
 //!
 //! 1. it merges neighbouring hull triangles within ~1.5°, destroying the micro-facets this
 //!    project is about — a pebble must be able to rest on each of its own facets;
@@ -114,7 +114,7 @@
 //! other convex shape (e.g. a `Cuboid` ground) the last arm calls `contact_manifold_pfm_pfm`
 //! (GJK/EPA on the support maps, then clipping of the two support features).
 //!
-//! So the hull-on-plane contact already is the support function's (issue 25, item 2): the
+//! So the hull-on-plane contact already is the support function's: the
 //! support vertex by hill climbing, the facet at it closest to the plane's normal (reduced to at
 //! most four corners as above), and each corner's signed distance to the plane — no GJK, no
 //! generic polyhedron test. Rapier takes the manifold this way without a custom dispatcher. The
@@ -384,7 +384,7 @@ impl HullShape {
     }
 
     /// Whether the origin (G) projects strictly inside facet `f`: the body can rest on it (a
-    /// stable facet, SPEC §2).
+    /// stable facet, [`crate::equilibria`]).
     pub fn rests_on(&self, f: usize) -> bool {
         self.stable[f]
     }

@@ -30,7 +30,7 @@ impl HullShape {
     }
 
     /// The projection of the origin (G) on facet `f`'s plane (body frame, f64) if it lies strictly
-    /// inside the facet: then the body can rest on `f` (SPEC §2: `f` is a stable facet).
+    /// inside the facet: then the body can rest on `f` (a stable facet).
     pub(super) fn origin_projection_inside(&self, f: usize) -> Option<[f64; 3]> {
         let cs = self.facet_corners(f);
         let n = self.normals64[f];

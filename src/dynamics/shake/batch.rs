@@ -1,5 +1,5 @@
-//! Records × scale factors on one field rock (issue 11), with or without an ensemble over what is
-//! not known about it (issue 24, [`super::ensemble`]): every run, the fragility surface
+//! Records × scale factors on one field rock, with or without an ensemble over what is
+//! not known about it ([`super::ensemble`]): every run, the fragility surface
 //! P(overturn | PGA, PGV/PGA) fitted to the runs that came to rest (the others are counted), and
 //! with an ensemble P(overturn) per record × scale and the surface's contours with their bands.
 

@@ -1,4 +1,4 @@
-//! How likely is a field rock to topple (issue 24): an ensemble of runs over what is not known
+//! How likely is a field rock to topple: an ensemble of runs over what is not known
 //! about the rock, its pose and the record, instead of one yes or no.
 //!
 //! # The uncertain inputs ([`Uncertainty`])
@@ -444,7 +444,7 @@ pub fn run_ensemble(
     })
 }
 
-/// The quasi-static side of the rock of `setup` (issue 24, item 3): its support polygon and
+/// The quasi-static side of the rock of `setup`: its support polygon and
 /// tipping acceleration tan α against azimuth ([`crate::tipping`]) on the facet it stands on
 /// ([`base_facet`]), at base-contact tolerance 0 and at each end of `u`'s range.
 pub fn quasi_static(stone: &Stone, setup: &RockSetup, u: &Uncertainty) -> Result<Vec<TippingSummary>> {

@@ -1,5 +1,5 @@
 //! Field rocks: a rock at its true size, in a physical pose, under a recorded three-component
-//! ground motion (issue 11), one record at a time ([`super::batch::run_record`]) or every
+//! ground motion, one record at a time ([`super::batch::run_record`]) or every
 //! record × scale factor of a batch with its fragility surface ([`super::batch::run_batch`]).
 //!
 //! * **Pose** ([`Pose`], [`place`]): as scanned (mesh frame = world frame, +z up, put down under

@@ -1,4 +1,4 @@
-//! Toppling under ground shaking (SPEC §7): a stone standing on the ground, the ground driven
+//! Toppling under ground shaking: a stone standing on the ground, the ground driven
 //! under it by a recorded or synthetic motion.
 //!
 //! * [`drive`] — the one ground drive: a [`crate::ground_motion::Record`] (real time, SI, up to

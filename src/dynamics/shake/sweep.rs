@@ -1,5 +1,5 @@
 //! Fragility curves: P(toppled out of the flock) against the peak ground acceleration, for a
-//! stone resting on its stable micro-equilibria (precariously balanced rocks, SPEC §7).
+//! stone resting on its stable micro-equilibria (precariously balanced rocks).
 //!
 //! The motion is one [`Record`] (real time, SI): a sine pulse ([`sine_pulse`]), filtered noise
 //! ([`crate::ground_motion::synthetic::filtered_noise`]) or a read record. It is scaled to each
