@@ -80,7 +80,7 @@ pub fn at_least<T: std::str::FromStr + TryFrom<u64> + PartialOrd, const MIN: u64
     let min = T::try_from(MIN).map_err(|_| format!("{MIN} is out of range"))?;
     match s.trim().parse::<T>() {
         Ok(v) if v >= min => Ok(v),
-        _ => Err(format!("expected a whole number ≥ {MIN}, got {s:?}")),
+        _ => Err(format!("expected a whole number, at least {MIN}, got {s:?}")),
     }
 }
 

@@ -94,7 +94,7 @@ pub struct BatchArgs {
     /// With --dynamic: the scans' length unit (mm, cm, m, km or metres per unit), so that each
     /// pebble is set down at its real size. Default: every pebble is set down as R_max = 1 cm
     /// whatever its mesh size, and the command says so before running.
-    #[arg(long, requires = "dynamic")]
+    #[arg(long, value_name = "UNIT", requires = "dynamic")]
     pub length_unit: Option<String>,
 }
 

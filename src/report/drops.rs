@@ -35,6 +35,12 @@ impl Scaled {
         format!("{} √(g/R_max){}", number(w / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
     }
 
+    /// A rate (a velocity damping) of the scaled frame: "0.319 √(g/R_max) = 2.37 s⁻¹".
+    pub fn rate(&self, c: f64) -> String {
+        let real = self.r_max_m.map(|l| format!(" = {} s⁻¹", number(c / l.sqrt(), 3)));
+        format!("{} √(g/R_max){}", number(c / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
+    }
+
     /// A time of the scaled frame: "26.1 √(R_max/g) = 3.5 s".
     pub fn time(&self, t: f64) -> String {
         let real = self.r_max_m.map(|l| format!(" = {} s", number(t * l.sqrt(), 3)));
@@ -80,13 +86,13 @@ pub fn drop_summary_sized(r: &crate::montecarlo::DropReport, r_max_m: Option<f64
     );
     let _ = writeln!(
         s,
-        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {}/{} √(g/R_max); dt {}, flight {}",
+        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {} linear, {} angular; dt {}, flight {}",
         number(p.friction, 4),
         number(p.restitution, 4),
         number(p.rolling_resistance, 4),
         number(p.torsional_friction, 4),
-        number(p.linear_damping / crate::GRAVITY.sqrt(), 3),
-        number(p.angular_damping / crate::GRAVITY.sqrt(), 3),
+        at.rate(p.linear_damping),
+        at.rate(p.angular_damping),
         at.time(p.dt),
         p.flight
     );
