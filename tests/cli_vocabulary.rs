@@ -161,3 +161,23 @@ fn no_help_speaks_of_the_scaled_body() {
         assert!(!flat.contains("(s, scaled)") && !flat.contains("Hz, scaled"), "{cmd}: {flat}");
     }
 }
+
+#[test]
+fn the_drop_summary_gives_the_launch_as_multiples_and_for_the_real_stone() {
+    // The throw preset (4 m/s, 25 rad/s rms, dt 1/120 s at R_max = 1 m) on the bundled stone,
+    // R_max = 178.3 mm: speeds × √0.1783, spins ÷ √0.1783, times × √0.1783; multiples of
+    // √(g R_max), √(g/R_max), √(R_max/g) with g = 9.81 m/s².
+    let (ok, out, err) = rocking(&["drop", "-n", "1", "--batch", "1"]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains(
+            "launch: height 2 R_max, horizontal speed 1.28 √(g R_max) = 1.69 m/s, spin 7.98 √(g/R_max) = 59.2 rad/s \
+             (rms, Gaussian) for R_max = 178.3 mm"
+        ),
+        "{out}"
+    );
+    assert!(out.contains("dt 0.0261 √(R_max/g) = 0.00352 s"), "{out}");
+    // No number printed with all its binary digits.
+    assert!(out.contains("rolling resistance 0.001122 R_max"), "{out}");
+    assert!(!out.split(|c: char| !(c.is_ascii_digit() || c == '.')).any(|w| w.len() > 12), "{out}");
+}

@@ -23,31 +23,34 @@ pub struct Scaled {
 }
 
 impl Scaled {
-    /// A speed of the scaled frame: "1.28 √(g R_max) = 0.535 m/s".
+    /// A speed of the scaled frame: "1.28 √(g R_max) = 1.69 m/s" (4 m/s at R_max = 1 m, for the
+    /// bundled stone).
     pub fn speed(&self, v: f64) -> String {
         let real = self.r_max_m.map(|l| format!(" = {} m/s", number(v * l.sqrt(), 3)));
         format!("{} √(g R_max){}", number(v / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
     }
 
-    /// An angular speed of the scaled frame: "3.19 √(g/R_max) = 23.9 rad/s".
+    /// An angular speed of the scaled frame: "7.98 √(g/R_max) = 59.2 rad/s" (25 rad/s at
+    /// R_max = 1 m, for the bundled stone).
     pub fn spin(&self, w: f64) -> String {
         let real = self.r_max_m.map(|l| format!(" = {} rad/s", number(w / l.sqrt(), 3)));
         format!("{} √(g/R_max){}", number(w / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
     }
 
-    /// A rate (a velocity damping) of the scaled frame: "0.319 √(g/R_max) = 2.37 s⁻¹".
+    /// A rate (a velocity damping) of the scaled frame, as [`Scaled::spin`] in s⁻¹.
     pub fn rate(&self, c: f64) -> String {
         let real = self.r_max_m.map(|l| format!(" = {} s⁻¹", number(c / l.sqrt(), 3)));
         format!("{} √(g/R_max){}", number(c / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
     }
 
-    /// A time of the scaled frame: "26.1 √(R_max/g) = 3.5 s".
+    /// A time of the scaled frame: "0.0261 √(R_max/g) = 0.00352 s" (1/120 s at R_max = 1 m, for
+    /// the bundled stone).
     pub fn time(&self, t: f64) -> String {
         let real = self.r_max_m.map(|l| format!(" = {} s", number(t * l.sqrt(), 3)));
         format!("{} √(R_max/g){}", number(t * crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
     }
 
-    /// ", for R_max = 17.8 cm" when the real size is known.
+    /// " for R_max = 178.3 mm" when the real size is known.
     pub fn for_size(&self) -> String {
         self.r_max_m.map_or(String::new(), |l| format!(" for R_max = {}", crate::dynamics::size::format_length(l)))
     }
