@@ -3,7 +3,7 @@
 
 mod cmd;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// Equilibria, flocks and rocking positions of pebbles and rocking stones.
 #[derive(Parser)]
@@ -33,8 +33,24 @@ enum Command {
     Study(cmd::study::Args),
 }
 
+/// Every command and subcommand takes a negative number as an option's value (`--nu -0.5`), so
+/// that the option's own check, not the parser, says what values are allowed.
+fn negative_numbers_allowed(mut c: clap::Command) -> clap::Command {
+    let names: Vec<String> = c.get_subcommands().map(|s| s.get_name().to_string()).collect();
+    for name in names {
+        c = c.mut_subcommand(name, negative_numbers_allowed);
+    }
+    c.allow_negative_numbers(true)
+}
+
+/// The command line as parsed (clap's own errors, help and version exit here).
+fn parse() -> Cli {
+    let matches = negative_numbers_allowed(Cli::command()).get_matches();
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+}
+
 fn main() {
-    let cli = Cli::parse();
+    let cli = parse();
     let result = match cli.command {
         Command::Analyze(a) => cmd::analyze::run(a),
         Command::Generate(a) => cmd::generate::run(a),

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result};
 use rayon::prelude::*;
-use rocking_stones::analysis::{check_coplanar_tol, check_nu, Analysis, Options, Report};
+use rocking_stones::analysis::{Analysis, Options, Report};
 use rocking_stones::bundled;
 use rocking_stones::report;
 use std::io::Write;
@@ -18,14 +18,14 @@ pub struct Args {
     pub json: bool,
     /// Fix ν of the macro scale (default: the automatic plateau; the paper's hand experimenter
     /// is 0.0035).
-    #[arg(long, value_parser = parse_nu)]
+    #[arg(long, value_parser = super::parse_nu)]
     pub nu: Option<f64>,
     /// A known centre of mass x,y,z (mesh units) instead of the homogeneous solid's G: a
     /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
-    #[arg(long, value_parser = super::parse_point)]
+    #[arg(long, value_parser = super::parse_point, allow_hyphen_values = true)]
     pub center_of_mass: Option<rocking_stones::Point3>,
     /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal), in (0, 1e-3].
-    #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = parse_coplanar_tol)]
+    #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = super::parse_coplanar_tol)]
     pub coplanar_tol: f64,
     /// Write report.json, plots (n(ν), hull picture), a flock-coloured PLY and report.html (the
     /// summary, the plots and an interactive 3D view of the hull) into this folder.
@@ -34,22 +34,12 @@ pub struct Args {
     /// Length unit of the mesh coordinates (mm, cm, m, in, …): labels volume (unit³), area
     /// (unit²), G, axes and R in the summary and report.html. Default: "mesh units" ("mm" for the
     /// bundled stone). A label only: no count, ν, flock or basin depends on the real size (the
-    /// dynamics commands do, and take --length-unit / --size).
-    #[arg(long, value_name = "UNIT")]
-    pub unit: Option<String>,
+    /// dynamics commands do, and take --length-unit / --size). Also spelled --unit.
+    #[arg(long = "length-unit", alias = "unit", value_name = "UNIT")]
+    pub length_unit: Option<String>,
     /// CSV file for a batch (several files or a folder); default: standard output.
     #[arg(long)]
     pub csv: Option<PathBuf>,
-}
-
-fn parse_nu(s: &str) -> Result<f64, String> {
-    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    check_nu(v).map_err(|e| e.spelled(&super::flag))
-}
-
-fn parse_coplanar_tol(s: &str) -> Result<f64, String> {
-    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    check_coplanar_tol(v).map_err(|e| e.spelled(&super::flag))
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -128,7 +118,7 @@ fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
     let (analysis, name) = load_analysis(path.map(|p| p.as_path()), opts)?;
     warn(&name, &analysis.repairs);
     let report = analysis.report(&name, opts);
-    let unit = super::default_unit(&name, args.unit.as_ref());
+    let unit = super::default_unit(&name, args.length_unit.as_ref());
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -20,12 +20,12 @@ pub struct Args {
     /// Mesh file (STL, OBJ, PLY). None: the bundled default stone.
     pub mesh: Option<PathBuf>,
     /// Number of drops in the whole run (≥ 1).
-    #[arg(short = 'n', long, default_value_t = 1000)]
+    #[arg(short = 'n', long, default_value_t = 1000, value_parser = super::at_least::<u64, 1>)]
     pub drops: u64,
     /// Seed: drop i uses its own stream derived from (seed, i).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
-    /// Print the report as JSON.
+    /// Print the report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
     /// Launch protocol: throw (a hand throw onto a table, calibrated on measured dice), drop
@@ -41,49 +41,57 @@ pub struct Args {
     /// divided by it. Default: the bundled stone's (R_max = 178 mm); for any other mesh
     /// R_max = 1 cm (the presets' reference size, a die) is assumed, and the command says so
     /// before running. A size outside R_max 2 mm to 20 m is warned about.
-    #[arg(long)]
+    #[arg(long, value_name = "R_MAX_M")]
     pub size: Option<f64>,
     /// The mesh's length unit (mm, cm, m, km or metres per unit), instead of --size; default as
     /// --size's.
-    #[arg(long, conflicts_with = "size")]
+    #[arg(long, value_name = "UNIT", conflicts_with = "size")]
     pub length_unit: Option<String>,
-    /// Release height of the lowest point, in units of R_max.
+    /// Release height of the lowest point above the ground, in R_max (default: the preset's).
     #[arg(long)]
     pub height: Option<f64>,
-    /// Horizontal release speed (m/s of the body scaled to R_max = 1 m).
+    /// Horizontal release speed V in m/s at R_max = 1 m: V/3.13 √(g R_max), V·√(R_max / 1 m) m/s
+    /// for the real stone (default: the preset's).
     #[arg(long)]
     pub horizontal_speed: Option<f64>,
-    /// Release angular speed (rad/s of the scaled body; rms for the Gaussian law of the presets).
+    /// Release angular speed W in rad/s at R_max = 1 m: W/3.13 √(g/R_max), W/√(R_max / 1 m) rad/s
+    /// for the real stone; rms for the Gaussian law of the presets (default: the preset's).
     #[arg(long)]
     pub spin: Option<f64>,
+    /// Coulomb friction coefficient, ≥ 0 (default: the --surface pair's).
     #[arg(long)]
     pub friction: Option<f64>,
+    /// Restitution coefficient in [0, 1] (default: the --surface pair's).
     #[arg(long)]
     pub restitution: Option<f64>,
-    /// Rolling-resistance length δ / R_max (torque ≤ δ N at the contact).
+    /// Rolling-resistance length δ / R_max (torque ≤ δ N at the contact); default: the --surface
+    /// pair's δ over the real R_max.
     #[arg(long)]
     pub rolling_resistance: Option<f64>,
-    /// Torsional-friction length δ_t / R_max.
+    /// Torsional-friction length δ_t / R_max (default: the preset's).
     #[arg(long)]
     pub torsional_friction: Option<f64>,
-    /// Global linear velocity damping (1/s); 0 except in the quasi-static preset.
+    /// Global linear velocity damping C in 1/s at R_max = 1 m: C/3.13 √(g/R_max); 0 except in
+    /// the quasi-static preset.
     #[arg(long)]
     pub linear_damping: Option<f64>,
-    /// Global angular velocity damping (1/s); 0 except in the quasi-static preset.
+    /// Global angular velocity damping C in 1/s at R_max = 1 m: C/3.13 √(g/R_max); 0 except in
+    /// the quasi-static preset.
     #[arg(long)]
     pub angular_damping: Option<f64>,
-    /// Time step (s of the scaled body), a number or a fraction such as 1/240
-    /// (default: the preset's longest stable step, 1/120).
+    /// Time step T in s at R_max = 1 m, a number or a fraction such as 1/240: 3.13 T √(R_max/g),
+    /// T·√(R_max / 1 m) s for the real stone (default: the preset's longest stable step, 1/120).
     #[arg(long, value_parser = parse_step)]
     pub dt: Option<f64>,
-    /// Time cap per drop (s of the scaled body).
+    /// Time cap per drop T in s at R_max = 1 m: 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the
+    /// real stone (default: the preset's).
     #[arg(long)]
     pub max_time: Option<f64>,
     /// Rapier's solver sub-steps per time step (default 4). Impacts are completed by the contact
     /// law whatever this is, so the per-flock statistics at 4 are those at 32 on the bundled
     /// stone, a pebble and a box (paired test, results/drops_vs_mujoco/); more cost in
     /// proportion.
-    #[arg(long)]
+    #[arg(long, value_parser = super::at_least::<usize, 1>)]
     pub solver_iterations: Option<usize>,
     /// How the flight between contacts is integrated: free (the default: outside the physics
     /// engine, exactly as a free rigid body, handed to it at the exact instant of touch-down,
@@ -116,18 +124,19 @@ pub struct Args {
     #[arg(long, default_value = "facet", value_parser = parse_certificate)]
     pub certificate: CertificateMode,
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_nu)]
     pub nu: Option<f64>,
     /// A known centre of mass x,y,z (mesh units) instead of the homogeneous solid's G: a
     /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
-    #[arg(long, value_parser = super::parse_point)]
+    #[arg(long, value_parser = super::parse_point, allow_hyphen_values = true)]
     pub center_of_mass: Option<rocking_stones::Point3>,
     /// Stones simulated together in one physics world (they touch only the ground; every drop's
     /// outcome is the same for any value); 1: each drop alone in its own world.
     #[arg(long, default_value_t = rocking_stones::montecarlo::DEFAULT_BATCH, value_parser = parse_batch)]
     pub batch: usize,
-    /// Run only shard i of n (drops i, i+n, i+2n, …); combine with `rocking merge`.
-    #[arg(long)]
+    /// Run only shard i of n, given as i/n (drops i, i+n, i+2n, …); combine with `rocking
+    /// merge` (default: the whole run).
+    #[arg(long, value_name = "I/N", allow_hyphen_values = true)]
     pub shard: Option<String>,
     /// Append every finished drop to this file (JSON lines) as the run goes.
     #[arg(long)]
@@ -188,11 +197,15 @@ pub struct MergeArgs {
     /// The mesh, if it is not at the path recorded in the results.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
-    /// ν at which flocks are read (as in `rocking drop`).
-    #[arg(long)]
+    /// ν at which flocks are read (as in `rocking drop`; default: the automatic plateau, else
+    /// 0.0035).
+    #[arg(long, value_parser = super::parse_nu)]
     pub nu: Option<f64>,
+    /// Print the merged report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
+    /// Write drops.json, the bar plots (per flock, per facet) and report.html of the merged run
+    /// into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }
@@ -347,17 +360,12 @@ fn emit(
 ) -> Result<()> {
     use rocking_stones::report;
     let sized = Sized { report, r_max_m: size.map(|s| s.r_max_m), size_assumed: size.map(RealSize::assumed) };
-    super::emit(
-        &sized,
-        json,
-        || report::drop_summary(report),
-        output,
-        |dir| {
-            let mut w = report::write_drop_outputs(report, dir)?;
-            let view = super::hull_view(analysis, &report.mesh, nu);
-            let title = format!("rocking drop: {}", report::short_name(&report.mesh));
-            report::html::add_page(dir, &mut w, &title, &report::drop_summary(report), Some(&view))?;
-            Ok(w)
-        },
-    )
+    let summary = || report::drop_summary_sized(report, sized.r_max_m);
+    super::emit(&sized, json, summary, output, |dir| {
+        let mut w = report::write_drop_outputs(report, dir)?;
+        let view = super::hull_view(analysis, &report.mesh, nu);
+        let title = format!("rocking drop: {}", report::short_name(&report.mesh));
+        report::html::add_page(dir, &mut w, &title, &summary(), Some(&view))?;
+        Ok(w)
+    })
 }

@@ -21,7 +21,7 @@ pub struct Args {
     pub axes: Option<[f64; 3]>,
     /// Number of points (ellipsoid, pebble) [default: 2000] or grid cells per face side
     /// (noisy-box) [default: 10].
-    #[arg(short)]
+    #[arg(short, value_parser = super::at_least::<usize, 1>)]
     pub n: Option<usize>,
     /// Relative radial noise amplitude in [0, 1) of ellipsoid [default: 0] and noisy-box
     /// [default: 0.01].
@@ -31,7 +31,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     pub roughness: Option<f64>,
     /// Seed of the random shapes (ellipsoid, noisy-box, pebble).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
     /// Output file; the format follows the extension (.stl, .ply, .obj).
     #[arg(short, long)]

@@ -72,6 +72,30 @@ pub fn real_size(
     Ok(real)
 }
 
+/// A whole number of at least `MIN` (a count, an id, a seed), refused in the option's words: a
+/// negative or fractional value names the allowed range instead of a parser's message.
+pub fn at_least<T: std::str::FromStr + TryFrom<u64> + PartialOrd, const MIN: u64>(
+    s: &str,
+) -> std::result::Result<T, String> {
+    let min = T::try_from(MIN).map_err(|_| format!("{MIN} is out of range"))?;
+    match s.trim().parse::<T>() {
+        Ok(v) if v >= min => Ok(v),
+        _ => Err(format!("expected a whole number, at least {MIN}, got {s:?}")),
+    }
+}
+
+/// ν of the macro scale, checked as the library checks it.
+pub fn parse_nu(s: &str) -> std::result::Result<f64, String> {
+    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
+    rocking_stones::analysis::check_nu(v).map_err(|e| e.spelled(&flag))
+}
+
+/// The relative coplanarity tolerance of the facet merge, checked as the library checks it.
+pub fn parse_coplanar_tol(s: &str) -> std::result::Result<f64, String> {
+    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
+    rocking_stones::analysis::check_coplanar_tol(v).map_err(|e| e.spelled(&flag))
+}
+
 /// Parse `x,y,z` (three finite numbers) as a point.
 pub fn parse_point(s: &str) -> std::result::Result<rocking_stones::Point3, String> {
     let v: Vec<f64> = s

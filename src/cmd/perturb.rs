@@ -30,11 +30,11 @@ pub struct SimArgs {
     /// the motion). Default: mm for the bundled stone (a 30 cm quarry stone, R_max = 178 mm);
     /// for any other mesh m is assumed, and the command says so before running. A size outside
     /// R_max 2 mm to 20 m is warned about.
-    #[arg(long, conflicts_with = "size")]
+    #[arg(long, value_name = "UNIT", conflicts_with = "size")]
     pub length_unit: Option<String>,
     /// The stone's real size as R_max in metres (the largest distance from G to the hull),
     /// instead of --length-unit; default as --length-unit's.
-    #[arg(long)]
+    #[arg(long, value_name = "R_MAX_M")]
     pub size: Option<f64>,
     /// Coulomb friction coefficient (default: the surface pair's).
     #[arg(long)]
@@ -45,25 +45,28 @@ pub struct SimArgs {
     /// Rolling-resistance length δ_r / R_max (default: the surface pair's δ over the real size).
     #[arg(long)]
     pub rolling_resistance: Option<f64>,
-    /// Time step (s of the scaled 1 m body). Default 1/240 s.
+    /// Time step T in s at R_max = 1 m: 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the real
+    /// stone (default 1/240).
     #[arg(long)]
     pub dt: Option<f64>,
-    /// Time cap per trial after the perturbation / the motion (s, scaled). Default 20 s.
+    /// Time cap per trial after the perturbation / the motion, T in s at R_max = 1 m:
+    /// 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the real stone (default 20).
     #[arg(long)]
     pub max_time: Option<f64>,
     /// Rapier's solver sub-steps per time step (default 4; more cost in proportion, as for
     /// `rocking drop`).
-    #[arg(long)]
+    #[arg(long, value_parser = super::at_least::<usize, 1>)]
     pub solver_iterations: Option<usize>,
-    /// Natural frequency (Hz, scaled) of the soft contact constraints. Default 120 Hz.
+    /// Natural frequency F of the soft contact constraints in Hz at R_max = 1 m:
+    /// F/3.13 cycles per √(R_max/g), F/√(R_max / 1 m) Hz for the real stone (default 120).
     #[arg(long)]
     pub contact_frequency: Option<f64>,
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_nu)]
     pub nu: Option<f64>,
     /// A known centre of mass x,y,z (mesh units) instead of the homogeneous solid's G: a
     /// weighted die, a hollow print, a scan of only the hull (inertia taken about it).
-    #[arg(long, value_parser = super::parse_point)]
+    #[arg(long, value_parser = super::parse_point, allow_hyphen_values = true)]
     pub center_of_mass: Option<rocking_stones::Point3>,
 }
 
@@ -112,31 +115,32 @@ pub struct Args {
     pub mesh: Option<PathBuf>,
     /// Perturb only these stable micro-equilibria (index as in `rocking analyze --json`;
     /// repeatable). Default: every stable micro-equilibrium.
-    #[arg(long = "equilibrium", value_name = "ID", conflicts_with = "flock")]
+    #[arg(long = "equilibrium", value_name = "ID", conflicts_with = "flock", value_parser = super::at_least::<usize, 0>)]
     pub equilibria: Vec<usize>,
     /// Perturb the stable micro-equilibria of this flock.
-    #[arg(long, value_name = "ID")]
+    #[arg(long, value_name = "ID", value_parser = super::at_least::<usize, 0>)]
     pub flock: Option<usize>,
     /// push: impulse at a random surface point in a random inward direction; spin: angular
     /// velocity about a random axis through the contact point.
     #[arg(long, default_value = "push", value_parser = parse_family)]
     pub family: Family,
     /// Trials per equilibrium and ε.
-    #[arg(short = 'n', long, default_value_t = 40)]
+    #[arg(short = 'n', long, default_value_t = 40, value_parser = super::at_least::<u32, 1>)]
     pub trials: u32,
     /// Seed: trial k of equilibrium i uses its own stream (the same at every ε).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
-    /// Smallest ε = kinetic energy / (m g R_max) of the log grid.
+    /// Smallest ε = kinetic energy / (m g R_max) of the log grid (dimensionless).
     #[arg(long, default_value_t = 1e-5)]
     pub eps_min: f64,
-    /// Largest ε of the grid.
+    /// Largest ε of the grid (dimensionless).
     #[arg(long, default_value_t = 1.0)]
     pub eps_max: f64,
     /// Number of ε values (log-spaced).
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = super::at_least::<usize, 1>)]
     pub eps_steps: usize,
-    /// ε* of the dynamic rocking/regular classification (default: the macro-scale ν).
+    /// ε* of the dynamic rocking/regular classification, dimensionless as ε (default: the
+    /// macro-scale ν).
     #[arg(long)]
     pub epsilon_star: Option<f64>,
     /// End trials as soon as the energy certificate decides their outcome (faster; the
@@ -145,7 +149,7 @@ pub struct Args {
     pub certificate: bool,
     #[command(flatten)]
     pub sim: SimArgs,
-    /// Print the report as JSON.
+    /// Print the report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
     /// Write perturb.json, CSVs (curves, thresholds, trials), plots and report.html into this folder.
@@ -156,6 +160,9 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
         bail!("need 0 < --eps-min ≤ --eps-max and --eps-steps ≥ 1");
+    }
+    if let Some(e) = args.epsilon_star.filter(|e| !(*e > 0.0 && e.is_finite())) {
+        bail!("--epsilon-star must be a positive energy ε (kinetic energy / (m g R_max)), got {e}");
     }
     let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let size = args.sim.real_size(&stone, &name)?;

@@ -40,15 +40,16 @@ pub struct EllipseArgs {
     #[arg(long)]
     pub a: f64,
     /// N = 4k − 2 sides.
-    #[arg(long, required_unless_present = "sides", conflicts_with = "sides")]
+    #[arg(long, required_unless_present = "sides", conflicts_with = "sides", value_parser = super::at_least::<usize, 1>)]
     pub k: Option<usize>,
     /// Number of sides N directly (instead of --k).
-    #[arg(long)]
+    #[arg(long, value_parser = super::at_least::<usize, 3>)]
     pub sides: Option<usize>,
+    /// How the N vertices are placed on the ellipse.
     #[arg(long, value_enum, default_value_t = SamplingArg::Arclength)]
     pub sampling: SamplingArg,
     /// Seed of --sampling random.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
     #[command(flatten)]
     pub common: Common,
@@ -57,7 +58,7 @@ pub struct EllipseArgs {
 #[derive(clap::Args)]
 pub struct RegularArgs {
     /// Number of sides (at least 3).
-    #[arg(short = 'n', long = "sides", alias = "n")]
+    #[arg(short = 'n', long = "sides", alias = "n", value_parser = super::at_least::<usize, 3>)]
     pub n: usize,
     #[command(flatten)]
     pub common: Common,
@@ -106,6 +107,9 @@ pub fn run(args: Args) -> Result<()> {
         Shape::Regular(r) if r.n < 3 => anyhow::bail!("-n (sides) must be at least 3 for a polygon, got {}", r.n),
         Shape::Regular(r) => (Polygon::regular(r.n, 1.0, 0.0)?, ShapeInfo::Regular { n: r.n }, &r.common),
     };
+    if !(common.degeneracy_tol > 0.0 && common.degeneracy_tol.is_finite()) {
+        anyhow::bail!("--degeneracy-tol must be a positive finite number, got {}", common.degeneracy_tol);
+    }
     if let Some(nu) = common.nu {
         anyhow::ensure!(nu.is_finite() && nu >= 0.0, "--nu must be a non-negative number, got {nu}");
     }

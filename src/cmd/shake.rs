@@ -21,10 +21,10 @@ pub struct Args {
     pub mesh: Option<PathBuf>,
     /// Shake the stone resting on these stable micro-equilibria (repeatable). Default: the
     /// deepest regular one and the rocking one with the highest basin barrier.
-    #[arg(long = "equilibrium", value_name = "ID", conflicts_with = "pose")]
+    #[arg(long = "equilibrium", value_name = "ID", conflicts_with = "pose", value_parser = super::at_least::<usize, 0>)]
     pub equilibria: Vec<usize>,
     /// Sine pulse: amplitude (g), frequency (Hz, real: for the stone at its real size), cycles.
-    #[arg(long, value_name = "AMP,FREQ,CYCLES", value_parser = parse_pulse, conflicts_with_all = ["motion", "pose"])]
+    #[arg(long, value_name = "AMP,FREQ,CYCLES", value_parser = parse_pulse, allow_hyphen_values = true, conflicts_with_all = ["motion", "pose"])]
     pub pulse: Option<[f64; 3]>,
     /// Ground motion: a CSV (columns --columns, unit --accel-unit; real time) or one to three
     /// PEER .AT2 files (x, y, z components; repeat the option).
@@ -41,14 +41,14 @@ pub struct Args {
     #[arg(long, default_value = "g")]
     pub accel_unit: String,
     /// Polynomial baseline correction of the records (order 0–3) before use.
-    #[arg(long, value_name = "ORDER")]
+    #[arg(long, value_name = "ORDER", value_parser = super::at_least::<usize, 0>)]
     pub baseline: Option<usize>,
     /// Field rock: a folder of records (*.csv read with --columns/--accel-unit; each *.AT2 file
     /// is one record along x), each run at every --scales factor, in parallel.
     #[arg(long, value_name = "DIR", conflicts_with = "motion", requires = "pose")]
     pub records: Option<PathBuf>,
-    /// Field rock: scale factors applied to every record.
-    #[arg(long, value_delimiter = ',', default_value = "1", requires = "pose")]
+    /// Field rock: scale factors (≥ 0) applied to every record, comma-separated (default 1).
+    #[arg(long, value_delimiter = ',', default_value = "1", requires = "pose", allow_hyphen_values = true)]
     pub scales: Vec<f64>,
     /// Field rock batch: continue the batch journalled in -o DIR (DIR/runs.jsonl): the runs it
     /// holds are kept, only the others run (records and scale factors may be added).
@@ -56,53 +56,60 @@ pub struct Args {
     pub resume: bool,
     /// Sweep the peak ground acceleration from PGA_MAX/STEPS to PGA_MAX (g), scaling the motion
     /// to each: fragility curves. Without a motion the default is a sweep up to 1 g of 2 sine
-    /// cycles at 2/√R_max Hz (R_max in metres; 2 Hz of the scaled 1 m body); with --pulse or
+    /// cycles at 2/√(R_max / 1 m) Hz (0.639 cycles per √(R_max/g)); with --pulse or
     /// --motion and no --pga-max, the motion is run at its own amplitude only.
     #[arg(long, conflicts_with = "pose")]
     pub pga_max: Option<f64>,
     /// Number of PGAs of the sweep.
-    #[arg(long, default_value_t = 20, conflicts_with = "pose")]
+    #[arg(long, default_value_t = 20, conflicts_with = "pose", value_parser = super::at_least::<usize, 1>)]
     pub pga_steps: usize,
     /// Shake along this azimuth (degrees, in the frame of the resting stone) instead of a
     /// random azimuth per trial. With --pose: the azimuth (degrees, world frame) of the
     /// records' x axis (default 0).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub azimuth: Option<f64>,
     /// Trials per equilibrium and PGA.
-    #[arg(short = 'n', long, default_value_t = 40, conflicts_with = "pose")]
+    #[arg(short = 'n', long, default_value_t = 40, conflicts_with = "pose", value_parser = super::at_least::<u32, 1>)]
     pub trials: u32,
     /// Seed of the random azimuths; with --pose --ensemble, of the members' draws.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
     /// Field rock: an ensemble of N members over what is not known: every member
     /// draws the uncertain inputs below uniformly from their ranges; the result is P(overturn)
     /// with its 95 % interval and the inputs it is most sensitive to. Friction, restitution and
     /// rolling resistance range over the surface pair's published ranges unless pinned (--friction,
     /// --restitution, --rolling-resistance) or given (--friction-range, …).
-    #[arg(long, value_name = "N", requires = "pose")]
+    #[arg(long, value_name = "N", requires = "pose", value_parser = super::at_least::<u64, 1>)]
     pub ensemble: Option<u64>,
     /// Ensemble: base-contact tolerance in the mesh's length unit, T (uniform in [0, T]) or
     /// LOW,HIGH: hull corners within it of the base plane carry load (the collider's base is
     /// flattened onto that plane; mass and pose unchanged).
-    #[arg(long, value_name = "T|LOW,HIGH", requires = "ensemble")]
+    #[arg(long, value_name = "T|LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
     pub contact_tolerance: Option<String>,
     /// Ensemble: azimuth of the records' x axis, degrees: LOW,HIGH, or `unknown` (0–360).
-    #[arg(long, value_name = "LOW,HIGH|unknown", requires = "ensemble", conflicts_with = "azimuth")]
+    #[arg(
+        long,
+        value_name = "LOW,HIGH|unknown",
+        requires = "ensemble",
+        conflicts_with = "azimuth",
+        allow_hyphen_values = true
+    )]
     pub azimuth_range: Option<String>,
     /// Ensemble: the record's sign is unknown (each member flips it with probability ½).
     #[arg(long, requires = "ensemble")]
     pub random_sign: bool,
     /// Ensemble: friction coefficient range LOW,HIGH.
-    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble")]
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
     pub friction_range: Option<String>,
     /// Ensemble: restitution range LOW,HIGH.
-    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble")]
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
     pub restitution_range: Option<String>,
     /// Ensemble: rolling-resistance length range LOW,HIGH in mm.
-    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble")]
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
     pub rolling_resistance_range: Option<String>,
     #[command(flatten)]
     pub sim: SimArgs,
+    /// Print the report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
     /// Write shake.json, fragility.csv, trials.csv, fragility.png/.svg and report.html into this folder.

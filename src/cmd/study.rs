@@ -6,7 +6,7 @@
 //! * `rocking study fit-nu [--table TABLE2.csv] [-o DIR] …` (default: the bundled Table 2)
 
 use anyhow::{Context, Result};
-use rocking_stones::analysis::{check_nu, Options, PAPER_NU};
+use rocking_stones::analysis::{Options, PAPER_NU};
 use rocking_stones::dynamics::params::{DropParams, REFERENCE_R_MAX_M};
 use rocking_stones::dynamics::size::format_length;
 use rocking_stones::report;
@@ -45,13 +45,13 @@ pub struct DynamicArgs {
     #[arg(long)]
     pub dynamic: bool,
     /// Set-downs per pebble.
-    #[arg(long, default_value_t = study::DEFAULT_TRIALS)]
+    #[arg(long, default_value_t = study::DEFAULT_TRIALS, value_parser = super::at_least::<u64, 1>)]
     pub trials: u64,
     /// Release height of a set-down, in units of R_max.
     #[arg(long, default_value_t = study::DEFAULT_SET_DOWN_HEIGHT)]
     pub height: f64,
     /// Seed of the experimenter's hands (and of the synthetic pebbles).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
 }
 
@@ -81,10 +81,10 @@ pub struct BatchArgs {
     #[arg(long)]
     pub allow_unmatched: bool,
     /// ν of the hand-experiment columns (the paper's hand experimenter: 0.0035).
-    #[arg(long, default_value_t = PAPER_NU, value_parser = parse_nu)]
+    #[arg(long, default_value_t = PAPER_NU, value_parser = super::parse_nu)]
     pub nu: f64,
     /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal).
-    #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL)]
+    #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = super::parse_coplanar_tol)]
     pub coplanar_tol: f64,
     /// Output folder (pebbles.csv, samples.csv, zingg.png/.svg).
     #[arg(short, long, default_value = "study")]
@@ -94,7 +94,7 @@ pub struct BatchArgs {
     /// With --dynamic: the scans' length unit (mm, cm, m, km or metres per unit), so that each
     /// pebble is set down at its real size. Default: every pebble is set down as R_max = 1 cm
     /// whatever its mesh size, and the command says so before running.
-    #[arg(long, requires = "dynamic")]
+    #[arg(long, value_name = "UNIT", requires = "dynamic")]
     pub length_unit: Option<String>,
 }
 
@@ -108,10 +108,10 @@ pub struct PopulationArgs {
     #[arg(long, default_value_t = 0.05)]
     pub roughness: f64,
     /// Points per pebble (the scan resolution).
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = 2000, value_parser = super::at_least::<usize, 0>)]
     pub points: usize,
     /// Pebbles per sample.
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = super::at_least::<usize, 1>)]
     pub count: usize,
     /// Do not correct the generator's ratios to make the measured mean ratios hit the target.
     #[arg(long)]
@@ -120,6 +120,9 @@ pub struct PopulationArgs {
 
 impl PopulationArgs {
     fn params(&self, seed: u64) -> Result<PopulationParams> {
+        if !(self.spread >= 0.0 && self.spread.is_finite()) {
+            anyhow::bail!("--spread must be a finite number ≥ 0, got {}", self.spread);
+        }
         if !(0.0..1.0).contains(&self.roughness) {
             anyhow::bail!("--roughness must be in [0, 1), got {}", self.roughness);
         }
@@ -153,7 +156,7 @@ pub struct SyntheticArgs {
     #[arg(long, default_value = "synthetic")]
     pub name: String,
     /// ν of the hand-experiment counts.
-    #[arg(long, default_value_t = PAPER_NU, value_parser = parse_nu)]
+    #[arg(long, default_value_t = PAPER_NU, value_parser = super::parse_nu)]
     pub nu: f64,
     #[command(flatten)]
     pub population: PopulationArgs,
@@ -179,32 +182,27 @@ pub struct FitArgs {
     #[command(flatten)]
     pub population: PopulationArgs,
     /// Seed of the synthetic pebbles and of the bootstrap.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::at_least::<u64, 0>)]
     pub seed: u64,
     /// Smallest ν of the grid.
-    #[arg(long, default_value_t = 1e-5, value_parser = parse_nu)]
+    #[arg(long, default_value_t = 1e-5, value_parser = super::parse_nu)]
     pub nu_min: f64,
     /// Largest ν of the grid.
-    #[arg(long, default_value_t = 0.1, value_parser = parse_nu)]
+    #[arg(long, default_value_t = 0.1, value_parser = super::parse_nu)]
     pub nu_max: f64,
     /// Grid points per decade of ν.
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = 20, value_parser = super::at_least::<usize, 1>)]
     pub per_decade: usize,
     /// Fit only the stable columns E(S), σ(S) (the ones a person setting pebbles down observes
     /// most directly); the U columns are still reported.
     #[arg(long)]
     pub s_only: bool,
     /// Bootstrap replicates for the uncertainty of ν.
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, default_value_t = 200, value_parser = super::at_least::<usize, 0>)]
     pub bootstrap: usize,
     /// Output folder.
     #[arg(short, long, default_value = "study_fit_nu")]
     pub output: PathBuf,
-}
-
-fn parse_nu(s: &str) -> Result<f64, String> {
-    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
-    check_nu(v).map_err(|e| e.spelled(&super::flag))
 }
 
 pub fn run(args: Args) -> Result<()> {

@@ -426,11 +426,28 @@ impl Stone {
                     crate::Error::parameter(
                         "equilibrium",
                         id,
-                        format!("a stable micro-equilibrium; stable ones: {}", list()),
+                        format!(
+                            "the index of a stable micro-equilibrium{}; stable ones: {}",
+                            self.facet_hint(id),
+                            list()
+                        ),
                     )
                 })
             })
             .collect()
+    }
+
+    /// What to say of an id that is not a stable micro-equilibrium's index when it is the number
+    /// of a hull facet a stable micro-equilibrium rests on (the analysis summary prints both):
+    /// "; hull facet 174 holds stable micro-equilibrium 3", else "".
+    pub fn facet_hint(&self, id: usize) -> String {
+        let on: Vec<String> =
+            self.stable().iter().filter(|s| s.facet as usize == id).map(|s| s.index.to_string()).collect();
+        match on.len() {
+            0 => String::new(),
+            1 => format!("; hull facet {id} holds stable micro-equilibrium {}", on[0]),
+            _ => format!("; hull facet {id} holds stable micro-equilibria {}", on.join(", ")),
+        }
     }
 
     /// The position in [`Stone::stable`] of micro-equilibrium `index` (an index into the

@@ -119,13 +119,15 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
     } else {
         let _ = writeln!(
             s,
-            "  rocking  {} (stable micro-equilibria inside unstable/saddle flocks):",
+            "  rocking  {} (stable micro-equilibria inside unstable/saddle flocks; equilibrium ids as \
+             --equilibrium and --pose facet:ID take them):",
             plural(r.rocking.len() as u64, "rocking equilibrium", "rocking equilibria")
         );
         for q in r.rocking.iter().take(10) {
             let _ = writeln!(
                 s,
-                "           facet {:>6}  R/R_max = {:.5}  in {} flock {}  at ({}, {}, {}) {}",
+                "           equilibrium {:>5} (facet {:>6})  R/R_max = {:.5}  in {} flock {}  at ({}, {}, {}) {}",
+                q.index,
                 q.facet,
                 q.r_normalised,
                 q.flock_type,

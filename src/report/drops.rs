@@ -1,14 +1,64 @@
 //! What a person reads of a drop run ([`crate::montecarlo`]): the summary, `drops.json` and the
 //! bar plots of resting flocks and facets against the quasi-static probabilities.
 
+use super::names::number;
 use super::{write_json, Folder};
 use crate::plot::{render, DrawResult, FONT_FAMILY};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// A readable summary of a drop run.
+/// A readable summary of a drop run whose real size is not known here (merged shards): speeds,
+/// spins and times as multiples of √(g R_max), √(g/R_max) and √(R_max/g).
 pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
+    drop_summary_sized(r, None)
+}
+
+/// The run's speeds, spins and times (kept in the frame scaled to R_max = 1 m, g = 9.81 m/s²) as
+/// the dimensionless multiples they are, and, for a stone of real R_max `r_max_m` metres, in SI
+/// units of the real stone (Froude scaling, [`crate::dynamics::params`]).
+pub struct Scaled {
+    /// The real R_max in metres, if known.
+    pub r_max_m: Option<f64>,
+}
+
+impl Scaled {
+    /// A speed of the scaled frame: "1.28 √(g R_max) = 1.69 m/s" (4 m/s at R_max = 1 m, for the
+    /// bundled stone).
+    pub fn speed(&self, v: f64) -> String {
+        let real = self.r_max_m.map(|l| format!(" = {} m/s", number(v * l.sqrt(), 3)));
+        format!("{} √(g R_max){}", number(v / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
+    }
+
+    /// An angular speed of the scaled frame: "7.98 √(g/R_max) = 59.2 rad/s" (25 rad/s at
+    /// R_max = 1 m, for the bundled stone).
+    pub fn spin(&self, w: f64) -> String {
+        let real = self.r_max_m.map(|l| format!(" = {} rad/s", number(w / l.sqrt(), 3)));
+        format!("{} √(g/R_max){}", number(w / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
+    }
+
+    /// A rate (a velocity damping) of the scaled frame, as [`Scaled::spin`] in s⁻¹.
+    pub fn rate(&self, c: f64) -> String {
+        let real = self.r_max_m.map(|l| format!(" = {} s⁻¹", number(c / l.sqrt(), 3)));
+        format!("{} √(g/R_max){}", number(c / crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
+    }
+
+    /// A time of the scaled frame: "0.0261 √(R_max/g) = 0.00352 s" (1/120 s at R_max = 1 m, for
+    /// the bundled stone).
+    pub fn time(&self, t: f64) -> String {
+        let real = self.r_max_m.map(|l| format!(" = {} s", number(t * l.sqrt(), 3)));
+        format!("{} √(R_max/g){}", number(t * crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
+    }
+
+    /// " for R_max = 178.3 mm" when the real size is known.
+    pub fn for_size(&self) -> String {
+        self.r_max_m.map_or(String::new(), |l| format!(" for R_max = {}", crate::dynamics::size::format_length(l)))
+    }
+}
+
+/// A readable summary of a drop run on a stone of real R_max `r_max_m` metres if known.
+pub fn drop_summary_sized(r: &crate::montecarlo::DropReport, r_max_m: Option<f64>) -> String {
+    let at = Scaled { r_max_m };
     let mut s = String::new();
     let p = &r.params;
     let plural = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
@@ -27,28 +77,29 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     );
     let _ = writeln!(
         s,
-        "  launch: height {} R_max, horizontal speed {} m/s, spin {} rad/s ({}), scaled to R_max = 1 m",
-        p.height,
-        p.horizontal_speed,
-        p.spin,
+        "  launch: height {} R_max, horizontal speed {}, spin {} ({}){}",
+        number(p.height, 4),
+        at.speed(p.horizontal_speed),
+        at.spin(p.spin),
         match p.spin_distribution {
             crate::dynamics::params::SpinDistribution::Fixed => "exact",
             crate::dynamics::params::SpinDistribution::Gaussian => "rms, Gaussian",
-        }
+        },
+        at.for_size()
     );
     let _ = writeln!(
         s,
-        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {}/{} 1/s; dt {:.5} s, flight {}",
-        p.friction,
-        p.restitution,
-        p.rolling_resistance,
-        p.torsional_friction,
-        p.linear_damping,
-        p.angular_damping,
-        p.dt,
+        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {} linear, {} angular; dt {}, flight {}",
+        number(p.friction, 4),
+        number(p.restitution, 4),
+        number(p.rolling_resistance, 4),
+        number(p.torsional_friction, 4),
+        at.rate(p.linear_damping),
+        at.rate(p.angular_damping),
+        at.time(p.dt),
         p.flight
     );
-    let mean = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.2} s"));
+    let mean = |t: Option<f64>| t.map_or("-".to_string(), |t| at.time(t));
     let _ = writeln!(
         s,
         "  simulated time per drop: {} to rest, {} to the certificate's decision",
@@ -67,11 +118,11 @@ pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
     if r.unsettled > 0 {
         let _ = writeln!(
             s,
-            "  WARNING: {} still moving at the {} s cap: left out of every count, fraction and fit below (a drop \
+            "  WARNING: {} still moving at the {} cap: left out of every count, fraction and fit below (a drop \
              that has not come to rest has no resting position). Raise --max-time, lower --dt, or add \
              --rolling-resistance.",
             plural(r.unsettled, "drop", "drops"),
-            p.max_time
+            at.time(p.max_time)
         );
     }
     if r.off_equilibrium > 0 {

@@ -23,7 +23,7 @@ pub use analysis::{
     flock_color, flock_colored_hull, plot_hull, plot_n_nu, summary, summary_in, write_batch_csv, write_outputs,
     write_outputs_in, CSV_HEADER,
 };
-pub use drops::{bar_plot, drop_summary, write_drop_outputs, Bar};
+pub use drops::{bar_plot, drop_summary, drop_summary_sized, write_drop_outputs, Bar, Scaled};
 
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};

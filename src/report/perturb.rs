@@ -23,21 +23,29 @@ fn fmt_eps(x: f64) -> String {
     }
 }
 
-/// One line that says which contact a resting run used (`dynamics::resting`).
-pub fn contact_line(p: &crate::dynamics::perturb::PerturbParams) -> String {
+/// One line that says which contact a resting run used (`dynamics::resting`), its step and cap
+/// as multiples of √(R_max/g) and, for a stone of real R_max `r_max_m` metres, in seconds.
+pub fn contact_line(p: &crate::dynamics::perturb::PerturbParams, r_max_m: Option<f64>) -> String {
+    use super::names::number;
+    let at = super::drops::Scaled { r_max_m };
     let c = &p.sim;
     let damping = if c.angular_damping > 0.0 || c.linear_damping > 0.0 {
         format!(
-            "global damping {} s⁻¹ angular, {} s⁻¹ linear (the damped reference)",
-            c.angular_damping, c.linear_damping
+            "global damping {} angular, {} linear (the damped reference)",
+            at.rate(c.angular_damping),
+            at.rate(c.linear_damping)
         )
     } else {
         "no global damping".to_string()
     };
     format!(
         "contact: friction {}, restitution {}, rolling resistance δ = {:.2e} R_max through the contact, {damping}; \
-         dt {:.5} s, cap {} s (scaled)",
-        c.friction, c.restitution, c.rolling_resistance, c.dt, c.max_time
+         dt {}, cap {}",
+        number(c.friction, 4),
+        number(c.restitution, 4),
+        c.rolling_resistance,
+        at.time(c.dt),
+        at.time(c.max_time)
     )
 }
 
@@ -60,7 +68,7 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
         "ε = kinetic energy / (m g R_max); flocks at ν = {:.3e}; dynamic class at ε* = {:.3e}",
         r.nu, r.epsilon_star
     );
-    let _ = writeln!(s, "{}", contact_line(&r.params));
+    let _ = writeln!(s, "{}", contact_line(&r.params, r.r_max_m));
     s += &super::depth_line(r.deepest_penetration);
     let _ = writeln!(
         s,

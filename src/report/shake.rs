@@ -38,7 +38,12 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let _ = writeln!(s, "{mesh}: ground shaking, {}, scaled to each PGA", describe_motion(&r.motion));
-    let _ = writeln!(s, "  stone of R_max = {:.3} m; {}", r.r_max_m, super::perturb::contact_line(&r.params));
+    let _ = writeln!(
+        s,
+        "  stone of R_max = {:.3} m; {}",
+        r.r_max_m,
+        super::perturb::contact_line(&r.params, Some(r.r_max_m))
+    );
     s += &super::depth_line(r.deepest_penetration);
     let _ = writeln!(
         s,

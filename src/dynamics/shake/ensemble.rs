@@ -184,12 +184,12 @@ pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
     use super::field::Pose;
     let q = match setup.pose {
         Pose::Facet { id } => {
-            return stone
-                .stable()
-                .iter()
-                .find(|s| s.index == id)
-                .map(|s| s.facet)
-                .ok_or_else(|| Error::Usage(format!("facet:{id} is not a stable micro-equilibrium")))
+            return stone.stable().iter().find(|s| s.index == id).map(|s| s.facet).ok_or_else(|| {
+                Error::Usage(format!(
+                    "facet:{id} is not the index of a stable micro-equilibrium{}",
+                    stone.facet_hint(id)
+                ))
+            })
         }
         Pose::AsScanned => nalgebra::UnitQuaternion::identity(),
         Pose::Quat { q } => {

@@ -152,7 +152,11 @@ pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Pla
         Pose::Facet { id } => {
             let start = stone.position(id).ok_or_else(|| {
                 let list: Vec<String> = stone.stable().iter().map(|s| s.index.to_string()).collect();
-                Error::Usage(format!("facet:{id} is not a stable micro-equilibrium; stable ones: {}", list.join(", ")))
+                Error::Usage(format!(
+                    "facet:{id} is not the index of a stable micro-equilibrium{}; stable ones: {}",
+                    stone.facet_hint(id),
+                    list.join(", ")
+                ))
             })?;
             return Ok(Placed::on(stone, start, p));
         }
