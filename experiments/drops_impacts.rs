@@ -15,15 +15,15 @@ mod benchmark_bodies;
 #[path = "shared/cpu_time.rs"]
 mod cpu_time;
 use benchmark_bodies::benchmark_bodies;
+use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::batch::simulate_batch;
 use rocking_stones::dynamics::drop::launch;
 use rocking_stones::dynamics::impact::{DEPTH_BOUND, IMPACT_APPROACH};
-use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::params::DropParams;
-use rocking_stones::generate;
 use rocking_stones::dynamics::params::{Flight, Preset, Surface};
 use rocking_stones::dynamics::run::NoCertificate;
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::chi_square_homogeneity;
@@ -185,7 +185,7 @@ still spinning then; those drops are left out of a run's counts).\n\n\
 ## Reading\n\n\
 * **With free flight the deepest any corner went is {worst_free:.2e} R_max** over the presets, bodies and steps above \
 ({worst_free_under} the bound of {DEPTH_BOUND} R_max that runs warn at). Beyond the presets the default numerics went \
-{worst_default:.2e} R_max deep ({beyond_default} drops beyond the bound, which their runs warn of), and strict impacts \
+{worst_default:.2e} R_max deep ({beyond_default} beyond the bound, which their runs warn of), and strict impacts \
 {worst_extreme:.2e} ({holds} the bound). \
 Most of it is the contact's own softness under load (a loaded contact sinks a little before it pushes the stone out), \
 not a corner found inside the ground after the fact. It is a measurement over these launches, not a proof: every run \
