@@ -509,8 +509,15 @@ fn options_that_do_not_apply_are_refused() {
     refused(&["perturb", "--preset", "gravel"], "surface or damped");
     // The library names a parameter by its field; the command line by its flag.
     refused(&["perturb", "--dt", "1"], "error: --dt must be");
-    refused(&["perturb", "--solver-iterations", "0"], "error: --solver-iterations must be in 1..=1000");
-    refused(&["drop", "-n", "1", "--solver-iterations", "0"], "error: --solver-iterations must be in 1..=1000");
+    refused(
+        &["perturb", "--solver-iterations", "0"],
+        "'--solver-iterations <SOLVER_ITERATIONS>': expected a whole number, at least 1",
+    );
+    refused(
+        &["drop", "-n", "1", "--solver-iterations", "0"],
+        "'--solver-iterations <SOLVER_ITERATIONS>': expected a whole number, at least 1",
+    );
+    refused(&["perturb", "--solver-iterations", "2000"], "error: --solver-iterations must be in 1..=1000");
     refused(&["shake", "--length-unit", "yard"], "error: --length-unit must be mm, cm, m, km");
     refused(&["perturb", "--size=-2"], "error: --size must be a positive length");
     refused(&["drop", "-n", "1", "--restitution", "1.5"], "error: --restitution must be in [0, 1], got 1.5");
