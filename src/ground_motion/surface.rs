@@ -257,15 +257,21 @@ mod tests {
 
     #[test]
     fn the_band_covers_the_true_surface_at_its_nominal_rate() {
-        // 300 replicate studies of a known surface (2 runs per cell): the 95 % pointwise band
-        // contains the true P at a point inside the data in close to 95 % of them (binomial
-        // sd 1.3 %), and the contour band contains the true PGA₅₀ as often.
+        // 1000 replicate studies of a known surface (2 independent runs per cell): the 95 %
+        // pointwise band must contain the true P at a point inside the data, and the contour
+        // band the true PGA₅₀, in 0.95 ± 3 binomial standard errors of the studies
+        // (√(0.95 · 0.05 / 1000) = 0.0069: 0.929–0.971). A band whose real coverage were 0.90
+        // would cover in 0.90 ± 0.0095 and fail (a band 20 % narrower covers P in 0.887 of these
+        // studies; the band as it is, 0.942 and 0.954). `experiments/fragility_surface.rs`
+        // measures the same rate over more studies, and over ensembles whose members share every
+        // record × scale.
+        const STUDIES: u64 = 1000;
         let beta = [4.0, 3.0, 1.5];
         let (pga, ratio) = (0.35, 0.1);
         let truth = known(beta);
         let (p_true, pga50_true) = (truth.probability(pga, ratio), truth.pga_at(0.5, ratio).unwrap());
         let (mut covered, mut contour_covered) = (0, 0);
-        for seed in 0..300 {
+        for seed in 0..STUDIES {
             let fit = FragilitySurface::fit(&simulated(beta, 2, 1000 + seed)).unwrap();
             let [lo, p, hi] = fit.band(pga, ratio, 1.96);
             assert!(lo < p && p < hi);
@@ -273,11 +279,13 @@ mod tests {
             let [a, _, b] = fit.pga_band_at(0.5, ratio, 1.96).unwrap();
             contour_covered += (a.unwrap() <= pga50_true && pga50_true <= b.unwrap()) as usize;
         }
+        let se = (0.95 * 0.05 / STUDIES as f64).sqrt();
         for (what, k) in [("P", covered), ("PGA₅₀", contour_covered)] {
-            let rate = k as f64 / 300.0;
+            let rate = k as f64 / STUDIES as f64;
             assert!(
-                (0.90..=0.99).contains(&rate),
-                "{what}: the 95 % band covered the truth in {rate:.3} of the studies"
+                (rate - 0.95).abs() <= 3.0 * se,
+                "{what}: the 95 % band covered the truth in {rate:.3} of {STUDIES} studies, outside 0.95 ± {:.3}",
+                3.0 * se
             );
         }
     }

@@ -33,6 +33,13 @@
 //! ties), or for an azimuth that ranges over the whole circle Mardia's circular–linear
 //! correlation R ∈ [0, 1] (Mardia 1976, Biometrika 63, 403; Fisher 1993, *Statistical analysis of
 //! circular data* §6.2.3), since a rank of an angle has no meaning.
+//!
+//! # The one run to set beside it
+//!
+//! [`Uncertainty::nominal`]: every uncertain input at a central value (the middle of the base
+//! contact's range, the surface pair's nominal contact), not the rock as given, which stands on
+//! the scanned hull — the end of the base-contact range that tips most easily. How the ensemble's
+//! P scores against both, on simulated truths, is in `results/ensemble_fragility/`.
 
 use super::field::{place, shake_record, RockRun, RockSetup};
 use crate::dynamics::params::Surface;
@@ -123,6 +130,48 @@ impl Uncertainty {
             }
         }
         Ok(())
+    }
+
+    /// The nominal member of this uncertainty for the rock of `setup`, as an ensemble whose every
+    /// member is that one rock: each uncertain input held at a central value, each range
+    /// collapsed to that point ([`draw`] then returns it exactly). The single run to set beside the
+    /// ensemble: the rock as given ([`super::batch::run_record`]) stands on the scanned hull
+    /// (τ = 0), an end of the base-contact range — the smallest support polygon the range allows,
+    /// hence the rock most easily tipped — and so is an extreme member, not a typical one.
+    ///
+    /// * **Base contact** τ: the middle of its range. Nothing says which end the real base is
+    ///   nearer; the middle is the median of the members' uniform draws.
+    /// * **Azimuth**: the middle of a range; for the whole circle, the setup's azimuth (the
+    ///   record as given). No direction is central on a circle: the middle of 0–360°, 180°, is
+    ///   only the record turned round, no more typical than 0°.
+    /// * **Sign**: + (the record as given): a sign has no middle.
+    /// * **Friction, restitution, rolling resistance**: the setup's value (the surface pair's
+    ///   published nominal contact) when it lies inside the range, else the middle of the range.
+    ///   The pair's ranges ([`Surface::ranges`]) are the published spread about that value, and
+    ///   δ's (½δ to 2δ) is centred on δ in ratio, so its arithmetic middle (1.25 δ) would not be
+    ///   its centre; a range a user gives that leaves the value out has only its middle.
+    ///
+    /// An input that is not uncertain keeps the setup's value, as in every member.
+    pub fn nominal(&self, setup: &RockSetup) -> Uncertainty {
+        let given = draw(&Uncertainty::default(), setup, 0, 0);
+        let middle = |[lo, hi]: [f64; 2]| 0.5 * (lo + hi);
+        let central = |range: Option<[f64; 2]>, value: f64| {
+            range.map(|[lo, hi]| {
+                let x = if (lo..=hi).contains(&value) { value } else { middle([lo, hi]) };
+                [x, x]
+            })
+        };
+        Uncertainty {
+            contact_tolerance_m: self.contact_tolerance_m.map(|r| [middle(r); 2]),
+            azimuth_deg: match self.azimuth_unknown() {
+                true => None,
+                false => self.azimuth_deg.map(|r| [middle(r); 2]),
+            },
+            random_sign: false,
+            friction: central(self.friction, given.friction),
+            restitution: central(self.restitution, given.restitution),
+            rolling_resistance_m: central(self.rolling_resistance_m, given.rolling_resistance_m),
+        }
     }
 
     /// Whether the azimuth is unknown: it spans the whole circle.
@@ -477,6 +526,12 @@ pub struct EnsembleSpec {
 }
 
 impl EnsembleSpec {
+    /// The nominal member of this ensemble ([`Uncertainty::nominal`]) as an ensemble of one:
+    /// member 0, with the same seed.
+    pub fn nominal(&self, setup: &RockSetup) -> EnsembleSpec {
+        EnsembleSpec { uncertainty: self.uncertainty.nominal(setup), seed: self.seed, members: 1 }
+    }
+
     /// The ranges are valid and there is at least one member.
     pub fn check(&self) -> Result<()> {
         if self.members == 0 {
@@ -504,6 +559,44 @@ mod tests {
         assert!((circular_linear(&theta, &y).unwrap() - 1.0).abs() < 1e-12);
         let flat: Vec<f64> = theta.iter().enumerate().map(|(k, _)| (k % 2) as f64).collect();
         assert!(circular_linear(&theta, &flat).unwrap() < 0.05);
+    }
+
+    #[test]
+    fn the_nominal_member_is_central_on_every_input() {
+        use super::super::field::{rock_params, Pose};
+        let r_max_m = 0.13;
+        let params = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
+        let setup = RockSetup { pose: Pose::AsScanned, length_unit_m: 1.0, r_max_m, azimuth: 0.3, params };
+        let field = Uncertainty {
+            contact_tolerance_m: Some([0.0, 0.002]),
+            azimuth_deg: Some([0.0, 360.0]),
+            random_sign: true,
+            ..Uncertainty::of_surface(Surface::RockOnConcrete)
+        };
+        let n = field.nominal(&setup);
+        n.check().unwrap();
+        // Every member of the nominal ensemble is the same rock, whatever its stream.
+        let d = draw(&n, &setup, 24, 0);
+        assert_eq!(Draw { member: 0, ..draw(&n, &setup, 7, 5) }, d);
+        assert_eq!(d.contact_tolerance_m, 0.001);
+        assert_eq!((d.azimuth_deg, d.sign), (0.3f64.to_degrees(), 1.0));
+        // Rock on concrete: μ 0.6 in [0.5, 0.7], e 0.3 in [0.2, 0.5], δ 0.1 mm in [0.05, 0.2] mm.
+        assert_eq!((d.friction, d.restitution), (0.6, 0.3));
+        assert!((d.rolling_resistance_m - 1e-4).abs() < 1e-15, "{}", d.rolling_resistance_m);
+        // A partial azimuth range and ranges that leave the pair's value out: their middles.
+        let user = Uncertainty {
+            azimuth_deg: Some([10.0, 50.0]),
+            friction: Some([0.3, 0.5]),
+            restitution: Some([0.4, 0.6]),
+            ..Uncertainty::default()
+        };
+        let d = draw(&user.nominal(&setup), &setup, 24, 0);
+        assert_eq!((d.azimuth_deg, d.friction, d.restitution), (30.0, 0.4, 0.5));
+        // Inputs that are not uncertain stay the setup's.
+        assert_eq!(
+            (d.contact_tolerance_m, d.rolling_resistance_m),
+            (0.0, setup.params.sim.rolling_resistance * r_max_m)
+        );
     }
 
     #[test]
