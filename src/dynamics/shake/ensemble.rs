@@ -566,7 +566,8 @@ mod tests {
         use super::super::field::{rock_params, Pose};
         let r_max_m = 0.13;
         let params = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
-        let setup = RockSetup { pose: Pose::AsScanned, length_unit_m: 1.0, r_max_m, azimuth: 0.3, params };
+        let setup =
+            RockSetup { pose: Pose::AsScanned, length_unit_m: 1.0, r_max_m, azimuth: 0.3, params, size_assumed: None };
         let field = Uncertainty {
             contact_tolerance_m: Some([0.0, 0.002]),
             azimuth_deg: Some([0.0, 360.0]),
