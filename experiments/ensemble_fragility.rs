@@ -1,4 +1,4 @@
-//! How good are ensemble probabilities of toppling, and how do they score?
+//! How good are ensemble probabilities of toppling, and against what truth?
 //!
 //! **A. Freestanding blocks against Housner and the published fragility form.** Purvance,
 //! Anooshehpoor & Brune (2008, Earthquake Engng Struct. Dyn. 37, 791) give the overturning
@@ -16,18 +16,30 @@
 //! compared in the dimensionless variables PGA/(g tan α) and p·PGV/PGA, in which Housner's
 //! equation under a time-scaled record is exactly self-similar.
 //!
-//! **B. Scores.** A forecast is judged against outcomes it did not produce:
-//! * blocks: the truth is Housner's equation for 64 further rocks drawn from the same
-//!   uncertainty (independent draws, not members of the forecast ensemble);
-//! * the scanned quarry stone in its rocking pose (a field rock: base-contact tolerance 0–2 mm,
-//!   azimuth unknown, random sign, the rock-on-concrete ranges of friction, restitution and
-//!   rolling resistance): the truth is 32 held-out rocks of the same uncertainty run by the
-//!   simulator (a perfect-model test: it measures what knowing the uncertainty is worth, not the
-//!   simulator's error, which part A and the blocks measure).
+//! **B. Scores.** No outcome here is observed: every truth is simulated, and from the
+//! ensemble's own uncertainty, drawn exactly as its members are.
+//! * Blocks: the truth is Housner's rocking equation (a second model: 2-D, rigid, instantaneous
+//!   impacts) for 64 further rocks per case, drawn independently from the same uncertainty
+//!   (azimuth, sign) as the 16 forecast members — not the members' own draws. The dynamics of
+//!   forecast and truth differ; the uncertainty is the ensemble's own, known exactly.
+//! * The scanned quarry stone in its rocking pose (base-contact tolerance 0–2 mm, azimuth
+//!   unknown, random sign, the rock-on-concrete ranges of friction, restitution and rolling
+//!   resistance): the truth is 32 held-out members of the same simulation, a perfect-model test.
+//!   It measures what a probability is worth over a yes/no when the model and the uncertainty
+//!   are exactly right, not the simulator's error (part A and the blocks compare it with
+//!   Housner's equation) nor how well a real rock's uncertainty is known.
 //!
-//! The ensemble's P is scored by the Brier score and the log loss, beside the single
-//! deterministic run (the rock as given: azimuth 0, sign +, nominal contact), whose yes/no is a
-//! forecast of 0 or 1.
+//! The ensemble's P is scored by the Brier score and the log loss beside three yes/no forecasts
+//! (0 or 1), so that it is not compared with an extreme member only:
+//! * the **nominal member** ([`rocking_stones::dynamics::shake::Uncertainty::nominal`]): every
+//!   uncertain input at a central value — base contact at the middle of its range, the surface
+//!   pair's nominal friction, restitution and δ, and for an azimuth over the whole circle and a
+//!   random sign, which have no centre, the record as given;
+//! * the **as-given run** (what `rocking shake` runs without `--ensemble`): for the quarry stone
+//!   the scanned hull as is (tolerance 0, the end of the range with the smallest support
+//!   polygon); for the blocks, whose only uncertain inputs are azimuth and sign, the same rock as
+//!   the nominal member (azimuth 0: along the rocking plane);
+//! * the **best yes/no**: each case's majority truth outcome, a bound no single run reaches.
 //!
 //! Run: `cargo run --release --example ensemble_fragility` → `results/ensemble_fragility/`.
 
@@ -137,8 +149,10 @@ struct Case {
     overturned: usize,
     /// Housner's equation on the forecast's own draws (blocks only).
     ode_same_draws: Option<f64>,
-    /// The deterministic run (the rock as given) overturned.
-    deterministic: bool,
+    /// The as-given run (no ensemble: tolerance 0, azimuth 0, sign +, nominal contact) overturned.
+    as_given: bool,
+    /// The nominal member ([`Uncertainty::nominal`]) overturned.
+    nominal: bool,
     /// Outcomes of the truth rocks.
     truths: Vec<bool>,
 }
@@ -153,6 +167,17 @@ impl Case {
     }
 }
 
+/// The outcome of the run of `runs` on the record and scale of `d`.
+fn outcome_of(runs: &[RecordRun], d: &RecordRun) -> bool {
+    let same = |r: &&RecordRun| r.record == d.record && r.scale.to_bits() == d.scale.to_bits();
+    runs.iter().find(same).expect("every record × scale was run").rock.overturned
+}
+
+/// The best any yes/no forecast of a case can do: its truths' majority outcome.
+fn majority(c: &Case) -> bool {
+    2 * c.truths.iter().filter(|&&y| y).count() >= c.truths.len()
+}
+
 /// Brier score, log loss and accuracy of a set of forecasts (one probability per case) against
 /// every truth of its case.
 #[derive(Clone, Copy, Default)]
@@ -165,7 +190,7 @@ struct Score {
 
 /// Forecasts are kept inside [ε, 1 − ε] for the log loss, ε = 1/(2 n) for an ensemble of n
 /// members (half a member: a forecast of 0 or 1 from n draws is no surer than that); the yes/no
-/// of a deterministic run gets the same ε, else one wrong answer makes its log loss infinite.
+/// of a yes/no forecast gets the same ε, else one wrong answer makes its log loss infinite.
 fn score(cases: &[&Case], forecast: &dyn Fn(&Case) -> f64, eps: f64) -> Score {
     let mut s = Score::default();
     for c in cases {
@@ -239,6 +264,7 @@ fn run_block(b: &Block, records: &[Record]) -> anyhow::Result<BlockResult> {
     let scales: Vec<f64> = X_GRID.iter().map(|x| x * b.tan_alpha).filter(|&pga| pga <= 1.2 + 1e-9).collect();
     let ensemble = run_batch(&stone, &setup, records, &scales, Some(&spec), &[], &|_| {})?;
     let single = run_batch(&stone, &setup, records, &scales, None, &[], &|_| {})?;
+    let nominal = run_batch(&stone, &setup, records, &scales, Some(&spec.nominal(&setup)), &[], &|_| {})?;
     let by_record: BTreeMap<&str, &Record> = records.iter().map(|r| (r.name.as_str(), r)).collect();
     let mut cases = Vec::new();
     let mut ode_points = Vec::new();
@@ -277,7 +303,8 @@ fn run_block(b: &Block, records: &[Record]) -> anyhow::Result<BlockResult> {
             settled: settled.len(),
             overturned: settled.iter().filter(|m| m.rock.overturned).count(),
             ode_same_draws: Some(same.iter().filter(|&&o| o).count() as f64 / same.len() as f64),
-            deterministic: d.rock.overturned,
+            as_given: d.rock.overturned,
+            nominal: outcome_of(&nominal.runs, d),
             truths,
         });
     }
@@ -285,14 +312,15 @@ fn run_block(b: &Block, records: &[Record]) -> anyhow::Result<BlockResult> {
         cases,
         surface: ensemble.surface,
         ode_surface: FragilitySurface::fit(&ode_points).ok(),
-        runs: ensemble.runs.len() + single.runs.len(),
+        runs: ensemble.runs.len() + single.runs.len() + nominal.runs.len(),
         seconds: t0.elapsed().as_secs_f64(),
     })
 }
 
 /// The quarry stone in its rocking pose at scanned size under two-component filtered noise:
-/// forecast members, held-out truth members and the deterministic run.
-fn run_stone() -> anyhow::Result<(Vec<Case>, String, f64)> {
+/// forecast members, held-out truth members, the as-given run and the nominal member; and the
+/// nominal member's inputs.
+fn run_stone() -> anyhow::Result<(Vec<Case>, String, f64, String)> {
     let t0 = Instant::now();
     let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply"));
     let a = Analysis::of_file(path, &Options::default())?;
@@ -321,6 +349,16 @@ fn run_stone() -> anyhow::Result<(Vec<Case>, String, f64)> {
     let scales = [0.04, 0.06, 0.08, 0.11, 0.15, 0.2];
     let ensemble = run_batch(&stone, &setup, &records, &scales, Some(&spec), &[], &|_| {})?;
     let single = run_batch(&stone, &setup, &records, &scales, None, &[], &|_| {})?;
+    let nominal_spec = spec.nominal(&setup);
+    let nominal = run_batch(&stone, &setup, &records, &scales, Some(&nominal_spec), &[], &|_| {})?;
+    let d = draw(&nominal_spec.uncertainty, &setup, SEED, 0);
+    let nominal_inputs = format!(
+        "base contact {:.1} mm, μ {}, e {}, δ {:.2} mm",
+        1e3 * d.contact_tolerance_m,
+        d.friction,
+        d.restitution,
+        1e3 * d.rolling_resistance_m
+    );
     let cases = single
         .runs
         .iter()
@@ -341,12 +379,13 @@ fn run_stone() -> anyhow::Result<(Vec<Case>, String, f64)> {
                 settled: forecast.len(),
                 overturned: forecast.iter().filter(|r| r.rock.overturned).count(),
                 ode_same_draws: None,
-                deterministic: d.rock.overturned,
+                as_given: d.rock.overturned,
+                nominal: outcome_of(&nominal.runs, d),
                 truths: truth.iter().map(|r| r.rock.overturned).collect(),
             }
         })
         .collect();
-    Ok((cases, format!("{pose}"), t0.elapsed().as_secs_f64()))
+    Ok((cases, format!("{pose}"), t0.elapsed().as_secs_f64(), nominal_inputs))
 }
 
 fn main() -> anyhow::Result<()> {
@@ -360,7 +399,7 @@ fn main() -> anyhow::Result<()> {
         eprintln!("block {}: {} runs in {:.1} s", b.name(), r.runs, r.seconds);
         blocks.push(r);
     }
-    let (stone_cases, stone_pose, stone_seconds) = run_stone()?;
+    let (stone_cases, stone_pose, stone_seconds, nominal_inputs) = run_stone()?;
     eprintln!("quarry stone: {} cases in {stone_seconds:.1} s", stone_cases.len());
 
     write_cases(&out, &blocks, &stone_cases)?;
@@ -372,7 +411,7 @@ fn main() -> anyhow::Result<()> {
         (blocks.iter().map(|b| b.seconds).sum::<f64>() + stone_seconds) / 60.0
     )?;
     part_a(&out, &blocks, &records, &mut readme)?;
-    part_b(&out, &blocks, &stone_cases, &stone_pose, &mut readme)?;
+    part_b(&out, &blocks, &stone_cases, &stone_pose, &nominal_inputs, &mut readme)?;
     std::fs::write(out.join("README.md"), readme)?;
     eprintln!("wrote {}", out.display());
     Ok(())
@@ -381,12 +420,12 @@ fn main() -> anyhow::Result<()> {
 fn write_cases(out: &Path, blocks: &[BlockResult], stone: &[Case]) -> anyhow::Result<()> {
     let mut csv = String::from(
         "rock,record,scale,pga_g,pgv_over_pga_s,members_settled,members_overturned,p_ensemble,p_housner_same_draws,\
-         deterministic_overturned,truths,truths_overturned\n",
+         deterministic_overturned,truths,truths_overturned,nominal_overturned\n",
     );
     for c in blocks.iter().flat_map(|b| &b.cases).chain(stone) {
         writeln!(
             csv,
-            "{},{},{},{:.5},{:.5},{},{},{:.4},{},{},{},{}",
+            "{},{},{},{:.5},{:.5},{},{},{:.4},{},{},{},{},{}",
             c.rock,
             c.record,
             c.scale,
@@ -396,9 +435,10 @@ fn write_cases(out: &Path, blocks: &[BlockResult], stone: &[Case]) -> anyhow::Re
             c.overturned,
             c.p(),
             c.ode_same_draws.map_or(String::new(), |p| format!("{p:.4}")),
-            c.deterministic,
+            c.as_given,
             c.truths.len(),
-            c.truths.iter().filter(|&&y| y).count()
+            c.truths.iter().filter(|&&y| y).count(),
+            c.nominal
         )?;
     }
     std::fs::write(out.join("cases.csv"), csv)?;
@@ -664,89 +704,156 @@ fn plot_dimensionless(out: &Path, blocks: &[BlockResult]) -> anyhow::Result<()> 
     Ok(())
 }
 
+/// What each rock's forecasts are scored against, for the tables.
+fn truth_label(rocks: &str) -> &'static str {
+    match rocks {
+        "blocks" => "Housner's equation on independent draws",
+        _ => "held-out members (perfect model)",
+    }
+}
+
 fn part_b(
     out: &Path,
     blocks: &[BlockResult],
     stone: &[Case],
     stone_pose: &str,
+    nominal_inputs: &str,
     readme: &mut String,
 ) -> anyhow::Result<()> {
     let block_cases: Vec<&Case> = blocks.iter().flat_map(|b| &b.cases).collect();
     let stone_cases: Vec<&Case> = stone.iter().collect();
+    let truths = |cases: &[&Case]| cases.iter().map(|c| c.truths.len()).sum::<usize>();
     writeln!(
         readme,
-        "## B. Scores: ensemble probability against the single deterministic run\n\n\
-         Each forecast is scored against every truth of its case (Brier score: mean (P − y)²; log loss: mean \
-         −[y ln P + (1 − y) ln(1 − P)], P kept inside [1/(2n), 1 − 1/(2n)] for n forecast members, the same ε \
-         for the deterministic 0/1; accuracy: P ≥ 0.5 taken as \"overturns\"). The oracle is the lowest Brier \
-         score possible: each case forecast by its own truth frequency.\n\n\
-         * **Blocks** ({} cases, {} truths): truth = Housner's equation for {BLOCK_TRUTHS} further rocks of the same \
-         uncertainty (azimuth unknown, random sign), independent of the {BLOCK_MEMBERS} forecast members.\n\
+        "## B. Scores: ensemble probability against yes/no runs, on simulated truths\n\n\
+         No outcome scored here is observed: every truth is simulated, from the ensemble's own uncertainty drawn \
+         exactly as its members are. The scores say what a probability gains over a yes/no when that uncertainty \
+         is right; they do not say how well a real rock's uncertainty is known.\n\n\
+         * **Blocks** ({} cases, {} truths): truth = Housner's rocking equation — a second model (2-D, rigid, \
+         instantaneous impacts), not the simulator — for {BLOCK_TRUTHS} further rocks per case, drawn \
+         independently of the {BLOCK_MEMBERS} forecast members from the same uncertainty (azimuth 0–360°, random \
+         sign). Forecast and truth differ in their dynamics, not in their uncertainty.\n\
          * **Quarry stone**, pose {stone_pose} at scanned size, rock on concrete ({} cases, {} truths): base-contact \
          tolerance 0–2 mm, azimuth unknown, random sign, friction / restitution / rolling resistance over the \
          surface pair's ranges; two-component filtered noise (periods 0.2, 0.5, 1, 2 s) scaled to PGA 0.04–0.2 g; \
-         truth = {STONE_TRUTHS} held-out rocks run by the simulator (perfect model), forecast = {STONE_MEMBERS} \
-         other members.\n\n\
-         | rocks | forecast | Brier | log loss | accuracy |\n|---|---|---|---|---|",
+         truth = {STONE_TRUTHS} held-out members of the same simulation, forecast = {STONE_MEMBERS} other members: \
+         a **perfect-model** test (model and uncertainty exactly the forecast's).\n\n\
+         Forecasts: the ensemble's P; and three yes/no forecasts (0 or 1), so that the ensemble is not set beside an \
+         extreme member only:\n\n\
+         * **nominal member** (`Uncertainty::nominal`): every uncertain input at a central value — base contact \
+         at the middle of its range, the surface pair's nominal friction, restitution and δ (inside their \
+         ranges), and for the azimuth over the whole circle and the random sign, which have no centre, the record \
+         as given (azimuth 0, sign +); for the quarry stone {nominal_inputs};\n\
+         * **as-given run** (`rocking shake` without `--ensemble`): the nominal member but for the base contact, \
+         tolerance 0 — the scanned hull as is, the end of the range with the smallest support polygon. For the \
+         blocks, whose only uncertain inputs are azimuth and sign, it is the nominal member; azimuth 0 is along \
+         their rocking plane, the direction that shakes them hardest;\n\
+         * **best yes/no**: each case's majority truth outcome, the best any yes/no can score (a bound, not a \
+         run).\n\n\
+         Brier score: mean (P − y)² over every truth of every case; log loss: mean −[y ln P + (1 − y) ln(1 − P)], \
+         P kept inside [1/(2n), 1 − 1/(2n)] for n forecast members, the same ε for the yes/no forecasts; accuracy: \
+         P ≥ 0.5 taken as \"overturns\"; 'overturns in': the mean P, or the share of cases a yes/no forecast says \
+         overturn, beside the truths' share overturned. The oracle forecasts each case by its own truth \
+         frequency, the lowest Brier score possible.\n\n\
+         | rocks | scored against | forecast | Brier | log loss | accuracy | overturns in |\n|---|---|---|---|---|---|---|",
         block_cases.len(),
-        block_cases.iter().map(|c| c.truths.len()).sum::<usize>(),
+        truths(&block_cases),
         stone_cases.len(),
-        stone_cases.iter().map(|c| c.truths.len()).sum::<usize>(),
+        truths(&stone_cases),
     )?;
-    let mut csv = String::from("rocks,forecast,brier,log_loss,accuracy,truths\n");
+    let mut csv = String::from("rocks,forecast,brier,log_loss,accuracy,truths,scored_against,overturn_share\n");
     let mut reliability = Vec::new();
     let mut summary = Vec::new();
     for (name, cases, n) in [("blocks", &block_cases, BLOCK_MEMBERS), ("quarry stone", &stone_cases, STONE_MEMBERS)] {
+        let truth = truth_label(name);
         let eps = 0.5 / n as f64;
+        let yes = |f: fn(&Case) -> bool| cases.iter().filter(|c| f(c)).count() as f64 / cases.len() as f64;
+        let (nominal_yes, given_yes, best_yes) = (yes(|c| c.nominal), yes(|c| c.as_given), yes(majority));
+        let mean_p = cases.iter().map(|c| c.p()).sum::<f64>() / cases.len() as f64;
+        let truth_share = cases.iter().flat_map(|c| &c.truths).filter(|&&y| y).count() as f64 / truths(cases) as f64;
         let ens = score(cases, &|c| c.p(), eps);
-        let det = score(cases, &|c| c.deterministic as u8 as f64, eps);
-        let mut rows = vec![("ensemble P", ens), ("deterministic run (yes/no)", det)];
+        let nominal = score(cases, &|c| c.nominal as u8 as f64, eps);
+        let given = score(cases, &|c| c.as_given as u8 as f64, eps);
+        let best = score(cases, &|c| majority(c) as u8 as f64, eps);
+        let mut rows = vec![(format!("ensemble P ({n} members)"), ens, mean_p)];
         if name == "blocks" {
-            rows.push(("Housner on the forecast's draws", score(cases, &|c| c.ode_same_draws.unwrap_or(0.5), eps)));
+            let housner = score(cases, &|c| c.ode_same_draws.unwrap_or(0.5), eps);
+            let share = cases.iter().map(|c| c.ode_same_draws.unwrap_or(0.5)).sum::<f64>() / cases.len() as f64;
+            rows.push(("Housner on the forecast's draws".into(), housner, share));
         }
-        for (label, s) in rows {
-            writeln!(readme, "| {name} | {label} | {:.4} | {:.4} | {:.3} |", s.brier, s.log_loss, s.accuracy)?;
-            writeln!(csv, "{name},{label},{:.5},{:.5},{:.4},{}", s.brier, s.log_loss, s.accuracy, s.n)?;
+        rows.push(("nominal member (yes/no)".into(), nominal, nominal_yes));
+        rows.push(("as-given run (yes/no)".into(), given, given_yes));
+        rows.push(("best yes/no (majority truth; a bound)".into(), best, best_yes));
+        for (label, s, share) in &rows {
+            writeln!(
+                readme,
+                "| {name} | {truth} | {label} | {:.4} | {:.4} | {:.3} | {:.1} % |",
+                s.brier,
+                s.log_loss,
+                s.accuracy,
+                100.0 * share
+            )?;
+            writeln!(
+                csv,
+                "{name},{label},{:.5},{:.5},{:.4},{},{truth},{share:.4}",
+                s.brier, s.log_loss, s.accuracy, s.n
+            )?;
         }
         let oracle = oracle_brier(cases);
         let perfect = perfect_ensemble_brier(cases, n);
-        writeln!(readme, "| {name} | a perfect {n}-member ensemble (expected) | {perfect:.4} | – | – |")?;
-        writeln!(readme, "| {name} | oracle (truth frequency) | {oracle:.4} | – | – |")?;
-        writeln!(csv, "{name},perfect {n}-member ensemble (expected),{perfect:.5},,,")?;
-        writeln!(csv, "{name},oracle,{oracle:.5},,,")?;
-        reliability.push((name, reliability_bins(cases)));
+        writeln!(readme, "| {name} | {truth} | a perfect {n}-member ensemble (expected) | {perfect:.4} | – | – | – |")?;
+        writeln!(
+            readme,
+            "| {name} | {truth} | oracle (truth frequency) | {oracle:.4} | – | – | {:.1} % |",
+            100.0 * truth_share
+        )?;
+        writeln!(csv, "{name},perfect {n}-member ensemble (expected),{perfect:.5},,,,{truth},")?;
+        writeln!(csv, "{name},oracle,{oracle:.5},,,,{truth},{truth_share:.4}")?;
+        reliability.push((format!("{name}, truth: {truth}"), reliability_bins(cases)));
         summary.push(format!(
-            "**{name}**: Brier {:.3} against {:.3} for the deterministic run (skill 1 − B/B_det = {:.2}), log loss \
-             {:.2} against {:.2}, accuracy {:.2} against {:.2}; a perfect {n}-member ensemble would score {perfect:.3} \
-             and the oracle {oracle:.3}",
+            "**{name}** (scored against {truth}): Brier {:.3} against {:.3} for the nominal member (skill \
+             1 − B/B_nominal = {:.2}), {:.3} for the as-given run and {:.3} for the best possible yes/no; log loss \
+             {:.2} against {:.2} (nominal) and {:.2} (as given). The nominal member says overturn in {:.0} % of the \
+             cases, the as-given run in {:.0} %, the ensemble's mean P is {:.1} % and {:.1} % of the truths \
+             overturned. A perfect {n}-member ensemble would be expected to score {perfect:.3} (the ensemble: {:+.4} from \
+             it; its {n} members are common to every case, so that difference is one draw of its sampling noise, not \
+             an average over independent ones), the oracle {oracle:.3}",
             ens.brier,
-            det.brier,
-            1.0 - ens.brier / det.brier,
+            nominal.brier,
+            1.0 - ens.brier / nominal.brier,
+            given.brier,
+            best.brier,
             ens.log_loss,
-            det.log_loss,
-            ens.accuracy,
-            det.accuracy
+            nominal.log_loss,
+            given.log_loss,
+            100.0 * nominal_yes,
+            100.0 * given_yes,
+            100.0 * mean_p,
+            100.0 * truth_share,
+            ens.brier - perfect,
         ));
     }
     std::fs::write(out.join("scores.csv"), csv)?;
-    plot_reliability(out, &reliability)?;
+    let sets: Vec<(&str, Vec<Bin>)> = reliability.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    plot_reliability(out, &sets)?;
     writeln!(readme, "\n![Reliability of the ensemble probabilities](reliability.png)\n")?;
     writeln!(
         readme,
         "### Reading\n\n\
          * {}.\n* {}.\n\
-         * The ensemble loses to the oracle only what a finite ensemble must: with n members drawn from the truth's \
-         own distribution the expected Brier score is q(1 − q)(1 + 1/n) per case (q the case's overturning \
-         probability; the oracle's q̂(1 − q̂) from K truths is q(1 − q)(1 − 1/K) on average), which the table's \
-         'perfect ensemble' row evaluates on these cases.\n\
-         * The deterministic run is one rock among the possible ones, and not a typical one: for the blocks it is \
-         shaken along its weakest direction at full amplitude (azimuth 0), so it overturns wherever some azimuths \
-         would not; for the quarry stone it stands on the scanned hull as is (tolerance 0: the smallest support \
-         polygon) with the surface pair's nominal contact (μ 0.6, e 0.3, δ 0.1 mm). Its yes/no is wrong wherever the truth is uncertain, and confidently so \
-         (its log loss is that of a forecast of 1/(2n) or 1 − 1/(2n)).\n\
-         * The reliability curves lie slightly below the diagonal at high P: binning cases by a P that carries \
-         sampling noise (standard error up to 1/(2√n): 0.125 at n = 16) selects the cases whose P came out high \
-         by chance. The Brier scores, which need no binning, match a perfect ensemble's.\n",
+         * The as-given quarry stone stands on the scanned hull as is, the least supported rock the contact range \
+         allows, and overturns far more often than the truths do; the nominal member stands at the middle of the \
+         range. For the blocks the two are the same rock, shaken along its rocking plane at full amplitude: it \
+         overturns wherever some azimuths would not. Any yes/no is wrong wherever the truth is uncertain, and \
+         confidently so (its log loss is that of a forecast of 1/(2n) or 1 − 1/(2n)); the best-yes/no row is what \
+         the luckiest single run could score.\n\
+         * What a finite ensemble must lose to the oracle: with n members drawn from the truth's own distribution \
+         the expected Brier score is q(1 − q)(1 + 1/n) per case (q the case's overturning probability; the \
+         oracle's q̂(1 − q̂) from K truths is q(1 − q)(1 − 1/K) on average), which the 'perfect ensemble' row \
+         evaluates on these cases.\n\
+         * The reliability curves lie below the diagonal at high P: binning cases by a P that carries sampling \
+         noise (standard error up to 1/(2√n): 0.125 at n = 16) selects the cases whose P came out high by chance. \
+         The Brier scores, which need no binning, are set beside a perfect ensemble's above.\n",
         summary[0], summary[1]
     )?;
     Ok(())
