@@ -140,7 +140,12 @@ impl FragilitySurface {
     /// The pointwise band of P(overturn) at (PGA, PGV/PGA): [low, P, high] =
     /// logistic(η − z σ, η, η + z σ) (z = 1.96 for 95 %), σ the standard error of η
     /// ([`FragilitySurface::covariance`]). The band of the fitted surface: how well the runs pin
-    /// it down, not the spread of P between rocks.
+    /// it down, not the spread of P between rocks. Its coverage, counted over repeated simulated
+    /// studies (`results/fragility_surface/coverage.csv`): 0.947 (95 % interval 0.940–0.954)
+    /// for P at a point of a known logistic surface fitted to independent runs, 0.966 for its
+    /// P = 0.5 contour ([`FragilitySurface::pga_band_at`]); 0.953–1.000 over a point and nine
+    /// contours of 16-member ensembles of a block whose members share every record × scale (the
+    /// runs are not independent): at or above the nominal 95 %, the contours' bands conservative.
     pub fn band(&self, pga_g: f64, pgv_over_pga_s: f64, z: f64) -> [f64; 3] {
         let (eta, sigma) = self.eta(pga_g, pgv_over_pga_s);
         [logistic(eta - z * sigma), logistic(eta), logistic(eta + z * sigma)]
