@@ -14,10 +14,10 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::batch::simulate_batch_observed;
-use rocking_stones::dynamics::drop::launch;
-use rocking_stones::dynamics::params::{Flight, Preset, Surface};
-use rocking_stones::dynamics::run::{
+use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::launch;
+use rocking_stones::dynamics::engine::run::{
     CertificateMode, Decided, EnergyCertificate, NoCertificate, CERTIFICATE_EVERY, CERTIFICATE_MARGIN,
     CERTIFICATE_MAX_COMPRESSION,
 };
@@ -123,8 +123,11 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, indices: std::ops::Range
     tally
 }
 
-fn facet_cert_decided(c: &EnergyCertificate, s: &rocking_stones::dynamics::world::BodyState) -> Option<Decided> {
-    use rocking_stones::dynamics::run::Certificate;
+fn facet_cert_decided(
+    c: &EnergyCertificate,
+    s: &rocking_stones::dynamics::engine::world::BodyState,
+) -> Option<Decided> {
+    use rocking_stones::dynamics::engine::run::Certificate;
     c.decided(s)
 }
 

@@ -23,14 +23,14 @@ mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
 use rayon::prelude::*;
 use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::drop::{launch, release_height};
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
-use rocking_stones::dynamics::run::{
+use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::{launch, release_height};
+use rocking_stones::dynamics::engine::run::{
     run as run_one, Certificate, CertificateMode, Decided, EnergyCertificate, NoCertificate, Passive, RestKind,
     CERTIFICATE_EVERY, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
+use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::world::Simulation;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;

@@ -23,7 +23,7 @@ use rapier3d::prelude::{
     MassProperties, MultibodyJointSet, NarrowPhase, PhysicsPipeline, RigidBodyBuilder, RigidBodySet, SharedShape,
     SoftBodySet,
 };
-use rocking_stones::dynamics::hull_shape::HullShape;
+use rocking_stones::dynamics::engine::hull_shape::HullShape;
 use rocking_stones::generate;
 use rocking_stones::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::solid;

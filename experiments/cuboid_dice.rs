@@ -29,12 +29,12 @@
 //! `results/cuboid_dice/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::{
+use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::params::{
     DropParams, Flight, Preset, Surface, REFERENCE_DT, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN,
 };
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
-use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
 use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::{chi_square_homogeneity, wilson};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
@@ -85,7 +85,7 @@ fn p_square(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64)
         certificate: CertificateMode::Facet,
         preset: None,
         center_of_mass: None,
-        shard: rocking_stones::montecarlo::Shard::ALL,
+        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
     };
     let (report, _) = run_report(stone, &header);
     let square = |normal: &rocking_stones::Vec3| normal.z.abs() > 0.99;

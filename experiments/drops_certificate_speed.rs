@@ -1,5 +1,5 @@
 //! Drops per second per core for the `drop` and `throw` presets, one drop per rapier
-//! world (plain) or many (batched, [`rocking_stones::dynamics::batch`]), with full settling or
+//! world (plain) or many (batched, [`rocking_stones::dynamics::drops::batch`]), with full settling or
 //! the energy certificate (facet and flock level), same drops (same seed) in every mode, on the
 //! bundled stone, a ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5; every mode's
 //! outcomes are compared drop by drop with the plain mode's (batched: bit-identical; certified:
@@ -16,12 +16,12 @@ mod cpu_time;
 use benchmark_bodies::benchmark_bodies;
 use cpu_time::thread_cpu_seconds;
 use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{Flight, Preset, Surface, REFERENCE_DT};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::montecarlo::{
+use rocking_stones::dynamics::drops::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
+use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::stats::chi_square_homogeneity;
 use std::collections::BTreeMap;

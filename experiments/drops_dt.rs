@@ -18,14 +18,14 @@
 mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
 use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::batch::simulate_batch_observed;
-use rocking_stones::dynamics::drop::{launch, DropOutcome};
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
-use rocking_stones::dynamics::run::{NoCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
-use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
-use rocking_stones::montecarlo::{
+use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+use rocking_stones::dynamics::drops::montecarlo::{
     run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
+use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::{launch, DropOutcome};
+use rocking_stones::dynamics::engine::run::{NoCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::chi_square_homogeneity;

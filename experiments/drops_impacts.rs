@@ -16,12 +16,12 @@ mod benchmark_bodies;
 mod cpu_time;
 use benchmark_bodies::benchmark_bodies;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::batch::simulate_batch;
-use rocking_stones::dynamics::drop::launch;
-use rocking_stones::dynamics::impact::{DEPTH_BOUND, IMPACT_APPROACH};
-use rocking_stones::dynamics::params::DropParams;
-use rocking_stones::dynamics::params::{Flight, Preset, Surface};
-use rocking_stones::dynamics::run::NoCertificate;
+use rocking_stones::dynamics::drops::batch::simulate_batch;
+use rocking_stones::dynamics::drops::params::DropParams;
+use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::launch;
+use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
+use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
@@ -195,7 +195,7 @@ configuration), which is where a die's face used to be decided.\n\
 * The χ² column compares the two numerics' flock statistics on the same launches; a throw is chaotic, so the drops \
 differ one by one. The throw preset is calibrated with free flight (`results/cuboid_dice/`), the default numerics of \
 every drop.\n",
-        landing = rocking_stones::dynamics::flight::CONTACT_CLEARANCE,
+        landing = rocking_stones::dynamics::engine::flight::CONTACT_CLEARANCE,
         worst_rapier = bars.iter().map(|b| b.1).fold(0.0, f64::max),
         worst_free_under = under(worst_free),
     );

@@ -11,11 +11,11 @@
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
-use rocking_stones::dynamics::drop::{launch, release_height};
-use rocking_stones::dynamics::params::{Preset, Surface};
-use rocking_stones::dynamics::run::{run, NoCertificate, Passive, RestKind};
+use rocking_stones::dynamics::drops::params::{Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::{launch, release_height};
+use rocking_stones::dynamics::engine::run::{run, NoCertificate, Passive, RestKind};
+use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
-use rocking_stones::dynamics::world::Simulation;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;

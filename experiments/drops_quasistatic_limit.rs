@@ -10,10 +10,10 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::params::DropParams;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
-use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
 use rocking_stones::plot::{draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -50,7 +50,7 @@ fn main() -> anyhow::Result<()> {
                     height: hgt,
                     restitution: e,
                     spin: 0.0,
-                    ..rocking_stones::dynamics::perturb::PerturbParams::damped().sim
+                    ..rocking_stones::dynamics::pushes::perturb::PerturbParams::damped().sim
                 };
                 let header = RunHeader {
                     format: FORMAT.into(),
@@ -62,7 +62,7 @@ fn main() -> anyhow::Result<()> {
                     certificate: CertificateMode::Facet,
                     preset: None,
                     center_of_mass: None,
-                    shard: rocking_stones::montecarlo::Shard::ALL,
+                    shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
                 };
                 let t = std::time::Instant::now();
                 let (report, _) = run_report(&setup, &header);
@@ -99,7 +99,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             linear_damping: d,
             angular_damping: d,
             max_time: 60.0,
-            ..rocking_stones::dynamics::perturb::PerturbParams::damped().sim
+            ..rocking_stones::dynamics::pushes::perturb::PerturbParams::damped().sim
         };
         let header = RunHeader {
             format: FORMAT.into(),
@@ -111,7 +111,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             certificate: CertificateMode::Facet,
             preset: None,
             center_of_mass: None,
-            shard: rocking_stones::montecarlo::Shard::ALL,
+            shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
         };
         let (report, _) = run_report(&setup, &header);
         eprintln!(

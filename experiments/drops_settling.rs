@@ -11,10 +11,10 @@
 //! `results/drops_settling/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{DropParams, Preset};
+use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -62,7 +62,7 @@ fn main() {
             certificate: CertificateMode::None,
             preset: Some("throw on steel-on-wood".into()),
             center_of_mass: None,
-            shard: rocking_stones::montecarlo::Shard::ALL,
+            shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
         };
         let t0 = Instant::now();
         let (r, outcomes) = run_report(&stone, &header);

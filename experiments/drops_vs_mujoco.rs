@@ -35,14 +35,14 @@ use benchmark_bodies::benchmark_bodies;
 use cpu_time::thread_cpu_seconds;
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::launch::launch;
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface, REFERENCE_DT};
-use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
-use rocking_stones::dynamics::world::Simulation;
-use rocking_stones::montecarlo::{
+use rocking_stones::dynamics::drops::launch::launch;
+use rocking_stones::dynamics::drops::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, FlockRow, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
+use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::engine::world::Simulation;
+use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::stuart_maxwell;

@@ -5,13 +5,13 @@
 //! probability of a freestanding block as a function of its slenderness α, its size (through
 //! p = √(3g/4R)), PGA and PGV/PGA, in the logistic form P = 1/(1 + e^−η),
 //! η = β₀ + β₁ ln PGA + β₂ ln PGV/PGA fitted per block (the form of the project's
-//! [`rocking_stones::ground_motion::surface`]); their 2-D numerical fragilities integrate
+//! [`rocking_stones::ground_motion::fragility`]); their 2-D numerical fragilities integrate
 //! Housner's rocking equation. Here five blocks (tan α = 0.15, 0.25, 0.4 at R = 1 m; tan α = 0.25
 //! at R = 0.5 m and 2 m) are shaken by one-component records — filtered noise of four
 //! predominant periods × two seeds, and one-sine pulses of three periods — scaled to
 //! PGA/(g tan α) from 0.8 to 4, by an ensemble over an unknown azimuth and an unknown sign.
 //! The same members are integrated with Housner's equation
-//! ([`rocking_stones::dynamics::housner::housner_overturns`], the record's component along the
+//! ([`rocking_stones::dynamics::shaking::housner::housner_overturns`], the record's component along the
 //! rocking plane, a·cos θ). Both are fitted with the published form; the P = 0.5 contours are
 //! compared in the dimensionless variables PGA/(g tan α) and p·PGV/PGA, in which Housner's
 //! equation under a time-scaled record is exactly self-similar.
@@ -31,7 +31,7 @@
 //!
 //! The ensemble's P is scored by the Brier score and the log loss beside three yes/no forecasts
 //! (0 or 1), so that it is not compared with an extreme member only:
-//! * the **nominal member** ([`rocking_stones::dynamics::shake::Uncertainty::nominal`]): every
+//! * the **nominal member** ([`rocking_stones::dynamics::shaking::Uncertainty::nominal`]): every
 //!   uncertain input at a central value — base contact at the middle of its range, the surface
 //!   pair's nominal friction, restitution and δ, and for an azimuth over the whole circle and a
 //!   random sign, which have no centre, the record as given;
@@ -46,13 +46,15 @@
 use plotters::prelude::*;
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::housner::{housner_overturns, housner_ratio};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{default_pair, Stone};
-use rocking_stones::dynamics::shake::ensemble::draw;
-use rocking_stones::dynamics::shake::{rock_params, run_batch, EnsembleSpec, Pose, RecordRun, RockSetup, Uncertainty};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{default_pair, Stone};
+use rocking_stones::dynamics::shaking::ensemble::draw;
+use rocking_stones::dynamics::shaking::housner::{housner_overturns, housner_ratio};
+use rocking_stones::dynamics::shaking::{
+    rock_params, run_batch, EnsembleSpec, Pose, RecordRun, RockSetup, Uncertainty,
+};
 use rocking_stones::generate;
-use rocking_stones::ground_motion::surface::FragilitySurface;
+use rocking_stones::ground_motion::fragility::FragilitySurface;
 use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::plot::colors::GREY;
@@ -287,7 +289,7 @@ fn run_block(b: &Block, records: &[Record]) -> anyhow::Result<BlockResult> {
             })
             .collect();
         for &o in &same {
-            ode_points.push(rocking_stones::ground_motion::surface::Run {
+            ode_points.push(rocking_stones::ground_motion::fragility::Run {
                 pga_g: d.pga_g,
                 pgv_over_pga_s: d.pgv_over_pga_s,
                 overturned: o,

@@ -12,8 +12,8 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{
     self, default_pair, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
     Threshold,
 };

@@ -14,9 +14,9 @@
 
 use plotters::style::RGBColor;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{default_pair, Class, CurvePoint, PerturbParams, Stone, Threshold};
-use rocking_stones::dynamics::shake::{self, sine_pulse, ShakeConfig, ShakeReport};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{default_pair, Class, CurvePoint, PerturbParams, Stone, Threshold};
+use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig, ShakeReport};
 use rocking_stones::generate;
 use rocking_stones::ground_motion::read::{read_record, AccelUnit};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
@@ -75,7 +75,7 @@ fn main() -> anyhow::Result<()> {
             r_max_m: R_MAX_M,
         };
         let t = std::time::Instant::now();
-        let r = shake::run(&stone, &[regular, rocking], &cfg)?;
+        let r = shaking::run(&stone, &[regular, rocking], &cfg)?;
         eprintln!("{name}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
         eprint!("{}", report::shake::summary(&r, "pebble"));
         let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
@@ -169,7 +169,8 @@ fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)])
                 .iter()
                 .filter(|t| t.start == f.equilibrium_position(stone) && t.pga < q.uplift_acceleration)
                 .collect();
-            let left = below.iter().filter(|t| t.outcome != rocking_stones::dynamics::perturb::Outcome::Same).count();
+            let left =
+                below.iter().filter(|t| t.outcome != rocking_stones::dynamics::pushes::perturb::Outcome::Same).count();
             writeln!(
                 s,
                 "| {name} | {} (facet {}) | {} | {:.3} | {} | {} | {} | {left} / {} |",
@@ -204,7 +205,7 @@ trait Position {
     fn equilibrium_position(&self, stone: &Stone) -> usize;
 }
 
-impl Position for shake::Fragility {
+impl Position for shaking::Fragility {
     fn equilibrium_position(&self, stone: &Stone) -> usize {
         stone.position(self.equilibrium.index).expect("a stable equilibrium")
     }

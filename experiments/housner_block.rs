@@ -11,9 +11,9 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::housner::{free_rocking, housner_ratio, ramp_tipping};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::GRAVITY;

@@ -7,9 +7,9 @@
 //! `results/presets_flocks/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::{Preset, Surface};
+use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::params::{Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
 use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -48,7 +48,7 @@ fn main() {
                     certificate: CertificateMode::Flock,
                     preset: Some(preset.name().into()),
                     center_of_mass: None,
-                    shard: rocking_stones::montecarlo::Shard::ALL,
+                    shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
                 };
                 let t = std::time::Instant::now();
                 let r = run_report(&stone, &header).0;

@@ -36,9 +36,9 @@
 use anyhow::{bail, ensure, Context, Result};
 use rand_distr::{Binomial, Distribution};
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader};
+use rocking_stones::dynamics::drops::params::{DropParams, Flight, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::montecarlo::{run_report, CertificateMode, DropReport, RunHeader};
 use rocking_stones::plot::colors::GREY;
 use rocking_stones::plot::{draw_legend, init_fonts, legend_height, plain, series_color, style, Mark, FONT_FAMILY};
 use rocking_stones::rng::item_rng;

@@ -15,8 +15,8 @@
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{
     self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
 };
 use rocking_stones::generate;

@@ -14,10 +14,10 @@
 //! `results/thick_coin/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::mesh::TriMesh;
-use rocking_stones::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
 use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::wilson;
 use rocking_stones::Point3;
@@ -61,10 +61,10 @@ fn p_edge(stone: &Stone, p: &DropParams, n: u64) -> (u64, u64, f64) {
         certificate: CertificateMode::Facet,
         preset: None,
         center_of_mass: None,
-        shard: rocking_stones::montecarlo::Shard::ALL,
+        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
     };
     let (r, _) = run_report(stone, &header);
-    let edge = |f: &&rocking_stones::montecarlo::FacetRow| f.normal.z.abs() < 0.5;
+    let edge = |f: &&rocking_stones::dynamics::drops::montecarlo::FacetRow| f.normal.z.abs() < 0.5;
     (
         r.facets.iter().filter(edge).map(|f| f.count).sum(),
         r.facet_drops,

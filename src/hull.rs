@@ -600,7 +600,7 @@ impl Polyhedron {
 /// largest `score` while it strictly improves. On the vertex–edge graph of a convex polytope and a
 /// linear score x·d this ends at a maximiser (a local maximum of a linear function over the
 /// vertices of a convex polytope is global); the support-point queries of
-/// [`crate::basins::SupportFlow`] and of the collider [`crate::dynamics::hull_shape`] use it.
+/// [`crate::basins::SupportFlow`] and of the collider [`crate::dynamics::engine::hull_shape`] use it.
 #[inline]
 pub fn hill_climb<I: IntoIterator<Item = u32>>(
     mut v: u32,

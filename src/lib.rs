@@ -65,7 +65,6 @@ pub mod hierarchy;
 pub mod hull;
 pub mod mesh;
 pub mod monitor;
-pub mod montecarlo;
 pub mod morse_smale;
 pub mod planar;
 pub mod plot;

@@ -2,11 +2,13 @@
 //! drop alone in its world, for any batch size and thread count, with and without the certificate.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::{launch, simulate, DropOutcome};
-use rocking_stones::dynamics::params::{Preset, Surface};
+use rocking_stones::dynamics::drops::montecarlo::{
+    certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT,
+};
+use rocking_stones::dynamics::drops::params::{Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::{launch, simulate, DropOutcome};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
-use rocking_stones::montecarlo::{certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT};
 use rocking_stones::rng::item_rng;
 use std::collections::BTreeMap;
 use std::sync::Mutex;

@@ -4,11 +4,11 @@
 use nalgebra::{Matrix3, UnitQuaternion};
 use rapier3d::prelude::SharedShape;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::launch;
-use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
-use rocking_stones::dynamics::run::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::drops::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::launch;
+use rocking_stones::dynamics::engine::run::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::{Body, Stone};
-use rocking_stones::dynamics::world::Simulation;
 use rocking_stones::generate;
 use rocking_stones::rng::item_rng;
 use rocking_stones::Vec3;
@@ -181,7 +181,7 @@ fn a_broad_patch_spins_down_at_the_larger_of_twist_and_torsional_friction() {
 /// L at any state where the certificate may be asked (relaxed contact, L ≤ 1 R_max), the number
 /// of such states. Every throw must settle.
 fn later_rise_above_level(stone: &Stone, p: &DropParams, n: u64) -> (f64, usize) {
-    use rocking_stones::dynamics::batch::simulate_batch_observed;
+    use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
     let (mut worst, mut asked) = (f64::NEG_INFINITY, 0usize);
     for i in 0..n {
         let r = launch(&mut item_rng(5, i), p);
@@ -191,7 +191,7 @@ fn later_rise_above_level(stone: &Stone, p: &DropParams, n: u64) -> (f64, usize)
         simulate_batch_observed(
             stone,
             p,
-            &rocking_stones::dynamics::run::NoCertificate,
+            &rocking_stones::dynamics::engine::run::NoCertificate,
             1,
             &mut std::iter::once((i, r)),
             &mut |o| settled = o.settled,

@@ -2,15 +2,15 @@
 //! shards, checkpoints, and the energy bound of the static theory.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::{launch, simulate, DropOutcome};
-use rocking_stones::dynamics::params::DropParams;
-use rocking_stones::dynamics::run::{NoCertificate, CERTIFICATE_MARGIN};
+use rocking_stones::dynamics::drops::montecarlo::{
+    merge, read_partial, run, summarize, CertificateMode, Checkpoint, RunHeader, Shard, FORMAT,
+};
+use rocking_stones::dynamics::drops::params::DropParams;
+use rocking_stones::dynamics::drops::simulate::{launch, simulate, DropOutcome};
+use rocking_stones::dynamics::engine::run::{NoCertificate, CERTIFICATE_MARGIN};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
-use rocking_stones::montecarlo::{
-    merge, read_partial, run, summarize, CertificateMode, Checkpoint, RunHeader, Shard, FORMAT,
-};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::wilson;
 use std::collections::BTreeMap;
@@ -31,17 +31,17 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         mesh_fingerprint: "0".into(),
         seed,
         drops,
-        params: rocking_stones::dynamics::perturb::PerturbParams::damped().sim,
+        params: rocking_stones::dynamics::pushes::perturb::PerturbParams::damped().sim,
         certificate,
         preset: None,
         center_of_mass: None,
-        shard: rocking_stones::montecarlo::Shard::ALL,
+        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
     }
 }
 
 fn run_all(s: &Stone, h: &RunHeader, shard: Shard) -> Vec<DropOutcome> {
     let sink = Mutex::new(|_: &DropOutcome| {});
-    let cert = rocking_stones::montecarlo::certificate(s, h.certificate);
+    let cert = rocking_stones::dynamics::drops::montecarlo::certificate(s, h.certificate);
     run(s, h, shard, &BTreeMap::new(), cert.as_ref(), &sink)
 }
 
@@ -91,7 +91,7 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
         assert!(done.is_empty());
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
-        let cert = rocking_stones::montecarlo::certificate(&s, h.certificate);
+        let cert = rocking_stones::dynamics::drops::montecarlo::certificate(&s, h.certificate);
         run(&s, &h, Shard { index: 0, count: 2 }, &BTreeMap::new(), cert.as_ref(), &sink);
     }
     std::fs::write(&path, std::fs::read_to_string(&path).unwrap() + "{\"index\": 1, \"sett").unwrap();
@@ -109,7 +109,7 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
     {
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
-        let cert = rocking_stones::montecarlo::certificate(&s, h.certificate);
+        let cert = rocking_stones::dynamics::drops::montecarlo::certificate(&s, h.certificate);
         let rest = run(&s, &h, Shard::ALL, &done, cert.as_ref(), &sink);
         assert_eq!(rest.len(), 15);
     }
@@ -148,7 +148,7 @@ fn certified_drops_end_where_full_settling_ends() {
 #[test]
 fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
     let (a, s) = setup(generate::pebble([1.0, 0.7, 0.45], 0.04, 500, 8));
-    let p = DropParams { height: 0.05, ..rocking_stones::dynamics::perturb::PerturbParams::damped().sim };
+    let p = DropParams { height: 0.05, ..rocking_stones::dynamics::pushes::perturb::PerturbParams::damped().sim };
     let g = a.mass.center_of_mass;
     let mut crossed = 0;
     for i in 0..40 {
@@ -211,7 +211,7 @@ fn damaged_or_foreign_checkpoints_are_refused_naming_file_line_and_field() {
     // A facet index beyond the hull: an error, not a panic.
     let p = write("facet.jsonl", &h, &[line(0, f), line(1, 9999)]);
     let (_, o) = read_partial(&p).unwrap();
-    let e = err(rocking_stones::montecarlo::check_outcomes(&p, &o, &model).map(|_| ()));
+    let e = err(rocking_stones::dynamics::drops::montecarlo::check_outcomes(&p, &o, &model).map(|_| ()));
     assert!(e.contains("facet.jsonl") && e.contains("drop 1") && e.contains("field facet"), "{e}");
     // A drop index beyond the run.
     let p = write("index.jsonl", &h, &[line(0, f), line(45, f), line(2, f)]);

@@ -5,11 +5,11 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::housner::ramp_tipping;
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{PerturbParams, Stone};
-use rocking_stones::dynamics::shake::ensemble::{base_facet, run_ensemble, EnsembleSpec, Uncertainty};
-use rocking_stones::dynamics::shake::{rock_params, run_record, sine_pulse, Pose, RockSetup};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::shaking::ensemble::{base_facet, run_ensemble, EnsembleSpec, Uncertainty};
+use rocking_stones::dynamics::shaking::housner::ramp_tipping;
+use rocking_stones::dynamics::shaking::{rock_params, run_record, sine_pulse, Pose, RockSetup};
 use rocking_stones::generate;
 use rocking_stones::hull::convex_hull;
 use rocking_stones::mesh::TriMesh;
@@ -111,7 +111,7 @@ fn the_base_contact_tolerance_moves_the_pivot_as_the_tipping_polar_says() {
 
 #[test]
 fn an_ensemble_batch_fits_every_member_and_resumes_by_member() {
-    use rocking_stones::dynamics::shake::run_batch;
+    use rocking_stones::dynamics::shaking::run_batch;
     let s = stone(generate::cuboid(1.0, 0.6, 2.0));
     let setup = block_setup(&s);
     let record = sine_pulse(1.0, 2.0, 1.0, 1e-3).unwrap();

@@ -4,13 +4,17 @@
 
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::flight::{Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE};
-use rocking_stones::dynamics::params::{Flight, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::montecarlo::{
+    certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT,
+};
+use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::engine::flight::{
+    Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE,
+};
+use rocking_stones::dynamics::engine::world::{ground_world, Simulation};
 use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::world::{ground_world, Simulation};
 use rocking_stones::generate;
-use rocking_stones::montecarlo::{certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT};
 use rocking_stones::stats::chi_square_homogeneity;
 use rocking_stones::Vec3;
 use rocking_stones::GRAVITY;
@@ -67,7 +71,7 @@ fn fly_both(
     s: &Stone,
     steps_per_s: f64,
     damping: Damping,
-) -> (f64, FreeBody, rocking_stones::dynamics::world::BodyState, f64) {
+) -> (f64, FreeBody, rocking_stones::dynamics::engine::world::BodyState, f64) {
     let mut p = Preset::Throw.params(Surface::SteelOnWood);
     (p.dt, p.linear_damping, p.angular_damping) = (1.0 / steps_per_s, damping.linear, damping.angular);
     // Rapier's own steps, at this step (the default numerics would sub-step the fast fall).
@@ -179,12 +183,12 @@ fn default_numerics_are_free_flight_at_the_presets_longest_stable_step_and_optio
 /// `flight`: what the run itself measures after every sub-step (`DropOutcome::deepest_penetration`).
 #[allow(clippy::too_many_arguments)]
 fn deepest_drop(s: &Stone, flight: Flight, height: f64, dt: f64, q: UnitQuaternion<f64>, v: Vec3, w: Vec3) -> f64 {
-    use rocking_stones::dynamics::batch::simulate_batch;
-    use rocking_stones::dynamics::drop::Release;
+    use rocking_stones::dynamics::drops::batch::simulate_batch;
+    use rocking_stones::dynamics::drops::simulate::Release;
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
     (p.height, p.dt, p.flight, p.max_time) = (height, dt, flight, 6.0);
     let release = Release { orientation: q, linvel: v, angvel: w };
-    let cert = rocking_stones::dynamics::run::NoCertificate;
+    let cert = rocking_stones::dynamics::engine::run::NoCertificate;
     let mut deepest = f64::NAN;
     simulate_batch(s, &p, &cert, 1, &mut std::iter::once((0, release)), &mut |o| deepest = o.deepest_penetration);
     deepest
@@ -197,7 +201,7 @@ fn no_drop_goes_deeper_than_the_stated_bound() {
     // thrown sideways at 200 R_max/s: steps that need 100–350 sub-steps): exact landings and
     // sub-stepped impacts keep every hull corner within DEPTH_BOUND of the ground after every
     // step and sub-step (measured by the run itself, the contact's own softness included).
-    use rocking_stones::dynamics::impact::DEPTH_BOUND;
+    use rocking_stones::dynamics::engine::impact::DEPTH_BOUND;
     let cube = stone(generate::cuboid(1.0, 1.0, 1.0));
     let flat = UnitQuaternion::identity();
     let edge = UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_4, 0.0, 0.0);
@@ -224,7 +228,7 @@ fn no_drop_goes_deeper_than_the_stated_bound() {
     let boxed = stone(generate::cuboid(1.0, 0.75, 0.4));
     let mut worst_fast: f64 = 0.0;
     for (preset, seed, set) in [
-        (Preset::Drop, 3, (|p: &mut rocking_stones::dynamics::params::DropParams| p.spin = 400.0) as fn(&mut _)),
+        (Preset::Drop, 3, (|p: &mut rocking_stones::dynamics::drops::params::DropParams| p.spin = 400.0) as fn(&mut _)),
         (Preset::Throw, 7, |p| p.horizontal_speed = 200.0),
     ] {
         let mut h = header(50, preset, Flight::Free, CertificateMode::None);
@@ -245,7 +249,7 @@ fn no_drop_goes_deeper_than_the_stated_bound() {
             h.params.strict_impacts = false;
             let outcomes: BTreeMap<u64, DropOutcome> =
                 run(&boxed, &h, 8, 1).into_iter().map(|o| (o.index, o)).collect();
-            let r = rocking_stones::montecarlo::summarize(&boxed.model(), &h, &outcomes);
+            let r = rocking_stones::dynamics::drops::montecarlo::summarize(&boxed.model(), &h, &outcomes);
             assert!(
                 r.drops_beyond_depth_bound >= 1 && r.deepest_penetration > DEPTH_BOUND,
                 "{}",
@@ -285,7 +289,7 @@ fn knocked_stones_resolve_their_impacts_as_drops_do() {
     // sub-stepped there too: a cube knocked off its face (tumbling, thrown up, on a table moving
     // down and sideways, knocked at 300 rad/s) never goes deeper than the bound at 1/240, 1/120
     // and 1/80 s, at any step or sub-step.
-    use rocking_stones::dynamics::impact::DEPTH_BOUND;
+    use rocking_stones::dynamics::engine::impact::DEPTH_BOUND;
     let cube = stone(generate::cuboid(1.0, 1.0, 1.0));
     let knocks = [
         (Vec3::new(0.0, 0.0, 0.0), Vec3::new(12.0, 0.0, 0.0), Vec3::zeros()),
@@ -328,8 +332,8 @@ fn a_flat_landing_bounces_to_e_squared_h() {
 }
 
 fn flat_landings_bounce_to_e_squared_h(name: &str, dropped: &Stone) {
-    use rocking_stones::dynamics::batch::simulate_batch_observed;
-    use rocking_stones::dynamics::drop::Release;
+    use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+    use rocking_stones::dynamics::drops::simulate::Release;
     let rest = dropped.body.support(&-Vec3::z());
     for (e, h, dt) in [(0.5, 1.0, 1.0 / 240.0), (0.3, 2.0, 1.0 / 120.0), (0.7, 0.5, 1.0 / 240.0)] {
         let mut p = Preset::Drop.params(Surface::SteelOnWood);
@@ -340,7 +344,7 @@ fn flat_landings_bounce_to_e_squared_h(name: &str, dropped: &Stone) {
         simulate_batch_observed(
             dropped,
             &p,
-            &rocking_stones::dynamics::run::NoCertificate,
+            &rocking_stones::dynamics::engine::run::NoCertificate,
             1,
             &mut std::iter::once((0, release)),
             &mut |_| {},
@@ -400,8 +404,8 @@ fn a_corner_impact_leaves_as_the_contact_law_says_at_any_solver_sub_steps() {
     // (its friction is not converged on a corner struck within a step; the former completion,
     // normal impulses only, left this box's spin 31 % off Newton's law at 4 sub-steps and ~4 % at
     // 32, `results/corner_impact/`); the law reaches it at 4 and at 32.
-    use rocking_stones::dynamics::batch::simulate_batch_observed;
-    use rocking_stones::dynamics::drop::Release;
+    use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+    use rocking_stones::dynamics::drops::simulate::Release;
     let dropped = stone(generate::cuboid(1.0, 0.8, 0.5));
     let orientation = UnitQuaternion::from_euler_angles(0.4, 0.7, 0.2);
     let down = orientation.inverse() * -Vec3::z();
@@ -418,7 +422,7 @@ fn a_corner_impact_leaves_as_the_contact_law_says_at_any_solver_sub_steps() {
         simulate_batch_observed(
             &dropped,
             &p,
-            &rocking_stones::dynamics::run::NoCertificate,
+            &rocking_stones::dynamics::engine::run::NoCertificate,
             1,
             &mut std::iter::once((0, release)),
             &mut |_| {},
@@ -464,8 +468,8 @@ fn a_rock_under_a_two_g_record_stays_within_the_depth_bound() {
     // regular one, under 6 s of three-component shaking whose horizontal peak is 2.4 g (a vertical
     // 0.9 g): the ground's own motion drives every impact, and the run measures the depth after
     // every step and sub-step.
-    use rocking_stones::dynamics::impact::DEPTH_BOUND;
-    use rocking_stones::dynamics::shake::{run_record, Pose, RockSetup};
+    use rocking_stones::dynamics::engine::impact::DEPTH_BOUND;
+    use rocking_stones::dynamics::shaking::{run_record, Pose, RockSetup};
     use rocking_stones::ground_motion::Record;
     let a = rocking_stones::bundled::analysis(&Options::default()).unwrap();
     let (nu, _) = a.macro_nu(&Options::default());

@@ -16,7 +16,7 @@ use rapier3d::prelude::{
     MultibodyJointSet, NarrowPhase, PhysicsPipeline, RigidBodyBuilder, RigidBodyHandle, RigidBodySet, SharedShape,
     SoftBodySet,
 };
-use rocking_stones::dynamics::hull_shape::{HullShape, DEFAULT_FEATURE_ANGLE};
+use rocking_stones::dynamics::engine::hull_shape::{HullShape, DEFAULT_FEATURE_ANGLE};
 use rocking_stones::generate::{self, Platonic};
 use rocking_stones::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::solid::MassProperties;

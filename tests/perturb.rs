@@ -4,12 +4,12 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::housner::{free_rocking, housner_ratio, ramp_tipping};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{
     self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone, Threshold,
 };
-use rocking_stones::dynamics::shake::{self, shake_trial, sine_pulse, ShakeConfig};
+use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::shaking::{self, shake_trial, sine_pulse, ShakeConfig};
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::stats::{log_grid, GridSize};
@@ -227,8 +227,8 @@ fn runs_are_reproducible_and_independent_of_threads() {
         azimuth: None,
         r_max_m: 1.0,
     };
-    let one = pool(1).install(|| shake::run(&s, &starts[..2], &shake_cfg)).unwrap();
-    let two = pool(2).install(|| shake::run(&s, &starts[..2], &shake_cfg)).unwrap();
+    let one = pool(1).install(|| shaking::run(&s, &starts[..2], &shake_cfg)).unwrap();
+    let two = pool(2).install(|| shaking::run(&s, &starts[..2], &shake_cfg)).unwrap();
     assert_eq!(one.trials, two.trials);
     assert_eq!(one.trials.len(), 12);
 }

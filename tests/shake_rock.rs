@@ -5,10 +5,10 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::housner::housner_overturns;
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{Outcome, PerturbParams, Stone};
-use rocking_stones::dynamics::shake::{place, rock_params, shake_record, shake_trial, sine_pulse, Pose, RockRun};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{Outcome, PerturbParams, Stone};
+use rocking_stones::dynamics::shaking::housner::housner_overturns;
+use rocking_stones::dynamics::shaking::{place, rock_params, shake_record, shake_trial, sine_pulse, Pose, RockRun};
 use rocking_stones::generate;
 use rocking_stones::ground_motion::Record;
 use rocking_stones::hull::convex_hull;
@@ -288,7 +288,7 @@ fn one_sine_pulse_overturning_boundary_matches_housners_equation() {
 /// and slide to the last bit.
 #[test]
 fn a_record_as_at2_and_as_csv_gives_identical_runs() {
-    use rocking_stones::dynamics::shake::{run_record, RockSetup};
+    use rocking_stones::dynamics::shaking::{run_record, RockSetup};
     use rocking_stones::ground_motion::read::{at2_text, read_at2, read_csv, AccelUnit};
     use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
     let dir = tempfile::tempdir().unwrap();
@@ -324,7 +324,7 @@ fn a_record_as_at2_and_as_csv_gives_identical_runs() {
 /// A batch of records × scales gives the same runs, in the same order, on one and on two threads.
 #[test]
 fn batches_are_independent_of_the_thread_count() {
-    use rocking_stones::dynamics::shake::{run_batch, RockSetup};
+    use rocking_stones::dynamics::shaking::{run_batch, RockSetup};
     use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
     let s = stone(generate::cuboid(1.0, 0.6, 2.0));
     let recs: Vec<_> = [1u64, 2]
@@ -346,7 +346,7 @@ fn batches_are_independent_of_the_thread_count() {
 /// the largest it gets for a field rock) and by 5 m.
 #[test]
 fn housners_impact_ratio_holds_at_true_size() {
-    use rocking_stones::dynamics::housner::{free_rocking, housner_ratio};
+    use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio};
     let (b, d, h) = (0.5, 0.3, 1.0);
     let s = stone(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h));
     let start = s.position(bottom(&s)).unwrap();
@@ -544,10 +544,10 @@ fn options_that_do_not_apply_are_refused() {
 fn a_ball_under_a_pulse_rolls_back_five_sevenths_of_the_ground_motion() {
     use nalgebra::{Matrix3, UnitQuaternion};
     use rapier3d::prelude::SharedShape;
-    use rocking_stones::dynamics::run::Drive;
-    use rocking_stones::dynamics::shake::GroundDrive;
+    use rocking_stones::dynamics::engine::run::Drive;
+    use rocking_stones::dynamics::engine::world::Simulation;
+    use rocking_stones::dynamics::shaking::GroundDrive;
     use rocking_stones::dynamics::stone::Body;
-    use rocking_stones::dynamics::world::Simulation;
     use rocking_stones::ground_motion::synthetic::one_sine_pulse;
     use rocking_stones::Vec3;
     let ball = Body {

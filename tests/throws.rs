@@ -2,12 +2,12 @@
 //! resistance, no global damping): symmetry, real scans, the certificate, determinism.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::DropParams;
+use rocking_stones::dynamics::drops::montecarlo::{run_report, summarize, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::params::DropParams;
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate::{self, Platonic};
 use rocking_stones::mesh::TriMesh;
-use rocking_stones::montecarlo::{run_report, summarize, CertificateMode, RunHeader, FORMAT};
 use rocking_stones::stats::wilson;
 use std::collections::BTreeMap;
 
@@ -32,7 +32,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         certificate,
         preset: Some("throw".into()),
         center_of_mass: None,
-        shard: rocking_stones::montecarlo::Shard::ALL,
+        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
     }
 }
 

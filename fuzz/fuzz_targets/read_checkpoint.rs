@@ -9,7 +9,7 @@ fuzz_target!(|data: &[u8]| {
     let mut file = tempfile_in_tmp();
     file.1.write_all(data).expect("write the temporary checkpoint");
     drop(file.1);
-    let _ = rocking_stones::montecarlo::read_partial(&file.0);
+    let _ = rocking_stones::dynamics::drops::montecarlo::read_partial(&file.0);
     let _ = std::fs::remove_file(&file.0);
 });
 

@@ -9,11 +9,11 @@ use crate::mesh_input::analysed;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone as Body;
-use rocking_stones::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
 use std::collections::BTreeMap;
 use std::time::Instant;
 

@@ -11,7 +11,7 @@ use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::dynamics::params::Surface;
+use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::size::{RealSize, Size, ASSUMED_UNIT};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -81,8 +81,8 @@ fn resting_params(
     default_surface: Surface,
     r_max_m: f64,
     params: Option<&Bound<'_, PyDict>>,
-) -> PyResult<rocking_stones::dynamics::perturb::PerturbParams> {
-    use rocking_stones::dynamics::perturb::{PerturbParams, RestingPreset};
+) -> PyResult<rocking_stones::dynamics::pushes::perturb::PerturbParams> {
+    use rocking_stones::dynamics::pushes::perturb::{PerturbParams, RestingPreset};
     let preset: RestingPreset = preset.unwrap_or("surface").parse().map_err(py_err)?;
     let surface: Surface = surface.map_or(Ok(default_surface), str::parse).map_err(py_err)?;
     let base = PerturbParams::of(preset, surface, r_max_m).map_err(py_err)?;
@@ -122,7 +122,7 @@ pub(crate) fn real_size(
 
 /// `length_unit=`: "mm", "cm", "m", "km" or metres per mesh unit (a number or its text).
 pub(crate) fn length_unit_m(u: &Bound<'_, PyAny>) -> PyResult<f64> {
-    use rocking_stones::dynamics::shake::parse_length_unit;
+    use rocking_stones::dynamics::shaking::parse_length_unit;
     match u.extract::<f64>() {
         Ok(x) => parse_length_unit(&x.to_string()).map_err(py_err),
         Err(_) => parse_length_unit(&u.extract::<String>()?).map_err(py_err),
@@ -167,7 +167,7 @@ pub(crate) fn perturb(
     progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
-    use rocking_stones::dynamics::perturb::{self as pt, PerturbConfig};
+    use rocking_stones::dynamics::pushes::perturb::{self as pt, PerturbConfig};
     if !(eps_min > 0.0 && eps_max >= eps_min && eps_steps > 0) {
         return Err(PyValueError::new_err("need 0 < eps_min ≤ eps_max and eps_steps ≥ 1"));
     }
@@ -223,8 +223,8 @@ pub(crate) fn shake(
     progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
-    use rocking_stones::dynamics::perturb as pt;
-    use rocking_stones::dynamics::shake::{self as sh, ShakeConfig};
+    use rocking_stones::dynamics::pushes::perturb as pt;
+    use rocking_stones::dynamics::shaking::{self as sh, ShakeConfig};
     if pulse.is_some() && motion.is_some() {
         return Err(PyValueError::new_err("give a pulse or a motion, not both"));
     }
@@ -318,8 +318,8 @@ pub(crate) fn shake_rock<'py>(
     nu: Option<f64>,
     name: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use rocking_stones::dynamics::perturb as pt;
-    use rocking_stones::dynamics::shake::{self as sh, EnsembleSpec, Pose, RockSetup, Uncertainty};
+    use rocking_stones::dynamics::pushes::perturb as pt;
+    use rocking_stones::dynamics::shaking::{self as sh, EnsembleSpec, Pose, RockSetup, Uncertainty};
     use rocking_stones::ground_motion::Record;
     let pose: Pose = pose.parse().map_err(py_err)?;
     let surface: Surface = surface.parse().map_err(py_err)?;
@@ -392,9 +392,9 @@ const UNCERTAINTY_KEYS: [&str; 6] =
 
 /// `uncertainty=` of `shake_rock` as the command line's `given` uncertainty (user units: the
 /// mesh's length unit, degrees, mm), each range checked and named by its key.
-fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::dynamics::shake::Uncertainty> {
+fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::dynamics::shaking::Uncertainty> {
     use pyo3::types::PyBool;
-    let mut given = rocking_stones::dynamics::shake::Uncertainty::default();
+    let mut given = rocking_stones::dynamics::shaking::Uncertainty::default();
     let Some(d) = d else { return Ok(given) };
     let repr = |v: &Bound<'_, PyAny>| v.repr().map_or_else(|_| "?".into(), |r| r.to_string());
     // A pair (low, high), or one number x: [0, x] when `from_zero`, else [x, x] (`parse_range`).

@@ -8,7 +8,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::analysis::{check_nu, Report, PAPER_NU};
-use rocking_stones::dynamics::params::{DropParams, REFERENCE_R_MAX_M};
+use rocking_stones::dynamics::drops::params::{DropParams, REFERENCE_R_MAX_M};
 use rocking_stones::dynamics::size::format_length;
 use std::path::PathBuf;
 

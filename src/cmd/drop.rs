@@ -3,14 +3,14 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Context, Result};
 use rocking_stones::analysis::{check_nu, Options};
-use rocking_stones::dynamics::drop::DropOutcome;
-use rocking_stones::dynamics::params::{DropParams, Flight, Preset, Surface};
-use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::montecarlo::{
+use rocking_stones::dynamics::drops::montecarlo::{
     certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
     RunHeader, Shard,
 };
+use rocking_stones::dynamics::drops::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
+use rocking_stones::dynamics::stone::Stone;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -132,7 +132,7 @@ pub struct Args {
     pub center_of_mass: Option<rocking_stones::Point3>,
     /// Stones simulated together in one physics world (they touch only the ground; every drop's
     /// outcome is the same for any value); 1: each drop alone in its own world.
-    #[arg(long, default_value_t = rocking_stones::montecarlo::DEFAULT_BATCH, value_parser = parse_batch)]
+    #[arg(long, default_value_t = rocking_stones::dynamics::drops::montecarlo::DEFAULT_BATCH, value_parser = parse_batch)]
     pub batch: usize,
     /// Run only shard i of n, given as i/n (drops i, i+n, i+2n, …); combine with `rocking
     /// merge` (default: the whole run).
@@ -313,7 +313,7 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
         None => Some(PathBuf::from(&header.mesh)),
     };
     let (analysis, _) = load_analysis(mesh.as_deref(), &opts)?;
-    let fp = rocking_stones::montecarlo::fingerprint(&analysis.mesh);
+    let fp = rocking_stones::dynamics::drops::montecarlo::fingerprint(&analysis.mesh);
     if fp != header.mesh_fingerprint {
         anyhow::bail!(
             "the mesh does not match the one the drops were run on (fingerprint {fp} vs {})",

@@ -59,7 +59,7 @@ pub fn real_size(
 ) -> anyhow::Result<RealSize> {
     let given = match (size, length_unit) {
         (Some(r), _) => Some(Size::RMax(r)),
-        (None, Some(u)) => Some(Size::Unit(rocking_stones::dynamics::shake::parse_length_unit(u)?)),
+        (None, Some(u)) => Some(Size::Unit(rocking_stones::dynamics::shaking::parse_length_unit(u)?)),
         (None, None) => None,
     };
     let real = RealSize::resolve(name, r_max, given, assumed)?;

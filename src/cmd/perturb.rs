@@ -4,8 +4,8 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::perturb::{self, Family, PerturbConfig, PerturbParams, RestingPreset, Stone};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig, PerturbParams, RestingPreset, Stone};
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_UNIT};
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};

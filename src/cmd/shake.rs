@@ -6,8 +6,8 @@
 
 use super::perturb::SimArgs;
 use anyhow::{bail, Result};
-use rocking_stones::dynamics::params::Surface;
-use rocking_stones::dynamics::shake::{self, RockSetup, ShakeConfig};
+use rocking_stones::dynamics::drops::params::Surface;
+use rocking_stones::dynamics::shaking::{self, RockSetup, ShakeConfig};
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
@@ -33,7 +33,7 @@ pub struct Args {
     /// Field rock: how it stands — as-scanned (mesh frame = world frame, +z up; put down and
     /// settled), facet:ID (a stable micro-equilibrium) or quat:w,x,y,z.
     #[arg(long, value_parser = parse_pose)]
-    pub pose: Option<shake::Pose>,
+    pub pose: Option<shaking::Pose>,
     /// CSV records: columns `time,ax[,ay[,az]]` by header name or number from 1.
     #[arg(long, default_value = "1,2")]
     pub columns: String,
@@ -126,7 +126,7 @@ fn parse_pulse(s: &str) -> Result<[f64; 3], String> {
     }
 }
 
-fn parse_pose(s: &str) -> Result<shake::Pose, String> {
+fn parse_pose(s: &str) -> Result<shaking::Pose, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
@@ -140,13 +140,13 @@ pub fn run(args: Args) -> Result<()> {
     let r_max_m = size.r_max_m;
     let real_dt = params.sim.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (&args.pulse, args.motion.is_empty()) {
-        (Some([a, f, c]), _) => (shake::sine_pulse(*a, *f, *c, real_dt)?, false),
+        (Some([a, f, c]), _) => (shaking::sine_pulse(*a, *f, *c, real_dt)?, false),
         (None, false) => (read_records(&args)?.remove(0), false),
-        (None, true) => (shake::default_pulse(r_max_m, params.sim.dt)?, true),
+        (None, true) => (shaking::default_pulse(r_max_m, params.sim.dt)?, true),
     };
-    let pgas = shake::pgas_for(&motion, args.pga_max, args.pga_steps, default_sweep)?;
+    let pgas = shaking::pgas_for(&motion, args.pga_max, args.pga_steps, default_sweep)?;
     let starts = match args.equilibria.is_empty() {
-        true => shake::default_starts(&stone, &params)?,
+        true => shaking::default_starts(&stone, &params)?,
         false => stone.select(&args.equilibria, None)?,
     };
     let cfg = ShakeConfig {
@@ -160,8 +160,8 @@ pub fn run(args: Args) -> Result<()> {
     };
     cfg.check()?;
     let bar = super::progress_bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64, "trials");
-    let report = shake::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
-    let report = shake::ShakeReport { size_assumed: Some(size.assumed()), ..report };
+    let report = shaking::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
+    let report = shaking::ShakeReport { size_assumed: Some(size.assumed()), ..report };
     bar.finish_and_clear();
     super::emit(
         &report,
@@ -203,7 +203,7 @@ fn read_motion(paths: &[PathBuf], columns: &Columns, unit: AccelUnit) -> Result<
 }
 
 /// `rocking shake --pose ...`: a field rock at true size under recorded motion.
-fn field(args: Args, pose: shake::Pose) -> Result<()> {
+fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     let records = read_records(&args)?;
     if args.scales.is_empty() || args.scales.iter().any(|k| !(*k >= 0.0 && k.is_finite())) {
         bail!("--scales must be numbers ≥ 0, e.g. 0.5,1,2");
@@ -220,7 +220,7 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
     let ensemble = ensemble_spec(&args, &setup)?;
     if let (Some(e), [record], [scale]) = (&ensemble, &records[..], &args.scales[..]) {
         let bar = super::progress_bar(e.members, "members");
-        let run = shake::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
+        let run = shaking::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
         bar.finish_and_clear();
         return super::emit(
             &run,
@@ -236,7 +236,7 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
         );
     }
     if records.len() == 1 && args.scales.len() == 1 {
-        let run = shake::run_record(&stone, &setup, &records[0], args.scales[0])?;
+        let run = shaking::run_record(&stone, &setup, &records[0], args.scales[0])?;
         return super::emit(
             &run,
             args.json,
@@ -294,7 +294,7 @@ fn field(args: Args, pose: shake::Pose) -> Result<()> {
     let members = ensemble.as_ref().map_or(1, |e| e.members);
     let bar = super::progress_bar((records.len() * args.scales.len()) as u64 * members, "runs");
     let failed = std::sync::atomic::AtomicBool::new(false);
-    let batch = shake::run_batch(&stone, &setup, &records, &args.scales, ensemble.as_ref(), &previous, &|r| {
+    let batch = shaking::run_batch(&stone, &setup, &records, &args.scales, ensemble.as_ref(), &previous, &|r| {
         if let Some(w) = &sink {
             let mut w = w.lock().unwrap_or_else(|e| e.into_inner());
             let (j, c) = &mut *w;
@@ -343,10 +343,10 @@ fn parse_range(flag: &str, s: &str, from_zero: bool) -> Result<[f64; 2]> {
 
 /// The ensemble of the command line: the surface pair's contact ranges unless pinned or given,
 /// the base-contact tolerance from mesh units to metres, the azimuth range or `unknown`.
-fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shake::EnsembleSpec>> {
+fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shaking::EnsembleSpec>> {
     let Some(members) = args.ensemble else { return Ok(None) };
     let range = |flag: &str, s: &Option<String>| s.as_deref().map(|s| parse_range(flag, s, false)).transpose();
-    let given = shake::Uncertainty {
+    let given = shaking::Uncertainty {
         contact_tolerance_m: args
             .contact_tolerance
             .as_deref()
@@ -371,8 +371,8 @@ fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shake::Ensembl
     given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;
     let surface = args.sim.surface.unwrap_or(Surface::RockOnConcrete);
     let pinned = [args.sim.friction.is_some(), args.sim.restitution.is_some(), args.sim.rolling_resistance.is_some()];
-    let uncertainty = shake::Uncertainty::stated(&given, surface, setup.length_unit_m, pinned);
-    let spec = shake::EnsembleSpec { uncertainty, seed: args.seed, members };
+    let uncertainty = shaking::Uncertainty::stated(&given, surface, setup.length_unit_m, pinned);
+    let spec = shaking::EnsembleSpec { uncertainty, seed: args.seed, members };
     spec.check().map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;
     Ok(Some(spec))
 }
@@ -382,7 +382,7 @@ const JOURNAL_FORMAT: &str = "rocking-shake-runs/1";
 
 /// The runs of a batch journal, after checking that its header (format, mesh, setup) is this
 /// batch's, and the length in bytes of its complete lines (a last line cut off by a kill is not).
-fn read_journal(path: &std::path::Path, header: &serde_json::Value) -> Result<(Vec<shake::RecordRun>, u64)> {
+fn read_journal(path: &std::path::Path, header: &serde_json::Value) -> Result<(Vec<shaking::RecordRun>, u64)> {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
@@ -404,7 +404,7 @@ fn read_journal(path: &std::path::Path, header: &serde_json::Value) -> Result<(V
         if !line.ends_with('\n') {
             break; // the last line, cut off while it was being written (a kill): run it again
         }
-        match serde_json::from_str::<shake::RecordRun>(line) {
+        match serde_json::from_str::<shaking::RecordRun>(line) {
             Ok(r) => {
                 runs.push(r);
                 valid += line.len() as u64;

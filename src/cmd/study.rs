@@ -7,7 +7,7 @@
 
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{Options, PAPER_NU};
-use rocking_stones::dynamics::params::{DropParams, REFERENCE_R_MAX_M};
+use rocking_stones::dynamics::drops::params::{DropParams, REFERENCE_R_MAX_M};
 use rocking_stones::dynamics::size::format_length;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
@@ -256,7 +256,7 @@ fn batch(args: BatchArgs) -> Result<()> {
     let files = study::mesh_files(folder)?;
     let meta = args.meta.as_deref().map(Metadata::read).transpose()?;
     let length_unit_m =
-        args.length_unit.as_deref().map(rocking_stones::dynamics::shake::parse_length_unit).transpose()?;
+        args.length_unit.as_deref().map(rocking_stones::dynamics::shaking::parse_length_unit).transpose()?;
     let experimenter = args.dynamic.experimenter()?.map(|e| Experimenter { length_unit_m, ..e });
     if experimenter.is_some() && length_unit_m.is_none() {
         eprintln!(

@@ -4,7 +4,7 @@
 //! A mesh's coordinates carry no unit, but a dynamic result does depend on the real size: the
 //! contact's rolling-resistance length δ is divided by R_max, and a ground motion's real
 //! frequencies meet the stone at √R_max (every other group is Froude-invariant, see
-//! [`super::params`]). The static pipeline (equilibria, flocks, ν, basins) does not. So the size
+//! [`crate::dynamics::drops::params`]). The static pipeline (equilibria, flocks, ν, basins) does not. So the size
 //! is either **given** (a length unit or R_max), **known** (the bundled stone is in millimetres)
 //! or **assumed** (the command's default) — and an assumed size is never silent:
 //! [`RealSize::assumption`] is the sentence the command line and the Python binding show before
@@ -49,8 +49,8 @@ impl Size {
 pub const ASSUMED_UNIT: Size = Size::Unit(1.0);
 
 /// What `drop` assumes of a stone whose size is neither given nor known: R_max = 1 cm, the
-/// reference size of the drop presets ([`super::params::REFERENCE_R_MAX_M`], a die).
-pub const ASSUMED_DROP_SIZE: Size = Size::RMax(super::params::REFERENCE_R_MAX_M);
+/// reference size of the drop presets ([`crate::dynamics::drops::params::REFERENCE_R_MAX_M`], a die).
+pub const ASSUMED_DROP_SIZE: Size = Size::RMax(crate::dynamics::drops::params::REFERENCE_R_MAX_M);
 
 /// Plausible real R_max (m) of a stone, a pebble or a field rock: from 2 mm (a 4 mm granule, the
 /// smallest gravel on Wentworth's scale) to 20 m (a 40 m boulder, the size of the largest known

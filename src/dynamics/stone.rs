@@ -37,7 +37,7 @@ use std::sync::OnceLock;
 
 /// How far above its stable facet's R_F (in R_max) the centre of mass of a resting body may be
 /// and still count as resting on it: 10⁻³ R_max, the contact tolerance of the solver
-/// ([`super::world::ALLOWED_PENETRATION`]). The largest sink of a resting body measured on the
+/// ([`crate::dynamics::engine::world::ALLOWED_PENETRATION`]). The largest sink of a resting body measured on the
 /// bundled stone is 1.3·10⁻⁴ R_max, and a tilt θ onto a neighbouring micro-facet raises G by
 /// about R θ²/2 (10⁻⁹ R_max for the 5·10⁻⁵ rad between the facets of a scan).
 pub const REST_TOLERANCE: f64 = 1e-3;
@@ -47,7 +47,7 @@ pub const REST_TOLERANCE: f64 = 1e-3;
 pub struct Body {
     /// Hull corners relative to G, divided by R_max.
     pub corners: Vec<Vec3>,
-    /// The collider: the project's own hull ([`super::hull_shape::HullShape`], exact facets,
+    /// The collider: the project's own hull ([`crate::dynamics::engine::hull_shape::HullShape`], exact facets,
     /// constant-time bounds), shared by all runs.
     pub shape: SharedShape,
     /// Outward unit normal of every facet (body frame).
@@ -64,7 +64,7 @@ impl Body {
     pub fn new(hull: &Polyhedron, g: &Point3, inertia: &Matrix3<f64>, volume: f64) -> Self {
         let r_max = hull.vertices.iter().map(|p| (p - g).norm()).fold(0.0, f64::max);
         let corners = hull.vertices.iter().map(|p| (p - g) / r_max).collect();
-        let shape = SharedShape::new(super::hull_shape::HullShape::new(hull, g, 1.0 / r_max));
+        let shape = SharedShape::new(crate::dynamics::engine::hull_shape::HullShape::new(hull, g, 1.0 / r_max));
         let facet_normals = hull.facets.iter().map(|f| f.normal).collect();
         // I scales as L⁵ and mass as L³: unit mass in the scaled frame gives I / (V R_max²).
         let inertia = inertia / (volume * r_max * r_max);
@@ -78,13 +78,13 @@ impl Body {
     }
 
     /// h(d) by hill climbing on the collider's vertex graph
-    /// ([`super::hull_shape::HullShape::support_vertex`]): O(1) in the hull size, where
+    /// ([`crate::dynamics::engine::hull_shape::HullShape::support_vertex`]): O(1) in the hull size, where
     /// [`Body::support`] scans every corner. The climb runs on the collider's f32 corners, so the
     /// corner found may differ from the exact maximiser when two corners are within f32 rounding
     /// (10⁻⁷ R_max) of each other in direction `d`, and so may the value by as much.
     pub fn support_climb(&self, d: &Vec3) -> f64 {
-        match self.shape.as_shape::<super::hull_shape::HullShape>() {
-            Some(h) => self.corners[h.support_vertex(super::convert::vec(d)) as usize].dot(d),
+        match self.shape.as_shape::<crate::dynamics::engine::hull_shape::HullShape>() {
+            Some(h) => self.corners[h.support_vertex(crate::dynamics::engine::convert::vec(d)) as usize].dot(d),
             None => self.support(d),
         }
     }
@@ -120,7 +120,8 @@ impl Body {
             })
             .collect();
         let hull = Polyhedron::new(&points, crate::hull::DEFAULT_COPLANAR_TOL)?;
-        let shape = SharedShape::new(super::hull_shape::HullShape::new(&hull, &Point3::origin(), 1.0));
+        let shape =
+            SharedShape::new(crate::dynamics::engine::hull_shape::HullShape::new(&hull, &Point3::origin(), 1.0));
         Ok(Body {
             corners: hull.vertices.iter().map(|p| p.coords).collect(),
             shape,
@@ -218,7 +219,7 @@ pub struct StableEquilibrium {
     /// the most fragile direction: (distance from the stable point to the nearest side of F)
     /// / R_F (Housner's tan α for a block). Taken on the whole facet; the collider keeps at most
     /// four corners of a facet as its support polygon (the quadrilateral with the largest margin,
-    /// see [`crate::dynamics::hull_shape`]), so on facets with more corners the simulated stone
+    /// see [`crate::dynamics::engine::hull_shape`]), so on facets with more corners the simulated stone
     /// can lift off a little earlier in some directions.
     pub uplift_acceleration: f64,
 }

@@ -5,7 +5,7 @@
 //! time), in m/s², with components `[x, y, z]`: two horizontal components and the vertical one (z
 //! up). Readers turn the formats seismologists use into records ([`read`]: CSV with named
 //! columns, PEER NGA `.AT2`); [`synthetic`] makes the test motions (one-sine pulses, filtered
-//! noise); [`surface`] fits P(overturn | PGA, PGV/PGA).
+//! noise); [`fragility`] fits P(overturn | PGA, PGV/PGA).
 //!
 //! This module knows nothing of stones: the dynamics read a record through [`Record::at`].
 //!
@@ -23,8 +23,8 @@
 //! *as given*: correct the baseline first ([`Record::baseline_corrected`]) — an offset of 10⁻³ g
 //! left in a 40 s record adds 0.4 m/s to the velocity.
 
+pub mod fragility;
 pub mod read;
-pub mod surface;
 pub mod synthetic;
 
 use crate::{Error, Result, GRAVITY as G};

@@ -1,4 +1,4 @@
-//! What a person reads of a drop run ([`crate::montecarlo`]): the summary, `drops.json` and the
+//! What a person reads of a drop run ([`crate::dynamics::drops::montecarlo`]): the summary, `drops.json` and the
 //! bar plots of resting flocks and facets against the quasi-static probabilities.
 
 use super::names::number;
@@ -10,13 +10,13 @@ use std::path::{Path, PathBuf};
 
 /// A readable summary of a drop run whose real size is not known here (merged shards): speeds,
 /// spins and times as multiples of √(g R_max), √(g/R_max) and √(R_max/g).
-pub fn drop_summary(r: &crate::montecarlo::DropReport) -> String {
+pub fn drop_summary(r: &crate::dynamics::drops::montecarlo::DropReport) -> String {
     drop_summary_sized(r, None)
 }
 
 /// The run's speeds, spins and times (kept in the frame scaled to R_max = 1 m, g = 9.81 m/s²) as
 /// the dimensionless multiples they are, and, for a stone of real R_max `r_max_m` metres, in SI
-/// units of the real stone (Froude scaling, [`crate::dynamics::params`]).
+/// units of the real stone (Froude scaling, [`crate::dynamics::drops::params`]).
 pub struct Scaled {
     /// The real R_max in metres, if known.
     pub r_max_m: Option<f64>,
@@ -57,7 +57,7 @@ impl Scaled {
 }
 
 /// A readable summary of a drop run on a stone of real R_max `r_max_m` metres if known.
-pub fn drop_summary_sized(r: &crate::montecarlo::DropReport, r_max_m: Option<f64>) -> String {
+pub fn drop_summary_sized(r: &crate::dynamics::drops::montecarlo::DropReport, r_max_m: Option<f64>) -> String {
     let at = Scaled { r_max_m };
     let mut s = String::new();
     let p = &r.params;
@@ -82,8 +82,8 @@ pub fn drop_summary_sized(r: &crate::montecarlo::DropReport, r_max_m: Option<f64
         at.speed(p.horizontal_speed),
         at.spin(p.spin),
         match p.spin_distribution {
-            crate::dynamics::params::SpinDistribution::Fixed => "exact",
-            crate::dynamics::params::SpinDistribution::Gaussian => "rms, Gaussian",
+            crate::dynamics::drops::params::SpinDistribution::Fixed => "exact",
+            crate::dynamics::drops::params::SpinDistribution::Gaussian => "rms, Gaussian",
         },
         at.for_size()
     );
@@ -191,7 +191,7 @@ pub fn drop_summary_sized(r: &crate::montecarlo::DropReport, r_max_m: Option<f64
             if f.equilibrium.is_none() { "  (not a stable facet)" } else { "" }
         );
     }
-    let fit = |name: &str, f: &crate::montecarlo::Fit| {
+    let fit = |name: &str, f: &crate::dynamics::drops::montecarlo::Fit| {
         if f.dof == 0 {
             return format!("{name}: no χ² test (every drop in one category), KL = {:.4} nats", f.kl_divergence);
         }
@@ -208,7 +208,10 @@ pub fn drop_summary_sized(r: &crate::montecarlo::DropReport, r_max_m: Option<f64
 }
 
 /// Write `drops.json` and bar plots `drops_flocks.png/.svg`, `drops_facets.png/.svg` into `dir`.
-pub fn write_drop_outputs(r: &crate::montecarlo::DropReport, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+pub fn write_drop_outputs(
+    r: &crate::dynamics::drops::montecarlo::DropReport,
+    dir: &Path,
+) -> crate::Result<Vec<PathBuf>> {
     let mut out = Folder::create(dir)?;
     out.file("drops.json", |p| write_json(p, r))?;
     let flocks: Vec<Bar> = r

@@ -1,11 +1,11 @@
 //! Field-rock ensembles: summaries, the members' table, the tipping polar and the
-//! banded fragility contours of [`crate::dynamics::shake::ensemble`].
+//! banded fragility contours of [`crate::dynamics::shaking::ensemble`].
 
 use super::shake::write_runs_csv;
 use super::{short_name, write_json, Folder};
-use crate::dynamics::shake::batch::{Contour, EnsembleSummary};
-use crate::dynamics::shake::ensemble::Sensitivity;
-use crate::dynamics::shake::{Ensemble, RecordRun, ShakeBatch};
+use crate::dynamics::shaking::ensemble::Sensitivity;
+use crate::dynamics::shaking::records::{Contour, EnsembleSummary};
+use crate::dynamics::shaking::{Ensemble, RecordRun, ShakeBatch};
 use crate::tipping::TippingSummary;
 use std::path::{Path, PathBuf};
 

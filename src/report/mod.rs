@@ -52,10 +52,10 @@ impl Folder {
 
 /// The line every simulation summary ends its header with: the deepest penetration of the
 /// ground measured at any step or sub-step (R_max), against
-/// [`crate::dynamics::impact::DEPTH_BOUND`], with a warning and what to change when it was
+/// [`crate::dynamics::engine::impact::DEPTH_BOUND`], with a warning and what to change when it was
 /// exceeded.
 pub fn depth_line(deepest: f64) -> String {
-    let bound = crate::dynamics::impact::DEPTH_BOUND;
+    let bound = crate::dynamics::engine::impact::DEPTH_BOUND;
     if deepest > bound {
         format!(
             "  WARNING: a hull corner went {deepest:.3} R_max into the ground (bound {bound} R_max): an impact was \

@@ -4,9 +4,9 @@
 //! through the [`std::fmt::Display`] impls here (or the types' own `name()`), and
 //! `tests/user_strings.rs` checks every value.
 
-use crate::dynamics::params::SpinDistribution;
-use crate::dynamics::perturb::{Class, Family, Outcome};
-use crate::dynamics::run::CertificateMode;
+use crate::dynamics::drops::params::SpinDistribution;
+use crate::dynamics::engine::run::CertificateMode;
+use crate::dynamics::pushes::perturb::{Class, Family, Outcome};
 use crate::equilibria::Kind;
 use crate::hierarchy::NuSource;
 use crate::planar::Sampling;

@@ -1,9 +1,9 @@
-//! What a person reads of a shaking run ([`crate::dynamics::shake`]): the summary, the fragility
+//! What a person reads of a shaking run ([`crate::dynamics::shaking`]): the summary, the fragility
 //! CSV and plot, and ground-motion records written as CSV.
 
 use super::{short_name, write_json, Folder};
-use crate::dynamics::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
-use crate::dynamics::shake::{MotionInfo, ShakeReport, ShakeTrial};
+use crate::dynamics::pushes::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
+use crate::dynamics::shaking::{MotionInfo, ShakeReport, ShakeTrial};
 use crate::ground_motion::Record;
 use crate::plot::{render, DrawResult, Mark};
 use plotters::prelude::*;
@@ -309,8 +309,8 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
 
 // --- Field rocks under records --------------------------------------------------------------
 
-use crate::dynamics::shake::{RecordRun, ShakeBatch};
-use crate::ground_motion::surface::FragilitySurface;
+use crate::dynamics::shaking::{RecordRun, ShakeBatch};
+use crate::ground_motion::fragility::FragilitySurface;
 
 /// Columns of `runs.csv`: one row per (record, scale) run of a field rock.
 pub const RUN_CSV_HEADER: [&str; 22] = [

@@ -2,11 +2,11 @@
 //! orientations and notes the distinct stable flocks it comes to rest in.
 
 use crate::analysis::Analysis;
-use crate::dynamics::params::{DropParams, Preset, Surface, REFERENCE_R_MAX_M};
+use crate::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use crate::dynamics::drops::params::{DropParams, Preset, Surface, REFERENCE_R_MAX_M};
 use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
 use crate::dynamics::stone::Stone;
 use crate::equilibria::Kind;
-use crate::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
 use crate::Result;
 use serde::Serialize;
 use std::collections::BTreeSet;
@@ -83,7 +83,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         certificate: CertificateMode::Flock,
         preset: None,
         center_of_mass: None,
-        shard: crate::montecarlo::Shard::ALL,
+        shard: crate::dynamics::drops::montecarlo::Shard::ALL,
     };
     let (_, outcomes) = run_report(&stone, &header);
     let mut found = BTreeSet::new();

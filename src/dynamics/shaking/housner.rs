@@ -1,0 +1,221 @@
+//! Housner's rigid block: the closed forms and the rocking equation the engine is checked
+//! against, and the two measurements that compare them with rapier — the validation module the
+//! tests (`tests/perturb.rs`, `tests/shake_rock.rs`) and experiments (`housner_block`,
+//! `fragility_surface`) share.
+//!
+//! A block of half-width b and half-height h (tan α = b/h, R = √(b² + h²)) on a rigid ground with
+//! enough friction:
+//!
+//! * under a horizontal ground acceleration a it stays in full contact as long as a < g tan α
+//!   and starts to tip when a exceeds it ([`ramp_tipping`] measures it with a slowly rising a);
+//! * rocking freely, its angular velocity drops at every impact by the factor
+//!   r = 1 − (3/2) sin² α (conservation of angular momentum about the impacting corner, with a
+//!   perfectly plastic impact at that corner alone, [`housner_ratio`]) — [`free_rocking`]
+//!   measures the ratio of the impact angular velocities of successive half-cycles;
+//! * under any ground motion its rocking follows Housner's equation ([`housner_overturns`]),
+//!   integrated here independently of rapier.
+
+use crate::dynamics::engine::convert;
+use crate::dynamics::engine::run::Drive;
+use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::resting::{resting_simulation, PerturbParams};
+use crate::dynamics::shaking::drive::GroundDrive;
+use crate::dynamics::stone::{resting_orientation, Stone};
+use crate::ground_motion::Record;
+use crate::GRAVITY;
+use crate::{Error, Result, Vec3};
+use nalgebra::UnitQuaternion;
+use serde::Serialize;
+
+/// Housner's ramp: the stone at rest on `start`, the ground accelerating along `azimuth` with
+/// a(t) = `rate`·t (g per scaled second) up to `a_max` (g). Returns the ground acceleration
+/// (g) at which the resting facet's tilt first exceeds `tilt` (rad), or None.
+///
+/// The detection lags the true onset: past the threshold a_c the overturning moment grows
+/// like m h (a − a_c), so the tilt grows like (t − t_c)³ and the reading is late by about
+/// (6 I_O tilt / (m h g rate))^(1/3)·rate (in g); keep `rate` and `tilt` small.
+pub fn ramp_tipping(
+    stone: &Stone,
+    start: usize,
+    p: &PerturbParams,
+    azimuth: f64,
+    rate: f64,
+    tilt: f64,
+    a_max: f64,
+) -> Option<f64> {
+    let s = &stone.stable()[start];
+    let dt = p.sim.dt;
+    let mut sim = resting_simulation(stone, start, p, p.settle_time);
+    let n = stone.body.facet_normals[s.facet as usize];
+    // The tilt of the settled, unloaded stone is the reference.
+    let tilt0 = n.dot(&sim.state().down).clamp(-1.0, 1.0).acos();
+    let ramp = ramp_record(rate, a_max).ok()?;
+    // The scaled body itself (R_max = 1 m): the record's time is the scaled time.
+    let mut ground = GroundDrive::new(&ramp, azimuth, 1.0, dt);
+    for step in 0..ground.active_steps() {
+        ground.before_step(&mut sim, step);
+        sim.step();
+        if n.dot(&sim.state().down).clamp(-1.0, 1.0).acos() - tilt0 > tilt {
+            return Some(ramp.at((step + 1) as f64 * dt)[0] / GRAVITY);
+        }
+    }
+    None
+}
+
+/// The ground acceleration a(t) = `rate`·t along x (g per s) up to `a_max` (g), in m/s².
+pub fn ramp_record(rate: f64, a_max: f64) -> Result<Record> {
+    if !(rate > 0.0 && a_max > 0.0 && rate.is_finite() && a_max.is_finite()) {
+        return Err(Error::Usage(format!("a ramp needs a positive rate and peak, got {rate} g/s up to {a_max} g")));
+    }
+    Record::new("ramp", a_max / rate, vec![[0.0; 3], [a_max * GRAVITY, 0.0, 0.0]])
+}
+
+/// One free-rocking half-cycle of a block (between two impacts).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct HalfCycle {
+    /// Start and end time (s, scaled).
+    pub t0: f64,
+    /// End time (s, scaled).
+    pub t1: f64,
+    /// Largest |θ| in the half-cycle (rad).
+    pub amplitude: f64,
+    /// Angular velocity the block has at θ = 0 on the corner it rocks on in this half-cycle:
+    /// the median over the half-cycle's samples (|θ| ≥ 0.2 amplitude) of
+    /// √(ω² + (2 m g R / I_O)(cos(α − |θ|) − cos α)), which is constant for a rigid rotation about
+    /// the corner (energy conservation), so it measures the impact velocities without reading
+    /// the few steps the soft contact takes to turn the block over.
+    pub omega0: f64,
+}
+
+/// Free rocking of a box resting on its face with normal −z (a [`crate::generate::cuboid`] of
+/// full lengths 2b × 2d × 2h along x, y, z, in input units), released from rest tilted by
+/// `theta0` (rad) about its +x bottom edge (rotation about y), simulated for `duration` scaled
+/// seconds. Returns the half-cycles between zero crossings of θ, the rotation about y.
+pub fn free_rocking(
+    stone: &Stone,
+    start: usize,
+    p: &PerturbParams,
+    b: f64,
+    h: f64,
+    theta0: f64,
+    duration: f64,
+) -> Vec<HalfCycle> {
+    let s = &stone.stable()[start];
+    let q0 = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
+    let q = UnitQuaternion::from_axis_angle(&Vec3::y_axis(), theta0) * q0;
+    let down = q.inverse() * -Vec3::z();
+    let z = stone.body.support(&down);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
+    sim.set_contact_frequency(p.contact_frequency);
+    let dt = p.sim.dt;
+    let r_max = stone.body.r_max;
+    let (b, h) = (b / r_max, h / r_max);
+    let big_r = (b * b + h * h).sqrt();
+    let alpha = b.atan2(h);
+    // I_O = I_G + m R² for rotation about the bottom edge (unit mass, scaled); I_G from the body.
+    let i_o = stone.body.inertia[(1, 1)] + big_r * big_r;
+    let k = 2.0 * GRAVITY * big_r / i_o;
+    let steps = (duration / dt).ceil() as u64;
+    let mut samples: Vec<(f64, f64, f64)> = Vec::with_capacity(steps as usize);
+    for step in 1..=steps {
+        sim.step();
+        let rb = &sim.world.bodies[sim.body_handle];
+        let rot = convert::quat_back(rb.rotation()) * q0.inverse();
+        let x = rot * Vec3::x();
+        let theta = (-x.z).atan2(x.x);
+        let omega = convert::vec_back(rb.angvel()).y;
+        samples.push((step as f64 * dt, theta, omega));
+    }
+    let mut cycles = Vec::new();
+    let mut begin = 0;
+    for i in 1..=samples.len() {
+        let end = i == samples.len() || samples[i].1.signum() != samples[i - 1].1.signum();
+        if !end {
+            continue;
+        }
+        let part = &samples[begin..i];
+        begin = i;
+        let amplitude = part.iter().fold(0.0f64, |m, s| m.max(s.1.abs()));
+        let mut inv: Vec<f64> = part
+            .iter()
+            .filter(|s| s.1.abs() >= 0.2 * amplitude)
+            .map(|s| (s.2 * s.2 + k * ((alpha - s.1.abs()).cos() - alpha.cos())).max(0.0).sqrt())
+            .collect();
+        if inv.is_empty() {
+            continue;
+        }
+        inv.sort_by(f64::total_cmp);
+        cycles.push(HalfCycle { t0: part[0].0, t1: part[part.len() - 1].0, amplitude, omega0: inv[inv.len() / 2] });
+    }
+    cycles
+}
+
+/// Housner's ratio of angular velocities after / before an impact of a rocking block,
+/// 1 − (3/2) sin² α, tan α = b/h.
+pub fn housner_ratio(b: f64, h: f64) -> f64 {
+    let a = b.atan2(h);
+    1.0 - 1.5 * a.sin().powi(2)
+}
+
+/// Housner's rocking equation for a rigid rectangular block (Housner 1963; the form integrated by
+/// Makris & Roussos 2000 and Zhang & Makris 2001), integrated independently of rapier — the
+/// reference the rapier block is checked against (`tests/shake_rock.rs`,
+/// `experiments/fragility_surface.rs`). `alpha` = atan(b/h), `p` = √(3g/4R) (rad/s), `accel` the
+/// ground acceleration ü_g(t) (m/s²) for 0 ≤ t ≤ `duration` (s), `r` the impact ratio. Returns
+/// whether the block overturns:
+///
+/// θ̈ = −p² [sin(α sgn θ − θ) + (ü_g/g) cos(α sgn θ − θ)],   p² = 3g/(4R),
+///
+/// rocking starts when |ü_g| > g tan α (θ takes the sign of −ü_g), at every impact (θ crossing 0)
+/// the angular velocity is multiplied by r = 1 − (3/2) sin² α, and the block returns to rest when
+/// an impact leaves it slower than 10⁻⁶ p while |ü_g| ≤ g tan α. It overturns when |θ| passes
+/// π/2, or passes α after the ground motion has ended (gravity alone then tips it over).
+/// RK4 with 4000 steps per 2π/p.
+pub fn housner_overturns(alpha: f64, p: f64, accel: &dyn Fn(f64) -> f64, duration: f64, r: f64) -> bool {
+    let g = GRAVITY;
+    let h = 2.0 * std::f64::consts::PI / p / 4000.0;
+    let rhs = |t: f64, th: f64, side: f64| {
+        let a = if t <= duration { accel(t) } else { 0.0 };
+        -p * p * ((alpha * side - th).sin() + a / g * (alpha * side - th).cos())
+    };
+    let (mut t, mut th, mut w, mut side, mut resting) = (0.0f64, 0.0f64, 0.0f64, 1.0f64, true);
+    let t_end = duration + 40.0 / p;
+    while t < t_end {
+        let a = if t <= duration { accel(t) } else { 0.0 };
+        if resting {
+            if a.abs() > g * alpha.tan() {
+                resting = false;
+                side = -a.signum();
+            } else {
+                t += h;
+                continue;
+            }
+        }
+        // RK4 on (θ, ω) on the current corner.
+        let k1 = (w, rhs(t, th, side));
+        let k2 = (w + 0.5 * h * k1.1, rhs(t + 0.5 * h, th + 0.5 * h * k1.0, side));
+        let k3 = (w + 0.5 * h * k2.1, rhs(t + 0.5 * h, th + 0.5 * h * k2.0, side));
+        let k4 = (w + h * k3.1, rhs(t + h, th + h * k3.0, side));
+        let th_new = th + h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+        let w_new = w + h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        t += h;
+        if th_new * side < 0.0 {
+            // Impact: onto the other corner, angular velocity × r.
+            th = 0.0;
+            w = r * w_new;
+            side = -side;
+            let a = if t <= duration { accel(t) } else { 0.0 };
+            if w.abs() < 1e-6 * p && a.abs() <= g * alpha.tan() {
+                resting = true;
+                w = 0.0;
+            }
+            continue;
+        }
+        th = th_new;
+        w = w_new;
+        if th.abs() > std::f64::consts::FRAC_PI_2 || (t > duration && th.abs() > alpha) {
+            return true;
+        }
+    }
+    false
+}

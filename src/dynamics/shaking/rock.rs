@@ -1,0 +1,342 @@
+//! Field rocks: a rock at its true size, in a physical pose, under a recorded three-component
+//! ground motion, one record at a time ([`crate::dynamics::shaking::records::run_record`]) or every
+//! record × scale factor of a batch with its fragility surface ([`crate::dynamics::shaking::records::run_batch`]).
+//!
+//! * **Pose** ([`Pose`], [`place`]): as scanned (mesh frame = world frame, +z up, put down under
+//!   its lowest point and settled; refused unless it rests on the stable micro-equilibrium of the
+//!   quasi-static descent from the as-scanned down direction), a stable micro-equilibrium, or a
+//!   quaternion.
+//! * **True size and motion**: the Froude-exact scaled run of [`crate::dynamics::shaking::drive`].
+//! * **Contact** from the surface pairs of [`Surface`] at the rock's real size ([`rock_params`],
+//!   the contact of every resting run; rock on concrete by default on the command line).
+//! * **Outcome** ([`RockRun`]): overturned = rests on a stable micro-equilibrium of another flock;
+//!   the largest tilt; the residual slide relative to the ground.
+//! * Records × scale factors, with or without an ensemble, and their fragility surface:
+//!   [`crate::dynamics::shaking::records`].
+
+use crate::dynamics::drops::params::Surface;
+use crate::dynamics::engine::run::{self as run_loop, NoCertificate, RestKind};
+use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::resting::outcome::{classify, Outcome};
+use crate::dynamics::resting::PerturbParams;
+use crate::dynamics::shaking::drive::{shake_placed, Placed};
+use crate::dynamics::stone::Stone;
+use crate::ground_motion::{Measures, Record};
+use crate::{Error, Result, Vec3};
+use nalgebra::UnitQuaternion;
+use serde::Serialize;
+
+/// How the rock stands on the ground before the motion starts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Pose {
+    /// The mesh frame is the world frame (+z up, as field scans are stored): the rock is put
+    /// down on a horizontal ground under its lowest point and settles under gravity. It must come
+    /// to rest on the stable micro-equilibrium of the quasi-static descent from the as-scanned
+    /// down direction −z ([`Stone::rest`]).
+    AsScanned,
+    /// Exactly at rest on this stable micro-equilibrium (analysis index), as for pushes.
+    Facet {
+        /// Analysis index of the stable micro-equilibrium.
+        id: usize,
+    },
+    /// The mesh rotated by this unit quaternion (w, x, y, z; mesh → world), put down and settled
+    /// as for [`Pose::AsScanned`].
+    Quat {
+        /// Components w, x, y, z (normalised on use).
+        q: [f64; 4],
+    },
+}
+
+impl std::fmt::Display for Pose {
+    /// The command line's spelling (`as-scanned`, `facet:ID`, `quat:w,x,y,z`), which
+    /// [`Pose::from_str`](std::str::FromStr) reads back.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Pose::AsScanned => write!(f, "as-scanned"),
+            Pose::Facet { id } => write!(f, "facet:{id}"),
+            Pose::Quat { q } => write!(f, "quat:{},{},{},{}", q[0], q[1], q[2], q[3]),
+        }
+    }
+}
+
+impl std::str::FromStr for Pose {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Pose> {
+        let bad = || {
+            Error::parameter(
+                "pose",
+                format!("{s:?}"),
+                "as-scanned, facet:ID (a stable micro-equilibrium) or quat:w,x,y,z",
+            )
+        };
+        if s == "as-scanned" {
+            return Ok(Pose::AsScanned);
+        }
+        if let Some(id) = s.strip_prefix("facet:") {
+            return Ok(Pose::Facet { id: id.trim().parse().map_err(|_| bad())? });
+        }
+        if let Some(q) = s.strip_prefix("quat:") {
+            let v: Vec<f64> = q
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<std::result::Result<_, _>>()
+                .map_err(|_| bad())?;
+            let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if v.len() != 4 || !(n > 0.0 && n.is_finite()) {
+                return Err(Error::parameter(
+                    "pose",
+                    format!("{s:?}"),
+                    "a quaternion of four finite numbers, not all zero",
+                ));
+            }
+            return Ok(Pose::Quat { q: [v[0], v[1], v[2], v[3]] });
+        }
+        Err(bad())
+    }
+}
+
+/// The length unit of a mesh: how many metres one mesh unit is (`mm`, `cm`, `m`, `km` or a
+/// positive number).
+pub fn parse_length_unit(s: &str) -> Result<f64> {
+    let v = match s {
+        "mm" => 1e-3,
+        "cm" => 1e-2,
+        "m" => 1.0,
+        "km" => 1e3,
+        _ => s.parse::<f64>().map_err(|_| {
+            Error::parameter(
+                "length_unit",
+                format!("{s:?}"),
+                "mm, cm, m, km or a positive number of metres per mesh unit",
+            )
+        })?,
+    };
+    if !(v > 0.0 && v.is_finite()) {
+        return Err(Error::parameter("length_unit", s, "a positive number of metres per mesh unit"));
+    }
+    Ok(v)
+}
+
+/// Rest criterion for placement: the pose's expected micro-equilibrium, else a usage error that
+/// says where the rock went instead.
+fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32, settled: bool) -> Error {
+    let eq = |f: u32| stone.facet_equilibrium[f as usize].map_or("?".to_string(), |e| e.to_string());
+    let off = stone.body.facet_normals[expected as usize].dot(down).clamp(-1.0, 1.0).acos().to_degrees();
+    if !settled {
+        return Error::Usage(format!(
+            "pose {pose}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
+        ));
+    }
+    Error::Usage(format!(
+        "pose {pose}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
+         ({} by the quasi-static descent, whose facet is {off:.2}° from the given down direction) but rolled \
+         to {}: the rock does not stand still in this pose (a scan made standing should be within a fraction of a \
+         degree of its resting facet); choose --pose facet:ID or a quat: that stands",
+        eq(expected),
+        eq(got)
+    ))
+}
+
+/// Put the rock down in `pose` and let it settle under gravity (module docs of the field-rock
+/// docs).
+///
+/// * `Facet`: exactly at rest on the facet, settled for `p.settle_time` (as for pushes).
+/// * `AsScanned` / `Quat`: the body orientation is the pose, G above the ground by the support
+///   function h(d) of the down direction d (the lowest point touches), zero velocity; simulated
+///   without motion until it rests ([`PositionRest`](run_loop::PositionRest) of `p.sim`, at most
+///   `p.sim.max_time`). It must rest on the micro-equilibrium the quasi-static descent of h from
+///   d reaches ([`Stone::rest`]), else the pose is refused.
+pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Placed<'a>> {
+    let q = match *pose {
+        Pose::Facet { id } => {
+            let start = stone.position(id).ok_or_else(|| {
+                let list: Vec<String> = stone.stable().iter().map(|s| s.index.to_string()).collect();
+                Error::Usage(format!(
+                    "facet:{id} is not the index of a stable micro-equilibrium{}; stable ones: {}",
+                    stone.facet_hint(id),
+                    list.join(", ")
+                ))
+            })?;
+            return Ok(Placed::on(stone, start, p));
+        }
+        Pose::AsScanned => UnitQuaternion::identity(),
+        Pose::Quat { q } => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+    };
+    let down0 = q.inverse() * -Vec3::z();
+    let expected = stone.rest(&down0);
+    let z = stone.body.support(&down0);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
+    sim.set_contact_frequency(p.contact_frequency);
+    sim.advance((p.settle_time / p.sim.dt).round() as u64);
+    let end = run_loop::run(&mut sim, &p.sim, &mut run_loop::Passive, &NoCertificate, RestKind::Positions, &mut |_| {});
+    let rest = stone.rest(&end.state.down);
+    if !end.settled || rest.facet != expected.facet {
+        return Err(refuse_pose(stone, pose, &down0, expected.facet, rest.facet, end.settled));
+    }
+    let start = stone.position(rest.equilibrium).expect("a stable micro-equilibrium");
+    Ok(Placed { sim, start, settling_tilt: down0.dot(&end.state.down).clamp(-1.0, 1.0).acos() })
+}
+
+/// The outcome of one rock under one ground motion ([`shake_record`]), real units.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct RockRun {
+    /// Overturned: came to rest on a stable micro-equilibrium of another flock than the one it
+    /// stood on ([`Outcome::Toppled`]; a run still moving at the time cap is classified by the
+    /// quasi-static descent from its last down direction, and `settled` is false).
+    pub overturned: bool,
+    /// Same micro-equilibrium, another one of the same flock (it rocked to a neighbour), or
+    /// overturned.
+    pub outcome: Outcome,
+    /// Largest tilt (degrees) of the start facet's normal away from straight down.
+    pub max_tilt_deg: f64,
+    /// Residual sliding (m): horizontal displacement of G relative to the ground between the start
+    /// and the end of the run (includes the travel of an overturn).
+    pub slide_m: f64,
+    /// Tilt (degrees) of the body while it settled after being put down.
+    pub settling_tilt_deg: f64,
+    /// Analysis index of the stable micro-equilibrium it stood on, and its flock.
+    pub start_equilibrium: usize,
+    /// Flock it stood on.
+    pub start_flock: usize,
+    /// Analysis index of the stable micro-equilibrium it ended on.
+    pub final_equilibrium: usize,
+    /// Flock it ended in.
+    pub final_flock: usize,
+    /// Came to rest (relative to the ground) before the time cap.
+    pub settled: bool,
+    /// Azimuth of the record's x axis in the world frame (degrees).
+    pub azimuth_deg: f64,
+    /// Real R_max of the rock (m).
+    pub r_max_m: f64,
+    /// Whether that size was assumed, the mesh's unit being neither given nor known
+    /// ([`crate::dynamics::size`]); set from [`RockSetup::size_assumed`] by the runs that have a
+    /// setup, absent when the caller gave the unit as a bare number.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
+    /// Real time simulated from the start of the motion (s).
+    pub time_s: f64,
+    /// Steps simulated (placement excluded).
+    pub steps: u64,
+    /// The deepest any hull corner went below the ground after any step or sub-step of the run
+    /// (in units of the rock's R_max, [`crate::dynamics::engine::world::penetration`]), the stone's settling included.
+    #[serde(default)]
+    pub deepest_penetration: f64,
+}
+
+/// Shake a placed rock with `record` (real time, SI, x axis turned by `azimuth` rad in the world
+/// frame), the rock of real size `r_max_m` metres, until it rests relative to the ground
+/// ([`shake_placed`]; true size by the Froude-exact scaled run of [`crate::dynamics::shaking::drive`]).
+pub fn shake_record(
+    stone: &Stone,
+    placed: Placed,
+    p: &PerturbParams,
+    record: &Record,
+    azimuth: f64,
+    r_max_m: f64,
+) -> RockRun {
+    let run = shake_placed(stone, placed, p, record, azimuth, r_max_m);
+    let s = &stone.stable()[run.start];
+    let rest = stone.rest(&run.end.state.down);
+    let outcome = classify(stone, run.start, Some(rest.facet), rest.flock);
+    RockRun {
+        overturned: outcome == Outcome::Toppled,
+        outcome,
+        max_tilt_deg: run.max_tilt.to_degrees(),
+        slide_m: run.slide * r_max_m,
+        settling_tilt_deg: run.settling_tilt.to_degrees(),
+        start_equilibrium: s.index,
+        start_flock: s.flock,
+        final_equilibrium: rest.equilibrium,
+        final_flock: rest.flock,
+        settled: run.end.settled,
+        azimuth_deg: azimuth.to_degrees(),
+        r_max_m,
+        size_assumed: None,
+        time_s: run.end.steps as f64 * p.sim.dt * r_max_m.sqrt(),
+        steps: run.end.steps,
+        deepest_penetration: run.deepest_penetration,
+    }
+}
+
+/// Shaking parameters of a rock at true size R_max = `r_max_m` on `surface`: the contact of every
+/// resting run, [`PerturbParams::on_surface`] (the surface pair's friction, restitution and
+/// rolling-resistance length at that size, 120 Hz contacts, dt 1/240 s, a 20 s cap after the
+/// motion, rest windows of 0.5 s).
+pub fn rock_params(surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
+    PerturbParams::on_surface(surface, r_max_m)
+}
+
+/// A field rock and how it is shaken: everything of a run but the record.
+#[derive(Clone, Debug, Serialize)]
+pub struct RockSetup {
+    /// The pose it stands in.
+    pub pose: Pose,
+    /// Metres per mesh unit.
+    pub length_unit_m: f64,
+    /// Real R_max of the rock (m): the body's R_max (mesh units) times `length_unit_m`.
+    pub r_max_m: f64,
+    /// Whether that size was assumed, the mesh's unit being neither given nor known: set by the
+    /// command line and the Python binding, which decide the size with
+    /// [`crate::dynamics::size::RealSize::resolve`]; absent when the unit was given as a number.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
+    /// Azimuth (rad, world frame) of the records' x axis.
+    pub azimuth: f64,
+    /// Simulation parameters (scaled frame, see [`shake_record`]).
+    pub params: PerturbParams,
+}
+
+impl RockSetup {
+    /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres on `surface`.
+    pub fn new(stone: &Stone, pose: Pose, length_unit_m: f64, surface: Surface, azimuth: f64) -> Result<RockSetup> {
+        let r_max_m = stone.body.r_max * length_unit_m;
+        Ok(RockSetup {
+            pose,
+            length_unit_m,
+            r_max_m,
+            size_assumed: None,
+            azimuth,
+            params: rock_params(surface, r_max_m)?,
+        })
+    }
+
+    /// The setup of `stone` in `pose` with mesh unit `length_unit_m` metres and the simulation
+    /// parameters `params` (e.g. [`rock_params`] with overrides).
+    pub fn with_params(
+        stone: &Stone,
+        pose: Pose,
+        length_unit_m: f64,
+        azimuth: f64,
+        params: PerturbParams,
+    ) -> RockSetup {
+        let r_max_m = stone.body.r_max * length_unit_m;
+        RockSetup { pose, length_unit_m, r_max_m, size_assumed: None, azimuth, params }
+    }
+
+    /// Real time step of the simulation (s): dt·√(R_max / 1 m).
+    pub fn real_dt(&self) -> f64 {
+        self.params.sim.dt * self.r_max_m.sqrt()
+    }
+}
+
+/// `record` × `scale` (≥ 0, else a usage error) as the rock of `setup` is driven by it: the
+/// scaled record's intensity measures (on the record as given) and the motion of the run
+/// ([`driven`] to the setup's real step).
+pub fn scaled_motion(record: &Record, scale: f64, setup: &RockSetup) -> Result<(Measures, Record)> {
+    if !(scale.is_finite() && scale >= 0.0) {
+        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
+    }
+    let scaled = record.scaled(scale);
+    Ok((scaled.measures(), driven(&scaled, setup.real_dt())?))
+}
+
+/// `record` as a run with real time step `real_dt` (s) is driven by it: resampled without aliasing
+/// to the step when it is sampled finer ([`Record::resampled`]), as it is otherwise.
+pub fn driven(record: &Record, real_dt: f64) -> Result<Record> {
+    if record.dt < real_dt {
+        record.resampled(real_dt)
+    } else {
+        Ok(record.clone())
+    }
+}
