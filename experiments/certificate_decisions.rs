@@ -15,13 +15,15 @@
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
-use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::drops::simulate::launch;
+use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::engine::run::{
     CertificateMode, Decided, EnergyCertificate, NoCertificate, CERTIFICATE_EVERY, CERTIFICATE_MARGIN,
     CERTIFICATE_MAX_COMPRESSION,
 };
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
@@ -61,7 +63,7 @@ struct Trace {
 
 fn drops(stone: &Stone, preset: Preset, flight: Flight, indices: std::ops::Range<u64>) -> Tally {
     let mut p = preset.params(Surface::SteelOnWood);
-    p.flight = flight;
+    p.sim.flight.mode = flight;
     let facet_cert = EnergyCertificate::new(stone, CertificateMode::Facet).expect("facet level");
     let flock_cert = EnergyCertificate::new(stone, CertificateMode::Flock).expect("flock level");
     let mut tally = Tally::default();

@@ -23,7 +23,7 @@ mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
 use rayon::prelude::*;
 use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::drops::simulate::{launch, release_height};
 use rocking_stones::dynamics::engine::run::{
     run as run_one, Certificate, CertificateMode, Decided, EnergyCertificate, NoCertificate, Passive, RestKind,
@@ -31,6 +31,7 @@ use rocking_stones::dynamics::engine::run::{
 };
 use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
@@ -96,10 +97,10 @@ fn certificates(stone: &Stone) -> Certificates<'_> {
 fn observe(stone: &Stone, certs: &Certificates, p: &DropParams, i: u64) -> Observed {
     let r = launch(&mut item_rng(SEED, i), p);
     let z0 = release_height(stone, p, &r);
-    let mut sim = Simulation::new(&stone.body, p, &r.orientation, z0, &r.linvel, &r.angvel);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &r.orientation, z0, &r.linvel, &r.angvel);
     let mut first = [[First::default(); MARGINS.len()]; 2];
     let mut step = 0u64;
-    let end = run_one(&mut sim, p, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |s| {
+    let end = run_one(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |s| {
         step += 1;
         for (k, pair) in certs.iter().enumerate() {
             for (lvl, cert) in pair.iter().enumerate() {
@@ -187,7 +188,7 @@ fn main() -> anyhow::Result<()> {
          drop*: the decision's time, or the time to rest where it never decides — what a run with that margin \
          would simulate, with a check every step or every {CERTIFICATE_EVERY} steps (the default). The default \
          margin is {CERTIFICATE_MARGIN} R_max.\n",
-        1.0 / Preset::Drop.params(Surface::SteelOnWood).dt
+        1.0 / Preset::Drop.params(Surface::SteelOnWood).sim.numerics.dt
     )?;
     writeln!(
         md,
@@ -202,10 +203,10 @@ fn main() -> anyhow::Result<()> {
         for preset in [Preset::Drop, Preset::Throw] {
             let p = preset.params(Surface::SteelOnWood);
             let obs: Vec<Observed> = (0..n).into_par_iter().map(|i| observe(&stone, &certs, &p, i)).collect();
-            let rest = obs.iter().map(|o| o.steps as f64 * p.dt).sum::<f64>() / n as f64;
+            let rest = obs.iter().map(|o| o.steps as f64 * p.sim.numerics.dt).sum::<f64>() / n as f64;
             eprintln!("{name} {preset}: {n} drops observed");
             for (lvl, level) in ["facet", "flock"].into_iter().enumerate() {
-                let rows: Vec<Row> = (0..MARGINS.len()).map(|k| summarise(&obs, lvl, k, p.dt)).collect();
+                let rows: Vec<Row> = (0..MARGINS.len()).map(|k| summarise(&obs, lvl, k, p.sim.numerics.dt)).collect();
                 let default = rows.last().expect("the default margin").mean_time_every_k;
                 for (k, row) in rows.iter().enumerate() {
                     let m = MARGINS[k];

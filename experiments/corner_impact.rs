@@ -23,11 +23,13 @@ use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
 use rocking_stones::dynamics::drops::launch::launch;
-use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::drops::simulate::Release;
+use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::engine::world::BodyState;
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
@@ -56,9 +58,19 @@ struct Impact {
 /// The stone's states just before and just after its first impact (the first step that turns it).
 fn first_impact(stone: &Stone, q: UnitQuaternion<f64>, e: f64, substeps: usize) -> (BodyState, BodyState) {
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
-    (p.height, p.flight, p.friction, p.restitution, p.solver_iterations) =
-        (HEIGHT, Flight::Free, FRICTION, e, substeps);
-    (p.linear_damping, p.angular_damping, p.rolling_resistance, p.torsional_friction) = (0.0, 0.0, 0.0, 0.0);
+    (
+        p.launch.height,
+        p.sim.flight.mode,
+        p.sim.contact.friction,
+        p.sim.contact.restitution,
+        p.sim.numerics.solver_iterations,
+    ) = (HEIGHT, Flight::Free, FRICTION, e, substeps);
+    (
+        p.sim.contact.linear_damping,
+        p.sim.contact.angular_damping,
+        p.sim.contact.rolling_resistance,
+        p.sim.contact.torsional_friction,
+    ) = (0.0, 0.0, 0.0, 0.0);
     let release = Release { orientation: q, linvel: Vec3::zeros(), angvel: Vec3::zeros() };
     let (mut before, mut after) = (None, None);
     simulate_batch_observed(
@@ -196,7 +208,7 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
     let mut md = String::new();
     let _ = writeln!(md, "# A corner impact against the closed form of a rigid body's impact\n");
     let _ = writeln!(md, "Regenerate: `cargo run --release --example corner_impact` (a few seconds).\n");
-    let inv_dt = 1.0 / Preset::Drop.params(Surface::SteelOnWood).dt;
+    let inv_dt = 1.0 / Preset::Drop.params(Surface::SteelOnWood).sim.numerics.dt;
     let _ = writeln!(
         md,
         "A box 1 × 0.8 × 0.5 (R_max units, m = 1) released at rest {HEIGHT} R_max above the ground in {} random \

@@ -30,10 +30,10 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
-use rocking_stones::dynamics::drops::params::{
-    DropParams, Flight, Preset, Surface, REFERENCE_DT, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN,
-};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
+use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::{chi_square_homogeneity, wilson};
@@ -95,8 +95,9 @@ fn p_square(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64)
 }
 
 fn throw(h: f64, spin: f64, v: f64, r_max_m: f64) -> DropParams {
-    let mut p = DropParams { height: h, spin, horizontal_speed: v, ..Preset::Throw.params(Surface::SteelOnWood) };
-    Surface::SteelOnWood.scaled(&mut p, r_max_m);
+    let mut p = Preset::Throw.params(Surface::SteelOnWood);
+    (p.launch.height, p.launch.spin, p.launch.horizontal_speed) = (h, spin, v);
+    Surface::SteelOnWood.scaled(&mut p.sim.contact, r_max_m);
     p
 }
 
@@ -168,7 +169,7 @@ fn main() {
     for (d, (s, r)) in dice.iter().zip(&stones) {
         let (k, m, qs) = p_square(s, &throw(best.0, best.1, best.2, *r), 4 * n, 2);
         let mut dp = Preset::Drop.params(Surface::SteelOnWood);
-        Surface::SteelOnWood.scaled(&mut dp, *r);
+        Surface::SteelOnWood.scaled(&mut dp.sim.contact, *r);
         let (kd, md, _) = p_square(s, &dp, 2 * n, 3);
         drops += 6 * n;
         let q = k as f64 / m as f64;
@@ -188,7 +189,7 @@ fn main() {
     // with free flight at the reference step
     // the default is checked against (`--reference`), against the counts of the default numerics.
     let others = [(Flight::Rapier, Some(REFERENCE_DT)), (Flight::Free, Some(REFERENCE_DT))];
-    let default_dt = Preset::Throw.params(Surface::SteelOnWood).dt;
+    let default_dt = Preset::Throw.params(Surface::SteelOnWood).sim.numerics.dt;
     let mut numerics = Vec::new();
     for &(flight, dt) in &others {
         let t = Instant::now();
@@ -198,8 +199,8 @@ fn main() {
             .zip(&reference_counts)
             .map(|((_, (s, r)), &(k_ref, m_ref))| {
                 let mut p = throw(best.0, best.1, best.2, *r);
-                p.flight = flight;
-                p.dt = dt.unwrap_or(p.dt);
+                p.sim.flight.mode = flight;
+                p.sim.numerics.dt = dt.unwrap_or(p.sim.numerics.dt);
                 let (k, m, _) = p_square(s, &p, 4 * n, 2);
                 let (chi2, _, _) = chi_square_homogeneity(&[k_ref, m_ref - k_ref], &[k, m - k]);
                 (k as f64 / m as f64, chi2)

@@ -19,9 +19,11 @@ use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::drops::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
-use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::stats::chi_square_homogeneity;
 use std::collections::BTreeMap;
@@ -112,9 +114,9 @@ struct ModeRun {
 
 fn header(name: &str, n: u64, preset: Preset, m: &Mode) -> RunHeader {
     let mut params = preset.params(Surface::SteelOnWood);
-    params.flight = m.flight;
+    params.sim.flight.mode = m.flight;
     if !m.default_step {
-        params.dt = REFERENCE_DT;
+        params.sim.numerics.dt = REFERENCE_DT;
     }
     RunHeader {
         format: FORMAT.into(),
@@ -242,8 +244,8 @@ fn main() -> anyhow::Result<()> {
                     m.name,
                     m.batch,
                     m.cert.name(),
-                    r.report.params.flight,
-                    r.report.params.dt,
+                    r.report.params.sim.flight.mode,
+                    r.report.params.sim.numerics.dt,
                     r.seconds,
                     r.report.mean_time,
                     r.report.settled,

@@ -22,10 +22,11 @@ use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
 use rocking_stones::dynamics::drops::montecarlo::{
     run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
-use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::drops::simulate::{launch, DropOutcome};
 use rocking_stones::dynamics::engine::run::{NoCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::chi_square_homogeneity;
@@ -150,7 +151,8 @@ fn main() -> anyhow::Result<()> {
             let mut counts: Vec<Vec<u64>> = Vec::new();
             let mut rows = Vec::new();
             for (k, &dt) in DTS.iter().enumerate() {
-                let params = DropParams { dt, ..preset.params(Surface::SteelOnWood) };
+                let mut params = preset.params(Surface::SteelOnWood);
+                params.sim.numerics.dt = dt;
                 let header = RunHeader {
                     format: FORMAT.into(),
                     mesh: name.clone(),

@@ -18,11 +18,13 @@ use benchmark_bodies::benchmark_bodies;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::drops::params::DropParams;
-use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::drops::simulate::launch;
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
+use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
@@ -40,7 +42,7 @@ struct Measured {
 
 fn measure(stone: &Stone, preset: Preset, inv_dt: f64, flight: Flight, n: u64) -> Measured {
     let mut p = preset.params(Surface::SteelOnWood);
-    (p.dt, p.flight) = (1.0 / inv_dt, flight);
+    (p.sim.numerics.dt, p.sim.flight.mode) = (1.0 / inv_dt, flight);
     measure_params(stone, &p, 1, n)
 }
 
@@ -89,13 +91,13 @@ fn main() -> anyhow::Result<()> {
         // At the default step with free flight: a drop spun at 400 rad/s and a throw at
         // 200 R_max/s sideways (N/3 drops each, seed 3), default and strict impacts.
         for (label, preset, set) in [
-            ("drop, spin 400 rad/s", Preset::Drop, (|p: &mut DropParams| p.spin = 400.0) as fn(&mut DropParams)),
-            ("throw, 200 R_max/s", Preset::Throw, |p: &mut DropParams| p.horizontal_speed = 200.0),
+            ("drop, spin 400 rad/s", Preset::Drop, (|p: &mut DropParams| p.launch.spin = 400.0) as fn(&mut DropParams)),
+            ("throw, 200 R_max/s", Preset::Throw, |p: &mut DropParams| p.launch.horizontal_speed = 200.0),
         ] {
             for strict in [false, true] {
                 let mut p = preset.params(Surface::SteelOnWood);
                 set(&mut p);
-                p.strict_impacts = strict;
+                p.sim.flight.strict_impacts = strict;
                 let m = measure_params(&stone, &p, 3, (n / 3).max(1));
                 let max = percentile(&m.deepest, 1.0);
                 let over = m.deepest.iter().filter(|&&d| d > DEPTH_BOUND).count();

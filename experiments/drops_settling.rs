@@ -108,18 +108,18 @@ fn main() {
         "Preset: the default `throw` on steel on wood (height {} R_max, horizontal speed {} m/s, Gaussian spin {} rad/s rms, \
          μ {}, e {}, rolling resistance {} R_max, no global damping), dt = {:.5} s, {} solver iterations, cap {} s \
          (scaled to R_max = 1 m). Rest: speeds below {} m/s and {} rad/s for {} s.\n",
-        p.height,
-        p.horizontal_speed,
-        p.spin,
-        p.friction,
-        p.restitution,
-        p.rolling_resistance,
-        p.dt,
-        p.solver_iterations,
-        p.max_time,
-        p.rest_linear_speed,
-        p.rest_angular_speed,
-        p.rest_time
+        p.launch.height,
+        p.launch.horizontal_speed,
+        p.launch.spin,
+        p.sim.contact.friction,
+        p.sim.contact.restitution,
+        p.sim.contact.rolling_resistance,
+        p.sim.numerics.dt,
+        p.sim.numerics.solver_iterations,
+        p.sim.numerics.max_time,
+        p.sim.rest.rest_linear_speed,
+        p.sim.rest.rest_angular_speed,
+        p.sim.rest.rest_time
     );
     let _ = writeln!(
         md,
@@ -137,13 +137,13 @@ fn main() {
          quasi-static descent reaches a drop still moving at the cap stands (median per mesh, R_max): near 0 for \
          a stone jiggling on its facet with speeds above the rest rule's {} m/s and {} rad/s, large for one still \
          rolling.\n",
-        reference.dt,
+        reference.sim.numerics.dt,
         rows.len() - below_ref,
         rows.len(),
         worst_ref.0,
         worst_ref.1,
-        p.rest_linear_speed,
-        p.rest_angular_speed,
+        p.sim.rest.rest_linear_speed,
+        p.sim.rest.rest_angular_speed,
     );
     let _ = writeln!(
         md,

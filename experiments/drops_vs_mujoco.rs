@@ -39,10 +39,12 @@ use rocking_stones::dynamics::drops::launch::launch;
 use rocking_stones::dynamics::drops::montecarlo::{
     certificate, run_batched, summarize, CertificateMode, DropReport, FlockRow, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
-use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::stuart_maxwell;
@@ -161,14 +163,14 @@ fn modes() -> [Mode; 4] {
 /// neither), at the mode's step.
 fn params(m: &Mode) -> DropParams {
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
-    p.height = HEIGHT;
-    p.friction = FRICTION;
-    p.restitution = RESTITUTION;
-    p.linear_damping = LINEAR_DAMPING;
-    p.angular_damping = ANGULAR_DAMPING;
-    p.rolling_resistance = 0.0;
-    p.torsional_friction = 0.0;
-    p.dt = m.dt;
+    p.launch.height = HEIGHT;
+    p.sim.contact.friction = FRICTION;
+    p.sim.contact.restitution = RESTITUTION;
+    p.sim.contact.linear_damping = LINEAR_DAMPING;
+    p.sim.contact.angular_damping = ANGULAR_DAMPING;
+    p.sim.contact.rolling_resistance = 0.0;
+    p.sim.contact.torsional_friction = 0.0;
+    p.sim.numerics.dt = m.dt;
     p
 }
 
@@ -233,7 +235,7 @@ fn substep_table(
         .iter()
         .map(|&k| {
             let mut h = header(name, drops, m);
-            h.params.solver_iterations = k;
+            h.params.sim.numerics.solver_iterations = k;
             eprintln!("  {name}: {k} solver iterations (untimed)");
             pool.install(|| timed(stone, &h, m.batch))
         })
@@ -412,13 +414,13 @@ fn python_with_mujoco() -> String {
 /// contact impulse, which a sub-stepped impact (`dynamics::impact`) leaves at zero after the step.
 fn rapier_flat_restitution(stone: &Stone, normal: &Vec3, dt: f64) -> f64 {
     let mut p = params(&Mode { dt, ..modes()[0].clone() });
-    p.linear_damping = 0.0;
-    p.angular_damping = 0.0;
+    p.sim.contact.linear_damping = 0.0;
+    p.sim.contact.angular_damping = 0.0;
     let q = UnitQuaternion::rotation_between(normal, &-Vec3::z()).unwrap_or_else(UnitQuaternion::identity);
     let h = stone.body.support(normal);
-    let mut sim = Simulation::new(&stone.body, &p, &q, HEIGHT + h, &Vec3::zeros(), &Vec3::zeros());
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, HEIGHT + h, &Vec3::zeros(), &Vec3::zeros());
     let (mut rising, mut apex) = (false, f64::NEG_INFINITY);
-    for _ in 0..(10.0 / p.dt) as usize {
+    for _ in 0..(10.0 / p.sim.numerics.dt) as usize {
         sim.step();
         let s = sim.state();
         rising |= s.linvel.z > 0.0;
@@ -599,16 +601,16 @@ fn main() -> anyhow::Result<()> {
             })
             .collect::<Vec<_>>(),
         "repeats": 1,
-        "height": reference.height,
-        "friction": reference.friction,
-        "restitution": reference.restitution,
-        "linear_damping": reference.linear_damping,
-        "angular_damping": reference.angular_damping,
-        "dt": reference.dt,
-        "max_time": reference.max_time,
-        "rest_linear_speed": reference.rest_linear_speed,
-        "rest_angular_speed": reference.rest_angular_speed,
-        "rest_time": reference.rest_time,
+        "height": reference.launch.height,
+        "friction": reference.sim.contact.friction,
+        "restitution": reference.sim.contact.restitution,
+        "linear_damping": reference.sim.contact.linear_damping,
+        "angular_damping": reference.sim.contact.angular_damping,
+        "dt": reference.sim.numerics.dt,
+        "max_time": reference.sim.numerics.max_time,
+        "rest_linear_speed": reference.sim.rest.rest_linear_speed,
+        "rest_angular_speed": reference.sim.rest.rest_angular_speed,
+        "rest_time": reference.sim.rest.rest_time,
         "bodies": bodies.iter().zip(&stones).enumerate().map(|(k, ((name, _), s))| serde_json::json!({
             "name": name,
             "corners": s.body.corners.iter().map(|c| [c.x, c.y, c.z]).collect::<Vec<_>>(),
@@ -844,7 +846,7 @@ fn main() -> anyhow::Result<()> {
             "\n### {name}\n\n{} drops per engine and step; not settled within the {} s cap: project {} at {ref_label} \
              (batched), {} at {def_label} (default numerics); MuJoCo {} at {ref_label}, {} at {def_label}.\n\n{}\n{}\n{}\n{}\n{}\n",
             big,
-            reference.max_time,
+            reference.sim.numerics.max_time,
             project_big.unsettled,
             fast_big.unsettled,
             mj[0].big.unsettled,
@@ -952,7 +954,7 @@ fn main() -> anyhow::Result<()> {
             if s == 1 {
                 p_fast_same = p_same;
             }
-            let us = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.dt);
+            let us = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.sim.numerics.dt);
             us_modes.push(us);
             p_modes.push(p);
             let same =
@@ -977,7 +979,7 @@ fn main() -> anyhow::Result<()> {
                 r.label,
                 m.batch,
                 m.cert.name(),
-                r.report.params.dt,
+                r.report.params.sim.numerics.dt,
                 r.seconds,
                 r.rate,
                 r.report.mean_time,

@@ -46,13 +46,13 @@
 use plotters::prelude::*;
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{default_pair, Stone};
 use rocking_stones::dynamics::shaking::ensemble::draw;
 use rocking_stones::dynamics::shaking::housner::{housner_overturns, housner_ratio};
 use rocking_stones::dynamics::shaking::{
     rock_params, run_batch, EnsembleSpec, Pose, RecordRun, RockSetup, Uncertainty,
 };
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::fragility::FragilitySurface;
 use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
@@ -258,8 +258,8 @@ fn run_block(b: &Block, records: &[Record]) -> anyhow::Result<BlockResult> {
     let unit = b.r_m / (b.tan_alpha * b.tan_alpha + 1.0).sqrt();
     let r_max_m = stone.body.r_max * unit;
     let mut params = rock_params(Surface::RockOnConcrete, r_max_m)?;
-    params.sim.friction = FRICTION;
-    params.sim.restitution = 0.0;
+    params.sim.contact.friction = FRICTION;
+    params.sim.contact.restitution = 0.0;
     let setup = RockSetup::with_params(&stone, Pose::Facet { id: bottom }, unit, 0.0, params);
     let uncertainty = Uncertainty { azimuth_deg: Some([0.0, 360.0]), random_sign: true, ..Uncertainty::default() };
     let spec = EnsembleSpec { uncertainty: uncertainty.clone(), seed: SEED, members: BLOCK_MEMBERS };

@@ -12,11 +12,11 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{
     self, default_pair, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
     Threshold,
 };
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::planar::{self, Point2};
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
@@ -234,7 +234,7 @@ fn readme(path: &Path, seed: u64, stone: &Stone, reports: &[PerturbReport], sear
         "Contact: the one of every resting run — a pebble of R_max = {R_MAX_M} m on rock ({SURFACE}: friction {}, \
          restitution {}, rolling resistance and torsional friction δ = 0.1 mm = {:.1e} R_max through the contact, no \
          global damping), 120 Hz contacts, dt 1/240 s (scaled), rest by speeds held {} s, cap {} s after the push.\n",
-        p.friction, p.restitution, p.rolling_resistance, p.rest_time, p.max_time
+        p.contact.friction, p.contact.restitution, p.contact.rolling_resistance, p.rest.rest_time, p.numerics.max_time
     )?;
     writeln!(s, "![robustness](fig11_robustness.png)\n\n![poses](fig11_poses.png)\n")?;
     writeln!(

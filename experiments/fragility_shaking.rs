@@ -14,9 +14,9 @@
 
 use plotters::style::RGBColor;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{default_pair, Class, CurvePoint, PerturbParams, Stone, Threshold};
 use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig, ShakeReport};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::read::{read_record, AccelUnit};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
@@ -53,7 +53,7 @@ fn main() -> anyhow::Result<()> {
     let record = filtered_noise(&noise, 1.0, SEED)?;
     let csv = out.join("motion.csv");
     report::shake::write_record(&csv, &record)?;
-    let dt = params.sim.dt * R_MAX_M.sqrt();
+    let dt = params.sim.numerics.dt * R_MAX_M.sqrt();
     let mut motions: Vec<(String, Record)> = FREQUENCIES
         .iter()
         .map(|&f| Ok((format!("pulse_{f}Hz"), sine_pulse(1.0, f, 2.0, dt)?)))
@@ -139,7 +139,7 @@ fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)])
          global damping; 120 Hz contacts, dt 1/240 s scaled), rest by positions over 0.5 s windows. Outcome after \
          the motion, once the stone rests relative to the ground: same micro-equilibrium, another of its flock, or \
          toppled out of the flock (plotted).\n",
-        stone.nu, params.sim.friction, params.sim.restitution, params.sim.rolling_resistance,
+        stone.nu, params.sim.contact.friction, params.sim.contact.restitution, params.sim.contact.rolling_resistance,
     )?;
     writeln!(
         s,

@@ -16,11 +16,11 @@
 use plotters::prelude::*;
 use rand::RngExt;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::default_pair;
 use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
 use rocking_stones::dynamics::shaking::housner::{housner_overturns, housner_ratio};
 use rocking_stones::dynamics::shaking::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
@@ -65,8 +65,8 @@ fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     let bottom = stone.stable().iter().find(|e| stone.body.facet_normals[e.facet as usize].z < -0.999).unwrap().index;
     let ideal = {
         let mut q = rock_params(Surface::RockOnConcrete, r_max_m)?;
-        q.sim.friction = 1.0;
-        q.sim.restitution = 0.0;
+        q.sim.contact.friction = 1.0;
+        q.sim.contact.restitution = 0.0;
         q
     };
     let concrete = rock_params(Surface::RockOnConcrete, r_max_m)?;

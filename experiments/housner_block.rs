@@ -11,9 +11,9 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use rocking_stones::GRAVITY;
@@ -47,9 +47,9 @@ struct Setting {
 /// frequency and step.
 fn params(s: &Setting) -> PerturbParams {
     let mut p = PerturbParams::on_surface(Surface::RockOnConcrete, 1.0).expect("a valid size");
-    p.sim.friction = 1.0;
-    p.sim.restitution = s.restitution;
-    p.sim.dt = s.dt;
+    p.sim.contact.friction = 1.0;
+    p.sim.contact.restitution = s.restitution;
+    p.sim.numerics.dt = s.dt;
     p.contact_frequency = s.contact_frequency;
     p
 }

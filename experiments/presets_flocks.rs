@@ -8,8 +8,9 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
-use rocking_stones::dynamics::drops::params::{Preset, Surface};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::Path;

@@ -37,8 +37,10 @@ use anyhow::{bail, ensure, Context, Result};
 use rand_distr::{Binomial, Distribution};
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader};
-use rocking_stones::dynamics::drops::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
+use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::colors::GREY;
 use rocking_stones::plot::{draw_legend, init_fonts, legend_height, plain, series_color, style, Mark, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
@@ -124,12 +126,12 @@ impl Predictor {
             Predictor::Throw => {
                 // Pinned: the numerics the calibration (`results/cuboid_dice/`) was fitted with.
                 let mut p = Preset::Throw.params_at_size(surface, r_max_m)?;
-                p.flight = Flight::Free;
+                p.sim.flight.mode = Flight::Free;
                 Some((p, Preset::Throw))
             }
             Predictor::ThrowRapier => {
                 let mut p = Preset::Throw.params_at_size(surface, r_max_m)?;
-                p.flight = Flight::Rapier;
+                p.sim.flight.mode = Flight::Rapier;
                 Some((p, Preset::Throw))
             }
             Predictor::Drop => Some((Preset::Drop.params_at_size(surface, r_max_m)?, Preset::Drop)),
@@ -785,14 +787,14 @@ fn readme(results: &[ShapeResult], n: u64, command: &str, elapsed: f64) -> Strin
                     md,
                     "| {} | {} | {} | {} | {} | {} | {:.4} | {} | 1/{:.0} |",
                     pred.predictor.label(),
-                    p.height,
-                    p.horizontal_speed,
-                    p.spin,
-                    p.friction,
-                    p.restitution,
-                    p.rolling_resistance,
-                    p.flight,
-                    1.0 / p.dt
+                    p.launch.height,
+                    p.launch.horizontal_speed,
+                    p.launch.spin,
+                    p.sim.contact.friction,
+                    p.sim.contact.restitution,
+                    p.sim.contact.rolling_resistance,
+                    p.sim.flight.mode,
+                    1.0 / p.sim.numerics.dt
                 );
             }
         }

@@ -15,10 +15,10 @@
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{
     self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
 };
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};

@@ -15,8 +15,9 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
-use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::wilson;

@@ -5,9 +5,10 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{
     certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT,
 };
-use rocking_stones::dynamics::drops::params::{Preset, Surface};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::drops::simulate::{launch, simulate, DropOutcome};
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::rng::item_rng;
 use std::collections::BTreeMap;

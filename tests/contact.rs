@@ -4,11 +4,13 @@
 use nalgebra::{Matrix3, UnitQuaternion};
 use rapier3d::prelude::SharedShape;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::drops::simulate::launch;
+use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::engine::run::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::{Body, Stone};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::rng::item_rng;
 use rocking_stones::Vec3;
@@ -31,18 +33,14 @@ fn ball() -> Body {
 /// point after a step (slip; from 0.05 s on).
 fn roll(delta: f64, v0: f64, dt: f64) -> (f64, f64, f64) {
     let body = ball();
-    let p = DropParams {
-        friction: 1.0,
-        restitution: 0.0,
-        rolling_resistance: delta,
-        torsional_friction: delta,
-        dt,
-        ..Preset::Drop.params(Surface::StoneOnStone)
-    };
+    let mut p = Preset::Drop.params(Surface::StoneOnStone);
+    let c = &mut p.sim.contact;
+    (c.friction, c.restitution, c.rolling_resistance, c.torsional_friction) = (1.0, 0.0, delta, delta);
+    p.sim.numerics.dt = dt;
     // Rolling without slipping along +x: ω = ẑ × v / r … about +y.
     let mut sim = Simulation::new(
         &body,
-        &p,
+        &p.sim,
         &UnitQuaternion::identity(),
         1.0,
         &Vec3::new(v0, 0.0, 0.0),
@@ -51,9 +49,9 @@ fn roll(delta: f64, v0: f64, dt: f64) -> (f64, f64, f64) {
     let x0 = sim.world.bodies[sim.body_handle].translation().x as f64;
     let mut t = 0.0;
     let mut slip: f64 = 0.0;
-    for _ in 0..(60.0 / p.dt) as usize {
+    for _ in 0..(60.0 / p.sim.numerics.dt) as usize {
         sim.step();
-        t += p.dt;
+        t += p.sim.numerics.dt;
         let s = sim.state();
         // Once the contact is established (the first step settles the ball into it).
         if t > 0.05 {
@@ -104,15 +102,15 @@ fn a_spinning_ball_stops_by_torsional_friction() {
     // Spin about the vertical only: I dω/dt = −δ_t m g ⇒ t = I ω₀ / (δ_t m g).
     let body = ball();
     let delta = 0.02;
-    let p =
-        DropParams { rolling_resistance: 0.0, torsional_friction: delta, ..Preset::Drop.params(Surface::StoneOnStone) };
+    let mut p = Preset::Drop.params(Surface::StoneOnStone);
+    (p.sim.contact.rolling_resistance, p.sim.contact.torsional_friction) = (0.0, delta);
     let w0 = 3.0;
     let mut sim =
-        Simulation::new(&body, &p, &UnitQuaternion::identity(), 1.0, &Vec3::zeros(), &Vec3::new(0.0, 0.0, w0));
+        Simulation::new(&body, &p.sim, &UnitQuaternion::identity(), 1.0, &Vec3::zeros(), &Vec3::new(0.0, 0.0, w0));
     let mut t = 0.0;
     while sim.state().angvel.z > 1e-6 && t < 30.0 {
         sim.step();
-        t += p.dt;
+        t += p.sim.numerics.dt;
     }
     let t_exact = 0.4 * w0 / (delta * GRAVITY);
     assert!((t / t_exact - 1.0).abs() < 0.03, "stopped after {t} s, closed form {t_exact}");
@@ -124,21 +122,17 @@ fn box_spin_down(friction: f64, torsional: f64, w0: f64) -> (f64, Stone) {
     let (mesh, _) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
     let a = Analysis::of_solid(mesh, Default::default(), &Options::default()).unwrap();
     let stone = Stone::new(&a, 0.0035).unwrap();
-    let p = DropParams {
-        friction,
-        restitution: 0.0,
-        rolling_resistance: torsional,
-        torsional_friction: torsional,
-        dt: 1.0 / 480.0,
-        ..Preset::Drop.params(Surface::StoneOnStone)
-    };
+    let mut p = Preset::Drop.params(Surface::StoneOnStone);
+    let c = &mut p.sim.contact;
+    (c.friction, c.restitution, c.rolling_resistance, c.torsional_friction) = (friction, 0.0, torsional, torsional);
+    p.sim.numerics.dt = 1.0 / 480.0;
     let z = stone.body.support(&-Vec3::z());
     let mut sim =
-        Simulation::new(&stone.body, &p, &UnitQuaternion::identity(), z, &Vec3::zeros(), &Vec3::new(0.0, 0.0, w0));
+        Simulation::new(&stone.body, &p.sim, &UnitQuaternion::identity(), z, &Vec3::zeros(), &Vec3::new(0.0, 0.0, w0));
     let mut t = 0.0;
     while sim.state().angvel.z > 1e-6 && t < 30.0 {
         sim.step();
-        t += p.dt;
+        t += p.sim.numerics.dt;
     }
     (t, stone)
 }
@@ -201,7 +195,7 @@ fn later_rise_above_level(stone: &Stone, p: &DropParams, n: u64) -> (f64, usize)
                 trace.push((may_ask.then_some(s.level), h));
             },
         );
-        assert!(settled, "throw {i} did not settle in {} s", p.max_time);
+        assert!(settled, "throw {i} did not settle in {} s", p.sim.numerics.max_time);
         let mut future_h = f64::NEG_INFINITY;
         for &(level, h) in trace.iter().rev() {
             future_h = future_h.max(h);
@@ -237,8 +231,9 @@ fn the_stone_never_climbs_above_the_level_the_certificate_reads() {
     // `results/certificate_decisions/` on 40 bodies).
     let stone = throw_pebble();
     for flight in [Flight::Free, Flight::Rapier] {
-        let p = DropParams { flight, ..DropParams::default() };
-        assert!(p.rolling_resistance > 0.0 && p.angular_damping == 0.0);
+        let mut p = DropParams::default();
+        p.sim.flight.mode = flight;
+        assert!(p.sim.contact.rolling_resistance > 0.0 && p.sim.contact.angular_damping == 0.0);
         let (worst, asked) = later_rise_above_level(&stone, &p, 40);
         assert!(asked > 10_000, "only {asked} states where the certificate may be asked");
         assert!(worst < CERTIFICATE_MARGIN, "{flight}: h(down) later rose {worst} R_max above the level L read");

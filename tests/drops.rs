@@ -5,7 +5,7 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{
     merge, read_partial, run, summarize, CertificateMode, Checkpoint, RunHeader, Shard, FORMAT,
 };
-use rocking_stones::dynamics::drops::params::DropParams;
+use rocking_stones::dynamics::drops::params::{DropParams, Launch};
 use rocking_stones::dynamics::drops::simulate::{launch, simulate, DropOutcome};
 use rocking_stones::dynamics::engine::run::{NoCertificate, CERTIFICATE_MARGIN};
 use rocking_stones::dynamics::stone::Stone;
@@ -24,6 +24,12 @@ fn setup(mesh: TriMesh) -> (Analysis, Stone) {
     (a, s)
 }
 
+/// A drop from rest at `height` (R_max) with the overdamped contact of the damped resting
+/// reference.
+fn damped_drop(height: f64) -> DropParams {
+    DropParams { launch: Launch::at_rest(height), sim: rocking_stones::dynamics::resting::PerturbParams::damped().sim }
+}
+
 fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
     RunHeader {
         format: FORMAT.into(),
@@ -31,7 +37,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
         mesh_fingerprint: "0".into(),
         seed,
         drops,
-        params: rocking_stones::dynamics::pushes::perturb::PerturbParams::damped().sim,
+        params: damped_drop(0.5),
         certificate,
         preset: None,
         center_of_mass: None,
@@ -101,7 +107,7 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
     // A run at another time step is refused with the checkpoint's step in the message (a run
     // written at the old default 1/240 s is told how to resume).
     let mut longer = h.clone();
-    longer.params.dt = 1.0 / 120.0;
+    longer.params.sim.numerics.dt = 1.0 / 120.0;
     let err = Checkpoint::open(&path, &longer, true).err().expect("another step is another run").to_string();
     assert!(err.contains("run at its time step") && err.contains("the reference step"), "{err}");
     let (c, done) = Checkpoint::open(&path, &h, true).unwrap();
@@ -148,7 +154,7 @@ fn certified_drops_end_where_full_settling_ends() {
 #[test]
 fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
     let (a, s) = setup(generate::pebble([1.0, 0.7, 0.45], 0.04, 500, 8));
-    let p = DropParams { height: 0.05, ..rocking_stones::dynamics::pushes::perturb::PerturbParams::damped().sim };
+    let p = damped_drop(0.05);
     let g = a.mass.center_of_mass;
     let mut crossed = 0;
     for i in 0..40 {
@@ -156,7 +162,7 @@ fn no_drop_ends_beyond_the_barrier_its_energy_allows() {
         let release = launch(&mut rng, &p);
         let down = release.orientation.inverse() * -rocking_stones::Vec3::z();
         // Initial energy level (input units): the lowest point p.height·R_max above the ground.
-        let level = (p.height + s.body.support(&down)) * s.body.r_max;
+        let level = (p.launch.height + s.body.support(&down)) * s.body.r_max;
         let start = rocking_stones::basins::settle(&a.hull, &g, &down);
         let o = simulate(&s, &p, &release, i, &NoCertificate);
         let end = o.facet.unwrap();
@@ -260,7 +266,7 @@ fn drops_still_moving_at_the_cap_are_left_out_and_said_to_be() {
     // every count, fraction and fit; the summary says how many, and prints no test on no data.
     let (_, s) = setup(generate::cuboid(1.0, 0.8, 0.5));
     let mut h = header(12, 4, CertificateMode::Facet);
-    h.params.max_time = 0.2; // far too short for any drop from its height to land and rest
+    h.params.sim.numerics.max_time = 0.2; // far too short for any drop from its height to land and rest
     let outcomes: BTreeMap<u64, DropOutcome> = run_all(&s, &h, Shard::ALL).into_iter().map(|o| (o.index, o)).collect();
     let r = summarize(&s.model(), &h, &outcomes);
     assert_eq!((r.settled, r.unsettled), (0, 12));
@@ -271,7 +277,7 @@ fn drops_still_moving_at_the_cap_are_left_out_and_said_to_be() {
     assert!(text.contains("12 still moving (left out)") && text.contains("left out of every count"), "{text}");
     assert!(!text.contains("χ² =") && !text.contains("-0.0"), "{text}");
     // With a longer cap some come to rest, and only those are counted.
-    h.params.max_time = 1.0;
+    h.params.sim.numerics.max_time = 1.0;
     let outcomes: BTreeMap<u64, DropOutcome> = run_all(&s, &h, Shard::ALL).into_iter().map(|o| (o.index, o)).collect();
     let r = summarize(&s.model(), &h, &outcomes);
     assert!(r.settled > 0 && r.unsettled > 0, "{} settled, {} moving", r.settled, r.unsettled);

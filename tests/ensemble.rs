@@ -5,11 +5,11 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
 use rocking_stones::dynamics::shaking::ensemble::{base_facet, run_ensemble, EnsembleSpec, Uncertainty};
 use rocking_stones::dynamics::shaking::housner::ramp_tipping;
 use rocking_stones::dynamics::shaking::{rock_params, run_record, sine_pulse, Pose, RockSetup};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::hull::convex_hull;
 use rocking_stones::mesh::TriMesh;
@@ -85,7 +85,7 @@ fn the_base_contact_tolerance_moves_the_pivot_as_the_tipping_polar_says() {
     let rise = 0.002;
     let s = bevelled_block(rise);
     let mut p: PerturbParams = rock_params(Surface::RockOnConcrete, s.body.r_max).unwrap();
-    (p.sim.friction, p.sim.restitution) = (1.0, 0.0);
+    (p.sim.contact.friction, p.sim.contact.restitution) = (1.0, 0.0);
     let setup = RockSetup::with_params(&s, Pose::Facet { id: bottom(&s) }, 1.0, 0.0, p.clone());
     let facet = base_facet(&s, &setup).unwrap();
     let down = s.body.facet_normals[facet as usize];

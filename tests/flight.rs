@@ -7,13 +7,15 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::montecarlo::{
     certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT,
 };
-use rocking_stones::dynamics::drops::params::{Flight, Preset, Surface, REFERENCE_DT};
+use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::engine::flight::{
     Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE,
 };
+use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::engine::world::{ground_world, Simulation};
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::stats::chi_square_homogeneity;
 use rocking_stones::Vec3;
@@ -30,7 +32,7 @@ fn stone(mesh: rocking_stones::mesh::TriMesh) -> Stone {
 
 fn header(drops: u64, preset: Preset, flight: Flight, certificate: CertificateMode) -> RunHeader {
     let mut params = preset.params(Surface::SteelOnWood);
-    params.flight = flight;
+    params.sim.flight.mode = flight;
     RunHeader {
         format: FORMAT.into(),
         mesh: "test".into(),
@@ -56,7 +58,7 @@ fn run(s: &Stone, h: &RunHeader, batch: usize, threads: usize) -> Vec<DropOutcom
 fn landings_are_handed_to_rapier_inside_its_contact_range() {
     // The exact landing stops at CONTACT_CLEARANCE: inside rapier's prediction distance, so
     // rapier's first step holds the contact, and above the ground, so the impact starts outside.
-    let (world, _, _) = ground_world(&Preset::Throw.params(Surface::SteelOnWood));
+    let (world, _, _) = ground_world(&Preset::Throw.params(Surface::SteelOnWood).sim);
     let prediction = world.integration_parameters.prediction_distance() as f64;
     assert!(
         (prediction - LANDING_CLEARANCE).abs() < 1e-8,
@@ -73,17 +75,18 @@ fn fly_both(
     damping: Damping,
 ) -> (f64, FreeBody, rocking_stones::dynamics::engine::world::BodyState, f64) {
     let mut p = Preset::Throw.params(Surface::SteelOnWood);
-    (p.dt, p.linear_damping, p.angular_damping) = (1.0 / steps_per_s, damping.linear, damping.angular);
+    (p.sim.numerics.dt, p.sim.contact.linear_damping, p.sim.contact.angular_damping) =
+        (1.0 / steps_per_s, damping.linear, damping.angular);
     // Rapier's own steps, at this step (the default numerics would sub-step the fast fall).
-    p.flight = Flight::Rapier;
+    p.sim.flight.mode = Flight::Rapier;
     let q = UnitQuaternion::from_euler_angles(0.7, -0.3, 1.9);
     let (v, w) = (Vec3::new(1.5, -0.5, 2.0), Vec3::new(22.0, -30.0, 14.0));
-    let mut sim = Simulation::new(&s.body, &p, &q, 20.0, &v, &w);
+    let mut sim = Simulation::new(&s.body, &p.sim, &q, 20.0, &v, &w);
     let mut free = FreeBody::new(20.0, v, q, &w);
     let inv = s.body.inertia.try_inverse().unwrap();
     for _ in 0..(1.5 * steps_per_s) as usize {
         sim.step();
-        free.step_damped(p.dt, &s.body.inertia, &inv, damping);
+        free.step_damped(p.sim.numerics.dt, &s.body.inertia, &inv, damping);
     }
     let (q_rapier, z_rapier) = sim.pose();
     (free.orientation.angle_to(&q_rapier), free, sim.state(), z_rapier)
@@ -186,7 +189,7 @@ fn deepest_drop(s: &Stone, flight: Flight, height: f64, dt: f64, q: UnitQuaterni
     use rocking_stones::dynamics::drops::batch::simulate_batch;
     use rocking_stones::dynamics::drops::simulate::Release;
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
-    (p.height, p.dt, p.flight, p.max_time) = (height, dt, flight, 6.0);
+    (p.launch.height, p.sim.numerics.dt, p.sim.flight.mode, p.sim.numerics.max_time) = (height, dt, flight, 6.0);
     let release = Release { orientation: q, linvel: v, angvel: w };
     let cert = rocking_stones::dynamics::engine::run::NoCertificate;
     let mut deepest = f64::NAN;
@@ -228,13 +231,17 @@ fn no_drop_goes_deeper_than_the_stated_bound() {
     let boxed = stone(generate::cuboid(1.0, 0.75, 0.4));
     let mut worst_fast: f64 = 0.0;
     for (preset, seed, set) in [
-        (Preset::Drop, 3, (|p: &mut rocking_stones::dynamics::drops::params::DropParams| p.spin = 400.0) as fn(&mut _)),
-        (Preset::Throw, 7, |p| p.horizontal_speed = 200.0),
+        (
+            Preset::Drop,
+            3,
+            (|p: &mut rocking_stones::dynamics::drops::params::DropParams| p.launch.spin = 400.0) as fn(&mut _),
+        ),
+        (Preset::Throw, 7, |p| p.launch.horizontal_speed = 200.0),
     ] {
         let mut h = header(50, preset, Flight::Free, CertificateMode::None);
         h.seed = seed;
         set(&mut h.params);
-        h.params.strict_impacts = true;
+        h.params.sim.flight.strict_impacts = true;
         for o in run(&boxed, &h, 8, 1) {
             assert!(
                 o.deepest_penetration < DEPTH_BOUND,
@@ -246,7 +253,7 @@ fn no_drop_goes_deeper_than_the_stated_bound() {
             worst_fast = worst_fast.max(o.deepest_penetration);
         }
         if preset == Preset::Drop {
-            h.params.strict_impacts = false;
+            h.params.sim.flight.strict_impacts = false;
             let outcomes: BTreeMap<u64, DropOutcome> =
                 run(&boxed, &h, 8, 1).into_iter().map(|o| (o.index, o)).collect();
             let r = rocking_stones::dynamics::drops::montecarlo::summarize(&boxed.model(), &h, &outcomes);
@@ -274,9 +281,9 @@ fn no_drop_goes_deeper_than_the_stated_bound() {
 /// `ground` (a shaken table), followed for 3 s in the one-stone world of pushes and shaking.
 fn deepest_knock(s: &Stone, flight: Flight, dt: f64, v: Vec3, w: Vec3, ground: Vec3) -> f64 {
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
-    (p.dt, p.flight) = (dt, flight);
+    (p.sim.numerics.dt, p.sim.flight.mode) = (dt, flight);
     let z = s.body.support(&-Vec3::z());
-    let mut sim = Simulation::new(&s.body, &p, &UnitQuaternion::identity(), z, &v, &w);
+    let mut sim = Simulation::new(&s.body, &p.sim, &UnitQuaternion::identity(), z, &v, &w);
     sim.set_ground_velocity(&ground);
     sim.advance((3.0 / dt) as u64);
     sim.deepest_penetration()
@@ -337,7 +344,7 @@ fn flat_landings_bounce_to_e_squared_h(name: &str, dropped: &Stone) {
     let rest = dropped.body.support(&-Vec3::z());
     for (e, h, dt) in [(0.5, 1.0, 1.0 / 240.0), (0.3, 2.0, 1.0 / 120.0), (0.7, 0.5, 1.0 / 240.0)] {
         let mut p = Preset::Drop.params(Surface::SteelOnWood);
-        (p.height, p.dt, p.flight, p.restitution) = (h, dt, Flight::Free, e);
+        (p.launch.height, p.sim.numerics.dt, p.sim.flight.mode, p.sim.contact.restitution) = (h, dt, Flight::Free, e);
         let release = Release { orientation: UnitQuaternion::identity(), linvel: Vec3::zeros(), angvel: Vec3::zeros() };
         let (mut down, mut apex) = (false, f64::NEG_INFINITY);
         let mut last = f64::INFINITY;
@@ -415,8 +422,14 @@ fn a_corner_impact_leaves_as_the_contact_law_says_at_any_solver_sub_steps() {
     let k = nalgebra::Matrix3::identity() - r.cross_matrix() * inv * r.cross_matrix();
     for (e, iterations) in [(0.2, 4), (0.2, 32), (0.5, 4), (0.5, 32)] {
         let mut p = Preset::Drop.params(Surface::SteelOnWood);
-        (p.height, p.flight, p.restitution, p.solver_iterations) = (0.5, Flight::Free, e, iterations);
-        (p.linear_damping, p.angular_damping, p.rolling_resistance, p.torsional_friction) = (0.0, 0.0, 0.0, 0.0);
+        (p.launch.height, p.sim.flight.mode, p.sim.contact.restitution, p.sim.numerics.solver_iterations) =
+            (0.5, Flight::Free, e, iterations);
+        (
+            p.sim.contact.linear_damping,
+            p.sim.contact.angular_damping,
+            p.sim.contact.rolling_resistance,
+            p.sim.contact.torsional_friction,
+        ) = (0.0, 0.0, 0.0, 0.0);
         let release = Release { orientation, linvel: Vec3::zeros(), angvel: Vec3::zeros() };
         let (mut before, mut after) = (None, None);
         simulate_batch_observed(
@@ -441,7 +454,7 @@ fn a_corner_impact_leaves_as_the_contact_law_says_at_any_solver_sub_steps() {
         let u = -before.linvel.z;
         let compression = k.try_inverse().unwrap() * Vec3::new(0.0, 0.0, u);
         let ratio = compression.xy().norm() / compression.z;
-        assert!(ratio < p.friction, "the closed form assumes sticking: |P_t|/P_n = {ratio}");
+        assert!(ratio < p.sim.contact.friction, "the closed form assumes sticking: |P_t|/P_n = {ratio}");
         let impulse = compression + Vec3::z() * (e * u / k[(2, 2)]);
         let (v, w) = (before.linvel + impulse, inv * r.cross(&impulse));
         // Not vacuous: Newton's law with sticking friction throughout turns the box otherwise.
@@ -458,7 +471,12 @@ fn a_corner_impact_leaves_as_the_contact_law_says_at_any_solver_sub_steps() {
             after.angvel,
             after.linvel
         );
-        assert!((after.linvel.z - v.z).abs() < GRAVITY * p.dt + 0.02 * u, "v_z {} for {}", after.linvel.z, v.z);
+        assert!(
+            (after.linvel.z - v.z).abs() < GRAVITY * p.sim.numerics.dt + 0.02 * u,
+            "v_z {} for {}",
+            after.linvel.z,
+            v.z
+        );
     }
 }
 

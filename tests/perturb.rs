@@ -4,12 +4,12 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{
     self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone, Threshold,
 };
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::dynamics::shaking::{self, shake_trial, sine_pulse, ShakeConfig};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::stats::{log_grid, GridSize};
@@ -34,8 +34,8 @@ fn block(b: f64, d: f64, h: f64) -> (Stone, usize) {
 /// rolling resistance δ = 10⁻⁴ R_max): no sliding (μ > tan α), perfectly plastic impacts.
 fn housner_params() -> PerturbParams {
     let mut p = PerturbParams::on_surface(Surface::RockOnConcrete, 1.0).unwrap();
-    p.sim.friction = 1.0;
-    p.sim.restitution = 0.0;
+    p.sim.contact.friction = 1.0;
+    p.sim.contact.restitution = 0.0;
     p
 }
 

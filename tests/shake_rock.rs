@@ -5,10 +5,10 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{Outcome, PerturbParams, Stone};
 use rocking_stones::dynamics::shaking::housner::housner_overturns;
 use rocking_stones::dynamics::shaking::{place, rock_params, shake_record, shake_trial, sine_pulse, Pose, RockRun};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::Record;
 use rocking_stones::hull::convex_hull;
@@ -39,8 +39,8 @@ fn sampled(f: impl Fn(f64) -> [f64; 3], duration: f64) -> Record {
 /// Housner's conditions on a real surface pair: no sliding, plastic impacts.
 fn housner(r_max_m: f64) -> PerturbParams {
     let mut p = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
-    p.sim.friction = 1.0;
-    p.sim.restitution = 0.0;
+    p.sim.contact.friction = 1.0;
+    p.sim.contact.restitution = 0.0;
     p
 }
 
@@ -151,7 +151,7 @@ fn low_friction_slides_instead_of_rocking() {
     let a_g = |t: f64| 0.7 * GRAVITY * (2.0 * PI * 2.0 * t).sin();
     let m = sampled(move |t: f64| [a_g(t), 0.0, 0.0], 0.25);
     let mut p = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
-    p.sim.friction = 0.3;
+    p.sim.contact.friction = 0.3;
     let slid = shake(&s, &p, &m, r_max_m);
     let expected = newmark_slide(&a_g, 0.25, 0.3);
     assert!(slid.max_tilt_deg < 0.2, "μ = 0.3: tilted {}°", slid.max_tilt_deg);
@@ -160,7 +160,7 @@ fn low_friction_slides_instead_of_rocking() {
         "μ = 0.3: slid {} m, Newmark's block {expected} m",
         slid.slide_m
     );
-    p.sim.friction = 0.8;
+    p.sim.contact.friction = 0.8;
     let rocked = shake(&s, &p, &m, r_max_m);
     assert!(rocked.max_tilt_deg > 0.5, "μ = 0.8: tilted only {}°", rocked.max_tilt_deg);
 }
@@ -559,8 +559,8 @@ fn a_ball_under_a_pulse_rolls_back_five_sevenths_of_the_ground_motion() {
     };
     for r_max_m in [1.0, 10.0] {
         let mut p = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
-        p.sim.friction = 1.0;
-        p.sim.restitution = 0.0;
+        p.sim.contact.friction = 1.0;
+        p.sim.contact.restitution = 0.0;
         // 0.2 g, 2 s of the scaled body: no slip needs a_g (2/7) < μ g.
         let tp = 2.0 * r_max_m.sqrt();
         let pulse = one_sine_pulse(0.2, tp, tp / 2000.0).unwrap();
@@ -569,7 +569,7 @@ fn a_ball_under_a_pulse_rolls_back_five_sevenths_of_the_ground_motion() {
         sim.set_contact_frequency(p.contact_frequency);
         sim.advance(60);
         let x0 = sim.ground_offset();
-        let mut ground = GroundDrive::new(&pulse, 0.0, r_max_m, p.sim.dt);
+        let mut ground = GroundDrive::new(&pulse, 0.0, r_max_m, p.sim.numerics.dt);
         for step in 0..ground.active_steps() {
             ground.before_step(&mut sim, step);
             sim.step();

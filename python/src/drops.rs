@@ -10,10 +10,11 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::dynamics::drops::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
-use rocking_stones::dynamics::drops::params::{DropParams, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone as Body;
+use rocking_stones::dynamics::surface::Surface;
 use std::collections::BTreeMap;
 use std::time::Instant;
 

@@ -11,8 +11,8 @@ use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::size::{RealSize, Size, ASSUMED_UNIT};
+use rocking_stones::dynamics::surface::Surface;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -233,11 +233,11 @@ pub(crate) fn shake(
     let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
     let r_max_m = real.r_max_m;
     let params = resting_params("shake", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
-    let real_dt = params.sim.dt * r_max_m.sqrt();
+    let real_dt = params.sim.numerics.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (pulse, motion) {
         (Some((a, f, c)), _) => (sh::sine_pulse(a, f, c, real_dt).map_err(py_err)?, false),
         (None, Some(m)) => (read_motion_arg(m, columns, accel_unit)?, false),
-        (None, None) => (sh::default_pulse(r_max_m, params.sim.dt).map_err(py_err)?, true),
+        (None, None) => (sh::default_pulse(r_max_m, params.sim.numerics.dt).map_err(py_err)?, true),
     };
     let pgas = sh::pgas_for(&motion, pga_max, pga_steps, default_sweep).map_err(py_err)?;
     let cfg = ShakeConfig { params, motion, pgas, trials, seed, azimuth: azimuth.map(f64::to_radians), r_max_m };

@@ -8,8 +8,8 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::analysis::{check_nu, Report, PAPER_NU};
-use rocking_stones::dynamics::drops::params::{DropParams, REFERENCE_R_MAX_M};
 use rocking_stones::dynamics::size::format_length;
+use rocking_stones::dynamics::size::REFERENCE_R_MAX_M;
 use std::path::PathBuf;
 
 /// A field study: one row per scan with the columns of `pebbles.csv`.
@@ -126,7 +126,8 @@ pub(crate) fn study(
         return Err(PyValueError::new_err(format!("{}: not a folder", folder.display())));
     }
     let experimenter = if dynamic {
-        let params = DropParams { height, ..st::set_down_params() };
+        let mut params = st::set_down_params();
+        params.launch.height = height;
         params.check().map_err(py_err)?;
         if trials == 0 {
             return Err(PyValueError::new_err("trials must be at least 1"));

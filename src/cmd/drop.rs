@@ -7,10 +7,12 @@ use rocking_stones::dynamics::drops::montecarlo::{
     certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
     RunHeader, Shard,
 };
-use rocking_stones::dynamics::drops::params::{DropParams, Flight, Preset, Surface};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::drops::simulate::DropOutcome;
+use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -221,22 +223,22 @@ fn params(a: &Args, r_max_m: f64) -> Result<DropParams> {
             *field = v;
         }
     };
-    set(&mut p.height, a.height);
-    set(&mut p.horizontal_speed, a.horizontal_speed);
-    set(&mut p.spin, a.spin);
-    set(&mut p.friction, a.friction);
-    set(&mut p.restitution, a.restitution);
-    set(&mut p.rolling_resistance, a.rolling_resistance);
-    set(&mut p.torsional_friction, a.torsional_friction);
-    set(&mut p.linear_damping, a.linear_damping);
-    set(&mut p.angular_damping, a.angular_damping);
-    set(&mut p.dt, a.dt);
-    set(&mut p.max_time, a.max_time);
-    p.solver_iterations = a.solver_iterations.unwrap_or(p.solver_iterations);
+    set(&mut p.launch.height, a.height);
+    set(&mut p.launch.horizontal_speed, a.horizontal_speed);
+    set(&mut p.launch.spin, a.spin);
+    set(&mut p.sim.contact.friction, a.friction);
+    set(&mut p.sim.contact.restitution, a.restitution);
+    set(&mut p.sim.contact.rolling_resistance, a.rolling_resistance);
+    set(&mut p.sim.contact.torsional_friction, a.torsional_friction);
+    set(&mut p.sim.contact.linear_damping, a.linear_damping);
+    set(&mut p.sim.contact.angular_damping, a.angular_damping);
+    set(&mut p.sim.numerics.dt, a.dt);
+    set(&mut p.sim.numerics.max_time, a.max_time);
+    p.sim.numerics.solver_iterations = a.solver_iterations.unwrap_or(p.sim.numerics.solver_iterations);
     if let Some(flight) = a.flight {
-        p.flight = flight;
+        p.sim.flight.mode = flight;
     }
-    p.strict_impacts = a.strict_impacts;
+    p.sim.flight.strict_impacts = a.strict_impacts;
     p.check()?;
     Ok(p)
 }

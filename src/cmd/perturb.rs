@@ -4,9 +4,9 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig, PerturbParams, RestingPreset, Stone};
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_UNIT};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
@@ -84,12 +84,12 @@ impl SimArgs {
         let surface = self.surface.unwrap_or(default_surface);
         let mut p = PerturbParams::of(self.preset, surface, size.r_max_m)?;
         let sim = &mut p.sim;
-        sim.friction = self.friction.unwrap_or(sim.friction);
-        sim.restitution = self.restitution.unwrap_or(sim.restitution);
-        sim.rolling_resistance = self.rolling_resistance.unwrap_or(sim.rolling_resistance);
-        sim.dt = self.dt.unwrap_or(sim.dt);
-        sim.max_time = self.max_time.unwrap_or(sim.max_time);
-        sim.solver_iterations = self.solver_iterations.unwrap_or(sim.solver_iterations);
+        sim.contact.friction = self.friction.unwrap_or(sim.contact.friction);
+        sim.contact.restitution = self.restitution.unwrap_or(sim.contact.restitution);
+        sim.contact.rolling_resistance = self.rolling_resistance.unwrap_or(sim.contact.rolling_resistance);
+        sim.numerics.dt = self.dt.unwrap_or(sim.numerics.dt);
+        sim.numerics.max_time = self.max_time.unwrap_or(sim.numerics.max_time);
+        sim.numerics.solver_iterations = self.solver_iterations.unwrap_or(sim.numerics.solver_iterations);
         p.contact_frequency = self.contact_frequency.unwrap_or(p.contact_frequency);
         p.check()?;
         Ok(p)

@@ -6,8 +6,8 @@
 
 use super::perturb::SimArgs;
 use anyhow::{bail, Result};
-use rocking_stones::dynamics::drops::params::Surface;
 use rocking_stones::dynamics::shaking::{self, RockSetup, ShakeConfig};
+use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
@@ -138,11 +138,11 @@ pub fn run(args: Args) -> Result<()> {
     let size = args.sim.real_size(&stone, &name)?;
     let params = args.sim.params(&size, Surface::StoneOnStone)?;
     let r_max_m = size.r_max_m;
-    let real_dt = params.sim.dt * r_max_m.sqrt();
+    let real_dt = params.sim.numerics.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (&args.pulse, args.motion.is_empty()) {
         (Some([a, f, c]), _) => (shaking::sine_pulse(*a, *f, *c, real_dt)?, false),
         (None, false) => (read_records(&args)?.remove(0), false),
-        (None, true) => (shaking::default_pulse(r_max_m, params.sim.dt)?, true),
+        (None, true) => (shaking::default_pulse(r_max_m, params.sim.numerics.dt)?, true),
     };
     let pgas = shaking::pgas_for(&motion, args.pga_max, args.pga_steps, default_sweep)?;
     let starts = match args.equilibria.is_empty() {

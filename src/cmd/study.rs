@@ -7,8 +7,8 @@
 
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{Options, PAPER_NU};
-use rocking_stones::dynamics::drops::params::{DropParams, REFERENCE_R_MAX_M};
 use rocking_stones::dynamics::size::format_length;
+use rocking_stones::dynamics::size::REFERENCE_R_MAX_M;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::study::{
@@ -60,7 +60,8 @@ impl DynamicArgs {
         if !self.dynamic {
             return Ok(None);
         }
-        let params = DropParams { height: self.height, ..rocking_stones::study::set_down_params() };
+        let mut params = rocking_stones::study::set_down_params();
+        params.launch.height = self.height;
         params.check()?;
         if self.trials == 0 {
             anyhow::bail!("--trials must be at least 1");

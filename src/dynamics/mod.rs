@@ -16,3 +16,4 @@ pub mod resting;
 pub mod shaking;
 pub mod size;
 pub mod stone;
+pub mod surface;

@@ -49,8 +49,12 @@ impl Size {
 pub const ASSUMED_UNIT: Size = Size::Unit(1.0);
 
 /// What `drop` assumes of a stone whose size is neither given nor known: R_max = 1 cm, the
-/// reference size of the drop presets ([`crate::dynamics::drops::params::REFERENCE_R_MAX_M`], a die).
-pub const ASSUMED_DROP_SIZE: Size = Size::RMax(crate::dynamics::drops::params::REFERENCE_R_MAX_M);
+/// reference size of the drop presets ([`REFERENCE_R_MAX_M`], a die).
+pub const ASSUMED_DROP_SIZE: Size = Size::RMax(REFERENCE_R_MAX_M);
+
+/// The size at which a surface's physical rolling-resistance length is turned into δ / R_max by
+/// the drop presets when the stone's real size is not given: R_max = 1 cm (a die, a pebble).
+pub const REFERENCE_R_MAX_M: f64 = 0.01;
 
 /// Plausible real R_max (m) of a stone, a pebble or a field rock: from 2 mm (a 4 mm granule, the
 /// smallest gravel on Wentworth's scale) to 20 m (a 40 m boulder, the size of the largest known

@@ -78,10 +78,10 @@ pub fn drop_summary_sized(r: &crate::dynamics::drops::montecarlo::DropReport, r_
     let _ = writeln!(
         s,
         "  launch: height {} R_max, horizontal speed {}, spin {} ({}){}",
-        number(p.height, 4),
-        at.speed(p.horizontal_speed),
-        at.spin(p.spin),
-        match p.spin_distribution {
+        number(p.launch.height, 4),
+        at.speed(p.launch.horizontal_speed),
+        at.spin(p.launch.spin),
+        match p.launch.spin_distribution {
             crate::dynamics::drops::params::SpinDistribution::Fixed => "exact",
             crate::dynamics::drops::params::SpinDistribution::Gaussian => "rms, Gaussian",
         },
@@ -90,14 +90,14 @@ pub fn drop_summary_sized(r: &crate::dynamics::drops::montecarlo::DropReport, r_
     let _ = writeln!(
         s,
         "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {} linear, {} angular; dt {}, flight {}",
-        number(p.friction, 4),
-        number(p.restitution, 4),
-        number(p.rolling_resistance, 4),
-        number(p.torsional_friction, 4),
-        at.rate(p.linear_damping),
-        at.rate(p.angular_damping),
-        at.time(p.dt),
-        p.flight
+        number(p.sim.contact.friction, 4),
+        number(p.sim.contact.restitution, 4),
+        number(p.sim.contact.rolling_resistance, 4),
+        number(p.sim.contact.torsional_friction, 4),
+        at.rate(p.sim.contact.linear_damping),
+        at.rate(p.sim.contact.angular_damping),
+        at.time(p.sim.numerics.dt),
+        p.sim.flight.mode
     );
     let mean = |t: Option<f64>| t.map_or("-".to_string(), |t| at.time(t));
     let _ = writeln!(
@@ -122,7 +122,7 @@ pub fn drop_summary_sized(r: &crate::dynamics::drops::montecarlo::DropReport, r_
              that has not come to rest has no resting position). Raise --max-time, lower --dt, or add \
              --rolling-resistance.",
             plural(r.unsettled, "drop", "drops"),
-            at.time(p.max_time)
+            at.time(p.sim.numerics.max_time)
         );
     }
     if r.off_equilibrium > 0 {

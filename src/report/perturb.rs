@@ -29,11 +29,11 @@ pub fn contact_line(p: &crate::dynamics::pushes::perturb::PerturbParams, r_max_m
     use super::names::number;
     let at = super::drops::Scaled { r_max_m };
     let c = &p.sim;
-    let damping = if c.angular_damping > 0.0 || c.linear_damping > 0.0 {
+    let damping = if c.contact.angular_damping > 0.0 || c.contact.linear_damping > 0.0 {
         format!(
             "global damping {} angular, {} linear (the damped reference)",
-            at.rate(c.angular_damping),
-            at.rate(c.linear_damping)
+            at.rate(c.contact.angular_damping),
+            at.rate(c.contact.linear_damping)
         )
     } else {
         "no global damping".to_string()
@@ -41,11 +41,11 @@ pub fn contact_line(p: &crate::dynamics::pushes::perturb::PerturbParams, r_max_m
     format!(
         "contact: friction {}, restitution {}, rolling resistance δ = {:.2e} R_max through the contact, {damping}; \
          dt {}, cap {}",
-        number(c.friction, 4),
-        number(c.restitution, 4),
-        c.rolling_resistance,
-        at.time(c.dt),
-        at.time(c.max_time)
+        number(c.contact.friction, 4),
+        number(c.contact.restitution, 4),
+        c.contact.rolling_resistance,
+        at.time(c.numerics.dt),
+        at.time(c.numerics.max_time)
     )
 }
 

@@ -3,9 +3,11 @@
 
 use crate::analysis::Analysis;
 use crate::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
-use crate::dynamics::drops::params::{DropParams, Preset, Surface, REFERENCE_R_MAX_M};
+use crate::dynamics::drops::params::{DropParams, Preset};
+use crate::dynamics::size::REFERENCE_R_MAX_M;
 use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
 use crate::dynamics::stone::Stone;
+use crate::dynamics::surface::Surface;
 use crate::equilibria::Kind;
 use crate::Result;
 use serde::Serialize;
@@ -37,7 +39,9 @@ pub const DEFAULT_SET_DOWN_HEIGHT: f64 = 0.05;
 /// The contact and launch of a pebble set down by hand: the [`Preset::Drop`] protocol (from rest,
 /// no spin) on [`Surface::StoneOnStone`], released [`DEFAULT_SET_DOWN_HEIGHT`] above the ground.
 pub fn set_down_params() -> DropParams {
-    DropParams { height: DEFAULT_SET_DOWN_HEIGHT, ..Preset::Drop.params(Surface::StoneOnStone) }
+    let mut p = Preset::Drop.params(Surface::StoneOnStone);
+    p.launch.height = DEFAULT_SET_DOWN_HEIGHT;
+    p
 }
 
 impl Default for Experimenter {
@@ -70,8 +74,8 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
     let mut params = exp.params.clone();
     if let Some(u) = exp.length_unit_m {
         let size = RealSize::resolve("", stone.body.r_max, Some(Size::Unit(u)), ASSUMED_DROP_SIZE)?;
-        params.rolling_resistance *= REFERENCE_R_MAX_M / size.r_max_m;
-        params.torsional_friction *= REFERENCE_R_MAX_M / size.r_max_m;
+        params.sim.contact.rolling_resistance *= REFERENCE_R_MAX_M / size.r_max_m;
+        params.sim.contact.torsional_friction *= REFERENCE_R_MAX_M / size.r_max_m;
     }
     let header = RunHeader {
         format: FORMAT.into(),

@@ -17,7 +17,7 @@
 //! [`Progress`] rule as a single run) is removed at once and the next drop of the queue is
 //! inserted, so the batch stays full until the queue runs dry.
 //!
-//! With [`crate::dynamics::drops::params::Flight::Free`] a stone clear of the ground leaves the world and flies
+//! With [`crate::dynamics::engine::params::Flight::Free`] a stone clear of the ground leaves the world and flies
 //! outside rapier ([`crate::dynamics::engine::flight`]) until the exact instant its clearance falls to
 //! [`flight::CONTACT_CLEARANCE`], where it re-enters the world (part-way through a step: its
 //! clock then runs late by the rest of that step, which the reported time takes off); the world
@@ -66,7 +66,7 @@ struct Slot {
 /// Simulate the drops of `queue` (drop index and release, in the order given) with at most
 /// `capacity` stones in one world at a time, calling `on_done` with each outcome as its drop
 /// finishes (in the order they finish). Every outcome equals that of [`crate::dynamics::drops::simulate::simulate`]
-/// for the same drop (module docs). With [`crate::dynamics::drops::params::Flight::Free`] a stone clear of the
+/// for the same drop (module docs). With [`crate::dynamics::engine::params::Flight::Free`] a stone clear of the
 /// ground leaves the world and flies outside rapier ([`crate::dynamics::engine::flight`]) until it is about to
 /// land.
 pub fn simulate_batch(
@@ -92,11 +92,11 @@ pub fn simulate_batch_observed(
     observe: &mut dyn FnMut(u64, &BodyState),
 ) {
     let capacity = capacity.max(1);
-    let free_flight = flight::applies(p);
-    let damping = flight::Damping::of(p);
+    let free_flight = flight::applies(&p.sim);
+    let damping = flight::Damping::of(&p.sim);
     let inertia = flight::Inertia::new(stone.body.inertia);
-    let (mut world, _ground, ground_collider) = ground_world(p);
-    let law = ContactLaw::of(p);
+    let (mut world, _ground, ground_collider) = ground_world(&p.sim);
+    let law = ContactLaw::of(&p.sim);
     let mut slots: Vec<Slot> = Vec::with_capacity(capacity);
     // The stones in the world this step (a buffer kept across steps: no allocation per step).
     let mut in_world: Vec<(RigidBodyHandle, ColliderHandle)> = Vec::with_capacity(capacity);
@@ -114,7 +114,13 @@ pub fn simulate_batch_observed(
             } else {
                 enter_world(&mut world, &mut spare, &stone.body, p, &free)
             };
-            slots.push(Slot { index, place, progress: Progress::new(p, 0, RestKind::Speeds), lag: 0.0, deepest: 0.0 });
+            slots.push(Slot {
+                index,
+                place,
+                progress: Progress::new(&p.sim, 0, RestKind::Speeds),
+                lag: 0.0,
+                deepest: 0.0,
+            });
         }
         if slots.is_empty() {
             return;
@@ -139,8 +145,10 @@ pub fn simulate_batch_observed(
                     state
                 }
                 Place::Air(b) => {
-                    if let flight::Flew::Landed(t) = b.fly(p.dt, &inertia, damping, &|d| stone.body.support_climb(d)) {
-                        s.lag += p.dt - t;
+                    if let flight::Flew::Landed(t) =
+                        b.fly(p.sim.numerics.dt, &inertia, damping, &|d| stone.body.support_climb(d))
+                    {
+                        s.lag += p.sim.numerics.dt - t;
                         landed = true;
                     }
                     air_state(b, &stone.body)
@@ -148,7 +156,7 @@ pub fn simulate_batch_observed(
                 Place::Impact(w) => {
                     let n = {
                         let (s, q) = w.state(&stone.body);
-                        impact::substeps(&stone.body, &q, s.z, &s.linvel, &s.angvel, p.dt)
+                        impact::substeps(&stone.body, &q, s.z, &s.linvel, &s.angvel, p.sim.numerics.dt)
                     };
                     s.deepest = s.deepest.max(w.step(n, &law, &stone.body));
                     w.state(&stone.body).0
@@ -198,10 +206,12 @@ fn enter_world(
     b: &FreeBody,
 ) -> Place {
     let state = air_state(b, body);
-    if flight::applies(p) && impact::substeps(body, &b.orientation, b.z, &b.linvel, &state.angvel, p.dt) > 1 {
+    if flight::applies(&p.sim)
+        && impact::substeps(body, &b.orientation, b.z, &b.linvel, &state.angvel, p.sim.numerics.dt) > 1
+    {
         return Place::Impact(impact_world(spare, body, p, &b.orientation, &state));
     }
-    let (handle, collider) = insert_stone(world, body, p, &b.orientation, b.z, &b.linvel, &b.angvel());
+    let (handle, collider) = insert_stone(world, body, &p.sim, &b.orientation, b.z, &b.linvel, &b.angvel());
     Place::World { handle, collider }
 }
 
@@ -232,10 +242,10 @@ fn impact_world(
 ) -> Box<ImpactWorld> {
     match spare.pop() {
         Some(mut w) => {
-            w.reset(body, p, q, state);
+            w.reset(body, &p.sim, q, state);
             w
         }
-        None => Box::new(ImpactWorld::new(body, p, q, state)),
+        None => Box::new(ImpactWorld::new(body, &p.sim, q, state)),
     }
 }
 
@@ -265,7 +275,7 @@ fn next_place(
             let pushed = normal_impulse(world, ground, collider) > 0.0;
             let take_off = !pushed && clear();
             let q = crate::dynamics::engine::convert::quat_back(world.bodies[handle].rotation());
-            if !take_off && impact::substeps(body, &q, state.z, &state.linvel, &state.angvel, p.dt) == 1 {
+            if !take_off && impact::substeps(body, &q, state.z, &state.linvel, &state.angvel, p.sim.numerics.dt) == 1 {
                 return Place::World { handle, collider };
             }
             world.remove_body(handle);
@@ -280,7 +290,7 @@ fn next_place(
             if w.normal_impulse() == 0.0 && clear() {
                 spare.push(w);
                 Place::Air(free(q))
-            } else if impact::substeps(body, &q, state.z, &state.linvel, &state.angvel, p.dt) == 1 {
+            } else if impact::substeps(body, &q, state.z, &state.linvel, &state.angvel, p.sim.numerics.dt) == 1 {
                 spare.push(w);
                 enter_world(world, spare, body, p, &free(q))
             } else {

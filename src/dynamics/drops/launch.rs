@@ -66,28 +66,28 @@ pub struct Release {
 /// (3 normals), then the azimuth of the horizontal velocity (one uniform).
 pub fn launch(rng: &mut Stream, p: &DropParams) -> Release {
     let orientation = random_rotation(rng);
-    let angvel = match p.spin_distribution {
-        SpinDistribution::Fixed => random_unit(rng) * p.spin,
+    let angvel = match p.launch.spin_distribution {
+        SpinDistribution::Fixed => random_unit(rng) * p.launch.spin,
         SpinDistribution::Gaussian => {
-            Vec3::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal)) * (p.spin / 3f64.sqrt())
+            Vec3::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal)) * (p.launch.spin / 3f64.sqrt())
         }
     };
     let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-    let linvel = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0) * p.horizontal_speed;
+    let linvel = Vec3::new(azimuth.cos(), azimuth.sin(), 0.0) * p.launch.horizontal_speed;
     Release { orientation, linvel, angvel }
 }
 
 /// Height of G at release: the lowest hull point `p.height` above the ground.
 pub fn release_height(stone: &Stone, p: &DropParams, release: &Release) -> f64 {
     let down_body = release.orientation.inverse() * -Vec3::z();
-    p.height + stone.body.support(&down_body)
+    p.launch.height + stone.body.support(&down_body)
 }
 
 /// The outcome of drop `index` from how its run ended: the certificate's decision, or where the
 /// stone rests by [`Stone::rest`]. Its `deepest_penetration` is left at 0 for the caller, which
 /// stepped the stone, to fill in.
 pub fn outcome(stone: &Stone, p: &DropParams, end: &RunEnd, index: u64) -> DropOutcome {
-    let time = end.steps as f64 * p.dt;
+    let time = end.steps as f64 * p.sim.numerics.dt;
     let outcome = |facet, flock, height_above| DropOutcome {
         index,
         settled: end.settled,

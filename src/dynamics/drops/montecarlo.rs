@@ -17,8 +17,9 @@
 //!   Kullback–Leibler divergence of the empirical distribution from the static one.
 
 use crate::dynamics::drops::batch::simulate_batch;
-use crate::dynamics::drops::params::{DropParams, REFERENCE_DT};
+use crate::dynamics::drops::params::DropParams;
 use crate::dynamics::drops::simulate::{launch, simulate, DropOutcome};
+use crate::dynamics::engine::params::REFERENCE_DT;
 pub use crate::dynamics::engine::run::CertificateMode;
 use crate::dynamics::engine::run::{Certificate, EnergyCertificate, NoCertificate};
 pub use crate::dynamics::stone::StaticModel;
@@ -115,7 +116,7 @@ impl RunHeader {
         drops: u64,
         params: DropParams,
         certificate: CertificateMode,
-        preset: (crate::dynamics::drops::params::Preset, crate::dynamics::drops::params::Surface),
+        preset: (crate::dynamics::drops::params::Preset, crate::dynamics::surface::Surface),
     ) -> RunHeader {
         RunHeader {
             format: FORMAT.into(),
@@ -311,7 +312,7 @@ impl Checkpoint {
                     "{}: this checkpoint belongs to a different run; it differs in {}{}",
                     path.display(),
                     differ.join(", "),
-                    step_hint(h.params.dt, header.params.dt)
+                    step_hint(h.params.sim.numerics.dt, header.params.sim.numerics.dt)
                 )));
             }
             done = outcomes;

@@ -11,9 +11,9 @@ use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::stone::Stone;
 
 /// Simulate one drop to rest (or to the certificate, or to the time cap), alone in its world
-/// (with [`crate::dynamics::drops::params::Flight::Free`]: a batch of one, [`crate::dynamics::drops::batch`], where the flight is).
+/// (with [`crate::dynamics::engine::params::Flight::Free`]: a batch of one, [`crate::dynamics::drops::batch`], where the flight is).
 pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, cert: &dyn Certificate) -> DropOutcome {
-    if crate::dynamics::engine::flight::applies(p) {
+    if crate::dynamics::engine::flight::applies(&p.sim) {
         let mut out = None;
         crate::dynamics::drops::batch::simulate_batch(
             stone,
@@ -26,7 +26,7 @@ pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, ce
         return out.expect("a batch of one drop finishes it");
     }
     let z0 = release_height(stone, p, release);
-    let mut sim = Simulation::new(&stone.body, p, &release.orientation, z0, &release.linvel, &release.angvel);
-    let end = run(&mut sim, p, &mut Passive, cert, RestKind::Speeds, &mut |_| {});
+    let mut sim = Simulation::new(&stone.body, &p.sim, &release.orientation, z0, &release.linvel, &release.angvel);
+    let end = run(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |_| {});
     DropOutcome { deepest_penetration: sim.deepest_penetration(), ..outcome(stone, p, &end, index) }
 }

@@ -52,7 +52,8 @@
 //! every time, so the motion does not care), and its clock runs late by the unused part of the
 //! step (≤ dt per landing, subtracted from the reported time).
 
-use crate::dynamics::drops::params::{DropParams, Flight};
+use crate::dynamics::engine::params::Flight;
+use crate::dynamics::engine::params::RunParams;
 use crate::Vec3;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion};
 
@@ -99,8 +100,8 @@ pub enum Flew {
 use crate::GRAVITY as G;
 
 /// Whether the runs of `p` fly outside rapier: [`Flight::Free`].
-pub fn applies(p: &DropParams) -> bool {
-    p.flight == Flight::Free
+pub fn applies(p: &RunParams) -> bool {
+    p.flight.mode == Flight::Free
 }
 
 /// Global velocity damping in flight (1/s): the `linear_damping` and `angular_damping` of a run
@@ -116,8 +117,8 @@ pub struct Damping {
 
 impl Damping {
     /// The damping of `p`.
-    pub fn of(p: &DropParams) -> Self {
-        Damping { linear: p.linear_damping, angular: p.angular_damping }
+    pub fn of(p: &RunParams) -> Self {
+        Damping { linear: p.contact.linear_damping, angular: p.contact.angular_damping }
     }
 }
 

@@ -14,5 +14,6 @@ pub mod convert;
 pub mod flight;
 pub mod hull_shape;
 pub mod impact;
+pub mod params;
 pub mod run;
 pub mod world;

@@ -33,7 +33,7 @@
 //! Certified outcomes equal full settling drop by drop on 400 throws (`tests/throws.rs`) and in
 //! the `drop` and `throw` presets of `results/drops_certificate/` (3 bodies × 300 drops each).
 
-use crate::dynamics::drops::params::DropParams;
+use crate::dynamics::engine::params::RunParams;
 use crate::dynamics::engine::world::{BodyState, Simulation};
 use crate::dynamics::stone::Stone;
 use crate::Vec3;
@@ -235,7 +235,7 @@ pub enum RestKind {
 
 impl RestKind {
     /// The rule of this kind for the thresholds and window of `p`.
-    pub fn rule(self, p: &DropParams) -> Box<dyn RestRule> {
+    pub fn rule(self, p: &RunParams) -> Box<dyn RestRule> {
         match self {
             RestKind::Speeds => Box::new(SpeedRest::new(p)),
             RestKind::Positions => Box::new(PositionRest::new(p)),
@@ -254,12 +254,12 @@ pub struct SpeedRest {
 
 impl SpeedRest {
     /// The criterion of `p`.
-    pub fn new(p: &DropParams) -> Self {
+    pub fn new(p: &RunParams) -> Self {
         SpeedRest {
             calm: 0,
-            needed: (p.rest_time / p.dt).ceil() as u64,
-            linear: p.rest_linear_speed,
-            angular: p.rest_angular_speed,
+            needed: (p.rest.rest_time / p.numerics.dt).ceil() as u64,
+            linear: p.rest.rest_linear_speed,
+            angular: p.rest.rest_angular_speed,
         }
     }
 }
@@ -301,8 +301,13 @@ pub struct PositionRest {
 
 impl PositionRest {
     /// The criterion of `p` (window `rest_time`).
-    pub fn new(p: &DropParams) -> Self {
-        PositionRest { window: ((p.rest_time / p.dt).ceil() as u64).max(1), after: 0, reference: None, calm: true }
+    pub fn new(p: &RunParams) -> Self {
+        PositionRest {
+            window: ((p.rest.rest_time / p.numerics.dt).ceil() as u64).max(1),
+            after: 0,
+            reference: None,
+            calm: true,
+        }
     }
 }
 
@@ -377,8 +382,8 @@ pub struct Progress {
 
 impl Progress {
     /// The rule of `p` for a drive that acts during `active` steps, with rest rule `rest`.
-    pub fn new(p: &DropParams, active: u64, rest: RestKind) -> Self {
-        let steps_max = active + (p.max_time / p.dt).ceil() as u64;
+    pub fn new(p: &RunParams, active: u64, rest: RestKind) -> Self {
+        let steps_max = active + (p.numerics.max_time / p.numerics.dt).ceil() as u64;
         Progress { rest: rest.rule(p), active, steps_max, taken: 0 }
     }
 
@@ -423,7 +428,7 @@ impl Progress {
 /// command; [`crate::dynamics::drops::batch`] runs many stones by the same [`Progress`].
 pub fn run(
     sim: &mut Simulation,
-    p: &DropParams,
+    p: &RunParams,
     drive: &mut dyn Drive,
     cert: &dyn Certificate,
     rest: RestKind,

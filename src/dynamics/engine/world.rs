@@ -120,9 +120,10 @@
 //! pivoting on one loaded corner with a second corner within 0.02 R_max of the ground has
 //! T_c = μ N d with d half their distance — the max keeps δ_t N as the floor there too.
 
-use crate::dynamics::drops::params::{DropParams, Flight};
 use crate::dynamics::engine::convert;
 use crate::dynamics::engine::impact;
+use crate::dynamics::engine::params::Flight;
+use crate::dynamics::engine::params::RunParams;
 use crate::dynamics::stone::Body;
 use crate::{Vec3, GRAVITY};
 use nalgebra::{Matrix3, UnitQuaternion};
@@ -164,7 +165,7 @@ pub struct Simulation<'a> {
     body: &'a Body,
     /// Sub-step impacts ([`Flight::Free`]).
     resolve_impacts: bool,
-    /// Read the sub-step bound again after every sub-step ([`DropParams::strict_impacts`]).
+    /// Read the sub-step bound again after every sub-step ([`crate::dynamics::engine::params::FlightParams::strict_impacts`]).
     strict_impacts: bool,
     /// The run's time step and solver iterations (restored after a sub-stepped step).
     dt: f64,
@@ -178,7 +179,7 @@ impl<'a> Simulation<'a> {
     /// velocities (world frame), above a flat ground.
     pub fn new(
         body: &'a Body,
-        p: &DropParams,
+        p: &RunParams,
         orientation: &UnitQuaternion<f64>,
         z: f64,
         linvel: &Vec3,
@@ -194,10 +195,10 @@ impl<'a> Simulation<'a> {
             ground_collider,
             law: ContactLaw::of(p),
             body,
-            resolve_impacts: p.flight == Flight::Free,
-            strict_impacts: p.strict_impacts,
-            dt: p.dt,
-            iterations: p.solver_iterations,
+            resolve_impacts: p.flight.mode == Flight::Free,
+            strict_impacts: p.flight.strict_impacts,
+            dt: p.numerics.dt,
+            iterations: p.numerics.solver_iterations,
             deepest: 0.0,
         }
     }
@@ -312,20 +313,20 @@ pub fn stone_groups() -> InteractionGroups {
 /// An empty rapier world in the scaled frame with the numerics of `p` (gravity, dt, solver
 /// iterations) and a flat kinematic ground (the half-space z ≤ 0): the world, the ground's body
 /// and its collider.
-pub fn ground_world(p: &DropParams) -> (PhysicsWorld, RigidBodyHandle, ColliderHandle) {
+pub fn ground_world(p: &RunParams) -> (PhysicsWorld, RigidBodyHandle, ColliderHandle) {
     let mut world = PhysicsWorld::new();
     world.gravity = Vector::new(0.0, 0.0, -GRAVITY as f32);
-    world.integration_parameters.dt = p.dt as f32;
+    world.integration_parameters.dt = p.numerics.dt as f32;
     world.integration_parameters.length_unit = 1.0;
-    world.integration_parameters.num_solver_iterations = p.solver_iterations;
+    world.integration_parameters.num_solver_iterations = p.numerics.solver_iterations;
     // Rapier's allowed linear error, in R_max (default 0.005). Note: in rapier 0.36.1 it is
     // read only by continuous collision detection; the penetration the certificate's margin
     // must cover is bounded by measurement instead (see `run::CERTIFICATE_MARGIN`).
     world.integration_parameters.normalized_allowed_linear_error = ALLOWED_PENETRATION as f32;
     let ground_handle = world.bodies.insert(RigidBodyBuilder::kinematic_velocity_based().build());
     let ground = ColliderBuilder::new(SharedShape::halfspace(Vector::Z))
-        .friction(p.friction as f32)
-        .restitution(p.restitution as f32)
+        .friction(p.contact.friction as f32)
+        .restitution(p.contact.restitution as f32)
         .collision_groups(ground_groups())
         .build();
     let ground_collider = world.colliders.insert_with_parent(ground, ground_handle, &mut world.bodies);
@@ -337,7 +338,7 @@ pub fn ground_world(p: &DropParams) -> (PhysicsWorld, RigidBodyHandle, ColliderH
 pub fn insert_stone(
     world: &mut PhysicsWorld,
     body: &Body,
-    p: &DropParams,
+    p: &RunParams,
     orientation: &UnitQuaternion<f64>,
     z: f64,
     linvel: &Vec3,
@@ -348,8 +349,8 @@ pub fn insert_stone(
         .pose(Pose::from_parts(Vector::new(0.0, 0.0, z as f32), convert::quat(orientation)))
         .linvel(convert::vec(linvel))
         .angvel(convert::vec(angvel))
-        .linear_damping(p.linear_damping as f32)
-        .angular_damping(p.angular_damping as f32)
+        .linear_damping(p.contact.linear_damping as f32)
+        .angular_damping(p.contact.angular_damping as f32)
         .additional_mass_properties(mass)
         .gyroscopic_forces_enabled(true)
         .can_sleep(false)
@@ -357,8 +358,8 @@ pub fn insert_stone(
     let body_handle = world.bodies.insert(rb);
     let collider = ColliderBuilder::new(body.shape.clone())
         .density(0.0)
-        .friction(p.friction as f32)
-        .restitution(p.restitution as f32)
+        .friction(p.contact.friction as f32)
+        .restitution(p.contact.restitution as f32)
         .collision_groups(stone_groups())
         .build();
     let body_collider = world.colliders.insert_with_parent(collider, body_handle, &mut world.bodies);
@@ -437,7 +438,7 @@ const MAX_STRUCK: usize = 16;
 /// One step of length `dt` of one stone, cut for an impact into `n` sub-steps of `dt / n` with
 /// ⌈`iterations` / n⌉ solver sub-steps each ([`crate::dynamics::engine::impact`] says why not all the solver
 /// sub-steps in each), each a [`step_world`]. `(dt, strict)`: with `strict`
-/// ([`DropParams::strict_impacts`]), after every sub-step the bound of [`impact::substeps`] is
+/// ([`crate::dynamics::engine::params::FlightParams::strict_impacts`]), after every sub-step the bound of [`impact::substeps`] is
 /// read again off the stone's new motion (an impulse within the sub-step may have turned it
 /// faster than the motion at its start allowed for): where one more sub-step of the current
 /// length could bring a corner down by more than [`impact::IMPACT_APPROACH`], the rest of the
@@ -561,11 +562,11 @@ pub struct ContactLaw {
 
 impl ContactLaw {
     /// The law of `p`.
-    pub fn of(p: &DropParams) -> Self {
+    pub fn of(p: &RunParams) -> Self {
         ContactLaw {
-            restitution: p.restitution,
-            rolling_resistance: p.rolling_resistance,
-            torsional_friction: p.torsional_friction,
+            restitution: p.contact.restitution,
+            rolling_resistance: p.contact.rolling_resistance,
+            torsional_friction: p.contact.torsional_friction,
         }
     }
 
@@ -744,14 +745,14 @@ pub struct ImpactWorld {
     dt: f64,
     /// The run's solver iterations (rapier's sub-steps of one step).
     iterations: usize,
-    /// [`DropParams::strict_impacts`].
+    /// [`crate::dynamics::engine::params::FlightParams::strict_impacts`].
     strict: bool,
 }
 
 impl ImpactWorld {
     /// The stone with orientation `q`, G at height `z` and velocities `linvel`, `angvel` (world
     /// frame), alone above the ground with the contact and numerics of `p`.
-    pub fn new(body: &Body, p: &DropParams, q: &UnitQuaternion<f64>, s: &BodyState) -> Self {
+    pub fn new(body: &Body, p: &RunParams, q: &UnitQuaternion<f64>, s: &BodyState) -> Self {
         let (mut world, _, ground) = ground_world(p);
         let (handle, collider) = insert_stone(&mut world, body, p, q, s.z, &s.linvel, &s.angvel);
         ImpactWorld {
@@ -759,15 +760,15 @@ impl ImpactWorld {
             handle,
             collider,
             ground,
-            dt: p.dt,
-            iterations: p.solver_iterations,
-            strict: p.strict_impacts,
+            dt: p.numerics.dt,
+            iterations: p.numerics.solver_iterations,
+            strict: p.flight.strict_impacts,
         }
     }
 
     /// Put the stone in state `s` with orientation `q` in this world instead of the one it held
     /// (the world, its ground and numerics are kept: building a rapier world is costly).
-    pub fn reset(&mut self, body: &Body, p: &DropParams, q: &UnitQuaternion<f64>, s: &BodyState) {
+    pub fn reset(&mut self, body: &Body, p: &RunParams, q: &UnitQuaternion<f64>, s: &BodyState) {
         self.world.remove_body(self.handle);
         (self.handle, self.collider) = insert_stone(&mut self.world, body, p, q, s.z, &s.linvel, &s.angvel);
     }

@@ -266,7 +266,7 @@ pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, eps
         settled: end.settled,
         certified: end.decided.is_some(),
         non_stable_facet: off,
-        time: end.steps as f64 * p.sim.dt,
+        time: end.steps as f64 * p.sim.numerics.dt,
         max_level_rise: max_rise,
         deepest_penetration: sim.deepest_penetration(),
     }

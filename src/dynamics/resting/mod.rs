@@ -20,9 +20,11 @@
 //! (global angular damping 1 s⁻¹ on the scaled body, no rolling resistance) survives only as the
 //! explicitly named reference [`RestingPreset::Damped`] ([`PerturbParams::damped`]).
 
-use crate::dynamics::drops::params::{DropParams, Flight, Preset, SpinDistribution, Surface};
+use crate::dynamics::drops::params::Preset;
+use crate::dynamics::engine::params::{ContactParams, Flight, FlightParams, Numerics, RunParams};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::stone::{resting_orientation, Class, StableEquilibrium, Stone};
+use crate::dynamics::surface::Surface;
 use crate::monitor::{self, Monitor};
 use crate::{Error, Result, Vec3};
 use rayon::prelude::*;
@@ -38,7 +40,7 @@ pub const CONTACT_FREQUENCY: f64 = 120.0;
 /// preset's, so that a change of the drops' numerics (e.g. a longer default step) cannot move a
 /// push, a shaking run or a field rock. The contact at [`CONTACT_FREQUENCY`] and the rocking
 /// thresholds of `results/fig11_rocking_vs_regular/` were measured with it.
-pub const RESTING_DT: f64 = crate::dynamics::drops::params::REFERENCE_DT;
+pub const RESTING_DT: f64 = crate::dynamics::engine::params::REFERENCE_DT;
 
 /// Which contact a run that starts at rest uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -90,12 +92,12 @@ impl FromStr for RestingPreset {
 /// [`PerturbParams::on_surface`]`(`[`Surface::StoneOnStone`]`, 1 m)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PerturbParams {
-    /// Contact, time step, time cap and rest thresholds (launch fields unused). Default: the
+    /// Contact, time step, time cap, rest thresholds and flight. Default: the
     /// [`Preset::Drop`] numerics on the surface pair at the stone's real size (friction,
     /// restitution, rolling resistance and torsional friction δ / R_max, no global damping),
     /// dt 1/240 s, a cap of 20 s (scaled) after the perturbation or the motion, rest held for
     /// 0.5 s.
-    pub sim: DropParams,
+    pub sim: RunParams,
     /// Settling time (s, scaled) on the equilibrium before the perturbation. Default 0.25 s.
     pub settle_time: f64,
     /// Extra time (s, scaled) of undisturbed rest in the check that the stone stays on its
@@ -140,11 +142,11 @@ impl PerturbParams {
     /// rest held for [`RESTING_REST_TIME`], contacts at [`CONTACT_FREQUENCY`]. A size that is not
     /// a positive finite length is refused.
     pub fn on_surface(surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
-        let mut sim = Preset::Drop.params_at_size(surface, r_max_m)?;
-        sim.dt = RESTING_DT;
-        sim.flight = Flight::Free;
-        sim.max_time = RESTING_MAX_TIME;
-        sim.rest_time = RESTING_REST_TIME;
+        let mut sim = Preset::Drop.params_at_size(surface, r_max_m)?.sim;
+        sim.numerics.dt = RESTING_DT;
+        sim.flight.mode = Flight::Free;
+        sim.numerics.max_time = RESTING_MAX_TIME;
+        sim.rest.rest_time = RESTING_REST_TIME;
         Ok(PerturbParams {
             sim,
             settle_time: 0.25,
@@ -159,22 +161,20 @@ impl PerturbParams {
     /// no rolling resistance, dt 1/240 s, cap 20 s, rest by speeds held 0.25 s. Independent of
     /// size (the damping rates are those of the scaled body).
     pub fn damped() -> PerturbParams {
-        let sim = DropParams {
-            height: 0.5,
-            horizontal_speed: 0.0,
-            spin: 0.0,
-            spin_distribution: SpinDistribution::Fixed,
-            friction: 0.6,
-            restitution: 0.2,
-            rolling_resistance: 0.0,
-            torsional_friction: 0.0,
-            linear_damping: 0.1,
-            angular_damping: 1.0,
-            max_time: RESTING_MAX_TIME,
-            dt: RESTING_DT,
+        let defaults = RunParams::default();
+        let sim = RunParams {
+            contact: ContactParams {
+                friction: 0.6,
+                restitution: 0.2,
+                rolling_resistance: 0.0,
+                torsional_friction: 0.0,
+                linear_damping: 0.1,
+                angular_damping: 1.0,
+            },
+            numerics: Numerics { max_time: RESTING_MAX_TIME, dt: RESTING_DT, ..defaults.numerics },
+            rest: defaults.rest,
             // The old numerics with the old contact: rapier's own steps, impacts not sub-stepped.
-            flight: Flight::Rapier,
-            ..DropParams::default()
+            flight: FlightParams { mode: Flight::Rapier, ..defaults.flight },
         };
         PerturbParams {
             sim,
@@ -249,7 +249,7 @@ pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &PerturbParams, ti
     let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, s.r_normalised, &Vec3::zeros(), &Vec3::zeros());
     sim.set_contact_frequency(p.contact_frequency);
-    sim.advance((time / p.sim.dt).round() as u64);
+    sim.advance((time / p.sim.numerics.dt).round() as u64);
     sim
 }
 
@@ -262,7 +262,9 @@ pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
     let facet_reached = stone.rest(&st.down).facet;
     let (speed, angular_speed) = (st.linvel.norm(), st.angvel.norm());
     SettleCheck {
-        stays: facet_reached == s.facet && speed < p.sim.rest_linear_speed && angular_speed < p.sim.rest_angular_speed,
+        stays: facet_reached == s.facet
+            && speed < p.sim.rest.rest_linear_speed
+            && angular_speed < p.sim.rest.rest_angular_speed,
         tilt: n.dot(&st.down).clamp(-1.0, 1.0).acos(),
         sink: s.r_normalised - st.z,
         speed,

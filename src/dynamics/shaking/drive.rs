@@ -127,7 +127,7 @@ pub fn shake_placed(
     r_max_m: f64,
 ) -> Shaken {
     let Placed { mut sim, start, settling_tilt } = placed;
-    let mut ground = GroundDrive::new(record, azimuth, r_max_m, p.sim.dt);
+    let mut ground = GroundDrive::new(record, azimuth, r_max_m, p.sim.numerics.dt);
     let x0 = sim.ground_offset();
     let n = stone.body.facet_normals[stone.stable()[start].facet as usize];
     let mut max_tilt: f64 = 0.0;

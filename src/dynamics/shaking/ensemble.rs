@@ -17,8 +17,8 @@
 //! * **Sign** of the record: a one-component record's polarity, or which way a fault pulse
 //!   points, is often not known; a member flips every component with probability ½.
 //! * **Friction, restitution, rolling resistance** (δ in metres, also the torsional-friction
-//!   length as in [`crate::dynamics::drops::params::Surface::scaled`]): by default the surface pair's
-//!   ranges ([`crate::dynamics::drops::params::Surface::ranges`]).
+//!   length as in [`crate::dynamics::surface::Surface::scaled`]): by default the surface pair's
+//!   ranges ([`crate::dynamics::surface::Surface::ranges`]).
 //!
 //! Member m draws its inputs from the stream (seed, m) in a fixed order, all six always drawn, so
 //! a member is the same possible rock for every record, scale factor, thread count and ensemble
@@ -41,9 +41,9 @@
 //! the scanned hull — the end of the base-contact range that tips most easily. How the ensemble's
 //! P scores against both, on simulated truths, is in `results/ensemble_fragility/`.
 
-use crate::dynamics::drops::params::Surface;
 use crate::dynamics::shaking::rock::{place, shake_record, RockRun, RockSetup};
 use crate::dynamics::stone::Stone;
+use crate::dynamics::surface::Surface;
 use crate::ground_motion::Record;
 use crate::monitor::{self, Monitor};
 use crate::rng::item_rng;
@@ -212,9 +212,9 @@ pub fn draw(u: &Uncertainty, setup: &RockSetup, seed: u64, member: u64) -> Draw 
         contact_tolerance_m: pick(u.contact_tolerance_m, x[0], 0.0),
         azimuth_deg: pick(u.azimuth_deg, x[1], setup.azimuth.to_degrees()),
         sign: if u.random_sign && x[2] < 0.5 { -1.0 } else { 1.0 },
-        friction: pick(u.friction, x[3], sim.friction),
-        restitution: pick(u.restitution, x[4], sim.restitution),
-        rolling_resistance_m: pick(u.rolling_resistance_m, x[5], sim.rolling_resistance * setup.r_max_m),
+        friction: pick(u.friction, x[3], sim.contact.friction),
+        restitution: pick(u.restitution, x[4], sim.contact.restitution),
+        rolling_resistance_m: pick(u.rolling_resistance_m, x[5], sim.contact.rolling_resistance * setup.r_max_m),
     }
 }
 
@@ -263,14 +263,14 @@ pub fn run_member(
     let d = draw(u, setup, seed, member);
     let mut p = setup.params.clone();
     if u.friction.is_some() {
-        p.sim.friction = d.friction;
+        p.sim.contact.friction = d.friction;
     }
     if u.restitution.is_some() {
-        p.sim.restitution = d.restitution;
+        p.sim.contact.restitution = d.restitution;
     }
     if u.rolling_resistance_m.is_some() {
-        p.sim.rolling_resistance = d.rolling_resistance_m / setup.r_max_m;
-        p.sim.torsional_friction = d.rolling_resistance_m / setup.r_max_m;
+        p.sim.contact.rolling_resistance = d.rolling_resistance_m / setup.r_max_m;
+        p.sim.contact.torsional_friction = d.rolling_resistance_m / setup.r_max_m;
     }
     let rock: Cow<Stone> = match d.contact_tolerance_m > 0.0 {
         true => Cow::Owned(stone.with_base_contact(base_facet(stone, setup)?, d.contact_tolerance_m / setup.r_max_m)?),
@@ -596,7 +596,7 @@ mod tests {
         // Inputs that are not uncertain stay the setup's.
         assert_eq!(
             (d.contact_tolerance_m, d.rolling_resistance_m),
-            (0.0, setup.params.sim.rolling_resistance * r_max_m)
+            (0.0, setup.params.sim.contact.rolling_resistance * r_max_m)
         );
     }
 

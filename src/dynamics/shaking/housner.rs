@@ -44,7 +44,7 @@ pub fn ramp_tipping(
     a_max: f64,
 ) -> Option<f64> {
     let s = &stone.stable()[start];
-    let dt = p.sim.dt;
+    let dt = p.sim.numerics.dt;
     let mut sim = resting_simulation(stone, start, p, p.settle_time);
     let n = stone.body.facet_normals[s.facet as usize];
     // The tilt of the settled, unloaded stone is the reference.
@@ -107,7 +107,7 @@ pub fn free_rocking(
     let z = stone.body.support(&down);
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
     sim.set_contact_frequency(p.contact_frequency);
-    let dt = p.sim.dt;
+    let dt = p.sim.numerics.dt;
     let r_max = stone.body.r_max;
     let (b, h) = (b / r_max, h / r_max);
     let big_r = (b * b + h * h).sqrt();

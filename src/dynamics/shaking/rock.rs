@@ -14,13 +14,13 @@
 //! * Records × scale factors, with or without an ensemble, and their fragility surface:
 //!   [`crate::dynamics::shaking::records`].
 
-use crate::dynamics::drops::params::Surface;
 use crate::dynamics::engine::run::{self as run_loop, NoCertificate, RestKind};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::resting::outcome::{classify, Outcome};
 use crate::dynamics::resting::PerturbParams;
 use crate::dynamics::shaking::drive::{shake_placed, Placed};
 use crate::dynamics::stone::Stone;
+use crate::dynamics::surface::Surface;
 use crate::ground_motion::{Measures, Record};
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
@@ -168,7 +168,7 @@ pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Pla
     let z = stone.body.support(&down0);
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
     sim.set_contact_frequency(p.contact_frequency);
-    sim.advance((p.settle_time / p.sim.dt).round() as u64);
+    sim.advance((p.settle_time / p.sim.numerics.dt).round() as u64);
     let end = run_loop::run(&mut sim, &p.sim, &mut run_loop::Passive, &NoCertificate, RestKind::Positions, &mut |_| {});
     let rest = stone.rest(&end.state.down);
     if !end.settled || rest.facet != expected.facet {
@@ -253,7 +253,7 @@ pub fn shake_record(
         azimuth_deg: azimuth.to_degrees(),
         r_max_m,
         size_assumed: None,
-        time_s: run.end.steps as f64 * p.sim.dt * r_max_m.sqrt(),
+        time_s: run.end.steps as f64 * p.sim.numerics.dt * r_max_m.sqrt(),
         steps: run.end.steps,
         deepest_penetration: run.deepest_penetration,
     }
@@ -316,7 +316,7 @@ impl RockSetup {
 
     /// Real time step of the simulation (s): dt·√(R_max / 1 m).
     pub fn real_dt(&self) -> f64 {
-        self.params.sim.dt * self.r_max_m.sqrt()
+        self.params.sim.numerics.dt * self.r_max_m.sqrt()
     }
 }
 

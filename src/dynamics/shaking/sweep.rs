@@ -139,7 +139,7 @@ pub fn shake_trial(
         settled: run.end.settled,
         non_stable_facet: !rest.on_equilibrium(),
         max_tilt: run.max_tilt,
-        time: run.end.steps as f64 * p.sim.dt,
+        time: run.end.steps as f64 * p.sim.numerics.dt,
         deepest_penetration: run.deepest_penetration,
     }
 }
@@ -269,7 +269,7 @@ pub fn run(stone: &Stone, starts: &[usize], cfg: &ShakeConfig) -> Result<ShakeRe
 /// it stops the run.
 pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dyn Monitor) -> Result<ShakeReport> {
     cfg.check()?;
-    let real_dt = cfg.params.sim.dt * cfg.r_max_m.sqrt();
+    let real_dt = cfg.params.sim.numerics.dt * cfg.r_max_m.sqrt();
     let motions: Vec<Record> =
         cfg.pgas.iter().map(|&a| driven(&cfg.motion.scaled_to_pga(a), real_dt)).collect::<Result<_>>()?;
     let (checks, trials) = grid_trials(stone, starts, &cfg.params, cfg.pgas.len(), cfg.trials, monitor, |s, i, k| {
