@@ -14,14 +14,14 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
-use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::drops::simulate::launch;
-use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::engine::run::{
-    CertificateMode, Decided, EnergyCertificate, NoCertificate, CERTIFICATE_EVERY, CERTIFICATE_MARGIN,
-    CERTIFICATE_MAX_COMPRESSION,
+use rocking_stones::dynamics::certificate::{
+    CertificateMode, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
+use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+use rocking_stones::dynamics::drops::launch::launch;
+use rocking_stones::dynamics::drops::params::Preset;
+use rocking_stones::dynamics::engine::params::Flight;
+use rocking_stones::dynamics::engine::run::{Decided, NoCertificate, CERTIFICATE_EVERY};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};

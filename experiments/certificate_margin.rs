@@ -23,11 +23,14 @@ mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
 use rayon::prelude::*;
 use rocking_stones::analysis::Options;
+use rocking_stones::dynamics::certificate::{
+    CertificateMode, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
+};
+use rocking_stones::dynamics::drops::launch::{launch, release_height};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::{launch, release_height};
+use rocking_stones::dynamics::engine::rest::RestKind;
 use rocking_stones::dynamics::engine::run::{
-    run as run_one, Certificate, CertificateMode, Decided, EnergyCertificate, NoCertificate, Passive, RestKind,
-    CERTIFICATE_EVERY, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
+    run_to_end as run_one, Certificate, Decided, NoCertificate, Passive, CERTIFICATE_EVERY,
 };
 use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::Stone;

@@ -29,7 +29,8 @@
 //! `results/cuboid_dice/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
@@ -87,7 +88,7 @@ fn p_square(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64)
         center_of_mass: None,
         shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
     };
-    let (report, _) = run_report(stone, &header);
+    let (report, _) = run_and_summarize(stone, &header);
     let square = |normal: &rocking_stones::Vec3| normal.z.abs() > 0.99;
     let k: u64 = report.facets.iter().filter(|f| square(&f.normal)).map(|f| f.count).sum();
     let qs: f64 = report.facets.iter().filter(|f| square(&f.normal)).map(|f| f.static_probability).sum();

@@ -18,13 +18,15 @@
 mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
 use rocking_stones::analysis::Options;
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::certificate::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
 use rocking_stones::dynamics::drops::montecarlo::{
-    run_batched, summarize, CertificateMode, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
+    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::{launch, DropOutcome};
-use rocking_stones::dynamics::engine::run::{NoCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};
@@ -168,7 +170,15 @@ fn main() -> anyhow::Result<()> {
                 let sink = Mutex::new(|_: &DropOutcome| {});
                 let t = std::time::Instant::now();
                 let outcomes = pool.install(|| {
-                    run_batched(&stone, &header, Shard::ALL, &BTreeMap::new(), &NoCertificate, DEFAULT_BATCH, &sink)
+                    run_drops_batched(
+                        &stone,
+                        &header,
+                        Shard::ALL,
+                        &BTreeMap::new(),
+                        &NoCertificate,
+                        DEFAULT_BATCH,
+                        &sink,
+                    )
                 });
                 let rate = n as f64 / t.elapsed().as_secs_f64();
                 let outcomes: BTreeMap<u64, DropOutcome> = outcomes.into_iter().map(|o| (o.index, o)).collect();

@@ -11,9 +11,10 @@
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
 use benchmark_bodies::benchmark_bodies;
+use rocking_stones::dynamics::drops::launch::{launch, release_height};
 use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::drops::simulate::{launch, release_height};
-use rocking_stones::dynamics::engine::run::{run, NoCertificate, Passive, RestKind};
+use rocking_stones::dynamics::engine::rest::RestKind;
+use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
@@ -52,7 +53,7 @@ fn main() -> anyhow::Result<()> {
             let r = launch(&mut item_rng(1, i), &p);
             let z0 = release_height(&stone, &p, &r);
             let mut sim = Simulation::new(&stone.body, &p.sim, &r.orientation, z0, &r.linvel, &r.angvel);
-            let end = run(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |_| {});
+            let end = run_to_end(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |_| {});
             let first = stone.rest(&end.state.down);
             if first.on_equilibrium() {
                 continue;

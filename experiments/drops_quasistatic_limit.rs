@@ -10,7 +10,8 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::{DropParams, Launch};
 use rocking_stones::dynamics::resting::PerturbParams;
 use rocking_stones::dynamics::stone::Stone;
@@ -62,7 +63,7 @@ fn main() -> anyhow::Result<()> {
                     shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
                 };
                 let t = std::time::Instant::now();
-                let (report, _) = run_report(&setup, &header);
+                let (report, _) = run_and_summarize(&setup, &header);
                 let seconds = t.elapsed().as_secs_f64();
                 eprintln!(
                     "  e = {e}, height {hgt}: KL flocks {:.4}, facets {:.4} ({seconds:.1} s)",
@@ -106,7 +107,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
             center_of_mass: None,
             shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
         };
-        let (report, _) = run_report(&setup, &header);
+        let (report, _) = run_and_summarize(&setup, &header);
         eprintln!(
             "  damping {d}: KL flocks {:.4}, non-stable {}",
             report.fit_flocks.kl_divergence, report.off_equilibrium

@@ -11,9 +11,10 @@
 //! `results/drops_settling/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::launch::DropOutcome;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::stone::Stone;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -65,9 +66,9 @@ fn main() {
             shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
         };
         let t0 = Instant::now();
-        let (r, outcomes) = run_report(&stone, &header);
+        let (r, outcomes) = run_and_summarize(&stone, &header);
         let wall = t0.elapsed().as_secs_f64();
-        let (rf, ref_outcomes) = run_report(&stone, &RunHeader { params: reference.clone(), ..header.clone() });
+        let (rf, ref_outcomes) = run_and_summarize(&stone, &RunHeader { params: reference.clone(), ..header.clone() });
         let frac_ref = rf.settled as f64 / rf.drops as f64;
         let h_ref = unsettled_height(ref_outcomes.values());
         if frac_ref < worst_ref.0 || worst_ref.1.is_empty() {

@@ -35,12 +35,13 @@ use benchmark_bodies::benchmark_bodies;
 use cpu_time::thread_cpu_seconds;
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::Options;
+use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
 use rocking_stones::dynamics::drops::launch::launch;
+use rocking_stones::dynamics::drops::launch::DropOutcome;
 use rocking_stones::dynamics::drops::montecarlo::{
-    certificate, run_batched, summarize, CertificateMode, DropReport, FlockRow, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
+    run_drops_batched, summarize, DropReport, FlockRow, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::engine::world::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
@@ -214,7 +215,7 @@ fn timed(stone: &Stone, h: &RunHeader, batch: usize) -> Run {
     let sink = Mutex::new(|_: &DropOutcome| {});
     let cert = certificate(stone, h.certificate);
     let t = thread_cpu_seconds();
-    let out = run_batched(stone, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink);
+    let out = run_drops_batched(stone, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink);
     let seconds = thread_cpu_seconds() - t;
     let outcomes: BTreeMap<u64, DropOutcome> = out.into_iter().map(|o| (o.index, o)).collect();
     Run { report: summarize(&stone.model(), h, &outcomes), rise: rise(&outcomes), outcomes, seconds }

@@ -46,12 +46,13 @@
 use plotters::prelude::*;
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{default_pair, Stone};
+use rocking_stones::dynamics::resting::default_pair;
 use rocking_stones::dynamics::shaking::ensemble::draw;
 use rocking_stones::dynamics::shaking::housner::{housner_overturns, housner_ratio};
 use rocking_stones::dynamics::shaking::{
     rock_params, run_batch, EnsembleSpec, Pose, RecordRun, RockSetup, Uncertainty,
 };
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::fragility::FragilitySurface;

@@ -12,10 +12,10 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{
-    self, default_pair, resting_orientation, Class, Family, PerturbConfig, PerturbParams, PerturbReport, Stone,
-    Threshold,
-};
+use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig, PerturbReport};
+use rocking_stones::dynamics::resting::outcome::Threshold;
+use rocking_stones::dynamics::resting::{default_pair, PerturbParams};
+use rocking_stones::dynamics::stone::{resting_orientation, Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::planar::{self, Point2};
@@ -69,7 +69,7 @@ fn main() -> anyhow::Result<()> {
             epsilon_star: None,
         };
         let t = std::time::Instant::now();
-        let r = perturb::run(&stone, &[regular, rocking], &cfg);
+        let r = perturb::perturb_equilibria(&stone, &[regular, rocking], &cfg);
         eprintln!("{family:?}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
         eprint!("{}", report::perturb::summary(&r, "pebble"));
         reports.push(r);

@@ -14,8 +14,10 @@
 
 use plotters::style::RGBColor;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{default_pair, Class, CurvePoint, PerturbParams, Stone, Threshold};
+use rocking_stones::dynamics::resting::outcome::{CurvePoint, Threshold};
+use rocking_stones::dynamics::resting::{default_pair, PerturbParams};
 use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig, ShakeReport};
+use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::read::{read_record, AccelUnit};
@@ -75,7 +77,7 @@ fn main() -> anyhow::Result<()> {
             r_max_m: R_MAX_M,
         };
         let t = std::time::Instant::now();
-        let r = shaking::run(&stone, &[regular, rocking], &cfg)?;
+        let r = shaking::sweep_fragility(&stone, &[regular, rocking], &cfg)?;
         eprintln!("{name}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
         eprint!("{}", report::shake::summary(&r, "pebble"));
         let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
@@ -170,7 +172,7 @@ fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)])
                 .filter(|t| t.start == f.equilibrium_position(stone) && t.pga < q.uplift_acceleration)
                 .collect();
             let left =
-                below.iter().filter(|t| t.outcome != rocking_stones::dynamics::pushes::perturb::Outcome::Same).count();
+                below.iter().filter(|t| t.outcome != rocking_stones::dynamics::resting::outcome::Outcome::Same).count();
             writeln!(
                 s,
                 "| {name} | {} (facet {}) | {} | {:.3} | {} | {} | {} | {left} / {} |",

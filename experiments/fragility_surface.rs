@@ -16,10 +16,11 @@
 use plotters::prelude::*;
 use rand::RngExt;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::default_pair;
-use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::resting::default_pair;
+use rocking_stones::dynamics::resting::PerturbParams;
 use rocking_stones::dynamics::shaking::housner::{housner_overturns, housner_ratio};
 use rocking_stones::dynamics::shaking::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun};

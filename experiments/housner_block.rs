@@ -11,8 +11,9 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::resting::PerturbParams;
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::plot::{init_fonts, FONT_FAMILY};

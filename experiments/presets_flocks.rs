@@ -7,7 +7,8 @@
 //! `results/presets_flocks/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader, FORMAT};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
@@ -52,7 +53,7 @@ fn main() {
                     shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
                 };
                 let t = std::time::Instant::now();
-                let r = run_report(&stone, &header).0;
+                let r = run_and_summarize(&stone, &header).0;
                 eprintln!("{name} {preset}: {:.1} s", t.elapsed().as_secs_f64());
                 r
             })

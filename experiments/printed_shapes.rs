@@ -36,7 +36,8 @@
 use anyhow::{bail, ensure, Context, Result};
 use rand_distr::{Binomial, Distribution};
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, DropReport, RunHeader};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, RunHeader};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::stone::Stone;
@@ -395,7 +396,7 @@ fn simulate(
         )
     };
     let t = Instant::now();
-    let (report, _): (DropReport, _) = run_report(stone, &header);
+    let (report, _): (DropReport, _) = run_and_summarize(stone, &header);
     let seconds = t.elapsed().as_secs_f64();
     let mut counts = BTreeMap::new();
     for row in report.facets.iter().filter(|r| r.count > 0) {

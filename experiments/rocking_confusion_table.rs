@@ -15,9 +15,10 @@
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{
-    self, dynamic_class, Class, Confusion, Family, PerturbConfig, PerturbParams, PerturbReport, Stone, Threshold,
-};
+use rocking_stones::dynamics::pushes::perturb::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
+use rocking_stones::dynamics::resting::outcome::Threshold;
+use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::report;
@@ -100,7 +101,7 @@ fn main() -> anyhow::Result<()> {
                 epsilon_star: None,
             };
             let t = std::time::Instant::now();
-            let r = perturb::run(&stone, &all, &cfg);
+            let r = perturb::perturb_equilibria(&stone, &all, &cfg);
             eprintln!(
                 "{name}: {family:?}, {} equilibria, {} trials in {:.1} s; confusion {:?}",
                 all.len(),

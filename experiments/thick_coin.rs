@@ -14,7 +14,8 @@
 //! `results/thick_coin/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
@@ -64,7 +65,7 @@ fn p_edge(stone: &Stone, p: &DropParams, n: u64) -> (u64, u64, f64) {
         center_of_mass: None,
         shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
     };
-    let (r, _) = run_report(stone, &header);
+    let (r, _) = run_and_summarize(stone, &header);
     let edge = |f: &&rocking_stones::dynamics::drops::montecarlo::FacetRow| f.normal.z.abs() < 0.5;
     (
         r.facets.iter().filter(edge).map(|f| f.count).sum(),

@@ -52,14 +52,14 @@ fn parse() -> Cli {
 fn main() {
     let cli = parse();
     let result = match cli.command {
-        Command::Analyze(a) => cmd::analyze::run(a),
-        Command::Generate(a) => cmd::generate::run(a),
-        Command::Planar(a) => cmd::planar::run(a),
+        Command::Analyze(a) => cmd::analyze::run_analyze(a),
+        Command::Generate(a) => cmd::generate::run_generate(a),
+        Command::Planar(a) => cmd::planar::run_planar(a),
         Command::Drop(a) => cmd::drop::run_drop(a),
         Command::Merge(a) => cmd::drop::run_merge(a),
-        Command::Perturb(a) => cmd::perturb::run(a),
-        Command::Shake(a) => cmd::shake::run(*a),
-        Command::Study(a) => cmd::study::run(a),
+        Command::Perturb(a) => cmd::perturb::run_perturb(a),
+        Command::Shake(a) => cmd::shake::run_shake(*a),
+        Command::Study(a) => cmd::study::run_study(a),
     };
     if let Err(e) = result {
         match e.downcast_ref::<rocking_stones::Error>() {

@@ -2,11 +2,11 @@
 //! drop alone in its world, for any batch size and thread count, with and without the certificate.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{
-    certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT,
-};
+use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
+use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, RunHeader, Shard, FORMAT};
 use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::drops::simulate::{launch, simulate, DropOutcome};
+use rocking_stones::dynamics::drops::simulate::simulate;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
@@ -47,7 +47,7 @@ fn batched(s: &Stone, h: &RunHeader, batch: usize, threads: usize, shard: Shard)
     let finished = Mutex::new(Vec::new());
     let out = {
         let sink = Mutex::new(|o: &DropOutcome| finished.lock().unwrap().push(o.index));
-        pool.install(|| run_batched(s, h, shard, &BTreeMap::new(), cert.as_ref(), batch, &sink))
+        pool.install(|| run_drops_batched(s, h, shard, &BTreeMap::new(), cert.as_ref(), batch, &sink))
     };
     // Every drop is reported to the checkpoint exactly once.
     let mut seen = finished.into_inner().unwrap();

@@ -4,12 +4,13 @@
 use nalgebra::{Matrix3, UnitQuaternion};
 use rapier3d::prelude::SharedShape;
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::certificate::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::drops::launch::launch;
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::launch;
+use rocking_stones::dynamics::engine::body::Body;
 use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::engine::run::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::engine::world::Simulation;
-use rocking_stones::dynamics::stone::{Body, Stone};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::rng::item_rng;

@@ -2,12 +2,15 @@
 //! shards, checkpoints, and the energy bound of the static theory.
 
 use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::certificate::CERTIFICATE_MARGIN;
+use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
 use rocking_stones::dynamics::drops::montecarlo::{
-    merge, read_partial, run, summarize, CertificateMode, Checkpoint, RunHeader, Shard, FORMAT,
+    merge, read_partial, run_drops, summarize, Checkpoint, RunHeader, Shard, FORMAT,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Launch};
-use rocking_stones::dynamics::drops::simulate::{launch, simulate, DropOutcome};
-use rocking_stones::dynamics::engine::run::{NoCertificate, CERTIFICATE_MARGIN};
+use rocking_stones::dynamics::drops::simulate::simulate;
+use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
@@ -47,8 +50,8 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
 
 fn run_all(s: &Stone, h: &RunHeader, shard: Shard) -> Vec<DropOutcome> {
     let sink = Mutex::new(|_: &DropOutcome| {});
-    let cert = rocking_stones::dynamics::drops::montecarlo::certificate(s, h.certificate);
-    run(s, h, shard, &BTreeMap::new(), cert.as_ref(), &sink)
+    let cert = rocking_stones::dynamics::certificate::certificate(s, h.certificate);
+    run_drops(s, h, shard, &BTreeMap::new(), cert.as_ref(), &sink)
 }
 
 #[test]
@@ -97,8 +100,8 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
         assert!(done.is_empty());
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
-        let cert = rocking_stones::dynamics::drops::montecarlo::certificate(&s, h.certificate);
-        run(&s, &h, Shard { index: 0, count: 2 }, &BTreeMap::new(), cert.as_ref(), &sink);
+        let cert = rocking_stones::dynamics::certificate::certificate(&s, h.certificate);
+        run_drops(&s, &h, Shard { index: 0, count: 2 }, &BTreeMap::new(), cert.as_ref(), &sink);
     }
     std::fs::write(&path, std::fs::read_to_string(&path).unwrap() + "{\"index\": 1, \"sett").unwrap();
     assert!(Checkpoint::open(&path, &h, false).is_err(), "an existing checkpoint must not be overwritten");
@@ -115,8 +118,8 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
     {
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
-        let cert = rocking_stones::dynamics::drops::montecarlo::certificate(&s, h.certificate);
-        let rest = run(&s, &h, Shard::ALL, &done, cert.as_ref(), &sink);
+        let cert = rocking_stones::dynamics::certificate::certificate(&s, h.certificate);
+        let rest = run_drops(&s, &h, Shard::ALL, &done, cert.as_ref(), &sink);
         assert_eq!(rest.len(), 15);
     }
     let (_, all) = read_partial(&path).unwrap();

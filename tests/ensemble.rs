@@ -5,10 +5,11 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::pushes::perturb::{PerturbParams, Stone};
+use rocking_stones::dynamics::resting::PerturbParams;
 use rocking_stones::dynamics::shaking::ensemble::{base_facet, run_ensemble, EnsembleSpec, Uncertainty};
 use rocking_stones::dynamics::shaking::housner::ramp_tipping;
 use rocking_stones::dynamics::shaking::{rock_params, run_record, sine_pulse, Pose, RockSetup};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::hull::convex_hull;

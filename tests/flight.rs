@@ -4,11 +4,10 @@
 
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{
-    certificate, run_batched, CertificateMode, RunHeader, Shard, FORMAT,
-};
+use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
+use rocking_stones::dynamics::drops::launch::DropOutcome;
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, RunHeader, Shard, FORMAT};
 use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::engine::flight::{
     Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE,
 };
@@ -51,7 +50,7 @@ fn run(s: &Stone, h: &RunHeader, batch: usize, threads: usize) -> Vec<DropOutcom
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     let cert = certificate(s, h.certificate);
     let sink = Mutex::new(|_: &DropOutcome| {});
-    pool.install(|| run_batched(s, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink))
+    pool.install(|| run_drops_batched(s, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink))
 }
 
 #[test]
@@ -187,7 +186,7 @@ fn default_numerics_are_free_flight_at_the_presets_longest_stable_step_and_optio
 #[allow(clippy::too_many_arguments)]
 fn deepest_drop(s: &Stone, flight: Flight, height: f64, dt: f64, q: UnitQuaternion<f64>, v: Vec3, w: Vec3) -> f64 {
     use rocking_stones::dynamics::drops::batch::simulate_batch;
-    use rocking_stones::dynamics::drops::simulate::Release;
+    use rocking_stones::dynamics::drops::launch::Release;
     let mut p = Preset::Drop.params(Surface::SteelOnWood);
     (p.launch.height, p.sim.numerics.dt, p.sim.flight.mode, p.sim.numerics.max_time) = (height, dt, flight, 6.0);
     let release = Release { orientation: q, linvel: v, angvel: w };
@@ -340,7 +339,7 @@ fn a_flat_landing_bounces_to_e_squared_h() {
 
 fn flat_landings_bounce_to_e_squared_h(name: &str, dropped: &Stone) {
     use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
-    use rocking_stones::dynamics::drops::simulate::Release;
+    use rocking_stones::dynamics::drops::launch::Release;
     let rest = dropped.body.support(&-Vec3::z());
     for (e, h, dt) in [(0.5, 1.0, 1.0 / 240.0), (0.3, 2.0, 1.0 / 120.0), (0.7, 0.5, 1.0 / 240.0)] {
         let mut p = Preset::Drop.params(Surface::SteelOnWood);
@@ -412,7 +411,7 @@ fn a_corner_impact_leaves_as_the_contact_law_says_at_any_solver_sub_steps() {
     // normal impulses only, left this box's spin 31 % off Newton's law at 4 sub-steps and ~4 % at
     // 32, `results/corner_impact/`); the law reaches it at 4 and at 32.
     use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
-    use rocking_stones::dynamics::drops::simulate::Release;
+    use rocking_stones::dynamics::drops::launch::Release;
     let dropped = stone(generate::cuboid(1.0, 0.8, 0.5));
     let orientation = UnitQuaternion::from_euler_angles(0.4, 0.7, 0.2);
     let down = orientation.inverse() * -Vec3::z();

@@ -4,11 +4,12 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{
-    self, check_rest, default_pair, kick, trial, Class, Family, Outcome, PerturbConfig, PerturbParams, Stone, Threshold,
-};
+use rocking_stones::dynamics::pushes::perturb::{self, kick, trial, Family, PerturbConfig};
+use rocking_stones::dynamics::resting::outcome::{Outcome, Threshold};
+use rocking_stones::dynamics::resting::{check_rest, default_pair, PerturbParams};
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::dynamics::shaking::{self, shake_trial, sine_pulse, ShakeConfig};
+use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::mesh::TriMesh;
@@ -124,7 +125,7 @@ fn kicks_carry_the_requested_energy() {
     let mut rng = rocking_stones::rng::item_rng(3, 0);
     for family in [Family::Push, Family::Spin] {
         for (i, e) in s.stable().iter().enumerate().take(4) {
-            let q = perturb::resting_orientation(&s.body.facet_normals[e.facet as usize]);
+            let q = rocking_stones::dynamics::stone::resting_orientation(&s.body.facet_normals[e.facet as usize]);
             let (v, w, _) = kick(&s, e.facet, &q, e.r_normalised, family, 0.01, &mut rng);
             let r = q.to_rotation_matrix();
             let inertia = r.matrix() * s.body.inertia * r.matrix().transpose();
@@ -212,11 +213,11 @@ fn runs_are_reproducible_and_independent_of_threads() {
     };
     let starts = [0, 2, 5];
     let pool = |n: usize| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-    let one = pool(1).install(|| perturb::run(&s, &starts, &cfg));
-    let two = pool(2).install(|| perturb::run(&s, &starts, &cfg));
+    let one = pool(1).install(|| perturb::perturb_equilibria(&s, &starts, &cfg));
+    let two = pool(2).install(|| perturb::perturb_equilibria(&s, &starts, &cfg));
     assert_eq!(one.trials, two.trials);
     assert_eq!(one.trials.len(), 36);
-    let other = perturb::run(&s, &starts, &PerturbConfig { seed: 10, ..cfg.clone() });
+    let other = perturb::perturb_equilibria(&s, &starts, &PerturbConfig { seed: 10, ..cfg.clone() });
     assert_ne!(one.trials, other.trials);
     let shake_cfg = ShakeConfig {
         params: PerturbParams::default(),
@@ -227,8 +228,8 @@ fn runs_are_reproducible_and_independent_of_threads() {
         azimuth: None,
         r_max_m: 1.0,
     };
-    let one = pool(1).install(|| shaking::run(&s, &starts[..2], &shake_cfg)).unwrap();
-    let two = pool(2).install(|| shaking::run(&s, &starts[..2], &shake_cfg)).unwrap();
+    let one = pool(1).install(|| shaking::sweep_fragility(&s, &starts[..2], &shake_cfg)).unwrap();
+    let two = pool(2).install(|| shaking::sweep_fragility(&s, &starts[..2], &shake_cfg)).unwrap();
     assert_eq!(one.trials, two.trials);
     assert_eq!(one.trials.len(), 12);
 }

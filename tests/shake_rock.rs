@@ -5,9 +5,11 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::pushes::perturb::{Outcome, PerturbParams, Stone};
+use rocking_stones::dynamics::resting::outcome::Outcome;
+use rocking_stones::dynamics::resting::PerturbParams;
 use rocking_stones::dynamics::shaking::housner::housner_overturns;
 use rocking_stones::dynamics::shaking::{place, rock_params, shake_record, shake_trial, sine_pulse, Pose, RockRun};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::ground_motion::Record;
@@ -544,10 +546,10 @@ fn options_that_do_not_apply_are_refused() {
 fn a_ball_under_a_pulse_rolls_back_five_sevenths_of_the_ground_motion() {
     use nalgebra::{Matrix3, UnitQuaternion};
     use rapier3d::prelude::SharedShape;
+    use rocking_stones::dynamics::engine::body::Body;
     use rocking_stones::dynamics::engine::run::Drive;
     use rocking_stones::dynamics::engine::world::Simulation;
     use rocking_stones::dynamics::shaking::GroundDrive;
-    use rocking_stones::dynamics::stone::Body;
     use rocking_stones::ground_motion::synthetic::one_sine_pulse;
     use rocking_stones::Vec3;
     let ball = Body {

@@ -2,9 +2,10 @@
 //! resistance, no global damping): symmetry, real scans, the certificate, determinism.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_report, summarize, CertificateMode, RunHeader, FORMAT};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::launch::DropOutcome;
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, summarize, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::DropParams;
-use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate::{self, Platonic};
 use rocking_stones::mesh::TriMesh;
@@ -48,7 +49,7 @@ fn platonic_solids_are_fair_under_the_throw() {
         let a = analyse(generate::platonic(p));
         let s = stone_of(&a);
         let n = 60 * faces as u64;
-        let (r, _) = run_report(&s, &header(n, 7, CertificateMode::Facet));
+        let (r, _) = run_and_summarize(&s, &header(n, 7, CertificateMode::Facet));
         // The settling target: at least 99.5 % at rest within the cap.
         assert!(r.settled * 1000 >= n * 995, "{p:?}: only {} of {n} throws came to rest", r.settled);
         assert_eq!(r.facets.len(), faces, "{p:?}");
@@ -72,7 +73,7 @@ fn castalia_throws_rest_on_stable_facets_and_fill_its_large_flocks() {
     let a = Analysis::of_file(path, &Options::default()).unwrap();
     let s = stone_of(&a);
     let h = header(100, 1, CertificateMode::None);
-    let (r, outcomes) = run_report(&s, &h);
+    let (r, outcomes) = run_and_summarize(&s, &h);
     assert!(r.settled >= 99, "{} of 100 settled", r.settled);
     for o in outcomes.values() {
         let f = o.facet.expect("a facet without the flock certificate") as usize;
@@ -90,9 +91,9 @@ fn certified_throws_end_where_full_settling_ends() {
     let a = analyse(generate::pebble([1.0, 0.72, 0.5], 0.02, 500, 3));
     let s = stone_of(&a);
     let n = 400;
-    let (_, plain) = run_report(&s, &header(n, 3, CertificateMode::None));
-    let (_, facet) = run_report(&s, &header(n, 3, CertificateMode::Facet));
-    let (_, flock) = run_report(&s, &header(n, 3, CertificateMode::Flock));
+    let (_, plain) = run_and_summarize(&s, &header(n, 3, CertificateMode::None));
+    let (_, facet) = run_and_summarize(&s, &header(n, 3, CertificateMode::Facet));
+    let (_, flock) = run_and_summarize(&s, &header(n, 3, CertificateMode::Flock));
     let flock_of =
         |o: &DropOutcome| o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| s.facet_flock[f as usize]));
     let mut certified = (0, 0);
@@ -119,8 +120,8 @@ fn throws_do_not_depend_on_the_thread_count() {
     let s = stone_of(&a);
     let h = header(40, 5, CertificateMode::Facet);
     let pool = |k| rayon::ThreadPoolBuilder::new().num_threads(k).build().unwrap();
-    let one = pool(1).install(|| run_report(&s, &h).1);
-    let two = pool(2).install(|| run_report(&s, &h).1);
+    let one = pool(1).install(|| run_and_summarize(&s, &h).1);
+    let two = pool(2).install(|| run_and_summarize(&s, &h).1);
     assert_eq!(one, two);
 }
 
@@ -164,7 +165,7 @@ fn a_declared_centre_of_mass_loads_the_die() {
     // Parallel axis: I_xx about c = 1/6 + 0.2² (unit cube, mass 1).
     assert!((a.mass.inertia[(0, 0)] - (1.0 / 6.0 + 0.04)).abs() < 1e-12);
     let s = Stone::new(&a, 0.0035).unwrap();
-    let (r, _) = run_report(&s, &header(300, 4, CertificateMode::Facet));
+    let (r, _) = run_and_summarize(&s, &header(300, 4, CertificateMode::Facet));
     let share = |z: f64| r.facets.iter().find(|f| (f.normal.z - z).abs() < 1e-9).map_or(0.0, |f| f.fraction);
     let basin = |z: f64| r.facets.iter().find(|f| (f.normal.z - z).abs() < 1e-9).map_or(0.0, |f| f.static_probability);
     // Exact basins of the fair cube: 1/6 each (tests/basins.rs); here 0.263 and 0.110.

@@ -4,9 +4,11 @@
 //! and `report.html` is one self-contained file.
 
 use rocking_stones::analysis::PAPER_NU;
+use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::params::{Preset, SpinDistribution};
-use rocking_stones::dynamics::engine::run::CertificateMode;
-use rocking_stones::dynamics::pushes::perturb::{Class, Family, Outcome};
+use rocking_stones::dynamics::pushes::perturb::Family;
+use rocking_stones::dynamics::resting::outcome::Outcome;
+use rocking_stones::dynamics::stone::Class;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::equilibria::Kind;
 use rocking_stones::hierarchy::NuSource;

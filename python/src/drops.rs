@@ -9,9 +9,10 @@ use crate::mesh_input::analysed;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::dynamics::drops::montecarlo::{self, CertificateMode, DropReport, RunHeader, Shard};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::launch::DropOutcome;
+use rocking_stones::dynamics::drops::montecarlo::{self, DropReport, RunHeader, Shard};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone as Body;
 use rocking_stones::dynamics::surface::Surface;
@@ -236,7 +237,7 @@ pub(crate) fn drop_stone(
     let header = RunHeader::new(&stone.name, &stone.analysis.mesh, seed, n, p, certificate, (preset, surface));
     let progress = progress.map(|f| (f, n));
     let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
-        let cert = montecarlo::certificate(&body, header.certificate);
+        let cert = rocking_stones::dynamics::certificate::certificate(&body, header.certificate);
         let sink = std::sync::Mutex::new(|_: &DropOutcome| control.advance());
         let mut done = BTreeMap::new();
         // Chunks of about a quarter of a second, so that Ctrl-C is answered quickly.
@@ -249,7 +250,7 @@ pub(crate) fn drop_stone(
             let before = done.len() as u64;
             let upto = (before + chunk).min(n);
             let part = RunHeader { drops: upto, ..header.clone() };
-            for o in montecarlo::run(&body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
+            for o in montecarlo::run_drops(&body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
                 done.insert(o.index, o);
             }
             let per_drop = start.elapsed().as_secs_f64() / (upto - before) as f64;

@@ -81,8 +81,8 @@ fn resting_params(
     default_surface: Surface,
     r_max_m: f64,
     params: Option<&Bound<'_, PyDict>>,
-) -> PyResult<rocking_stones::dynamics::pushes::perturb::PerturbParams> {
-    use rocking_stones::dynamics::pushes::perturb::{PerturbParams, RestingPreset};
+) -> PyResult<rocking_stones::dynamics::resting::PerturbParams> {
+    use rocking_stones::dynamics::resting::{PerturbParams, RestingPreset};
     let preset: RestingPreset = preset.unwrap_or("surface").parse().map_err(py_err)?;
     let surface: Surface = surface.map_or(Ok(default_surface), str::parse).map_err(py_err)?;
     let base = PerturbParams::of(preset, surface, r_max_m).map_err(py_err)?;
@@ -172,10 +172,10 @@ pub(crate) fn perturb(
         return Err(PyValueError::new_err("need 0 < eps_min ≤ eps_max and eps_steps ≥ 1"));
     }
     let s = analysed(py, mesh, name, nu)?;
-    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
     let params = resting_params("perturb", preset, surface, Surface::StoneOnStone, real.r_max_m, params)?;
-    let params = pt::PerturbParams { certificate, ..params };
+    let params = rocking_stones::dynamics::resting::PerturbParams { certificate, ..params };
     let cfg = PerturbConfig {
         params,
         family: enum_from_str("family", family, "'push', 'spin'")?,
@@ -187,7 +187,8 @@ pub(crate) fn perturb(
     cfg.check().map_err(py_err)?;
     let starts = stone.select(&equilibria.unwrap_or_default(), flock).map_err(py_err)?;
     let progress = progress.map(|f| (f, pt::task_count(starts.len(), &cfg)));
-    let report = interruptible(py, threads, progress, |c| pt::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
+    let report = interruptible(py, threads, progress, |c| pt::perturb_equilibria_monitored(&stone, &starts, &cfg, c))?
+        .map_err(py_err)?;
     let report = pt::PerturbReport { r_max_m: Some(real.r_max_m), size_assumed: Some(real.assumed()), ..report };
     dynamics_result("perturb", &report, &report.trials, rocking_stones::report::perturb::summary(&report, &s.name))
 }
@@ -223,13 +224,12 @@ pub(crate) fn shake(
     progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
-    use rocking_stones::dynamics::pushes::perturb as pt;
     use rocking_stones::dynamics::shaking::{self as sh, ShakeConfig};
     if pulse.is_some() && motion.is_some() {
         return Err(PyValueError::new_err("give a pulse or a motion, not both"));
     }
     let s = analysed(py, mesh, name, nu)?;
-    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
     let r_max_m = real.r_max_m;
     let params = resting_params("shake", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
@@ -247,7 +247,8 @@ pub(crate) fn shake(
         Some(ids) => stone.select(&ids, None).map_err(py_err)?,
     };
     let progress = progress.map(|f| (f, (starts.len() * cfg.pgas.len()) as u64 * cfg.trials as u64));
-    let report = interruptible(py, threads, progress, |c| sh::run_with(&stone, &starts, &cfg, c))?.map_err(py_err)?;
+    let report = interruptible(py, threads, progress, |c| sh::sweep_fragility_monitored(&stone, &starts, &cfg, c))?
+        .map_err(py_err)?;
     let report = sh::ShakeReport { size_assumed: Some(real.assumed()), ..report };
     dynamics_result("shake", &report, &report.trials, rocking_stones::report::shake::summary(&report, &s.name))
 }
@@ -318,7 +319,6 @@ pub(crate) fn shake_rock<'py>(
     nu: Option<f64>,
     name: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use rocking_stones::dynamics::pushes::perturb as pt;
     use rocking_stones::dynamics::shaking::{self as sh, EnsembleSpec, Pose, RockSetup, Uncertainty};
     use rocking_stones::ground_motion::Record;
     let pose: Pose = pose.parse().map_err(py_err)?;
@@ -364,7 +364,7 @@ pub(crate) fn shake_rock<'py>(
         None => record,
     };
     let s = analysed(py, mesh, name, nu)?;
-    let stone = py.detach(|| pt::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
+    let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let real = real_size(py, &s.name, stone.body.r_max, length_unit, None, ASSUMED_UNIT)?;
     let sized = |setup: RockSetup| RockSetup { size_assumed: Some(real.assumed()), ..setup };
     let unit = real.length_unit_m;

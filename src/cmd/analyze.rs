@@ -42,7 +42,7 @@ pub struct Args {
     pub csv: Option<PathBuf>,
 }
 
-pub fn run(args: Args) -> Result<()> {
+pub fn run_analyze(args: Args) -> Result<()> {
     let opts = Options {
         nu: args.nu,
         coplanar_tol: args.coplanar_tol,

@@ -3,12 +3,12 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Context, Result};
 use rocking_stones::analysis::{check_nu, Options};
+use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
+use rocking_stones::dynamics::drops::launch::DropOutcome;
 use rocking_stones::dynamics::drops::montecarlo::{
-    certificate, check_outcomes, merge, read_partial, run_batched, summarize, CertificateMode, Checkpoint, DropReport,
-    RunHeader, Shard,
+    check_outcomes, merge, read_partial, run_drops_batched, summarize, Checkpoint, DropReport, RunHeader, Shard,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::drops::simulate::DropOutcome;
 use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone;
@@ -282,7 +282,7 @@ pub fn run_drop(args: Args) -> Result<()> {
             bar.inc(1);
         });
         let cert = certificate(&stone, args.certificate);
-        run_batched(&stone, &header, shard, &done, cert.as_ref(), args.batch, &sink)
+        run_drops_batched(&stone, &header, shard, &done, cert.as_ref(), args.batch, &sink)
     };
     bar.finish_and_clear();
     if let Some(e) = write_error {

@@ -72,7 +72,7 @@ fn params(args: &Args) -> Result<Params> {
     })
 }
 
-pub fn run(args: Args) -> Result<()> {
+pub fn run_generate(args: Args) -> Result<()> {
     let p = params(&args)?;
     let mesh = generate(args.shape, &p)?;
     io::write(&args.output, &mesh).with_context(|| format!("writing the {}", args.shape))?;

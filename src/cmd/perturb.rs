@@ -4,8 +4,10 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig, PerturbParams, RestingPreset, Stone};
+use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig};
+use rocking_stones::dynamics::resting::{PerturbParams, RestingPreset};
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_UNIT};
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
@@ -157,7 +159,7 @@ pub struct Args {
     pub output: Option<PathBuf>,
 }
 
-pub fn run(args: Args) -> Result<()> {
+pub fn run_perturb(args: Args) -> Result<()> {
     if !(args.eps_min > 0.0 && args.eps_max >= args.eps_min && args.eps_steps > 0) {
         bail!("need 0 < --eps-min ≤ --eps-max and --eps-steps ≥ 1");
     }
@@ -178,7 +180,7 @@ pub fn run(args: Args) -> Result<()> {
     cfg.check()?;
     let starts = stone.select(&args.equilibria, args.flock)?;
     let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
-    let report = perturb::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
+    let report = perturb::perturb_equilibria_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let report = perturb::PerturbReport { r_max_m: Some(size.r_max_m), size_assumed: Some(size.assumed()), ..report };
     super::emit(

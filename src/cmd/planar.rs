@@ -86,7 +86,7 @@ struct Output<'a> {
     table1: Option<rocking_stones::planar::Table1>,
 }
 
-pub fn run(args: Args) -> Result<()> {
+pub fn run_planar(args: Args) -> Result<()> {
     let (polygon, info, common) = match &args.shape {
         Shape::Ellipse(e) => {
             let sides = match (e.k, e.sides) {

@@ -130,7 +130,7 @@ fn parse_pose(s: &str) -> Result<shaking::Pose, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
-pub fn run(args: Args) -> Result<()> {
+pub fn run_shake(args: Args) -> Result<()> {
     if let Some(pose) = args.pose {
         return field(args, pose);
     }
@@ -160,7 +160,7 @@ pub fn run(args: Args) -> Result<()> {
     };
     cfg.check()?;
     let bar = super::progress_bar(starts.len() as u64 * cfg.pgas.len() as u64 * cfg.trials as u64, "trials");
-    let report = shaking::run_with(&stone, &starts, &cfg, &|| bar.inc(1))?;
+    let report = shaking::sweep_fragility_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     let report = shaking::ShakeReport { size_assumed: Some(size.assumed()), ..report };
     bar.finish_and_clear();
     super::emit(

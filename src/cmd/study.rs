@@ -206,7 +206,7 @@ pub struct FitArgs {
     pub output: PathBuf,
 }
 
-pub fn run(args: Args) -> Result<()> {
+pub fn run_study(args: Args) -> Result<()> {
     match args.command {
         Some(Sub::Synthetic(a)) => synthetic(a),
         Some(Sub::FitNu(a)) => fit(a),

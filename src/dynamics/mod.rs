@@ -9,6 +9,7 @@
 //! * [`pushes`] — pushes and spins of a resting stone.
 //! * [`shaking`] — the ground shaken under a resting stone.
 
+pub mod certificate;
 pub mod drops;
 pub mod engine;
 pub mod pushes;

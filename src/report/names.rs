@@ -4,9 +4,11 @@
 //! through the [`std::fmt::Display`] impls here (or the types' own `name()`), and
 //! `tests/user_strings.rs` checks every value.
 
+use crate::dynamics::certificate::CertificateMode;
 use crate::dynamics::drops::params::SpinDistribution;
-use crate::dynamics::engine::run::CertificateMode;
-use crate::dynamics::pushes::perturb::{Class, Family, Outcome};
+use crate::dynamics::pushes::perturb::Family;
+use crate::dynamics::resting::outcome::Outcome;
+use crate::dynamics::stone::Class;
 use crate::equilibria::Kind;
 use crate::hierarchy::NuSource;
 use crate::planar::Sampling;

@@ -2,7 +2,9 @@
 //! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
 
 use super::{short_name, write_json, Folder};
-use crate::dynamics::pushes::perturb::{Class, CurvePoint, PerturbReport, Threshold, Trial};
+use crate::dynamics::pushes::perturb::{PerturbReport, Trial};
+use crate::dynamics::resting::outcome::{CurvePoint, Threshold};
+use crate::dynamics::stone::Class;
 use crate::plot::{colors, draw_legend, legend_height, log_tick, plain, render, style, DrawResult, Mark, FONT_FAMILY};
 use std::path::{Path, PathBuf};
 
@@ -25,7 +27,7 @@ fn fmt_eps(x: f64) -> String {
 
 /// One line that says which contact a resting run used (`dynamics::resting`), its step and cap
 /// as multiples of √(R_max/g) and, for a stone of real R_max `r_max_m` metres, in seconds.
-pub fn contact_line(p: &crate::dynamics::pushes::perturb::PerturbParams, r_max_m: Option<f64>) -> String {
+pub fn contact_line(p: &crate::dynamics::resting::PerturbParams, r_max_m: Option<f64>) -> String {
     use super::names::number;
     let at = super::drops::Scaled { r_max_m };
     let c = &p.sim;

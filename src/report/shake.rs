@@ -2,8 +2,9 @@
 //! CSV and plot, and ground-motion records written as CSV.
 
 use super::{short_name, write_json, Folder};
-use crate::dynamics::pushes::perturb::{Class, CurvePoint, StableEquilibrium, Threshold};
+use crate::dynamics::resting::outcome::{CurvePoint, Threshold};
 use crate::dynamics::shaking::{MotionInfo, ShakeReport, ShakeTrial};
+use crate::dynamics::stone::{Class, StableEquilibrium};
 use crate::ground_motion::Record;
 use crate::plot::{render, DrawResult, Mark};
 use plotters::prelude::*;

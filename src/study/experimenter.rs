@@ -2,7 +2,8 @@
 //! orientations and notes the distinct stable flocks it comes to rest in.
 
 use crate::analysis::Analysis;
-use crate::dynamics::drops::montecarlo::{run_report, CertificateMode, RunHeader, FORMAT};
+use crate::dynamics::certificate::CertificateMode;
+use crate::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, FORMAT};
 use crate::dynamics::drops::params::{DropParams, Preset};
 use crate::dynamics::size::REFERENCE_R_MAX_M;
 use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
@@ -89,7 +90,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         center_of_mass: None,
         shard: crate::dynamics::drops::montecarlo::Shard::ALL,
     };
-    let (_, outcomes) = run_report(&stone, &header);
+    let (_, outcomes) = run_and_summarize(&stone, &header);
     let mut found = BTreeSet::new();
     let mut settled = 0;
     for o in outcomes.values().filter(|o| o.settled) {

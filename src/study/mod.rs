@@ -30,7 +30,7 @@
 //! [`Analysis::of_file`]: crate::analysis::Analysis::of_file
 //! [`Report`]: crate::analysis::Report
 //! [`PAPER_NU`]: crate::analysis::PAPER_NU
-//! [`CertificateMode::Flock`]: crate::dynamics::drops::montecarlo::CertificateMode::Flock
+//! [`CertificateMode::Flock`]: crate::dynamics::certificate::CertificateMode::Flock
 //! [`generate::pebble`]: crate::generate::pebble
 //! [`write_pebbles_csv`]: crate::report::study::write_pebbles_csv
 //! [`write_samples_csv`]: crate::report::study::write_samples_csv

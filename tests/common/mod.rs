@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests of standing and shaken stones.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::Stone;
+use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::mesh::TriMesh;
 
 /// The stone of a closed mesh at its macro ν.

@@ -27,13 +27,15 @@
 
 use crate::dynamics::drops::launch::{outcome, release_height, DropOutcome, Release};
 use crate::dynamics::drops::params::DropParams;
+use crate::dynamics::engine::body::Body;
+use crate::dynamics::engine::contact::{step_world, ContactLaw};
 use crate::dynamics::engine::flight::{self, FreeBody};
 use crate::dynamics::engine::impact;
-use crate::dynamics::engine::run::{Certificate, Progress, RestKind, RestSample};
-use crate::dynamics::engine::world::{
-    body_state, ground_world, insert_stone, normal_impulse, step_world, BodyState, ContactLaw, ImpactWorld,
-};
-use crate::dynamics::stone::{Body, Stone};
+use crate::dynamics::engine::impact::ImpactWorld;
+use crate::dynamics::engine::rest::{RestKind, RestSample};
+use crate::dynamics::engine::run::{Certificate, Progress};
+use crate::dynamics::engine::world::{body_state, ground_world, insert_stone, normal_impulse, BodyState};
+use crate::dynamics::stone::Stone;
 use crate::Vec3;
 use crate::GRAVITY;
 use nalgebra::UnitQuaternion;
@@ -96,7 +98,7 @@ pub fn simulate_batch_observed(
     let damping = flight::Damping::of(&p.sim);
     let inertia = flight::Inertia::new(stone.body.inertia);
     let (mut world, _ground, ground_collider) = ground_world(&p.sim);
-    let law = ContactLaw::of(&p.sim);
+    let law = ContactLaw::of(&p.sim.contact);
     let mut slots: Vec<Slot> = Vec::with_capacity(capacity);
     // The stones in the world this step (a buffer kept across steps: no allocation per step).
     let mut in_world: Vec<(RigidBodyHandle, ColliderHandle)> = Vec::with_capacity(capacity);

@@ -16,13 +16,14 @@
 //! * **Statistics.** Wilson score intervals (95 %) per facet and per flock; Pearson's χ² and the
 //!   Kullback–Leibler divergence of the empirical distribution from the static one.
 
+use crate::dynamics::certificate::{certificate, CertificateMode};
 use crate::dynamics::drops::batch::simulate_batch;
+use crate::dynamics::drops::launch::{launch, DropOutcome};
 use crate::dynamics::drops::params::DropParams;
-use crate::dynamics::drops::simulate::{launch, simulate, DropOutcome};
+use crate::dynamics::drops::simulate::simulate;
 use crate::dynamics::engine::params::REFERENCE_DT;
-pub use crate::dynamics::engine::run::CertificateMode;
-use crate::dynamics::engine::run::{Certificate, EnergyCertificate, NoCertificate};
-pub use crate::dynamics::stone::StaticModel;
+use crate::dynamics::engine::run::Certificate;
+use crate::dynamics::stone::StaticModel;
 use crate::dynamics::stone::Stone;
 use crate::equilibria::Kind;
 use crate::rng::item_rng;
@@ -197,7 +198,7 @@ pub fn fingerprint(mesh: &crate::mesh::TriMesh) -> String {
     format!("{h:016x}")
 }
 
-/// Stones per rapier world in [`run`] (`rocking drop --batch`), chosen from the batch-size sweep
+/// Stones per rapier world in [`run_drops`] (`rocking drop --batch`), chosen from the batch-size sweep
 /// of `results/drops_certificate/`: the gain over one world per drop levels off from about 16
 /// stones per world (1.6–2.3× on throws) and falls beyond 64.
 pub const DEFAULT_BATCH: usize = 32;
@@ -205,7 +206,7 @@ pub const DEFAULT_BATCH: usize = 32;
 /// Run the drops of `shard` that are not in `done`, in parallel, [`DEFAULT_BATCH`] stones per
 /// world, calling `on_done` (under a lock) as each finishes. Returns the new outcomes sorted by
 /// index.
-pub fn run(
+pub fn run_drops(
     stone: &Stone,
     header: &RunHeader,
     shard: Shard,
@@ -213,14 +214,14 @@ pub fn run(
     cert: &dyn Certificate,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
 ) -> Vec<DropOutcome> {
-    run_batched(stone, header, shard, done, cert, DEFAULT_BATCH, on_done)
+    run_drops_batched(stone, header, shard, done, cert, DEFAULT_BATCH, on_done)
 }
 
-/// [`run`] with `batch` stones per rapier world ([`crate::dynamics::drops::batch`]); 1: every drop
+/// [`run_drops`] with `batch` stones per rapier world ([`crate::dynamics::drops::batch`]); 1: every drop
 /// alone in its own world ([`simulate`]). Every drop's outcome is the same for any batch size
 /// and thread count (`tests/batch.rs`). One world per thread takes the pending drops from a
 /// shared queue.
-pub fn run_batched(
+pub fn run_drops_batched(
     stone: &Stone,
     header: &RunHeader,
     shard: Shard,
@@ -677,23 +678,16 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
     }
 }
 
-/// The certificate of `mode` on `stone` (a no-op for [`CertificateMode::None`]).
-pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate + '_> {
-    match EnergyCertificate::new(stone, mode) {
-        Some(c) => Box::new(c),
-        None => Box::new(NoCertificate),
-    }
-}
-
 /// Run every drop of `header` in memory (no checkpoint, no progress) and summarise them; for
 /// experiments and tests. Returns the report and the outcomes by index.
-pub fn run_report(stone: &Stone, header: &RunHeader) -> (DropReport, BTreeMap<u64, DropOutcome>) {
+pub fn run_and_summarize(stone: &Stone, header: &RunHeader) -> (DropReport, BTreeMap<u64, DropOutcome>) {
     let sink = Mutex::new(|_: &DropOutcome| {});
     let cert = certificate(stone, header.certificate);
-    let outcomes: BTreeMap<u64, DropOutcome> = run(stone, header, Shard::ALL, &BTreeMap::new(), cert.as_ref(), &sink)
-        .into_iter()
-        .map(|o| (o.index, o))
-        .collect();
+    let outcomes: BTreeMap<u64, DropOutcome> =
+        run_drops(stone, header, Shard::ALL, &BTreeMap::new(), cert.as_ref(), &sink)
+            .into_iter()
+            .map(|o| (o.index, o))
+            .collect();
     (summarize(&stone.model(), header, &outcomes), outcomes)
 }
 

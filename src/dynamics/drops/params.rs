@@ -3,7 +3,7 @@
 //! ([`crate::dynamics::engine::params`]); the contact comes from a surface pair
 //! ([`crate::dynamics::surface::Surface`]).
 
-pub use crate::dynamics::engine::params::{
+use crate::dynamics::engine::params::{
     ContactParams, Flight, FlightParams, Numerics, RestParams, RunParams, MAX_STABLE_DT, REFERENCE_DT,
 };
 use crate::dynamics::size::REFERENCE_R_MAX_M;

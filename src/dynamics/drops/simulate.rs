@@ -4,9 +4,10 @@
 //! [`crate::dynamics::engine::run`] (speed rest rule, [`RestKind::Speeds`]), or a batch of one
 //! ([`crate::dynamics::drops::batch`]) when the flight between contacts leaves rapier.
 
-pub use crate::dynamics::drops::launch::{launch, outcome, release_height, DropOutcome, Release};
+use crate::dynamics::drops::launch::{outcome, release_height, DropOutcome, Release};
 use crate::dynamics::drops::params::DropParams;
-use crate::dynamics::engine::run::{run, Certificate, Passive, RestKind};
+use crate::dynamics::engine::rest::RestKind;
+use crate::dynamics::engine::run::{run_to_end, Certificate, Passive};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::stone::Stone;
 
@@ -27,6 +28,6 @@ pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, ce
     }
     let z0 = release_height(stone, p, release);
     let mut sim = Simulation::new(&stone.body, &p.sim, &release.orientation, z0, &release.linvel, &release.angvel);
-    let end = run(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |_| {});
+    let end = run_to_end(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |_| {});
     DropOutcome { deepest_penetration: sim.deepest_penetration(), ..outcome(stone, p, &end, index) }
 }

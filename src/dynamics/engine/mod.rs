@@ -8,12 +8,16 @@
 //! * [`flight`] — free flight between contacts outside rapier, with exact landings.
 //! * [`impact`] — sub-stepped impacts: no hull point comes down by more than a stated bound in
 //!   one step.
-//! * [`run`] — the one run loop, its rest rules and the energy certificate.
+//! * [`run`] — the one run loop and the end rule every run shares.
+//! * [`rest`] — when a run has come to rest: by speeds or by positions.
 
+pub mod body;
+pub mod contact;
 pub mod convert;
 pub mod flight;
 pub mod hull_shape;
 pub mod impact;
 pub mod params;
+pub mod rest;
 pub mod run;
 pub mod world;

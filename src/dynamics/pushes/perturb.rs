@@ -10,7 +10,7 @@
 //! ε = kinetic energy / (m g R_max)
 //! ```
 //!
-//! and simulated to rest (the speed rest rule of drops, [`SpeedRest`](crate::dynamics::engine::run::SpeedRest),
+//! and simulated to rest (the speed rest rule of drops, [`SpeedRest`](crate::dynamics::engine::rest::SpeedRest),
 //! with a time cap; a stone still moving at the cap, or at rest on a facet that is not stable, is
 //! classified by the quasi-static descent from its last down direction and counted). The contact
 //! is the one of every run that starts at rest ([`crate::dynamics::resting`]: the surface pair at the
@@ -78,15 +78,12 @@
 //! The outcome classes and curve statistics are [`crate::dynamics::resting::outcome`]'s (shared with shaking); the
 //! rest placement, its check and the contact are [`crate::dynamics::resting`]'s.
 
-use crate::dynamics::engine::run::{
-    self as run_loop, Certificate, CertificateMode, Decided, EnergyCertificate, Passive, RestKind,
-};
-pub use crate::dynamics::resting::outcome::{classify, Curve, CurvePoint, Outcome, Threshold};
-pub use crate::dynamics::resting::{
-    check_rest, default_pair, grid_trials, resting_simulation, PerturbParams, RestingPreset, SettleCheck,
-    CONTACT_FREQUENCY,
-};
-pub use crate::dynamics::stone::{resting_orientation, Class, Exit, StableEquilibrium, Stone};
+use crate::dynamics::certificate::{CertificateMode, EnergyCertificate};
+use crate::dynamics::engine::rest::RestKind;
+use crate::dynamics::engine::run::{run_to_end, Certificate, Decided, Passive};
+use crate::dynamics::resting::outcome::{classify, Curve, CurvePoint, Outcome, Threshold};
+use crate::dynamics::resting::{grid_trials, resting_simulation, PerturbParams, SettleCheck};
+use crate::dynamics::stone::{Class, StableEquilibrium, Stone};
 use crate::equilibria::Kind;
 use crate::monitor::Monitor;
 use crate::rng::{item_rng, random_unit, Stream};
@@ -241,7 +238,7 @@ pub fn trial(stone: &Stone, start: usize, p: &PerturbParams, family: Family, eps
     let cert = TrialCertificate { energy, start_flock: s.flock };
     let none = crate::dynamics::engine::run::NoCertificate;
     let cert: &dyn Certificate = if p.certificate { &cert } else { &none };
-    let end = run_loop::run(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |st| {
+    let end = run_to_end(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |st| {
         max_rise = max_rise.max(st.level - level0)
     });
     let flock_of = |f: u32| stone.facet_flock[f as usize].unwrap_or(usize::MAX);
@@ -536,8 +533,8 @@ pub fn robustness(
 
 /// Run `cfg` on the stable micro-equilibria `starts` (positions in [`Stone::stable`]), in
 /// parallel; the result does not depend on the number of threads.
-pub fn run(stone: &Stone, starts: &[usize], cfg: &PerturbConfig) -> PerturbReport {
-    match run_with(stone, starts, cfg, &|| {}) {
+pub fn perturb_equilibria(stone: &Stone, starts: &[usize], cfg: &PerturbConfig) -> PerturbReport {
+    match perturb_equilibria_monitored(stone, starts, cfg, &|| {}) {
         Ok(r) => r,
         Err(_) => unreachable!("a closure monitor never stops a run"),
     }
@@ -548,9 +545,14 @@ pub fn task_count(n: usize, cfg: &PerturbConfig) -> u64 {
     n as u64 * cfg.epsilons.len() as u64 * cfg.trials as u64
 }
 
-/// [`run`], telling `monitor` of every finished trial (from any thread); [`Error::Cancelled`] if
+/// [`perturb_equilibria`], telling `monitor` of every finished trial (from any thread); [`Error::Cancelled`] if
 /// it stops the run.
-pub fn run_with(stone: &Stone, starts: &[usize], cfg: &PerturbConfig, monitor: &dyn Monitor) -> Result<PerturbReport> {
+pub fn perturb_equilibria_monitored(
+    stone: &Stone,
+    starts: &[usize],
+    cfg: &PerturbConfig,
+    monitor: &dyn Monitor,
+) -> Result<PerturbReport> {
     let (checks, trials) =
         grid_trials(stone, starts, &cfg.params, cfg.epsilons.len(), cfg.trials, monitor, |s, i, k| {
             trial(stone, s, &cfg.params, cfg.family, cfg.epsilons[i], cfg.seed, k)

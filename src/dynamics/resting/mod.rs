@@ -120,8 +120,6 @@ pub struct PerturbParams {
 
 pub mod outcome;
 
-pub use crate::dynamics::size::Size;
-
 /// Time cap (s, scaled) after a perturbation or a ground motion.
 pub const RESTING_MAX_TIME: f64 = 20.0;
 

@@ -21,9 +21,10 @@
 //! a_z changes the effective gravity to g + a_z. The record's horizontal axes are turned by the
 //! azimuth in the world frame. When the record ends the ground keeps its final velocity — a
 //! frame in uniform motion is inertial — and the stone is simulated until it rests *relative to
-//! the ground*, by positions over windows ([`PositionRest`](crate::dynamics::engine::run::PositionRest)).
+//! the ground*, by positions over windows ([`PositionRest`](crate::dynamics::engine::rest::PositionRest)).
 
-use crate::dynamics::engine::run::{self as run_loop, Drive, NoCertificate, RestKind, RunEnd};
+use crate::dynamics::engine::rest::RestKind;
+use crate::dynamics::engine::run::{run_to_end, Drive, NoCertificate, RunEnd};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::resting::PerturbParams;
 use crate::dynamics::stone::Stone;
@@ -131,7 +132,7 @@ pub fn shake_placed(
     let x0 = sim.ground_offset();
     let n = stone.body.facet_normals[stone.stable()[start].facet as usize];
     let mut max_tilt: f64 = 0.0;
-    let end = run_loop::run(&mut sim, &p.sim, &mut ground, &NoCertificate, RestKind::Positions, &mut |st| {
+    let end = run_to_end(&mut sim, &p.sim, &mut ground, &NoCertificate, RestKind::Positions, &mut |st| {
         max_tilt = max_tilt.max(n.dot(&st.down).clamp(-1.0, 1.0).acos())
     });
     Shaken {

@@ -9,7 +9,7 @@
 //! * **Base contact** τ (metres): which scanned points of the base carry load. A scan resolves a
 //!   few mm, and the ground under a rock is no flatter; a hull corner within τ of the plane of
 //!   the facet the rock stands on may touch. The member's collider is the scanned hull with those
-//!   corners moved onto that plane ([`crate::dynamics::stone::Body::flattened`]): its support
+//!   corners moved onto that plane ([`crate::dynamics::engine::body::Body::flattened`]): its support
 //!   polygon is exactly the quasi-static one of [`crate::tipping::TippingPolar`] at tolerance τ.
 //!   The pose, the mass, G and the inertia are the scan's; only where it can be supported
 //!   changes. τ = 0 is the scanned hull.

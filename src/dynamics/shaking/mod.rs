@@ -15,7 +15,7 @@
 //!
 //! Both modes run on the contact of every resting run ([`crate::dynamics::resting`]: the surface
 //! pair at the stone's real size), rest by positions over windows
-//! ([`crate::dynamics::engine::run::PositionRest`]) and classify the outcome by the quasi-static descent.
+//! ([`crate::dynamics::engine::rest::PositionRest`]) and classify the outcome by the quasi-static descent.
 //! Housner's rigid block, the reference they are checked against, is
 //! [`crate::dynamics::shaking::housner`].
 
@@ -31,6 +31,6 @@ pub use ensemble::{run_ensemble, Ensemble, EnsembleSpec, Member, Uncertainty};
 pub use records::{run_batch, run_record, RecordRun, ShakeBatch};
 pub use rock::{driven, parse_length_unit, place, rock_params, shake_record, Pose, RockRun, RockSetup};
 pub use sweep::{
-    default_pulse, default_starts, pga_grid, pgas_for, run, run_with, shake_stream, shake_trial, sine_pulse, Fragility,
-    MotionInfo, ShakeConfig, ShakeReport, ShakeTrial,
+    default_pulse, default_starts, pga_grid, pgas_for, shake_stream, shake_trial, sine_pulse, sweep_fragility,
+    sweep_fragility_monitored, Fragility, MotionInfo, ShakeConfig, ShakeReport, ShakeTrial,
 };

@@ -14,7 +14,8 @@
 //! * Records × scale factors, with or without an ensemble, and their fragility surface:
 //!   [`crate::dynamics::shaking::records`].
 
-use crate::dynamics::engine::run::{self as run_loop, NoCertificate, RestKind};
+use crate::dynamics::engine::rest::RestKind;
+use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::resting::outcome::{classify, Outcome};
 use crate::dynamics::resting::PerturbParams;
@@ -144,7 +145,7 @@ fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32,
 /// * `Facet`: exactly at rest on the facet, settled for `p.settle_time` (as for pushes).
 /// * `AsScanned` / `Quat`: the body orientation is the pose, G above the ground by the support
 ///   function h(d) of the down direction d (the lowest point touches), zero velocity; simulated
-///   without motion until it rests ([`PositionRest`](run_loop::PositionRest) of `p.sim`, at most
+///   without motion until it rests ([`PositionRest`](crate::dynamics::engine::rest::PositionRest) of `p.sim`, at most
 ///   `p.sim.max_time`). It must rest on the micro-equilibrium the quasi-static descent of h from
 ///   d reaches ([`Stone::rest`]), else the pose is refused.
 pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Placed<'a>> {
@@ -169,7 +170,7 @@ pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Pla
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, z, &Vec3::zeros(), &Vec3::zeros());
     sim.set_contact_frequency(p.contact_frequency);
     sim.advance((p.settle_time / p.sim.numerics.dt).round() as u64);
-    let end = run_loop::run(&mut sim, &p.sim, &mut run_loop::Passive, &NoCertificate, RestKind::Positions, &mut |_| {});
+    let end = run_to_end(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Positions, &mut |_| {});
     let rest = stone.rest(&end.state.down);
     if !end.settled || rest.facet != expected.facet {
         return Err(refuse_pose(stone, pose, &down0, expected.facet, rest.facet, end.settled));

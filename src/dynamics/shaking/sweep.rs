@@ -261,13 +261,18 @@ pub struct ShakeReport {
 
 /// Run a fragility study on the stable micro-equilibria `starts`, in parallel (independent of
 /// the number of threads).
-pub fn run(stone: &Stone, starts: &[usize], cfg: &ShakeConfig) -> Result<ShakeReport> {
-    run_with(stone, starts, cfg, &|| {})
+pub fn sweep_fragility(stone: &Stone, starts: &[usize], cfg: &ShakeConfig) -> Result<ShakeReport> {
+    sweep_fragility_monitored(stone, starts, cfg, &|| {})
 }
 
-/// [`run`], telling `monitor` of every finished trial (from any thread); [`Error::Cancelled`] if
+/// [`sweep_fragility`], telling `monitor` of every finished trial (from any thread); [`Error::Cancelled`] if
 /// it stops the run.
-pub fn run_with(stone: &Stone, starts: &[usize], cfg: &ShakeConfig, monitor: &dyn Monitor) -> Result<ShakeReport> {
+pub fn sweep_fragility_monitored(
+    stone: &Stone,
+    starts: &[usize],
+    cfg: &ShakeConfig,
+    monitor: &dyn Monitor,
+) -> Result<ShakeReport> {
     cfg.check()?;
     let real_dt = cfg.params.sim.numerics.dt * cfg.r_max_m.sqrt();
     let motions: Vec<Record> =

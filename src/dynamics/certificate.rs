@@ -1,0 +1,161 @@
+//! The energy certificate: a run on a passive contact whose outcome (final facet or flock) is
+//! already certain from its energy may end early (`docs/methods.md`).
+//!
+//! **Certificate: an argument whose one gap is measured, not a proof.** A rigid body on a passive
+//! contact never gains mechanical energy, and z_G ≥ h(down) (the support function), so E/(m g)
+//! bounds h(down) for the rest of the motion; when the sublevel component of h that holds the
+//! current down direction contains a single stable facet (or a single flock) of the merge tree,
+//! the outcome is decided ([`EnergyCertificate`]). The parts of the contact this project writes
+//! only dissipate (the rolling resistance of [`crate::dynamics::engine::world`], and its impact law, which adds no
+//! energy beyond what the step's start or rapier's own step had). Rapier's soft-constraint solver
+//! is not proven to: what it may give back is covered by a margin ([`CERTIFICATE_MARGIN`]) whose
+//! size is measured, not derived. The certificate is never asked while a ground motion drives the
+//! stone (that system is not passive), nor while the soft contact is compressed
+//! ([`CERTIFICATE_MAX_COMPRESSION`]). Above the merge tree's decision ceiling
+//! ([`crate::basins::MergeTree::decision_ceiling`]) nothing can be decided and a check costs O(1);
+//! below it, a check is a descent of h.
+//!
+//! **Measured limit.** With rapier's own flight (`--flight rapier`, impacts found after the stone
+//! is already up to 0.2 R_max inside the ground), rapier's contact solver (4 iterations) does not
+//! conserve energy in the hard first impact of a throw (≈ 10 m/s of the scaled body, 35 rad/s of
+//! spin): L could rise by up to 1.8 R_max there (0.4 at 16 iterations, 0.08 at 64). The certificate can only decide once
+//! L ≤ max h = R_max, where later impacts are slower than a drop from 1 R_max, and there no rise
+//! beyond the margin is measured (`tests/contact.rs`); an early injection only delays the decision.
+//! Certified outcomes equal full settling drop by drop on 400 throws (`tests/throws.rs`) and in
+//! the `drop` and `throw` presets of `results/drops_certificate/` (3 bodies × 300 drops each).
+
+use crate::dynamics::engine::run::{Certificate, Decided, NoCertificate};
+use crate::dynamics::engine::world::BodyState;
+use crate::dynamics::stone::Stone;
+use serde::{Deserialize, Serialize};
+
+/// How early the energy certificate ends a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CertificateMode {
+    /// Simulate every run until it rests (or the time cap).
+    None,
+    /// Stop once the final facet is certain.
+    Facet,
+    /// Stop once the final flock is certain.
+    Flock,
+}
+
+impl CertificateMode {
+    /// The user-facing name.
+    pub fn name(self) -> &'static str {
+        match self {
+            CertificateMode::None => "none",
+            CertificateMode::Facet => "facet",
+            CertificateMode::Flock => "flock",
+        }
+    }
+}
+
+/// Safety margin added to the energy level before asking the merge tree, in units of R_max: the
+/// body sinks into the ground by the contact's compression (the certificate is asked only up to
+/// [`CERTIFICATE_MAX_COMPRESSION`]), so h(down) can be above z_G, and hence above L, by that
+/// much, plus what the solver gives back. **Measured, not proven** — the largest later rise of
+/// h(down) above the L read at any state where the certificate may be asked is 1.46·10⁻³ R_max
+/// over 72 000 drops at the default step (the bundled stone and 39 scanned meshes, 3 presets,
+/// rapier's flight and free flight), so the margin is 2.1 times it, and 0 of 7 940 691 decisions
+/// there (103 282 of them the first of their drop) name another facet or flock than full settling
+/// reaches (`results/certificate_decisions/`). Without a margin the tree decides wrongly (11 of
+/// 11 472 decisions in `results/certificate_margin/`, none from 3·10⁻⁴ on).
+pub const CERTIFICATE_MARGIN: f64 = 3e-3;
+
+/// The certificate is asked only while the contact is nearly relaxed: G at most this far (R_max)
+/// below h(down), i.e. the contact compressed by at most 10⁻³ R_max. In a hard impact the contact
+/// is compressed and L = z_G + KE/(m g) does not count what the compression will give back.
+///
+/// *What the compression can give back: not bounded by a formula.* Read as a linear spring of
+/// rapier's natural frequency f, a compression c would store ½ (2π f)² c² / g per unit weight:
+/// 7.2·10⁻³ R_max at f = 60 Hz and c = 10⁻³ R_max (2.9·10⁻² at the 120 Hz of runs that start at
+/// rest) — more than the margin. Rapier's contact is not that spring: its soft constraint
+/// (TGS-soft, rapier 0.36) pushes a penetration out with a bias velocity that the relaxation pass
+/// of every sub-step takes away again, so a compression is restored mostly as height (which L
+/// counts once the contact has relaxed). That is an argument about the solver, not a bound; what
+/// is left is the solver's own error, and it is measured on the quantity the certificate needs:
+/// over the whole future of every state where the certificate may be asked (relaxed,
+/// L ≤ 1 R_max), how far the support height h(down) rises above the L read there
+/// (`tests/contact.rs` on pebble throws; `results/certificate_decisions/` on 72 000 drops of 40
+/// bodies, largest 1.46·10⁻³ R_max, under [`CERTIFICATE_MARGIN`]).
+pub const CERTIFICATE_MAX_COMPRESSION: f64 = 1e-3;
+
+/// The merge-tree energy certificate ([`crate::basins`], `docs/methods.md`) on a prepared stone,
+/// at the facet or flock level.
+pub struct EnergyCertificate<'a> {
+    stone: &'a Stone,
+    flock_level: bool,
+    /// [`crate::basins::MergeTree::decision_ceiling`] (mesh units): at or above this energy
+    /// level (with the margin) nothing can be decided, without a descent.
+    ceiling: f64,
+    /// Added to the energy level before asking the merge tree (R_max).
+    margin: f64,
+}
+
+impl<'a> EnergyCertificate<'a> {
+    /// The certificate of `mode` for `stone` (None for [`CertificateMode::None`]).
+    pub fn new(stone: &'a Stone, mode: CertificateMode) -> Option<Self> {
+        Self::with_margin(stone, mode, CERTIFICATE_MARGIN)
+    }
+
+    /// The certificate of `mode` with another `margin` (R_max) than [`CERTIFICATE_MARGIN`]: for
+    /// measuring what the margin does (`experiments/certificate_margin.rs`), not for runs.
+    pub fn with_margin(stone: &'a Stone, mode: CertificateMode, margin: f64) -> Option<Self> {
+        match mode {
+            CertificateMode::None => None,
+            _ => {
+                let flock_level = mode == CertificateMode::Flock;
+                let ceiling = stone.tree.decision_ceiling(flock_level.then_some(&stone.facet_flock[..]));
+                Some(EnergyCertificate { stone, flock_level, ceiling, margin })
+            }
+        }
+    }
+
+    /// Whether the contact is relaxed enough for L to bound the energy
+    /// ([`CERTIFICATE_MAX_COMPRESSION`]). h(down) by hill climbing (O(1) in the hull size, exact
+    /// to the collider's f32 rounding, 10⁻⁷ R_max: [`crate::dynamics::engine::body::Body::support_climb`]).
+    pub fn relaxed(&self, s: &BodyState) -> bool {
+        self.stone.body.support_climb(&s.down) - s.z <= CERTIFICATE_MAX_COMPRESSION
+    }
+
+    /// The stable facet that is certain in state `s`, if any.
+    pub fn facet(&self, s: &BodyState) -> Option<u32> {
+        if !self.relaxed(s) {
+            return None;
+        }
+        self.stone.tree.decided(&s.down, (s.level + self.margin) * self.stone.body.r_max)
+    }
+
+    /// The flock that is certain in state `s`, if any.
+    pub fn flock(&self, s: &BodyState) -> Option<usize> {
+        if !self.relaxed(s) {
+            return None;
+        }
+        let level = (s.level + self.margin) * self.stone.body.r_max;
+        self.stone.tree.decided_flock(&s.down, level, &self.stone.facet_flock)
+    }
+}
+
+impl Certificate for EnergyCertificate<'_> {
+    fn decided(&self, s: &BodyState) -> Option<Decided> {
+        // O(1): too much energy for any decision (exact, see `decision_ceiling`).
+        if (s.level + self.margin) * self.stone.body.r_max >= self.ceiling {
+            return None;
+        }
+        if self.flock_level {
+            self.flock(s).map(|k| Decided::Flock(k as u32))
+        } else {
+            self.facet(s).map(Decided::Facet)
+        }
+    }
+}
+
+/// The certificate of `mode` on `stone` (a no-op for [`CertificateMode::None`]).
+pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate + '_> {
+    match EnergyCertificate::new(stone, mode) {
+        Some(c) => Box::new(c),
+        None => Box::new(NoCertificate),
+    }
+}
