@@ -13,7 +13,7 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, RunHeader, FORMAT};
 use rocking_stones::dynamics::drops::params::{DropParams, Launch};
-use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
 use rocking_stones::plot::{draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY};
@@ -48,7 +48,7 @@ fn main() -> anyhow::Result<()> {
         eprintln!("{name}: quasi-static error ±{:.1e} ({})", setup.quasi_static().error, setup.quasi_static().method);
         for &e in &RESTITUTIONS {
             for &hgt in &HEIGHTS {
-                let mut params = DropParams { launch: Launch::at_rest(hgt), sim: PerturbParams::damped().sim };
+                let mut params = DropParams { launch: Launch::at_rest(hgt), sim: RestingParams::damped().sim };
                 params.sim.contact.restitution = e;
                 let header = RunHeader {
                     format: FORMAT.into(),
@@ -91,7 +91,7 @@ fn damping_sweep() -> anyhow::Result<Vec<(f64, DropReport)>> {
     let setup = Stone::new(&a, nu)?;
     let mut out = Vec::new();
     for d in [0.3, 1.0, 3.0, 10.0, 30.0] {
-        let mut params = DropParams { launch: Launch::at_rest(0.002), sim: PerturbParams::damped().sim };
+        let mut params = DropParams { launch: Launch::at_rest(0.002), sim: RestingParams::damped().sim };
         let c = &mut params.sim.contact;
         (c.restitution, c.linear_damping, c.angular_damping) = (0.0, d, d);
         params.sim.numerics.max_time = 60.0;

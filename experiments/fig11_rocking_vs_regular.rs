@@ -12,9 +12,9 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig, PerturbReport};
+use rocking_stones::dynamics::pushes::{self, Family, PerturbConfig, PerturbReport};
 use rocking_stones::dynamics::resting::outcome::Threshold;
-use rocking_stones::dynamics::resting::{default_pair, PerturbParams};
+use rocking_stones::dynamics::resting::{default_pair, RestingParams};
 use rocking_stones::dynamics::stone::{resting_orientation, Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
@@ -36,7 +36,7 @@ const SURFACE: Surface = Surface::StoneOnStone;
 fn main() -> anyhow::Result<()> {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fig11_rocking_vs_regular");
     std::fs::create_dir_all(&out)?;
-    let params = PerturbParams::on_surface(SURFACE, R_MAX_M)?;
+    let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
     let mut search = String::new();
     let (seed, analysis, stone, regular, rocking) = (0..50u64)
         .find_map(|seed| {
@@ -69,7 +69,7 @@ fn main() -> anyhow::Result<()> {
             epsilon_star: None,
         };
         let t = std::time::Instant::now();
-        let r = perturb::perturb_equilibria(&stone, &[regular, rocking], &cfg);
+        let r = pushes::perturb_equilibria(&stone, &[regular, rocking], &cfg);
         eprintln!("{family:?}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
         eprint!("{}", report::perturb::summary(&r, "pebble"));
         reports.push(r);

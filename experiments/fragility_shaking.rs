@@ -15,7 +15,7 @@
 use plotters::style::RGBColor;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::resting::outcome::{CurvePoint, Threshold};
-use rocking_stones::dynamics::resting::{default_pair, PerturbParams};
+use rocking_stones::dynamics::resting::{default_pair, RestingParams};
 use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig, ShakeReport};
 use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
@@ -38,7 +38,7 @@ const SURFACE: Surface = Surface::StoneOnStone;
 fn main() -> anyhow::Result<()> {
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_shaking");
     std::fs::create_dir_all(&out)?;
-    let params = PerturbParams::on_surface(SURFACE, R_MAX_M)?;
+    let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
     let (seed, stone, regular, rocking) = (0..50u64)
         .find_map(|seed| {
             let (mesh, rep) = generate::pebble([1.0, 0.75, 0.5], 0.02, 600, seed).into_solid_boundary().ok()?;

@@ -17,7 +17,7 @@ use plotters::prelude::*;
 use rand::RngExt;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::resting::default_pair;
-use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::shaking::housner::{housner_overturns, housner_ratio};
 use rocking_stones::dynamics::shaking::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
 use rocking_stones::dynamics::stone::Stone;
@@ -71,7 +71,7 @@ fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
         q
     };
     let concrete = rock_params(Surface::RockOnConcrete, r_max_m)?;
-    let sim = |q: &PerturbParams, ap: f64, wp: f64| {
+    let sim = |q: &RestingParams, ap: f64, wp: f64| {
         let placed = place(&stone, &Pose::Facet { id: bottom }, q).unwrap();
         // The pulse as every motion is, a record: sampled 2000 times per period.
         let tp = 2.0 * std::f64::consts::PI / wp;

@@ -11,7 +11,7 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
@@ -46,8 +46,8 @@ struct Setting {
 /// The contact of every resting run (rock on concrete, a block of R_max = 1 m: rolling resistance
 /// δ = 10⁻⁴ R_max through the contact), with friction 1 and the setting's restitution, contact
 /// frequency and step.
-fn params(s: &Setting) -> PerturbParams {
-    let mut p = PerturbParams::on_surface(Surface::RockOnConcrete, 1.0).expect("a valid size");
+fn params(s: &Setting) -> RestingParams {
+    let mut p = RestingParams::on_surface(Surface::RockOnConcrete, 1.0).expect("a valid size");
     p.sim.contact.friction = 1.0;
     p.sim.contact.restitution = s.restitution;
     p.sim.numerics.dt = s.dt;

@@ -15,9 +15,9 @@
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
+use rocking_stones::dynamics::pushes::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
 use rocking_stones::dynamics::resting::outcome::Threshold;
-use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
@@ -88,7 +88,7 @@ fn main() -> anyhow::Result<()> {
             "real" => stone.body.r_max,
             _ => PEBBLE_R_MAX_M,
         };
-        let params = PerturbParams::on_surface(SURFACE, r_max_m)?;
+        let params = RestingParams::on_surface(SURFACE, r_max_m)?;
         let all: Vec<usize> = (0..stone.stable().len()).collect();
         let mut reports = Vec::new();
         for family in [Family::Push, Family::Spin] {
@@ -101,7 +101,7 @@ fn main() -> anyhow::Result<()> {
                 epsilon_star: None,
             };
             let t = std::time::Instant::now();
-            let r = perturb::perturb_equilibria(&stone, &all, &cfg);
+            let r = pushes::perturb_equilibria(&stone, &all, &cfg);
             eprintln!(
                 "{name}: {family:?}, {} equilibria, {} trials in {:.1} s; confusion {:?}",
                 all.len(),
@@ -226,7 +226,7 @@ fn write_csv(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
         for (ep, es) in p.equilibria.iter().zip(&s.equilibria) {
             let q = &ep.equilibrium;
             let stays = ep.rest.stays;
-            let dc = |e: &perturb::Robustness, f: f64| {
+            let dc = |e: &pushes::Robustness, f: f64| {
                 if stays {
                     cls(dynamic_class(e.eps50_flock, r.stone.nu * f))
                 } else {

@@ -30,7 +30,7 @@ fn setup(mesh: TriMesh) -> (Analysis, Stone) {
 /// A drop from rest at `height` (R_max) with the overdamped contact of the damped resting
 /// reference.
 fn damped_drop(height: f64) -> DropParams {
-    DropParams { launch: Launch::at_rest(height), sim: rocking_stones::dynamics::resting::PerturbParams::damped().sim }
+    DropParams { launch: Launch::at_rest(height), sim: rocking_stones::dynamics::resting::RestingParams::damped().sim }
 }
 
 fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {

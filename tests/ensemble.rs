@@ -5,7 +5,7 @@
 mod common;
 
 use common::{bottom, stone};
-use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::shaking::ensemble::{base_facet, run_ensemble, EnsembleSpec, Uncertainty};
 use rocking_stones::dynamics::shaking::housner::ramp_tipping;
 use rocking_stones::dynamics::shaking::{rock_params, run_record, sine_pulse, Pose, RockSetup};
@@ -85,7 +85,7 @@ fn bevelled_block(rise: f64) -> Stone {
 fn the_base_contact_tolerance_moves_the_pivot_as_the_tipping_polar_says() {
     let rise = 0.002;
     let s = bevelled_block(rise);
-    let mut p: PerturbParams = rock_params(Surface::RockOnConcrete, s.body.r_max).unwrap();
+    let mut p: RestingParams = rock_params(Surface::RockOnConcrete, s.body.r_max).unwrap();
     (p.sim.contact.friction, p.sim.contact.restitution) = (1.0, 0.0);
     let setup = RockSetup::with_params(&s, Pose::Facet { id: bottom(&s) }, 1.0, 0.0, p.clone());
     let facet = base_facet(&s, &setup).unwrap();

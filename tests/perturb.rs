@@ -4,9 +4,9 @@
 
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{self, kick, trial, Family, PerturbConfig};
+use rocking_stones::dynamics::pushes::{self, kick, trial, Family, PerturbConfig};
 use rocking_stones::dynamics::resting::outcome::{Outcome, Threshold};
-use rocking_stones::dynamics::resting::{check_rest, default_pair, PerturbParams};
+use rocking_stones::dynamics::resting::{check_rest, default_pair, RestingParams};
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::dynamics::shaking::{self, shake_trial, sine_pulse, ShakeConfig};
 use rocking_stones::dynamics::stone::{Class, Stone};
@@ -33,8 +33,8 @@ fn block(b: f64, d: f64, h: f64) -> (Stone, usize) {
 
 /// Housner's conditions on the contact of every resting run (rock on concrete, a 1 m block, so
 /// rolling resistance δ = 10⁻⁴ R_max): no sliding (μ > tan α), perfectly plastic impacts.
-fn housner_params() -> PerturbParams {
-    let mut p = PerturbParams::on_surface(Surface::RockOnConcrete, 1.0).unwrap();
+fn housner_params() -> RestingParams {
+    let mut p = RestingParams::on_surface(Surface::RockOnConcrete, 1.0).unwrap();
     p.sim.contact.friction = 1.0;
     p.sim.contact.restitution = 0.0;
     p
@@ -143,7 +143,7 @@ fn kicks_carry_the_requested_energy() {
 #[test]
 fn no_perturbation_below_the_static_barrier_leaves_the_basin() {
     let s = pebble();
-    let p = PerturbParams::default();
+    let p = RestingParams::default();
     let starts: Vec<usize> = (0..s.stable().len()).filter(|&i| check_rest(&s, i, &p).stays).collect();
     assert!(starts.len() >= 6, "only {} equilibria stay at rest", starts.len());
     let mut tasks = Vec::new();
@@ -166,7 +166,7 @@ fn no_perturbation_below_the_static_barrier_leaves_the_basin() {
         .flat_map_iter(|&(i, family, eps)| (0..6).map(move |k| (i, family, eps, k)))
         .map(|(i, family, eps, k)| trial(&s, i, &p, family, eps, 17, k))
         .collect();
-    let check = perturb::BarrierCheck::of(&trials, &s);
+    let check = pushes::BarrierCheck::of(&trials, &s);
     eprintln!("{check:?}");
     assert!(check.below_basin >= 100 && check.below_flock >= 150, "{check:?}");
     assert_eq!(check.basin_violations, 0, "{check:?}");
@@ -182,7 +182,7 @@ fn no_perturbation_below_the_static_barrier_leaves_the_basin() {
 #[test]
 fn rocking_equilibria_topple_where_regular_ones_stay() {
     let s = pebble();
-    let p = PerturbParams::default();
+    let p = RestingParams::default();
     let (regular, rocking) = default_pair(&s, &p);
     let (regular, rocking) = (regular.unwrap(), rocking.unwrap());
     assert_eq!(s.stable()[regular].class, Class::Regular);
@@ -204,7 +204,7 @@ fn rocking_equilibria_topple_where_regular_ones_stay() {
 fn runs_are_reproducible_and_independent_of_threads() {
     let s = pebble();
     let cfg = PerturbConfig {
-        params: PerturbParams::default(),
+        params: RestingParams::default(),
         family: Family::Push,
         epsilons: log_grid(1e-4, 1e-1, GridSize::Points(3)),
         trials: 4,
@@ -213,14 +213,14 @@ fn runs_are_reproducible_and_independent_of_threads() {
     };
     let starts = [0, 2, 5];
     let pool = |n: usize| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-    let one = pool(1).install(|| perturb::perturb_equilibria(&s, &starts, &cfg));
-    let two = pool(2).install(|| perturb::perturb_equilibria(&s, &starts, &cfg));
+    let one = pool(1).install(|| pushes::perturb_equilibria(&s, &starts, &cfg));
+    let two = pool(2).install(|| pushes::perturb_equilibria(&s, &starts, &cfg));
     assert_eq!(one.trials, two.trials);
     assert_eq!(one.trials.len(), 36);
-    let other = perturb::perturb_equilibria(&s, &starts, &PerturbConfig { seed: 10, ..cfg.clone() });
+    let other = pushes::perturb_equilibria(&s, &starts, &PerturbConfig { seed: 10, ..cfg.clone() });
     assert_ne!(one.trials, other.trials);
     let shake_cfg = ShakeConfig {
-        params: PerturbParams::default(),
+        params: RestingParams::default(),
         motion: sine_pulse(1.0, 2.0, 1.0, 1e-3).unwrap(),
         pgas: vec![0.2, 0.6],
         trials: 3,
@@ -264,7 +264,7 @@ fn thresholds_interpolate_in_log_epsilon() {
     assert_eq!(Threshold::of(&x, &[0.0, 0.1, 0.2], true), Some(Threshold::Above(1e-1)));
     let lin = Threshold::of(&[0.0, 0.5, 1.0], &[0.0, 0.0, 1.0], false).unwrap();
     assert_eq!(lin, Threshold::At(0.75));
-    assert_eq!(perturb::dynamic_class(Some(Threshold::At(1e-3)), 1e-2), Some(Class::Rocking));
-    assert_eq!(perturb::dynamic_class(Some(Threshold::At(1e-1)), 1e-2), Some(Class::Regular));
-    assert_eq!(perturb::dynamic_class(Some(Threshold::Above(1e-3)), 1e-2), None);
+    assert_eq!(pushes::dynamic_class(Some(Threshold::At(1e-3)), 1e-2), Some(Class::Rocking));
+    assert_eq!(pushes::dynamic_class(Some(Threshold::At(1e-1)), 1e-2), Some(Class::Regular));
+    assert_eq!(pushes::dynamic_class(Some(Threshold::Above(1e-3)), 1e-2), None);
 }

@@ -6,7 +6,7 @@ mod common;
 
 use common::{bottom, stone};
 use rocking_stones::dynamics::resting::outcome::Outcome;
-use rocking_stones::dynamics::resting::PerturbParams;
+use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::shaking::housner::housner_overturns;
 use rocking_stones::dynamics::shaking::{place, rock_params, shake_record, shake_trial, sine_pulse, Pose, RockRun};
 use rocking_stones::dynamics::stone::Stone;
@@ -20,7 +20,7 @@ use rocking_stones::GRAVITY;
 use std::f64::consts::PI;
 
 /// Shake `s` (R_max = `r_max_m` metres) standing on its bottom face with `motion`.
-fn shake(s: &Stone, p: &PerturbParams, motion: &Record, r_max_m: f64) -> RockRun {
+fn shake(s: &Stone, p: &RestingParams, motion: &Record, r_max_m: f64) -> RockRun {
     let placed = place(s, &Pose::Facet { id: bottom(s) }, p).unwrap();
     shake_record(s, placed, p, motion, 0.0, r_max_m)
 }
@@ -39,7 +39,7 @@ fn sampled(f: impl Fn(f64) -> [f64; 3], duration: f64) -> Record {
 }
 
 /// Housner's conditions on a real surface pair: no sliding, plastic impacts.
-fn housner(r_max_m: f64) -> PerturbParams {
+fn housner(r_max_m: f64) -> RestingParams {
     let mut p = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
     p.sim.contact.friction = 1.0;
     p.sim.contact.restitution = 0.0;

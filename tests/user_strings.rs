@@ -6,7 +6,7 @@
 use rocking_stones::analysis::PAPER_NU;
 use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::params::{Preset, SpinDistribution};
-use rocking_stones::dynamics::pushes::perturb::Family;
+use rocking_stones::dynamics::pushes::Family;
 use rocking_stones::dynamics::resting::outcome::Outcome;
 use rocking_stones::dynamics::stone::Class;
 use rocking_stones::dynamics::surface::Surface;

@@ -81,12 +81,12 @@ fn resting_params(
     default_surface: Surface,
     r_max_m: f64,
     params: Option<&Bound<'_, PyDict>>,
-) -> PyResult<rocking_stones::dynamics::resting::PerturbParams> {
-    use rocking_stones::dynamics::resting::{PerturbParams, RestingPreset};
+) -> PyResult<rocking_stones::dynamics::resting::RestingParams> {
+    use rocking_stones::dynamics::resting::{RestingParams, RestingPreset};
     let preset: RestingPreset = preset.unwrap_or("surface").parse().map_err(py_err)?;
     let surface: Surface = surface.map_or(Ok(default_surface), str::parse).map_err(py_err)?;
-    let base = PerturbParams::of(preset, surface, r_max_m).map_err(py_err)?;
-    let p: PerturbParams = with_params(what, &base, params)?;
+    let base = RestingParams::of(preset, surface, r_max_m).map_err(py_err)?;
+    let p: RestingParams = with_params(what, &base, params)?;
     p.check().map_err(py_err)?;
     Ok(p)
 }
@@ -167,7 +167,7 @@ pub(crate) fn perturb(
     progress: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyDynamicsResult> {
-    use rocking_stones::dynamics::pushes::perturb::{self as pt, PerturbConfig};
+    use rocking_stones::dynamics::pushes::{self as pt, PerturbConfig};
     if !(eps_min > 0.0 && eps_max >= eps_min && eps_steps > 0) {
         return Err(PyValueError::new_err("need 0 < eps_min ≤ eps_max and eps_steps ≥ 1"));
     }
@@ -175,7 +175,7 @@ pub(crate) fn perturb(
     let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
     let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
     let params = resting_params("perturb", preset, surface, Surface::StoneOnStone, real.r_max_m, params)?;
-    let params = rocking_stones::dynamics::resting::PerturbParams { certificate, ..params };
+    let params = rocking_stones::dynamics::resting::RestingParams { certificate, ..params };
     let cfg = PerturbConfig {
         params,
         family: enum_from_str("family", family, "'push', 'spin'")?,

@@ -7,7 +7,7 @@ use pyo3::types::PyDict;
 use serde::Serialize;
 
 /// `base` with the fields named in `params` replaced: the keyword arguments map to the serde
-/// fields of the parameter struct (nested structs are searched too, e.g. `PerturbParams.sim`), so
+/// fields of the parameter struct (nested structs are searched too, e.g. `RestingParams.sim`), so
 /// the binding follows the library's structs without a list of its own.
 pub(crate) fn with_params<T: Serialize + serde::de::DeserializeOwned>(
     what: &str,

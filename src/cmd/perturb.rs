@@ -4,8 +4,8 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
-use rocking_stones::dynamics::pushes::perturb::{self, Family, PerturbConfig};
-use rocking_stones::dynamics::resting::{PerturbParams, RestingPreset};
+use rocking_stones::dynamics::pushes::{self, Family, PerturbConfig};
+use rocking_stones::dynamics::resting::{RestingParams, RestingPreset};
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_UNIT};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
@@ -82,9 +82,9 @@ impl SimArgs {
 
     /// The parameters of the run for a stone of real size `size`, the surface defaulting to
     /// `default_surface`, with every override given.
-    pub fn params(&self, size: &RealSize, default_surface: Surface) -> Result<PerturbParams> {
+    pub fn params(&self, size: &RealSize, default_surface: Surface) -> Result<RestingParams> {
         let surface = self.surface.unwrap_or(default_surface);
-        let mut p = PerturbParams::of(self.preset, surface, size.r_max_m)?;
+        let mut p = RestingParams::of(self.preset, surface, size.r_max_m)?;
         let sim = &mut p.sim;
         sim.contact.friction = self.friction.unwrap_or(sim.contact.friction);
         sim.contact.restitution = self.restitution.unwrap_or(sim.contact.restitution);
@@ -170,7 +170,7 @@ pub fn run_perturb(args: Args) -> Result<()> {
     let size = args.sim.real_size(&stone, &name)?;
     let params = args.sim.params(&size, Surface::StoneOnStone)?;
     let cfg = PerturbConfig {
-        params: PerturbParams { certificate: args.certificate, ..params },
+        params: RestingParams { certificate: args.certificate, ..params },
         family: args.family,
         epsilons: log_grid(args.eps_min, args.eps_max, GridSize::Points(args.eps_steps)),
         trials: args.trials,
@@ -179,10 +179,10 @@ pub fn run_perturb(args: Args) -> Result<()> {
     };
     cfg.check()?;
     let starts = stone.select(&args.equilibria, args.flock)?;
-    let bar = super::progress_bar(perturb::task_count(starts.len(), &cfg), "trials");
-    let report = perturb::perturb_equilibria_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
+    let bar = super::progress_bar(pushes::task_count(starts.len(), &cfg), "trials");
+    let report = pushes::perturb_equilibria_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let report = perturb::PerturbReport { r_max_m: Some(size.r_max_m), size_assumed: Some(size.assumed()), ..report };
+    let report = pushes::PerturbReport { r_max_m: Some(size.r_max_m), size_assumed: Some(size.assumed()), ..report };
     super::emit(
         &report,
         args.json,

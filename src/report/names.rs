@@ -6,7 +6,7 @@
 
 use crate::dynamics::certificate::CertificateMode;
 use crate::dynamics::drops::params::SpinDistribution;
-use crate::dynamics::pushes::perturb::Family;
+use crate::dynamics::pushes::Family;
 use crate::dynamics::resting::outcome::Outcome;
 use crate::dynamics::stone::Class;
 use crate::equilibria::Kind;

@@ -1,8 +1,8 @@
-//! What a person reads of a perturbation run ([`crate::dynamics::pushes::perturb`]): the summary, the
+//! What a person reads of a perturbation run ([`crate::dynamics::pushes`]): the summary, the
 //! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
 
 use super::{short_name, write_json, Folder};
-use crate::dynamics::pushes::perturb::{PerturbReport, Trial};
+use crate::dynamics::pushes::{PerturbReport, Trial};
 use crate::dynamics::resting::outcome::{CurvePoint, Threshold};
 use crate::dynamics::stone::Class;
 use crate::plot::{colors, draw_legend, legend_height, log_tick, plain, render, style, DrawResult, Mark, FONT_FAMILY};
@@ -27,7 +27,7 @@ fn fmt_eps(x: f64) -> String {
 
 /// One line that says which contact a resting run used (`dynamics::resting`), its step and cap
 /// as multiples of √(R_max/g) and, for a stone of real R_max `r_max_m` metres, in seconds.
-pub fn contact_line(p: &crate::dynamics::resting::PerturbParams, r_max_m: Option<f64>) -> String {
+pub fn contact_line(p: &crate::dynamics::resting::RestingParams, r_max_m: Option<f64>) -> String {
     use super::names::number;
     let at = super::drops::Scaled { r_max_m };
     let c = &p.sim;

@@ -298,6 +298,20 @@ mod tests {
     }
 
     #[test]
+    fn a_run_from_rest_has_the_contact_of_a_drop_and_its_own_numerics() {
+        use crate::dynamics::resting::{RestingParams, RESTING_DT};
+        for s in Surface::ALL {
+            let (drop, rest) =
+                (Preset::Drop.params_at_size(s, 0.3).unwrap(), RestingParams::on_surface(s, 0.3).unwrap());
+            assert_eq!(rest.sim.contact, drop.sim.contact);
+            assert_eq!(rest.sim.numerics.solver_iterations, drop.sim.numerics.solver_iterations);
+            assert_eq!(rest.sim.numerics.dt, RESTING_DT);
+            assert_ne!(rest.sim.numerics.dt, drop.sim.numerics.dt);
+        }
+        assert!(RestingParams::on_surface(Surface::StoneOnStone, -1.0).is_err());
+    }
+
+    #[test]
     fn nonsense_parameters_are_refused_with_their_name() {
         let name = |f: &dyn Fn(&mut DropParams)| {
             let mut p = DropParams::default();

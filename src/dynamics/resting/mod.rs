@@ -4,7 +4,7 @@
 //!
 //! The stone is placed with its facet F on the ground (the orientation maps F's outward normal
 //! to −z, with no turn about the vertical), G at height R_F above the ground, zero velocity, and
-//! left to settle for [`PerturbParams::settle_time`] so that the soft contacts take their load
+//! left to settle for [`RestingParams::settle_time`] so that the soft contacts take their load
 //! ([`resting_simulation`]). [`check_rest`] holds it there longer, undisturbed, and says whether
 //! it stays.
 //!
@@ -14,14 +14,13 @@
 //! and validated with ([`crate::dynamics::engine::world`]): Coulomb friction and restitution of a surface pair
 //! ([`Surface`]), and rolling resistance and torsional friction *through the contact* with the
 //! pair's physical lever arm δ divided by the stone's real size R_max — no global damping, which
-//! would also slow a stone that rocks freely or flies. [`PerturbParams::on_surface`] builds them;
+//! would also slow a stone that rocks freely or flies. [`RestingParams::on_surface`] builds them;
 //! the size enters only through δ / R_max (every other group is Froude-invariant, see
 //! [`crate::dynamics::drops::params`]). The overdamped contact the perturbation results were first computed with
 //! (global angular damping 1 s⁻¹ on the scaled body, no rolling resistance) survives only as the
-//! explicitly named reference [`RestingPreset::Damped`] ([`PerturbParams::damped`]).
+//! explicitly named reference [`RestingPreset::Damped`] ([`RestingParams::damped`]).
 
-use crate::dynamics::drops::params::Preset;
-use crate::dynamics::engine::params::{ContactParams, Flight, FlightParams, Numerics, RunParams};
+use crate::dynamics::engine::params::{ContactParams, Flight, FlightParams, Numerics, RestParams, RunParams};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::stone::{resting_orientation, Class, StableEquilibrium, Stone};
 use crate::dynamics::surface::Surface;
@@ -33,7 +32,7 @@ use std::fmt;
 use std::str::FromStr;
 
 /// Default natural frequency (Hz) of the contacts of resting runs; see
-/// [`PerturbParams::contact_frequency`].
+/// [`RestingParams::contact_frequency`].
 pub const CONTACT_FREQUENCY: f64 = 120.0;
 
 /// Time step (s, of the scaled body) of every run that starts at rest: its own, not the drop
@@ -46,11 +45,11 @@ pub const RESTING_DT: f64 = crate::dynamics::engine::params::REFERENCE_DT;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RestingPreset {
-    /// The contact of a surface pair at the stone's real size ([`PerturbParams::on_surface`]):
+    /// The contact of a surface pair at the stone's real size ([`RestingParams::on_surface`]):
     /// the physics of drops and field rocks. The default.
     #[default]
     Surface,
-    /// The overdamped reference ([`PerturbParams::damped`]): friction 0.6, restitution 0.2,
+    /// The overdamped reference ([`RestingParams::damped`]): friction 0.6, restitution 0.2,
     /// global damping 0.1 s⁻¹ linear and 1 s⁻¹ angular on the scaled body, no rolling
     /// resistance — what the perturbation and shaking results were computed with before they
     /// moved to the surface contact (`results/one_physics/`); kept to compare with them, never a
@@ -89,14 +88,14 @@ impl FromStr for RestingPreset {
 
 /// Parameters of runs that start at rest on a stable micro-equilibrium: pushes, spins, ground
 /// shaking and field rocks. Every field documents its default, which is
-/// [`PerturbParams::on_surface`]`(`[`Surface::StoneOnStone`]`, 1 m)`.
+/// [`RestingParams::on_surface`]`(`[`Surface::StoneOnStone`]`, 1 m)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct PerturbParams {
-    /// Contact, time step, time cap, rest thresholds and flight. Default: the
-    /// [`Preset::Drop`] numerics on the surface pair at the stone's real size (friction,
-    /// restitution, rolling resistance and torsional friction δ / R_max, no global damping),
-    /// dt 1/240 s, a cap of 20 s (scaled) after the perturbation or the motion, rest held for
-    /// 0.5 s.
+pub struct RestingParams {
+    /// Contact, time step, time cap, rest thresholds and flight. Default: the surface pair's
+    /// contact at the stone's real size (friction, restitution, rolling resistance and torsional
+    /// friction δ / R_max, no global damping, as a drop's), dt 1/240 s, 4 solver iterations, a
+    /// cap of 20 s (scaled) after the perturbation or the motion, rest by the drops' speeds held
+    /// for 0.5 s, impacts sub-stepped.
     pub sim: RunParams,
     /// Settling time (s, scaled) on the equilibrium before the perturbation. Default 0.25 s.
     pub settle_time: f64,
@@ -127,25 +126,33 @@ pub const RESTING_MAX_TIME: f64 = 20.0;
 /// field rocks) must stay still this long.
 pub const RESTING_REST_TIME: f64 = 0.5;
 
-impl Default for PerturbParams {
+impl Default for RestingParams {
     fn default() -> Self {
         Self::on_surface(Surface::StoneOnStone, 1.0).expect("1 m is a valid size")
     }
 }
 
-impl PerturbParams {
+impl RestingParams {
     /// The contact of `surface` for a stone of real size R_max = `r_max_m` metres (module docs):
-    /// [`Preset::Drop`]'s contact at that size with the numerics of resting runs pinned
+    /// the pair's contact at that size, as a drop's
+    /// ([`crate::dynamics::surface::Surface::scaled`], no global damping), with the numerics of
+    /// resting runs
     /// ([`RESTING_DT`], impacts sub-stepped: [`Flight::Free`]), a cap of [`RESTING_MAX_TIME`],
     /// rest held for [`RESTING_REST_TIME`], contacts at [`CONTACT_FREQUENCY`]. A size that is not
     /// a positive finite length is refused.
-    pub fn on_surface(surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
-        let mut sim = Preset::Drop.params_at_size(surface, r_max_m)?.sim;
-        sim.numerics.dt = RESTING_DT;
-        sim.flight.mode = Flight::Free;
-        sim.numerics.max_time = RESTING_MAX_TIME;
-        sim.rest.rest_time = RESTING_REST_TIME;
-        Ok(PerturbParams {
+    pub fn on_surface(surface: Surface, r_max_m: f64) -> Result<RestingParams> {
+        if !(r_max_m > 0.0 && r_max_m.is_finite()) {
+            return Err(Error::parameter("size", r_max_m, "a positive length in metres (R_max)"));
+        }
+        let mut contact = ContactParams::default();
+        surface.scaled(&mut contact, r_max_m);
+        let sim = RunParams {
+            contact,
+            numerics: Numerics { dt: RESTING_DT, max_time: RESTING_MAX_TIME, ..Numerics::default() },
+            rest: RestParams { rest_time: RESTING_REST_TIME, ..RestParams::default() },
+            flight: FlightParams { mode: Flight::Free, strict_impacts: false },
+        };
+        Ok(RestingParams {
             sim,
             settle_time: 0.25,
             hold_time: 1.0,
@@ -158,7 +165,7 @@ impl PerturbParams {
     /// 0.2, global damping 0.1 s⁻¹ linear and 1 s⁻¹ angular standing in for rolling resistance,
     /// no rolling resistance, dt 1/240 s, cap 20 s, rest by speeds held 0.25 s. Independent of
     /// size (the damping rates are those of the scaled body).
-    pub fn damped() -> PerturbParams {
+    pub fn damped() -> RestingParams {
         let defaults = RunParams::default();
         let sim = RunParams {
             contact: ContactParams {
@@ -174,7 +181,7 @@ impl PerturbParams {
             // The old numerics with the old contact: rapier's own steps, impacts not sub-stepped.
             flight: FlightParams { mode: Flight::Rapier, ..defaults.flight },
         };
-        PerturbParams {
+        RestingParams {
             sim,
             settle_time: 0.25,
             hold_time: 1.0,
@@ -183,9 +190,9 @@ impl PerturbParams {
         }
     }
 
-    /// The parameters of `preset`: [`PerturbParams::on_surface`] or [`PerturbParams::damped`]
+    /// The parameters of `preset`: [`RestingParams::on_surface`] or [`RestingParams::damped`]
     /// (which ignores the surface and the size).
-    pub fn of(preset: RestingPreset, surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
+    pub fn of(preset: RestingPreset, surface: Surface, r_max_m: f64) -> Result<RestingParams> {
         match preset {
             RestingPreset::Surface => Self::on_surface(surface, r_max_m),
             RestingPreset::Damped => Ok(Self::damped()),
@@ -213,7 +220,7 @@ impl PerturbParams {
 /// and the rocking one with the highest barrier out of its basin (the most convincingly
 /// balanced rocking position), each among those that stay at rest (checked with `p`). Either
 /// may be missing.
-pub fn default_pair(stone: &Stone, p: &PerturbParams) -> (Option<usize>, Option<usize>) {
+pub fn default_pair(stone: &Stone, p: &RestingParams) -> (Option<usize>, Option<usize>) {
     let stable = stone.stable();
     let pick = |class: Class, key: &dyn Fn(&StableEquilibrium) -> f64| {
         let mut order: Vec<usize> = (0..stable.len()).filter(|&i| stable[i].class == class).collect();
@@ -242,7 +249,7 @@ pub struct SettleCheck {
 
 /// A new simulation with the stone at rest on stable micro-equilibrium `eq` (position in
 /// [`Stone::stable`]), after `time` seconds of settling.
-pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &PerturbParams, time: f64) -> Simulation<'a> {
+pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &RestingParams, time: f64) -> Simulation<'a> {
     let s = &stone.stable()[eq];
     let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
     let mut sim = Simulation::new(&stone.body, &p.sim, &q, s.r_normalised, &Vec3::zeros(), &Vec3::zeros());
@@ -252,7 +259,7 @@ pub fn resting_simulation<'a>(stone: &'a Stone, eq: usize, p: &PerturbParams, ti
 }
 
 /// Put the stone on `eq`, let it settle and hold, and check that it stays.
-pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
+pub fn check_rest(stone: &Stone, eq: usize, p: &RestingParams) -> SettleCheck {
     let s = &stone.stable()[eq];
     let sim = resting_simulation(stone, eq, p, p.settle_time + p.hold_time);
     let st = sim.state();
@@ -279,7 +286,7 @@ pub fn check_rest(stone: &Stone, eq: usize, p: &PerturbParams) -> SettleCheck {
 pub fn grid_trials<T: Send>(
     stone: &Stone,
     starts: &[usize],
-    p: &PerturbParams,
+    p: &RestingParams,
     points: usize,
     trials: u32,
     monitor: &dyn Monitor,

@@ -26,7 +26,7 @@
 use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, Drive, NoCertificate, RunEnd};
 use crate::dynamics::engine::world::Simulation;
-use crate::dynamics::resting::PerturbParams;
+use crate::dynamics::resting::RestingParams;
 use crate::dynamics::stone::Stone;
 use crate::ground_motion::Record;
 use crate::Vec3;
@@ -90,7 +90,7 @@ pub struct Placed<'a> {
 impl<'a> Placed<'a> {
     /// The stone exactly at rest on stable micro-equilibrium `start` (position in
     /// [`Stone::stable`]), settled for `p.settle_time` ([`crate::dynamics::resting`]).
-    pub fn on(stone: &'a Stone, start: usize, p: &PerturbParams) -> Self {
+    pub fn on(stone: &'a Stone, start: usize, p: &RestingParams) -> Self {
         let sim = crate::dynamics::resting::resting_simulation(stone, start, p, p.settle_time);
         let n = stone.body.facet_normals[stone.stable()[start].facet as usize];
         let settling_tilt = n.dot(&sim.state().down).clamp(-1.0, 1.0).acos();
@@ -122,7 +122,7 @@ pub struct Shaken {
 pub fn shake_placed(
     stone: &Stone,
     placed: Placed,
-    p: &PerturbParams,
+    p: &RestingParams,
     record: &Record,
     azimuth: f64,
     r_max_m: f64,

@@ -18,7 +18,7 @@
 use crate::dynamics::engine::convert;
 use crate::dynamics::engine::run::Drive;
 use crate::dynamics::engine::world::Simulation;
-use crate::dynamics::resting::{resting_simulation, PerturbParams};
+use crate::dynamics::resting::{resting_simulation, RestingParams};
 use crate::dynamics::shaking::drive::GroundDrive;
 use crate::dynamics::stone::{resting_orientation, Stone};
 use crate::ground_motion::Record;
@@ -37,7 +37,7 @@ use serde::Serialize;
 pub fn ramp_tipping(
     stone: &Stone,
     start: usize,
-    p: &PerturbParams,
+    p: &RestingParams,
     azimuth: f64,
     rate: f64,
     tilt: f64,
@@ -94,7 +94,7 @@ pub struct HalfCycle {
 pub fn free_rocking(
     stone: &Stone,
     start: usize,
-    p: &PerturbParams,
+    p: &RestingParams,
     b: f64,
     h: f64,
     theta0: f64,

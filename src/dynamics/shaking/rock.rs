@@ -18,7 +18,7 @@ use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use crate::dynamics::engine::world::Simulation;
 use crate::dynamics::resting::outcome::{classify, Outcome};
-use crate::dynamics::resting::PerturbParams;
+use crate::dynamics::resting::RestingParams;
 use crate::dynamics::shaking::drive::{shake_placed, Placed};
 use crate::dynamics::stone::Stone;
 use crate::dynamics::surface::Surface;
@@ -148,7 +148,7 @@ fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32,
 ///   without motion until it rests ([`PositionRest`](crate::dynamics::engine::rest::PositionRest) of `p.sim`, at most
 ///   `p.sim.max_time`). It must rest on the micro-equilibrium the quasi-static descent of h from
 ///   d reaches ([`Stone::rest`]), else the pose is refused.
-pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &PerturbParams) -> Result<Placed<'a>> {
+pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &RestingParams) -> Result<Placed<'a>> {
     let q = match *pose {
         Pose::Facet { id } => {
             let start = stone.position(id).ok_or_else(|| {
@@ -231,7 +231,7 @@ pub struct RockRun {
 pub fn shake_record(
     stone: &Stone,
     placed: Placed,
-    p: &PerturbParams,
+    p: &RestingParams,
     record: &Record,
     azimuth: f64,
     r_max_m: f64,
@@ -261,11 +261,11 @@ pub fn shake_record(
 }
 
 /// Shaking parameters of a rock at true size R_max = `r_max_m` on `surface`: the contact of every
-/// resting run, [`PerturbParams::on_surface`] (the surface pair's friction, restitution and
+/// resting run, [`RestingParams::on_surface`] (the surface pair's friction, restitution and
 /// rolling-resistance length at that size, 120 Hz contacts, dt 1/240 s, a 20 s cap after the
 /// motion, rest windows of 0.5 s).
-pub fn rock_params(surface: Surface, r_max_m: f64) -> Result<PerturbParams> {
-    PerturbParams::on_surface(surface, r_max_m)
+pub fn rock_params(surface: Surface, r_max_m: f64) -> Result<RestingParams> {
+    RestingParams::on_surface(surface, r_max_m)
 }
 
 /// A field rock and how it is shaken: everything of a run but the record.
@@ -285,7 +285,7 @@ pub struct RockSetup {
     /// Azimuth (rad, world frame) of the records' x axis.
     pub azimuth: f64,
     /// Simulation parameters (scaled frame, see [`shake_record`]).
-    pub params: PerturbParams,
+    pub params: RestingParams,
 }
 
 impl RockSetup {
@@ -309,7 +309,7 @@ impl RockSetup {
         pose: Pose,
         length_unit_m: f64,
         azimuth: f64,
-        params: PerturbParams,
+        params: RestingParams,
     ) -> RockSetup {
         let r_max_m = stone.body.r_max * length_unit_m;
         RockSetup { pose, length_unit_m, r_max_m, size_assumed: None, azimuth, params }

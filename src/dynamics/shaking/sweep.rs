@@ -12,7 +12,7 @@
 //! intervals and the PGA₅₀ interpolated linearly.
 
 use crate::dynamics::resting::outcome::{classify, Curve, CurvePoint, Outcome, Threshold};
-use crate::dynamics::resting::{grid_trials, PerturbParams, SettleCheck};
+use crate::dynamics::resting::{grid_trials, RestingParams, SettleCheck};
 use crate::dynamics::shaking::drive::{shake_placed, Placed};
 use crate::dynamics::shaking::rock::driven;
 use crate::dynamics::stone::{StableEquilibrium, Stone};
@@ -101,7 +101,7 @@ pub fn pgas_for(motion: &Record, pga_max: Option<f64>, steps: usize, default_swe
 /// The stable micro-equilibria a sweep shakes by default: the deepest regular one and the
 /// rocking one with the highest basin barrier that stay at rest
 /// ([`crate::dynamics::resting::default_pair`]); an error if none does.
-pub fn default_starts(stone: &Stone, p: &PerturbParams) -> Result<Vec<usize>> {
+pub fn default_starts(stone: &Stone, p: &RestingParams) -> Result<Vec<usize>> {
     let (regular, rocking) = crate::dynamics::resting::default_pair(stone, p);
     let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
     if v.is_empty() {
@@ -117,7 +117,7 @@ pub fn default_starts(stone: &Stone, p: &PerturbParams) -> Result<Vec<usize>> {
 pub fn shake_trial(
     stone: &Stone,
     start: usize,
-    p: &PerturbParams,
+    p: &RestingParams,
     record: &Record,
     pga: f64,
     r_max_m: f64,
@@ -153,7 +153,7 @@ pub fn shake_stream(start: usize, trial: u32) -> u64 {
 #[derive(Clone, Debug)]
 pub struct ShakeConfig {
     /// Simulation parameters.
-    pub params: PerturbParams,
+    pub params: RestingParams,
     /// The motion's shape (real time, SI); it is scaled to each PGA of the grid.
     pub motion: Record,
     /// Increasing grid of peak ground accelerations (g).
@@ -241,7 +241,7 @@ pub struct ShakeReport {
     /// Resolution ν of the flocks.
     pub nu: f64,
     /// Simulation parameters.
-    pub params: PerturbParams,
+    pub params: RestingParams,
     /// Real size of the stone, R_max in metres.
     pub r_max_m: f64,
     /// Whether that size was assumed, the mesh's unit being neither given nor known: set by the
