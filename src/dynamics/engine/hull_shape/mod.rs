@@ -358,11 +358,6 @@ impl HullShape {
         self.normals.len()
     }
 
-    /// Number of edges.
-    pub fn num_edges(&self) -> usize {
-        self.edges.len()
-    }
-
     /// The corners in the body frame (index = corner index of the polyhedron).
     pub fn points(&self) -> &[Vector] {
         &self.points

@@ -1,0 +1,302 @@
+//! How likely is a field rock to topple: an ensemble of runs over what is not known
+//! about the rock, its pose and the record, instead of one yes or no.
+//!
+//! # The uncertain inputs ([`Uncertainty`])
+//!
+//! Each is a range [low, high] that every member draws from uniformly and independently, or
+//! absent (`None`): then every member keeps the setup's value.
+//!
+//! * **Base contact** τ (metres): which scanned points of the base carry load. A scan resolves a
+//!   few mm, and the ground under a rock is no flatter; a hull corner within τ of the plane of
+//!   the facet the rock stands on may touch. The member's collider is the scanned hull with those
+//!   corners moved onto that plane ([`crate::dynamics::engine::body::Body::flattened`]): its support
+//!   polygon is exactly the quasi-static one of [`crate::tipping::TippingPolar`] at tolerance τ.
+//!   The pose, the mass, G and the inertia are the scan's; only where it can be supported
+//!   changes. τ = 0 is the scanned hull.
+//! * **Azimuth** of the record's x axis (degrees, world frame): `[0, 360]` when unknown.
+//! * **Sign** of the record: a one-component record's polarity, or which way a fault pulse
+//!   points, is often not known; a member flips every component with probability ½.
+//! * **Friction, restitution, rolling resistance** (δ in metres, also the torsional-friction
+//!   length as in [`crate::dynamics::surface::Surface::scaled`]): by default the surface pair's
+//!   ranges ([`crate::dynamics::surface::Surface::ranges`]).
+//!
+//! Member m draws its inputs from the stream (seed, m) in a fixed order, all six always drawn, so
+//! a member is the same possible rock for every record, scale factor, thread count and ensemble
+//! size (common random numbers: member m of a 64-member ensemble is member m of a 16-member one).
+//!
+//! # What it returns ([`Ensemble`])
+//!
+//! Every member's inputs and outcome; P(overturn) = k/n over the members that came to rest
+//! (those still moving at the time cap are counted apart, as in the fragility fit), with its
+//! Wilson 95 % interval; and per uncertain input its association with overturning
+//! ([`Sensitivity`]): Spearman's rank correlation with the 0/1 outcome (average ranks for
+//! ties), or for an azimuth that ranges over the whole circle Mardia's circular–linear
+//! correlation R ∈ [0, 1] (Mardia 1976, Biometrika 63, 403; Fisher 1993, *Statistical analysis of
+//! circular data* §6.2.3), since a rank of an angle has no meaning.
+//!
+//! # The one run to set beside it
+//!
+//! [`Uncertainty::nominal`]: every uncertain input at a central value (the middle of the base
+//! contact's range, the surface pair's nominal contact), not the rock as given, which stands on
+//! the scanned hull — the end of the base-contact range that tips most easily. How the ensemble's
+//! P scores against both, on simulated truths, is in `results/ensemble_fragility/`.
+
+pub mod sensitivity;
+pub mod uncertainty;
+
+pub use sensitivity::{circular_linear, sensitivities, spearman, Probability, Sensitivity};
+pub use uncertainty::{draw, Draw, Uncertainty};
+
+use crate::dynamics::shaking::rock::{place, shake_record, RockRun, RockSetup};
+use crate::dynamics::stone::Stone;
+use crate::ground_motion::Record;
+use crate::monitor::{self, Monitor};
+use crate::tipping::{TippingPolar, TippingSummary};
+use crate::{Error, Point3, Result, Vec3};
+use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
+
+/// One member: its inputs and its run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Member {
+    /// The inputs it was run with.
+    pub draw: Draw,
+    /// Its outcome.
+    pub run: RockRun,
+}
+
+/// The facet the rock of `setup` stands on before any motion: the pose's facet, or the one the
+/// quasi-static descent from its down direction reaches (what [`place`] requires).
+pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
+    use crate::dynamics::shaking::rock::Pose;
+    let q = match setup.pose {
+        Pose::Facet { id } => {
+            return stone.stable().iter().find(|s| s.index == id).map(|s| s.facet).ok_or_else(|| {
+                Error::Usage(format!(
+                    "facet:{id} is not the index of a stable micro-equilibrium{}",
+                    stone.facet_hint(id)
+                ))
+            })
+        }
+        Pose::AsScanned => nalgebra::UnitQuaternion::identity(),
+        Pose::Quat { q } => {
+            nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]))
+        }
+    };
+    Ok(stone.rest(&(q.inverse() * -Vec3::z())).facet)
+}
+
+/// Run member `member` of the ensemble `u` (seed `seed`) on `motion` (already scaled and
+/// sampled for the run, [`crate::dynamics::shaking::rock::driven`]): the rock's base contact, contact and the
+/// record's azimuth and sign as drawn; where an input is not uncertain, exactly the setup's
+/// single run ([`crate::dynamics::shaking::records::run_record`]).
+pub fn run_member(
+    stone: &Stone,
+    setup: &RockSetup,
+    motion: &Record,
+    u: &Uncertainty,
+    seed: u64,
+    member: u64,
+) -> Result<Member> {
+    let d = draw(u, setup, seed, member);
+    let mut p = setup.params.clone();
+    if u.friction.is_some() {
+        p.sim.contact.friction = d.friction;
+    }
+    if u.restitution.is_some() {
+        p.sim.contact.restitution = d.restitution;
+    }
+    if u.rolling_resistance_m.is_some() {
+        p.sim.contact.rolling_resistance = d.rolling_resistance_m / setup.r_max_m;
+        p.sim.contact.torsional_friction = d.rolling_resistance_m / setup.r_max_m;
+    }
+    let rock: Cow<Stone> = match d.contact_tolerance_m > 0.0 {
+        true => Cow::Owned(stone.with_base_contact(base_facet(stone, setup)?, d.contact_tolerance_m / setup.r_max_m)?),
+        false => Cow::Borrowed(stone),
+    };
+    let motion: Cow<Record> = if d.sign < 0.0 { Cow::Owned(motion.scaled(-1.0)) } else { Cow::Borrowed(motion) };
+    let azimuth = if u.azimuth_deg.is_some() { d.azimuth_deg.to_radians() } else { setup.azimuth };
+    let placed = place(&rock, &setup.pose, &p).map_err(|e| Error::Usage(format!("ensemble member {member}: {e}")))?;
+    let run = RockRun {
+        size_assumed: setup.size_assumed,
+        ..shake_record(&rock, placed, &p, &motion, azimuth, setup.r_max_m)
+    };
+    Ok(Member { draw: d, run })
+}
+
+/// One record × scale factor under an ensemble.
+#[derive(Clone, Debug, Serialize)]
+pub struct Ensemble {
+    /// Name of the record.
+    pub record: String,
+    /// Scale factor applied to it.
+    pub scale: f64,
+    /// Peak horizontal ground acceleration of the scaled record (g).
+    pub pga_g: f64,
+    /// Peak horizontal ground velocity (m/s).
+    pub pgv_m_s: f64,
+    /// PGV/PGA (s).
+    pub pgv_over_pga_s: f64,
+    /// Peak vertical ground acceleration (g).
+    pub pga_vertical_g: f64,
+    /// Whether the rock's size was assumed ([`RockSetup::size_assumed`]; each member's run says
+    /// its R_max).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size_assumed: Option<bool>,
+    /// Seed of the members' draws.
+    pub seed: u64,
+    /// What was uncertain.
+    pub uncertainty: Uncertainty,
+    /// P(overturn) with its interval.
+    pub probability: Probability,
+    /// How strongly each uncertain input goes with overturning.
+    pub sensitivity: Vec<Sensitivity>,
+    /// The quasi-static tipping polar of the pose at base-contact tolerance 0 and at the ends of
+    /// its range ([`quasi_static`]).
+    pub tipping: Vec<TippingSummary>,
+    /// Every member, in member order.
+    pub members: Vec<Member>,
+}
+
+/// Run the members of the ensemble `e` of the rock of `setup` under `record` × `scale`, in
+/// parallel (rayon; each member is independent and deterministic, so the result does not depend
+/// on the thread count); `monitor` hears of each finished member and may stop the run
+/// ([`crate::monitor`]: the members not started are skipped, [`Error::Cancelled`]).
+pub fn run_ensemble(
+    stone: &Stone,
+    setup: &RockSetup,
+    record: &Record,
+    scale: f64,
+    e: &EnsembleSpec,
+    monitor: &dyn Monitor,
+) -> Result<Ensemble> {
+    use rayon::prelude::*;
+    e.check()?;
+    let (u, seed, n) = (&e.uncertainty, e.seed, e.members);
+    let (m, motion) = crate::dynamics::shaking::rock::scaled_motion(record, scale, setup)?;
+    let members: Vec<Option<Result<Member>>> = (0..n)
+        .into_par_iter()
+        .map(|k| monitor::item(monitor, || run_member(stone, setup, &motion, u, seed, k)))
+        .collect();
+    let members: Vec<Member> = monitor::all(members)?.into_iter().collect::<Result<_>>()?;
+    Ok(Ensemble {
+        record: record.name.clone(),
+        scale,
+        pga_g: m.pga_g,
+        pgv_m_s: m.pgv_m_s,
+        pgv_over_pga_s: m.pgv_over_pga_s,
+        pga_vertical_g: m.pga_vertical_g,
+        size_assumed: setup.size_assumed,
+        seed,
+        uncertainty: u.clone(),
+        probability: Probability::of(members.iter().map(|m| &m.run)),
+        sensitivity: sensitivities(u, &members),
+        tipping: quasi_static(stone, setup, u)?,
+        members,
+    })
+}
+
+/// The quasi-static side of the rock of `setup`: its support polygon and
+/// tipping acceleration tan α against azimuth ([`crate::tipping`]) on the facet it stands on
+/// ([`base_facet`]), at base-contact tolerance 0 and at each end of `u`'s range.
+pub fn quasi_static(stone: &Stone, setup: &RockSetup, u: &Uncertainty) -> Result<Vec<TippingSummary>> {
+    let facet = base_facet(stone, setup)?;
+    let down = stone.body.facet_normals[facet as usize];
+    let corners: Vec<Point3> = stone.body.corners.iter().map(|c| Point3::from(c * stone.body.r_max)).collect();
+    let mut tolerances_m = vec![0.0];
+    for t in u.contact_tolerance_m.into_iter().flatten() {
+        if !tolerances_m.contains(&t) {
+            tolerances_m.push(t);
+        }
+    }
+    let unit = setup.length_unit_m;
+    tolerances_m
+        .iter()
+        .map(|&t| Ok(TippingPolar::new(&corners, &Point3::origin(), &down, t / unit)?.summary(t, unit)))
+        .collect()
+}
+
+/// An ensemble as a batch runs it: what is uncertain, the seed of the draws and the number of
+/// members run for every record × scale factor.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EnsembleSpec {
+    /// What is uncertain.
+    pub uncertainty: Uncertainty,
+    /// Seed of the members' draws.
+    pub seed: u64,
+    /// Members per record × scale factor (≥ 1).
+    pub members: u64,
+}
+
+impl EnsembleSpec {
+    /// The nominal member of this ensemble ([`Uncertainty::nominal`]) as an ensemble of one:
+    /// member 0, with the same seed.
+    pub fn nominal(&self, setup: &RockSetup) -> EnsembleSpec {
+        EnsembleSpec { uncertainty: self.uncertainty.nominal(setup), seed: self.seed, members: 1 }
+    }
+
+    /// The ranges are valid and there is at least one member.
+    pub fn check(&self) -> Result<()> {
+        if self.members == 0 {
+            return Err(Error::parameter("ensemble", 0, "at least one member"));
+        }
+        self.uncertainty.check()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::surface::Surface;
+
+    #[test]
+    fn the_nominal_member_is_central_on_every_input() {
+        use crate::dynamics::shaking::rock::{rock_params, Pose};
+        let r_max_m = 0.13;
+        let params = rock_params(Surface::RockOnConcrete, r_max_m).unwrap();
+        let setup =
+            RockSetup { pose: Pose::AsScanned, length_unit_m: 1.0, r_max_m, azimuth: 0.3, params, size_assumed: None };
+        let field = Uncertainty {
+            contact_tolerance_m: Some([0.0, 0.002]),
+            azimuth_deg: Some([0.0, 360.0]),
+            random_sign: true,
+            ..Uncertainty::of_surface(Surface::RockOnConcrete)
+        };
+        let n = field.nominal(&setup);
+        n.check().unwrap();
+        // Every member of the nominal ensemble is the same rock, whatever its stream.
+        let d = draw(&n, &setup, 24, 0);
+        assert_eq!(Draw { member: 0, ..draw(&n, &setup, 7, 5) }, d);
+        assert_eq!(d.contact_tolerance_m, 0.001);
+        assert_eq!((d.azimuth_deg, d.sign), (0.3f64.to_degrees(), 1.0));
+        // Rock on concrete: μ 0.6 in [0.5, 0.7], e 0.3 in [0.2, 0.5], δ 0.1 mm in [0.05, 0.2] mm.
+        assert_eq!((d.friction, d.restitution), (0.6, 0.3));
+        assert!((d.rolling_resistance_m - 1e-4).abs() < 1e-15, "{}", d.rolling_resistance_m);
+        // A partial azimuth range and ranges that leave the pair's value out: their middles.
+        let user = Uncertainty {
+            azimuth_deg: Some([10.0, 50.0]),
+            friction: Some([0.3, 0.5]),
+            restitution: Some([0.4, 0.6]),
+            ..Uncertainty::default()
+        };
+        let d = draw(&user.nominal(&setup), &setup, 24, 0);
+        assert_eq!((d.azimuth_deg, d.friction, d.restitution), (30.0, 0.4, 0.5));
+        // Inputs that are not uncertain stay the setup's.
+        assert_eq!(
+            (d.contact_tolerance_m, d.rolling_resistance_m),
+            (0.0, setup.params.sim.contact.rolling_resistance * r_max_m)
+        );
+    }
+
+    #[test]
+    fn ranges_are_checked_with_their_name() {
+        let bad = Uncertainty { restitution: Some([0.2, 1.5]), ..Uncertainty::default() };
+        match bad.check().unwrap_err() {
+            Error::Parameter { name, .. } => assert_eq!(name, "restitution"),
+            e => panic!("{e}"),
+        }
+        let reversed = Uncertainty { friction: Some([0.7, 0.5]), ..Uncertainty::default() };
+        assert!(reversed.check().is_err());
+        Uncertainty::of_surface(Surface::RockOnConcrete).check().unwrap();
+    }
+}
