@@ -32,7 +32,7 @@ use rocking_stones::dynamics::engine::rest::RestKind;
 use rocking_stones::dynamics::engine::run::{
     run_to_end as run_one, Certificate, Decided, NoCertificate, Passive, CERTIFICATE_EVERY,
 };
-use rocking_stones::dynamics::engine::world::Simulation;
+use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};

@@ -15,7 +15,7 @@ use rocking_stones::dynamics::drops::launch::{launch, release_height};
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::rest::RestKind;
 use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
-use rocking_stones::dynamics::engine::world::Simulation;
+use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};

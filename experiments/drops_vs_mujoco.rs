@@ -43,7 +43,7 @@ use rocking_stones::dynamics::drops::montecarlo::{
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
-use rocking_stones::dynamics::engine::world::Simulation;
+use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};

@@ -7,12 +7,12 @@
 //!
 //! ```text
 //! mesh ─▶ solid ─▶ hull ─▶ equilibria ─▶ morse_smale ─▶ hierarchy ─▶ flocks ─▶ basins
-//!   ─▶ dynamics (stone ─▶ params ─▶ world ─▶ run; drop, perturb, shake)
-//!   ─▶ montecarlo / study ─▶ report
+//!   ─▶ dynamics (engine ─▶ stone ─▶ drops, resting ─▶ pushes, shaking)
+//!   ─▶ study ─▶ report
 //! ```
 //!
 //! Lower layers never import higher ones: `rng`, `stats` and `ground_motion` sit below `dynamics`; `dynamics`
-//! imports neither `montecarlo`, `study` nor `report`; only `report` and `plot` draw.
+//! imports neither `study` nor `report`; only `report` and `plot` draw.
 //!
 //! * [`mesh`] — reading/writing scans (STL, OBJ, PLY), welding, closedness/orientation checks.
 //! * [`solid`] — volume, centre of mass G and inertia of the solid bounded by the mesh (f64).
@@ -30,11 +30,11 @@
 //! * [`rng`], [`stats`] — per-item random streams, random rotations and directions, the
 //!   Fibonacci sphere; Wilson intervals, χ², KL, moments, log fits, log grids.
 //! * [`ground_motion`] — recorded and synthetic ground accelerations (CSV, PEER `.AT2`),
-//!   resampling, baseline correction, PGA/PGV, and the fragility surface P(overturn | PGA, PGV/PGA).
-//! * [`dynamics`] — rapier3d: the hull collider, the one prepared stone and its rest rule, launch
-//!   presets and surface pairs, the contact law (rolling resistance), the one run loop with the
-//!   energy certificate; drops, pushes, ground shaking.
-//! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
+//!   resampling, baseline correction, PGA/PGV, and the fragility surface P(overturn | PGA, PGV/PGA)
+//!   fitted to shaking runs ([`ground_motion::fragility`]).
+//! * [`dynamics`] — rapier3d, by stage: the engine (world, contact law, flight, impacts, the one
+//!   run loop), the prepared stone and its rest rule, the energy certificate; drops (one, a
+//!   batch, Monte Carlo runs with shards and checkpoints), pushes, ground shaking.
 //! * [`study`] — field studies and synthetic hand experiments.
 //! * [`report`] — everything a person reads: summaries, CSV and JSON files, plots (through
 //!   [`plot`], the one place that picks PNG or SVG); computation modules return data.

@@ -9,7 +9,7 @@ use rocking_stones::dynamics::drops::launch::launch;
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::body::Body;
 use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::engine::world::Simulation;
+use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;

@@ -12,7 +12,8 @@ use rocking_stones::dynamics::engine::flight::{
     Damping, FreeBody, CONTACT_CLEARANCE, LANDING_CLEARANCE, LANDING_TOLERANCE,
 };
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
-use rocking_stones::dynamics::engine::world::{ground_world, Simulation};
+use rocking_stones::dynamics::engine::simulation::Simulation;
+use rocking_stones::dynamics::engine::world::ground_world;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;

@@ -548,7 +548,7 @@ fn a_ball_under_a_pulse_rolls_back_five_sevenths_of_the_ground_motion() {
     use rapier3d::prelude::SharedShape;
     use rocking_stones::dynamics::engine::body::Body;
     use rocking_stones::dynamics::engine::run::Drive;
-    use rocking_stones::dynamics::engine::world::Simulation;
+    use rocking_stones::dynamics::engine::simulation::Simulation;
     use rocking_stones::dynamics::shaking::GroundDrive;
     use rocking_stones::ground_motion::synthetic::one_sine_pulse;
     use rocking_stones::Vec3;

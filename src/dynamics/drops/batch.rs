@@ -36,8 +36,7 @@ use crate::dynamics::engine::rest::{RestKind, RestSample};
 use crate::dynamics::engine::run::{Certificate, Progress};
 use crate::dynamics::engine::world::{body_state, ground_world, insert_stone, normal_impulse, BodyState};
 use crate::dynamics::stone::Stone;
-use crate::Vec3;
-use crate::GRAVITY;
+use crate::{Vec3, GRAVITY};
 use nalgebra::UnitQuaternion;
 use rapier3d::prelude::{ColliderHandle, PhysicsWorld, RigidBodyHandle};
 

@@ -1,6 +1,13 @@
-//! Drops and throws: a stone launched above flat ground, run to rest, many times.
+//! Drops and throws: a stone launched above flat ground and run to rest, once or many times.
 //!
-//! * [`params`] — launch, contact and numerics; the named presets and surface pairs.
+//! ```text
+//! params (launch + engine params, presets) ─▶ launch (release) ─▶ simulate (one drop)
+//!                                                              └▶ batch (many in one world)
+//!                                                                   ─▶ montecarlo (runs, shards,
+//!                                                                      checkpoints, statistics)
+//! ```
+//!
+//! * [`params`] — a drop's launch beside the engine's parameters; the named presets.
 //! * [`launch`] — how a drop starts (the release) and how it ends (its outcome).
 //! * [`simulate`] — one drop, alone in its world.
 //! * [`batch`] — many independent drops in one rapier world (the same outcomes, drop by drop).

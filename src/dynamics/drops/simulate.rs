@@ -8,7 +8,7 @@ use crate::dynamics::drops::launch::{outcome, release_height, DropOutcome, Relea
 use crate::dynamics::drops::params::DropParams;
 use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, Certificate, Passive};
-use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::stone::Stone;
 
 /// Simulate one drop to rest (or to the certificate, or to the time cap), alone in its world

@@ -55,7 +55,7 @@ impl Body {
     }
 
     /// The facet whose outward normal is closest to the down direction `d` (body frame). Not an
-    /// outcome rule (see [`Stone::rest`]); used to measure tilts.
+    /// outcome rule (see [`crate::dynamics::stone::Stone::rest`]); used to measure tilts.
     pub fn facet_towards(&self, d: &Vec3) -> u32 {
         let mut best = (f64::NEG_INFINITY, 0u32);
         for (i, n) in self.facet_normals.iter().enumerate() {

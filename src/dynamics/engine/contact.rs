@@ -142,7 +142,7 @@ const MAX_STRUCK: usize = 16;
 
 /// One time step of a world whose stones (each a `body`, with its rigid body and collider) lie on
 /// the ground collider `ground`: rapier's step, then the contact law on each stone. The one
-/// place the contact law is applied, for one stone ([`Simulation::step`]) as for a batch
+/// place the contact law is applied, for one stone ([`crate::dynamics::engine::simulation::Simulation::step`]) as for a batch
 /// ([`crate::dynamics::drops::batch`]); a stone meets only the ground, so its law reads nothing of the others.
 pub fn step_world(
     world: &mut PhysicsWorld,

@@ -52,8 +52,7 @@
 //! every time, so the motion does not care), and its clock runs late by the unused part of the
 //! step (≤ dt per landing, subtracted from the reported time).
 
-use crate::dynamics::engine::params::Flight;
-use crate::dynamics::engine::params::RunParams;
+use crate::dynamics::engine::params::{Flight, RunParams};
 use crate::Vec3;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion};
 

@@ -66,7 +66,7 @@
 //! `no_impact_starts_deeper_than_the_stated_bound`, `knocked_stones_resolve_their_impacts_as_drops_do`).
 //!
 //! Runs that start at rest — pushes, shaking, field rocks, the rocking checks — are one stone in
-//! its own world ([`crate::dynamics::engine::world::Simulation`]): there the step is cut in place, by the same
+//! its own world ([`crate::dynamics::engine::simulation::Simulation`]): there the step is cut in place, by the same
 //! [`substeps`] of the stone's motion relative to the ground (which moves when it is shaken).
 //! Their flight stays in rapier (a push or a shake rarely throws a stone clear of the ground);
 //! the sub-steps bound where its landing starts just the same.

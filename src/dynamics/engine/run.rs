@@ -16,7 +16,8 @@
 
 use crate::dynamics::engine::params::RunParams;
 use crate::dynamics::engine::rest::{RestKind, RestRule, RestSample};
-use crate::dynamics::engine::world::{BodyState, Simulation};
+use crate::dynamics::engine::simulation::Simulation;
+use crate::dynamics::engine::world::BodyState;
 use crate::Vec3;
 
 /// What a certificate has proved about the end of a run.

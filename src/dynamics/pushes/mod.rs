@@ -16,11 +16,11 @@
 //! is the one of every run that starts at rest ([`crate::dynamics::resting`]: the surface pair at the
 //! stone's real size, rolling resistance through the contact, no global damping), the physics of
 //! drops and field rocks. The outcome is one of
-//! [`Outcome::Same`] (back on F), [`Outcome::SameFlock`] (rocked onto another stable
-//! micro-equilibrium of F's flock) or [`Outcome::Toppled`] (left the flock), with the final
+//! [`crate::dynamics::resting::outcome::Outcome::Same`] (back on F), [`crate::dynamics::resting::outcome::Outcome::SameFlock`] (rocked onto another stable
+//! micro-equilibrium of F's flock) or [`crate::dynamics::resting::outcome::Outcome::Toppled`] (left the flock), with the final
 //! facet, equilibrium and flock ("where to").
 //!
-//! Before any trial, [`check_rest`] holds the stone on the equilibrium for
+//! Before any trial, [`crate::dynamics::resting::check_rest`] holds the stone on the equilibrium for
 //! `settle_time + hold_time` without perturbation. Equilibria whose G is too close to the edge of
 //! a tiny facet for the soft contact (see [`RestingParams::contact_frequency`]) tip off by
 //! themselves; they are reported as not staying at rest and get no curve.
@@ -42,7 +42,7 @@
 //!   P (the stable point, below G), v_G = ω × (G − P): the stone starts to rock about its contact,
 //!   with energy ½ ω·I_P ω (I_P the inertia about P).
 //!
-//! Trial k of equilibrium i uses the random stream [`item_rng`]`(seed, stream)` with
+//! Trial k of equilibrium i uses the random stream [`crate::rng::item_rng`]`(seed, stream)` with
 //! stream = (family bit, i, k) (see [`stream_index`]), and the same stream at every ε (common
 //! random numbers: trial k pushes at the same point in the same direction at every ε, only
 //! harder), so the curves are smooth in ε, and results are independent of threads.
@@ -61,7 +61,7 @@
 //!
 //! Both are m g ΔR barriers of the static landscape: h at a saddle minus R_F. The dynamic
 //! thresholds ε₅₀ (the ε at which half of the trials leave, interpolated linearly in P against
-//! log ε between grid points, [`Threshold`]) sit above them because part of the energy goes
+//! log ε between grid points, [`crate::dynamics::resting::outcome::Threshold`]) sit above them because part of the energy goes
 //! into motion that does not climb (spin about the vertical, sliding, the wrong direction) and
 //! into impacts. [`BarrierCheck`] verifies that no trial below a static barrier crossed it.
 //!

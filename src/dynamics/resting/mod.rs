@@ -1,6 +1,6 @@
 //! A stone put exactly at rest on one of its stable micro-equilibria — the start of every push,
 //! spin and shaking run — and the parameters of those runs (pushes and shaking,
-//! `docs/methods.md`).
+//! `docs/methods.md`); [`outcome`] says what became of it.
 //!
 //! The stone is placed with its facet F on the ground (the orientation maps F's outward normal
 //! to −z, with no turn about the vertical), G at height R_F above the ground, zero velocity, and
@@ -11,17 +11,17 @@
 //! # One contact for every command
 //!
 //! Pushes, spins, ground shaking and field rocks run on the contact that drops were calibrated
-//! and validated with ([`crate::dynamics::engine::world`]): Coulomb friction and restitution of a surface pair
+//! and validated with ([`crate::dynamics::engine::contact`]): Coulomb friction and restitution of a surface pair
 //! ([`Surface`]), and rolling resistance and torsional friction *through the contact* with the
 //! pair's physical lever arm δ divided by the stone's real size R_max — no global damping, which
 //! would also slow a stone that rocks freely or flies. [`RestingParams::on_surface`] builds them;
 //! the size enters only through δ / R_max (every other group is Froude-invariant, see
-//! [`crate::dynamics::drops::params`]). The overdamped contact the perturbation results were first computed with
+//! [`crate::dynamics::engine::params`]). The overdamped contact the perturbation results were first computed with
 //! (global angular damping 1 s⁻¹ on the scaled body, no rolling resistance) survives only as the
 //! explicitly named reference [`RestingPreset::Damped`] ([`RestingParams::damped`]).
 
 use crate::dynamics::engine::params::{ContactParams, Flight, FlightParams, Numerics, RestParams, RunParams};
-use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::stone::{resting_orientation, Class, StableEquilibrium, Stone};
 use crate::dynamics::surface::Surface;
 use crate::monitor::{self, Monitor};

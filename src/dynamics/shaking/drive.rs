@@ -25,7 +25,7 @@
 
 use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, Drive, NoCertificate, RunEnd};
-use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::resting::RestingParams;
 use crate::dynamics::stone::Stone;
 use crate::ground_motion::Record;

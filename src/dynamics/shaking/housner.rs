@@ -17,13 +17,12 @@
 
 use crate::dynamics::engine::convert;
 use crate::dynamics::engine::run::Drive;
-use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::resting::{resting_simulation, RestingParams};
 use crate::dynamics::shaking::drive::GroundDrive;
 use crate::dynamics::stone::{resting_orientation, Stone};
 use crate::ground_motion::Record;
-use crate::GRAVITY;
-use crate::{Error, Result, Vec3};
+use crate::{Error, Result, Vec3, GRAVITY};
 use nalgebra::UnitQuaternion;
 use serde::Serialize;
 

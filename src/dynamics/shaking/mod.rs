@@ -6,18 +6,17 @@
 //!   run every mode makes ([`drive::shake_placed`]).
 //! * [`sweep`] — fragility curves of the stable micro-equilibria: the motion scaled to each PGA of
 //!   a grid, random azimuths, P(toppled) with intervals and PGA₅₀.
-//! * [`field`] — a field rock in a physical pose under records × scale factors, and the fragility
-//!   surface P(overturn | PGA, PGV/PGA) of a batch.
-//! * [`batch`] — records × scale factors on a field rock (with or without an ensemble) and the
+//! * [`rock`] — a field rock in a physical pose (as scanned, on a facet, or a quaternion) under one
+//!   record at one scale.
+//! * [`records`] — records × scale factors on a field rock (with or without an ensemble) and the
 //!   fragility surface P(overturn | PGA, PGV/PGA) fitted to them.
 //! * [`ensemble`] — the same rock over what is not known about it (base contact, azimuth, sign,
 //!   contact): P(overturn) with its interval and the inputs it is most sensitive to.
+//! * [`housner`] — Housner's rigid block, the reference they are checked against.
 //!
-//! Both modes run on the contact of every resting run ([`crate::dynamics::resting`]: the surface
+//! Sweeps and field rocks run on the contact of every resting run ([`crate::dynamics::resting`]: the surface
 //! pair at the stone's real size), rest by positions over windows
 //! ([`crate::dynamics::engine::rest::PositionRest`]) and classify the outcome by the quasi-static descent.
-//! Housner's rigid block, the reference they are checked against, is
-//! [`crate::dynamics::shaking::housner`].
 
 pub mod drive;
 pub mod ensemble;

@@ -89,7 +89,7 @@ pub struct ShakeBatch {
     pub start_equilibrium: usize,
     /// One run per (record, scale), records in the given order, scales within a record.
     pub runs: Vec<RecordRun>,
-    /// P(overturn | PGA, PGV/PGA) fitted to the runs that came to rest ([`surface`]); runs
+    /// P(overturn | PGA, PGV/PGA) fitted to the runs that came to rest ([`crate::ground_motion::fragility`]); runs
     /// still moving at the time cap are left out and counted in `unsettled`.
     pub surface: Option<fragility::FragilitySurface>,
     /// Why the surface could not be fitted (e.g. every run had the same outcome).

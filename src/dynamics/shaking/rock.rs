@@ -16,7 +16,7 @@
 
 use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
-use crate::dynamics::engine::world::Simulation;
+use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::resting::outcome::{classify, Outcome};
 use crate::dynamics::resting::RestingParams;
 use crate::dynamics::shaking::drive::{shake_placed, Placed};

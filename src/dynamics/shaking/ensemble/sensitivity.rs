@@ -4,8 +4,7 @@
 
 use crate::dynamics::shaking::ensemble::Draw;
 use crate::dynamics::shaking::rock::RockRun;
-use crate::dynamics::shaking::Member;
-use crate::dynamics::shaking::Uncertainty;
+use crate::dynamics::shaking::{Member, Uncertainty};
 use crate::stats::wilson;
 use serde::{Deserialize, Serialize};
 
