@@ -1,8 +1,7 @@
-//! The shape of the code, checked on the source itself: no source file
-//! over 800 lines, and the modules of `dynamics/` import each other without a cycle (launch and
-//! outcome in their own modules, the glam boundary in `convert`).
+//! The shape of the code, checked on the source itself: no source file over 800 lines, the
+//! library names no command-line flag, and the product names nothing outside itself. How the
+//! modules import each other is `tests/layers.rs`.
 
-use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -151,99 +150,4 @@ fn the_product_names_no_issue_number_or_outside_document() {
     }
     assert!(read > 300, "only {read} text files read");
     assert!(found.is_empty(), "{} outside references:\n{}", found.len(), found.join("\n"));
-}
-
-/// The module of `dynamics/` a file is (`run`, `shake`, `shake/drive`, …).
-fn module_of(dynamics: &Path, file: &Path) -> String {
-    let rel = file.strip_prefix(dynamics).unwrap().with_extension("");
-    let s = rel.to_string_lossy().replace('\\', "/");
-    s.strip_suffix("/mod").map_or(s.clone(), str::to_string)
-}
-
-/// The modules of `dynamics/` that `code` (comments removed) refers to from module `me`.
-fn references(me: &str, code: &str, modules: &BTreeSet<String>) -> BTreeSet<String> {
-    let parent = me.rsplit_once('/').map_or("", |(p, _)| p);
-    let mut out = BTreeSet::new();
-    for (prefix, base) in [("crate::dynamics::", String::new()), ("super::", parent.to_string())] {
-        for (i, _) in code.match_indices(prefix) {
-            let path: String = code[i + prefix.len()..]
-                .chars()
-                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
-                .collect();
-            let mut name = base.clone();
-            for part in path.split("::") {
-                let next = if name.is_empty() { part.to_string() } else { format!("{name}/{part}") };
-                if !modules.contains(&next) {
-                    break;
-                }
-                name = next;
-            }
-            if !name.is_empty() && name != me && !me.starts_with(&format!("{name}/")) {
-                out.insert(name);
-            }
-        }
-    }
-    out
-}
-
-#[test]
-fn dynamics_modules_import_each_other_without_a_cycle() {
-    let dynamics = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/dynamics");
-    let mut files = Vec::new();
-    rust_files(&dynamics, &mut files);
-    let modules: BTreeSet<String> = files.iter().map(|f| module_of(&dynamics, f)).collect();
-    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for f in &files {
-        let me = module_of(&dynamics, f);
-        let code: String = std::fs::read_to_string(f)
-            .unwrap()
-            .lines()
-            .filter(|l| !l.trim_start().starts_with("//"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        graph.insert(me.clone(), references(&me, &code, &modules));
-    }
-    assert!(
-        graph["drops/batch"].contains("drops/launch") && graph["drops/simulate"].contains("drops/batch"),
-        "the parser sees no imports"
-    );
-    let cycle = find_cycle(&graph);
-    assert!(cycle.is_none(), "import cycle in dynamics/: {}", cycle.unwrap().join(" → "));
-    // The search finds a cycle where there is one.
-    let mut with_cycle = graph.clone();
-    with_cycle.get_mut("stone").unwrap().insert("drops/simulate".into());
-    assert!(find_cycle(&with_cycle).is_some());
-}
-
-/// A cycle of `graph`, if any (depth-first search for a back edge).
-fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
-    fn visit(
-        m: &str,
-        graph: &BTreeMap<String, BTreeSet<String>>,
-        state: &mut BTreeMap<String, u8>,
-        path: &mut Vec<String>,
-    ) -> Option<Vec<String>> {
-        match state.get(m) {
-            Some(2) => return None,
-            Some(1) => {
-                let start = path.iter().position(|p| p == m).unwrap();
-                let mut cycle = path[start..].to_vec();
-                cycle.push(m.to_string());
-                return Some(cycle);
-            }
-            _ => {}
-        }
-        state.insert(m.to_string(), 1);
-        path.push(m.to_string());
-        for n in graph.get(m).into_iter().flatten() {
-            if let Some(c) = visit(n, graph, state, path) {
-                return Some(c);
-            }
-        }
-        path.pop();
-        state.insert(m.to_string(), 2);
-        None
-    }
-    let mut state = BTreeMap::new();
-    graph.keys().find_map(|m| visit(m, graph, &mut state, &mut Vec::new()))
 }
