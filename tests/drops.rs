@@ -6,7 +6,7 @@ use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::certificate::CERTIFICATE_MARGIN;
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
 use rocking_stones::dynamics::drops::montecarlo::{
-    merge, read_partial, run_drops, summarize, Checkpoint, RunHeader, Shard, FORMAT,
+    merge, read_partial, run_drops, summarize, Checkpoint, DropRun, RunHeader, Shard, FORMAT,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Launch};
 use rocking_stones::dynamics::drops::simulate::simulate;
@@ -124,6 +124,44 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
     }
     let (_, all) = read_partial(&path).unwrap();
     assert_eq!(all.into_values().collect::<Vec<_>>(), full);
+}
+
+/// A monitor that asks to stop once `after` drops have finished.
+struct StopAfter(std::sync::atomic::AtomicU64, u64);
+impl rocking_stones::monitor::Monitor for StopAfter {
+    fn finished(&self) {
+        self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+    fn stopped(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed) >= self.1
+    }
+}
+
+#[test]
+fn a_drop_run_stopped_by_its_caller_keeps_what_it_finished_and_resumes_to_the_same_result() {
+    let (_, s) = setup(generate::pebble([1.0, 0.7, 0.5], 0.03, 300, 4));
+    let h = header(40, 9, CertificateMode::Facet);
+    let full: BTreeMap<u64, DropOutcome> = run_all(&s, &h, Shard::ALL).into_iter().map(|o| (o.index, o)).collect();
+    // In memory, as the Python package runs: the same outcomes as the plain runner.
+    let counted = StopAfter(Default::default(), u64::MAX);
+    assert_eq!(DropRun::new(&s, &h).run(7, &counted).unwrap(), full);
+    assert_eq!(counted.0.into_inner(), 40, "the monitor is told of every drop");
+    // Stopped after 5 drops: Cancelled, and the checkpoint holds the drops that finished.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("run.jsonl");
+    let run = DropRun::checkpointed(&s, &h, &path, false).unwrap();
+    assert_eq!(run.pending(), 40);
+    let stop = StopAfter(Default::default(), 5);
+    let err = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap().install(|| run.run(4, &stop));
+    assert!(matches!(err, Err(rocking_stones::Error::Cancelled)), "{err:?}");
+    let (_, kept) = read_partial(&path).unwrap();
+    assert!(kept.len() >= 5 && kept.len() < 40, "{} drops kept", kept.len());
+    assert!(kept.iter().all(|(i, o)| full[i] == *o));
+    // Resumed: the rest runs, and the whole equals one uninterrupted run.
+    let run = DropRun::checkpointed(&s, &h, &path, true).unwrap();
+    assert_eq!(run.pending(), 40 - kept.len() as u64);
+    assert_eq!(run.run(4, &StopAfter(Default::default(), u64::MAX)).unwrap(), full);
+    assert_eq!(read_partial(&path).unwrap().1, full);
 }
 
 #[test]

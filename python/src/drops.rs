@@ -1,23 +1,21 @@
-//! `drop` and the `DropResult` class: Monte Carlo drops in rapier3d, as `rocking drop`, run in
-//! chunks so that the caller's Ctrl-C is answered between them.
+//! `drop` and the `DropResult` class: Monte Carlo drops in rapier3d, run as `rocking drop` runs
+//! them; the caller's Ctrl-C stops the run before its next drop.
 
 use crate::convert::{bools, f64s, i64s, kind_name, opt_index, py_err, strs, to_json, to_py};
 use crate::dynamics::real_size;
 use crate::kwargs::{enum_from_str, with_params};
-use crate::long_run::{interruptible, Cancelled};
+use crate::long_run::interruptible;
 use crate::mesh_input::analysed;
-use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::launch::DropOutcome;
-use rocking_stones::dynamics::drops::montecarlo::{self, DropReport, RunHeader, Shard};
+use rocking_stones::dynamics::drops::montecarlo::{self, DropReport, DropRun, RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone as Body;
 use rocking_stones::dynamics::surface::Surface;
-use std::collections::BTreeMap;
-use std::time::Instant;
 
 /// The result of a drop run: the report `rocking drop --json` prints and every drop's outcome.
 #[pyclass(frozen, module = "rocking_stones", name = "DropResult")]
@@ -169,9 +167,8 @@ impl PyDropResult {
     }
 }
 
-// The one place the binding calls the Monte Carlo loop (to adapt when the dynamics API changes):
-// drops run in chunks through `montecarlo::run` (drop i depends only on (seed, i), so chunks give
-// exactly the outcomes of one run) and the caller's Ctrl-C is checked between chunks.
+// The drops run as `rocking drop` runs them ([`DropRun`]); the caller's Ctrl-C stops the run
+// before its next drop (KeyboardInterrupt).
 /// Drop the stone `n` times from uniformly random orientations in rapier3d, as
 /// `rocking drop MESH -n N --seed S`; returns a `DropResult` whose to_dict() is the CLI's --json.
 ///
@@ -236,30 +233,9 @@ pub(crate) fn drop_stone(
     p.check().map_err(py_err)?;
     let header = RunHeader::new(&stone.name, &stone.analysis.mesh, seed, n, p, certificate, (preset, surface));
     let progress = progress.map(|f| (f, n));
-    let outcomes = interruptible(py, threads, progress, |control| -> Result<BTreeMap<u64, DropOutcome>, Cancelled> {
-        let cert = rocking_stones::dynamics::certificate::certificate(&body, header.certificate);
-        let sink = std::sync::Mutex::new(|_: &DropOutcome| control.advance());
-        let mut done = BTreeMap::new();
-        // Chunks of about a quarter of a second, so that Ctrl-C is answered quickly.
-        let mut chunk = rayon::current_num_threads() as u64;
-        while (done.len() as u64) < n {
-            if control.stopped() {
-                return Err(Cancelled);
-            }
-            let start = Instant::now();
-            let before = done.len() as u64;
-            let upto = (before + chunk).min(n);
-            let part = RunHeader { drops: upto, ..header.clone() };
-            for o in montecarlo::run_drops(&body, &part, Shard::ALL, &done, cert.as_ref(), &sink) {
-                done.insert(o.index, o);
-            }
-            let per_drop = start.elapsed().as_secs_f64() / (upto - before) as f64;
-            let threads = rayon::current_num_threads() as u64;
-            chunk = ((0.25 / per_drop.max(1e-6)) as u64).clamp(threads, 64 * threads.max(4));
-        }
-        Ok(done)
-    })?
-    .map_err(|_| PyKeyboardInterrupt::new_err("interrupted"))?;
+    let outcomes =
+        interruptible(py, threads, progress, |control| DropRun::new(&body, &header).run(DEFAULT_BATCH, control))?
+            .map_err(py_err)?;
     let report = montecarlo::summarize(&body.model(), &header, &outcomes);
     Ok(PyDropResult { report, outcomes: outcomes.into_values().collect(), size: real })
 }

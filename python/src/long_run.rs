@@ -7,9 +7,6 @@ use pyo3::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
-/// A drop run that the caller stopped between two chunks.
-pub(crate) struct Cancelled;
-
 /// Run `work` on a worker thread (in a pool of `threads` threads if given, else rayon's global
 /// pool) while this thread, without the GIL, waits for it and checks for signals every 100 ms,
 /// calling `progress(done, total)` then if given. On Ctrl-C (or an exception in `progress`) the

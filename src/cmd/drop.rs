@@ -1,21 +1,18 @@
 //! `rocking drop` and `rocking merge`: Monte Carlo drops of a scan in rapier3d.
 
 use super::analyze::load_analysis;
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Options};
-use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
-use rocking_stones::dynamics::drops::launch::DropOutcome;
+use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::montecarlo::{
-    check_outcomes, merge, read_partial, run_drops_batched, summarize, Checkpoint, DropReport, RunHeader, Shard,
+    check_outcomes, merge, read_partial, summarize, DropReport, DropRun, RunHeader, Shard,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
-use std::collections::BTreeMap;
 use std::path::PathBuf;
-use std::sync::Mutex;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -260,36 +257,19 @@ pub fn run_drop(args: Args) -> Result<()> {
         shard,
         ..RunHeader::new(name, &analysis.mesh, args.seed, args.drops, p, args.certificate, (args.preset, args.surface))
     };
-    let model = stone.model();
-    let (mut checkpoint, done) = match &args.checkpoint {
-        Some(path) => {
-            let (c, d) = Checkpoint::open(path, &header, args.resume)?;
-            check_outcomes(path, &d, &model)?;
-            (Some(c), d)
+    let run = match &args.checkpoint {
+        Some(path) => DropRun::checkpointed(&stone, &header, path, args.resume)?,
+        None => DropRun::new(&stone, &header),
+    };
+    let bar = super::progress_bar(run.pending(), "drops");
+    let all = run.run(args.batch, &|| bar.inc(1)).map_err(|e| match e {
+        e @ rocking_stones::Error::Io { .. } => {
+            anyhow::Error::new(e).context("writing the checkpoint failed; finished drops up to the failure are in it")
         }
-        None => (None, BTreeMap::new()),
-    };
-    let todo = shard.indices(header.drops).filter(|i| !done.contains_key(i)).count() as u64;
-    let bar = super::progress_bar(todo, "drops");
-    let mut write_error: Option<std::io::Error> = None;
-    let new = {
-        let sink = Mutex::new(|o: &DropOutcome| {
-            if let Some(c) = checkpoint.as_mut() {
-                if let Err(e) = c.record(o) {
-                    write_error.get_or_insert(e);
-                }
-            }
-            bar.inc(1);
-        });
-        let cert = certificate(&stone, args.certificate);
-        run_drops_batched(&stone, &header, shard, &done, cert.as_ref(), args.batch, &sink)
-    };
+        e => e.into(),
+    })?;
     bar.finish_and_clear();
-    if let Some(e) = write_error {
-        return Err(e).context("writing the checkpoint failed; finished drops up to the failure are in it");
-    }
-    let mut all = done;
-    all.extend(new.into_iter().map(|o| (o.index, o)));
+    let model = stone.model();
     let report = summarize(&model, &header, &all);
     emit(&report, Some(&size), args.json, args.output.as_deref(), &analysis, nu)
 }

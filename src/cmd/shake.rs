@@ -6,12 +6,12 @@
 
 use super::perturb::SimArgs;
 use anyhow::{bail, Result};
+use rocking_stones::dynamics::shaking::journal::{Journal, JournalHeader};
 use rocking_stones::dynamics::shaking::{self, RockSetup, ShakeConfig};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
-use std::io::Write;
 use std::path::PathBuf;
 use std::sync::Mutex;
 
@@ -257,34 +257,18 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         Some(p) => format!("{} fnv1a {:016x}", p.display(), rocking_stones::rng::fnv1a(std::fs::read(p)?)),
         None => "bundled stone".to_string(),
     };
-    let header = match &ensemble {
-        Some(e) => serde_json::json!({ "format": JOURNAL_FORMAT, "mesh": mesh_id, "setup": setup, "ensemble": e }),
-        None => serde_json::json!({ "format": JOURNAL_FORMAT, "mesh": mesh_id, "setup": setup }),
-    };
+    let header = JournalHeader::new(mesh_id, &setup, ensemble.as_ref());
     let (previous, sink) = match &args.output {
         Some(dir) => {
             std::fs::create_dir_all(dir)?;
-            let journal = dir.join("runs.jsonl");
-            if !args.resume && journal.exists() {
-                bail!(
-                    "{}: a batch journal is already there: pass --resume to continue it, or remove it",
-                    journal.display()
-                );
-            }
-            let (previous, valid) = if args.resume { read_journal(&journal, &header)? } else { (Vec::new(), 0) };
-            let mut j = std::fs::OpenOptions::new().create(true).append(true).open(&journal)?;
-            // Drop a line cut off when the batch was killed: it is run again.
-            j.set_len(valid)?;
-            if valid == 0 {
-                writeln!(j, "{header}")?;
-            }
+            let (journal, previous) = Journal::open(&dir.join("runs.jsonl"), &header, args.resume)?;
             let mut w = csv::Writer::from_path(dir.join("runs.csv"))?;
             w.write_record(report::shake::RUN_CSV_HEADER)?;
             for r in &previous {
                 w.write_record(report::shake::run_csv_row(r))?;
             }
             w.flush()?;
-            (previous, Some(Mutex::new((j, w))))
+            (previous, Some(Mutex::new((journal, w))))
         }
         None => (Vec::new(), None),
     };
@@ -298,8 +282,7 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         if let Some(w) = &sink {
             let mut w = w.lock().unwrap_or_else(|e| e.into_inner());
             let (j, c) = &mut *w;
-            let line = serde_json::to_string(r).map_err(std::io::Error::other);
-            let ok = line.and_then(|l| writeln!(j, "{l}")).and_then(|_| j.flush()).is_ok()
+            let ok = j.record(r).is_ok()
                 && c.write_record(report::shake::run_csv_row(r)).and_then(|_| Ok(c.flush()?)).is_ok();
             if !ok {
                 failed.store(true, std::sync::atomic::Ordering::Relaxed);
@@ -375,44 +358,6 @@ fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shaking::Ensem
     let spec = shaking::EnsembleSpec { uncertainty, seed: args.seed, members };
     spec.check().map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;
     Ok(Some(spec))
-}
-
-/// Format tag of the first line of a batch journal (`runs.jsonl`).
-const JOURNAL_FORMAT: &str = "rocking-shake-runs/1";
-
-/// The runs of a batch journal, after checking that its header (format, mesh, setup) is this
-/// batch's, and the length in bytes of its complete lines (a last line cut off by a kill is not).
-fn read_journal(path: &std::path::Path, header: &serde_json::Value) -> Result<(Vec<shaking::RecordRun>, u64)> {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
-        Err(e) => bail!("{}: {e}", path.display()),
-    };
-    let Some(first) = text.split_inclusive('\n').next().filter(|l| l.ends_with('\n')) else {
-        return Ok((Vec::new(), 0));
-    };
-    let found: serde_json::Value = serde_json::from_str(first)
-        .map_err(|e| anyhow::anyhow!("{}: line 1 is not a batch journal header: {e}", path.display()))?;
-    if &found != header {
-        bail!(
-            "{}: this journal is of another batch (its mesh, pose, size, surface, azimuth or simulation parameters differ); use another -o folder",
-            path.display()
-        );
-    }
-    let (mut runs, mut valid) = (Vec::new(), first.len() as u64);
-    for (k, line) in text.split_inclusive('\n').enumerate().skip(1) {
-        if !line.ends_with('\n') {
-            break; // the last line, cut off while it was being written (a kill): run it again
-        }
-        match serde_json::from_str::<shaking::RecordRun>(line) {
-            Ok(r) => {
-                runs.push(r);
-                valid += line.len() as u64;
-            }
-            Err(e) => bail!("{}: line {}: not a finished run: {e}", path.display(), k + 1),
-        }
-    }
-    Ok((runs, valid))
 }
 
 /// Every record of a folder, by file name: `*.csv` and `*.AT2` (one record along x per file).

@@ -21,6 +21,7 @@
 pub mod drive;
 pub mod ensemble;
 pub mod housner;
+pub mod journal;
 pub mod records;
 pub mod rock;
 pub mod sweep;

@@ -25,10 +25,10 @@ use crate::dynamics::surface::Surface;
 use crate::ground_motion::{Measures, Record};
 use crate::{Error, Result, Vec3};
 use nalgebra::UnitQuaternion;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// How the rock stands on the ground before the motion starts.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Pose {
     /// The mesh frame is the world frame (+z up, as field scans are stored): the rock is put
@@ -269,7 +269,7 @@ pub fn rock_params(surface: Surface, r_max_m: f64) -> Result<RestingParams> {
 }
 
 /// A field rock and how it is shaken: everything of a run but the record.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RockSetup {
     /// The pose it stands in.
     pub pose: Pose,
@@ -280,7 +280,7 @@ pub struct RockSetup {
     /// Whether that size was assumed, the mesh's unit being neither given nor known: set by the
     /// command line and the Python binding, which decide the size with
     /// [`crate::dynamics::size::RealSize::resolve`]; absent when the unit was given as a number.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub size_assumed: Option<bool>,
     /// Azimuth (rad, world frame) of the records' x axis.
     pub azimuth: f64,

@@ -30,9 +30,12 @@ use crate::dynamics::drops::launch::{launch, DropOutcome};
 use crate::dynamics::drops::simulate::simulate;
 use crate::dynamics::engine::run::Certificate;
 use crate::dynamics::stone::Stone;
+use crate::monitor::Monitor;
 use crate::rng::item_rng;
+use crate::{Error, Result};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
@@ -68,15 +71,34 @@ pub fn run_drops_batched(
     batch: usize,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
 ) -> Vec<DropOutcome> {
+    run_pending(stone, header, shard, done, cert, batch, on_done, &|| false)
+}
+
+/// [`run_drops_batched`], starting no drop once `stopped()` is true (the drops already in a world
+/// run to their end).
+#[allow(clippy::too_many_arguments)]
+fn run_pending(
+    stone: &Stone,
+    header: &RunHeader,
+    shard: Shard,
+    done: &BTreeMap<u64, DropOutcome>,
+    cert: &dyn Certificate,
+    batch: usize,
+    on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
+    stopped: &(dyn Fn() -> bool + Sync),
+) -> Vec<DropOutcome> {
     let todo: Vec<u64> = shard.indices(header.drops).filter(|i| !done.contains_key(i)).collect();
     let release = |i: u64| launch(&mut item_rng(header.seed, i), &header.params);
     let record = |o: &DropOutcome| (on_done.lock().expect("no panic while holding the lock"))(o);
     let mut out: Vec<DropOutcome> = if batch <= 1 {
         todo.par_iter()
-            .map(|&i| {
+            .filter_map(|&i| {
+                if stopped() {
+                    return None;
+                }
                 let o = simulate(stone, &header.params, &release(i), i, cert);
                 record(&o);
-                o
+                Some(o)
             })
             .collect()
     } else {
@@ -89,8 +111,13 @@ pub fn run_drops_batched(
             .into_par_iter()
             .map(|_| {
                 let mut outcomes = Vec::new();
-                let mut queue =
-                    std::iter::from_fn(|| todo.get(next.fetch_add(1, Ordering::Relaxed))).map(|&i| (i, release(i)));
+                let mut queue = std::iter::from_fn(|| {
+                    if stopped() {
+                        return None;
+                    }
+                    todo.get(next.fetch_add(1, Ordering::Relaxed))
+                })
+                .map(|&i| (i, release(i)));
                 simulate_batch(stone, &header.params, cert, batch, &mut queue, &mut |o| {
                     record(&o);
                     outcomes.push(o);
@@ -102,6 +129,73 @@ pub fn run_drops_batched(
     };
     out.sort_by_key(|o| o.index);
     out
+}
+
+/// A drop run as the command line and the Python package run it: the drops of the header's
+/// shard that its checkpoint (if any) does not hold yet, each appended to the checkpoint as it
+/// finishes (an interrupted run loses no finished drop), with a [`Monitor`] told of every drop
+/// and asked whether to stop.
+pub struct DropRun<'a> {
+    stone: &'a Stone,
+    header: &'a RunHeader,
+    checkpoint: Option<(Checkpoint, PathBuf)>,
+    done: BTreeMap<u64, DropOutcome>,
+}
+
+impl<'a> DropRun<'a> {
+    /// The run of `header` on `stone`, in memory.
+    pub fn new(stone: &'a Stone, header: &'a RunHeader) -> Self {
+        DropRun { stone, header, checkpoint: None, done: BTreeMap::new() }
+    }
+
+    /// The run of `header` on `stone`, journalled in the checkpoint `path` ([`Checkpoint::open`]:
+    /// a new file, or with `resume` an existing one of the same run, whose drops are kept after
+    /// [`check_outcomes`] has checked them against the stone).
+    pub fn checkpointed(stone: &'a Stone, header: &'a RunHeader, path: &Path, resume: bool) -> Result<Self> {
+        let (checkpoint, done) = Checkpoint::open(path, header, resume)?;
+        check_outcomes(path, &done, &stone.model())?;
+        Ok(DropRun { stone, header, checkpoint: Some((checkpoint, path.to_path_buf())), done })
+    }
+
+    /// Drops of the shard still to run.
+    pub fn pending(&self) -> u64 {
+        self.header.shard.indices(self.header.drops).filter(|i| !self.done.contains_key(i)).count() as u64
+    }
+
+    /// Run the pending drops, `batch` stones per world ([`run_drops_batched`]), telling `monitor`
+    /// of each; every outcome of the shard (kept and new) by index. [`Error::Cancelled`] if the
+    /// monitor stopped the run (the checkpoint holds every drop finished until then), an
+    /// [`Error::Io`] naming the checkpoint if writing it failed (it holds every drop finished
+    /// before the failure).
+    pub fn run(self, batch: usize, monitor: &dyn Monitor) -> Result<BTreeMap<u64, DropOutcome>> {
+        let DropRun { stone, header, checkpoint, mut done } = self;
+        let (mut file, path) = match checkpoint {
+            Some((c, p)) => (Some(c), Some(p)),
+            None => (None, None),
+        };
+        let mut write_error: Option<std::io::Error> = None;
+        let new = {
+            let sink = Mutex::new(|o: &DropOutcome| {
+                if let Some(c) = file.as_mut() {
+                    if let Err(e) = c.record(o) {
+                        write_error.get_or_insert(e);
+                    }
+                }
+                monitor.finished();
+            });
+            let cert = certificate(stone, header.certificate);
+            run_pending(stone, header, header.shard, &done, cert.as_ref(), batch, &sink, &|| monitor.stopped())
+        };
+        if let (Some(error), Some(path)) = (write_error, path) {
+            return Err(Error::Io { path, error });
+        }
+        let all = header.shard.indices(header.drops).count();
+        done.extend(new.into_iter().map(|o| (o.index, o)));
+        if done.len() < all && monitor.stopped() {
+            return Err(Error::Cancelled);
+        }
+        Ok(done)
+    }
 }
 
 /// Run every drop of `header` in memory (no checkpoint, no progress) and summarise them; for
