@@ -1,4 +1,4 @@
-//! What a sharper energy certificate would buy: the certificate of `dynamics::run`
+//! What a sharper energy certificate would buy: the certificate of `dynamics::engine::run`
 //! asks the merge tree with the energy level L = E/(m g) raised by a fixed margin
 //! (`run::CERTIFICATE_MARGIN`, in R_max) and only every `run::CERTIFICATE_EVERY` steps. Here
 //! every drop is simulated to rest once (reference numerics, one stone per world, no

@@ -246,7 +246,7 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
     let _ = writeln!(
         md,
         "\n**Reading.** The contact law completes each impact in the two stages of an impact \
-         (`dynamics::world`, \"Impacts\"): a compression that brings the struck corner to rest with Coulomb \
+         (`dynamics::engine::contact`, \"Impacts\"): a compression that brings the struck corner to rest with Coulomb \
          friction, then a restitution of normal impulses to e u — the second closed form. Over 1–32 sub-steps \
          the median φ stays {} (e = 0.2) and {} (e = 0.5); at the default 4 \
          it is {:.2} and {:.2}, at 32 {:.2} and {:.2}: the corner leaves as the law says whatever rapier's solver \

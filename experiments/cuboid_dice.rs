@@ -243,7 +243,7 @@ fn main() {
          free parameters of the throw are fitted to these seven dice.\n"
     );
     let inv_dt = 1.0 / default_dt;
-    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics: no impact starts inside the ground, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::world`), the die's exact box hull, no global damping, dt 1/{inv_dt:.0} s (the preset's longest stable step, `Preset::largest_stable_dt`); contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
+    let _ = writeln!(md, "Model: rapier3d with exact landings and sub-stepped impacts (the default numerics: the depth of every corner measured after every sub-step, and each impact is completed by Coulomb's compression and Newton's restitution, `dynamics::engine::contact`), the die's exact box hull, no global damping, dt 1/{inv_dt:.0} s (the preset's longest stable step, `Preset::largest_stable_dt`); contact steel on wood (μ = 0.4, e = 0.5, rolling resistance δ = 0.2 mm for y = 16 mm), lengths and speeds of the body scaled to R_max = 1 m; fitted: release height H (R_max), the rms Ω of the Gaussian spin (rad/s, scaled) and the horizontal release speed v (m/s, scaled). Grid H {heights:?} × Ω {spins:?} × v {speeds:?}, {n} throws per die and grid point (common random numbers), binomial log-likelihood.\n");
     let _ = writeln!(md, "## Fit\n");
     let _ = writeln!(md, "| parameter | best | range over the grid points within the noise band |\n|---|---|---|");
     let _ = writeln!(md, "| H (R_max) | {} | {h_lo} – {h_hi} |", best.0);
@@ -263,7 +263,7 @@ fn main() {
     let preset = grid.iter().find(|g| g.0 == THROW_HEIGHT && g.1 == THROW_SPIN && g.2 == THROW_HORIZONTAL_SPEED);
     let _ = writeln!(
         md,
-        "The `throw` preset (`dynamics::params`: H {THROW_HEIGHT}, Ω {THROW_SPIN}, v {THROW_HORIZONTAL_SPEED}) {}.\n",
+        "The `throw` preset (`dynamics::drops::params`: H {THROW_HEIGHT}, Ω {THROW_SPIN}, v {THROW_HORIZONTAL_SPEED}) {}.\n",
         match preset {
             Some(g) if *g == best => "is the best grid point".to_string(),
             Some(g) if g.3 >= best.3 - noise_band =>

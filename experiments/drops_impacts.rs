@@ -1,6 +1,6 @@
 //! How deep the ground is entered: rapier's own flight, which finds a contact only at the step
 //! boundaries, against exact landings and sub-stepped impacts (`--flight free`,
-//! `dynamics::flight`, `dynamics::impact`). Per body (the three benchmark bodies), preset (drop,
+//! `dynamics::engine::flight`, `dynamics::engine::impact`). Per body (the three benchmark bodies), preset (drop,
 //! throw) and time step (1/240, 1/120 s): N drops each way (seed 1, one stone per world, one
 //! thread, full settling), with the depth of the deepest hull corner below the ground as each run
 //! measures it after every step and sub-step (`DropOutcome::deepest_penetration`): its largest

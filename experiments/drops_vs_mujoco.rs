@@ -97,7 +97,7 @@ const DIFFERENCES: &str = "
 
 * **Contact.** Both contacts are soft, differently. Rapier's is a velocity-level constraint that
   applies the restitution coefficient at impact, with a soft position correction (springs of 30–60 Hz,
-  `dynamics::world`); MuJoCo's is a spring-damper reference acceleration (time constant 0.02 s, the
+  `dynamics::engine::contact`); MuJoCo's is a spring-damper reference acceleration (time constant 0.02 s, the
   `solimp` impedance) whose under-damping *is* the restitution, calibrated at 1/240 s and kept at
   1/120 s, where the same damping ratio gives another restitution (above). Matched on a ball at
   1/240 s (e = 0.2 by rebound height), they agree on the box landing flat at that step (above); the
@@ -412,7 +412,7 @@ fn python_with_mujoco() -> String {
 /// down, `HEIGHT` above the ground; e = √(rebound height / drop height) of G above its height at
 /// rest on the facet, as the Python side measures MuJoCo's. The rebound is found by the velocity
 /// (from the step where G first moves up to the step where it moves down again), not by the
-/// contact impulse, which a sub-stepped impact (`dynamics::impact`) leaves at zero after the step.
+/// contact impulse, which a sub-stepped impact (`dynamics::engine::impact`) leaves at zero after the step.
 fn rapier_flat_restitution(stone: &Stone, normal: &Vec3, dt: f64) -> f64 {
     let mut p = params(&Mode { dt, ..modes()[0].clone() });
     p.sim.contact.linear_damping = 0.0;
@@ -1431,7 +1431,7 @@ fn readme(
          numerics take the step {d_l} instead of {r_l}. Exact landings and sub-stepped impacts (the `drop` preset's \
          numerics, in every mode here) cost little: only a step in which some hull corner could come down by more \
          than its clearance plus 0.01 R_max is cut, in a world of the stone's own, outside the batch \
-         (`dynamics::impact`). None of this is specific to rapier: the certificate needs only the body's energy and \
+         (`dynamics::engine::impact`). None of this is specific to rapier: the certificate needs only the body's energy and \
          down direction, which MuJoCo has too; MuJoCo can put many bodies in one model; and MuJoCo too takes the \
          longer step (above). So {} (flock-certified + batched, both engines at {r_l}) and {} (the default numerics \
          against MuJoCo at {r_l}, the benchmark protocol) — **{} against MuJoCo at the same step {d_l}**{} — are what \

@@ -4,7 +4,7 @@
 //! unstable or saddle flock rocking (`hierarchy.rocking_at(ν)` at the stone's automatic ν).
 //! Dynamic class (this project): rocking if pushes (or spins) of energy ε* = ν·m g R_max or less
 //! topple it out of its flock at least half of the time (ε₅₀(flock) ≤ ε*), regular otherwise
-//! (see `dynamics::perturb`). The table also gives the classes at ε* = 10 ν, and the
+//! (see `dynamics::pushes`). The table also gives the classes at ε* = 10 ν, and the
 //! threshold-free AUC: the probability that a random rocking equilibrium has a smaller ε₅₀(flock)
 //! than a random regular one (Mann–Whitney, ties ½).
 //!

@@ -9,10 +9,11 @@
 use plotters::prelude::*;
 use rocking_stones::equilibria::{Equilibria, Signs, DEFAULT_DEGENERACY_TOL};
 use rocking_stones::generate;
+use rocking_stones::hierarchy::cancellation_hierarchy;
 use rocking_stones::hierarchy::Hierarchy;
 use rocking_stones::hull::{convex_hull, Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::mesh::io;
-use rocking_stones::morse_smale::{cancellation_hierarchy, MorseSmaleGraph};
+use rocking_stones::morse_smale::MorseSmaleGraph;
 use rocking_stones::plot::{
     colors, draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY,
 };

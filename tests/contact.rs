@@ -1,4 +1,4 @@
-//! The contact law of `dynamics::world`: rolling resistance against its closed form,
+//! The contact law of `dynamics::engine::contact`: rolling resistance against its closed form,
 //! energy that never rises, and rest without global damping.
 
 use nalgebra::{Matrix3, UnitQuaternion};

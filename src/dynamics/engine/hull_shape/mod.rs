@@ -71,7 +71,7 @@
 //! more than the tolerance (rolling), or once the lowest corner is not one of its corners, the
 //! closest facet is used as before. Towards a stable facet's own normal its own feature is
 //! returned (it touches with tolerance 0 and is the closest), so every stable facet stays a
-//! distinct rest. Measured: with this rule (and the rolling resistance of `dynamics::world` about
+//! distinct rest. Measured: with this rule (and the rolling resistance of `dynamics::engine::contact` about
 //! the contact patch) every one of the 40 meshes of `results/drops_settling/` settles at 1/120 s.
 //!
 //! *Only the facets at v.* Extending the candidates to the facets at corners tied with v (within
