@@ -2,10 +2,11 @@
 //! flocks, and [`Report`], the one serialisable result the CLI, plots and experiments read.
 
 use crate::equilibria::{Equilibria, Kind, Signs, Site, DEFAULT_DEGENERACY_TOL};
+use crate::hierarchy::cancellation_hierarchy;
 use crate::hierarchy::{Counts, Flock, Hierarchy, Plateau, Step};
 use crate::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
 use crate::mesh::{ldexp, scale_point, Repairs, TriMesh};
-use crate::morse_smale::{cancellation_hierarchy, MorseSmaleGraph};
+use crate::morse_smale::MorseSmaleGraph;
 use crate::shape::{describe, ShapeDescriptors};
 use crate::solid::MassProperties;
 use crate::{Error, Point3, Result};
