@@ -2,7 +2,7 @@
 //! half on the bytes of the file (any format), half on the parsed mesh — each read, checked and
 //! analysed with panics caught. Every case must end in an answer or a named error; a panic or a
 //! failed internal check is a bug and is listed with the case number that reproduces it
-//! (`mutate::run_case(&sources, SEED, i, ..)`). Also times the self-intersection check on the
+//! (`mutation::run_case(&sources, SEED, i, ..)`). Also times the self-intersection check on the
 //! largest scan of `data/meshes` and on a synthetic pebble of 10⁶ triangles.
 //!
 //! Run: `cargo run --release --example fuzz_mutations` → `results/fuzz_mutations/`.
@@ -10,7 +10,8 @@
 use rayon::prelude::*;
 use rocking_stones::analysis::Options;
 use rocking_stones::generate;
-use rocking_stones::mesh::{intersect, io, mutate};
+use rocking_stones::mesh::{intersect, io};
+use rocking_stones::mutation;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -61,8 +62,8 @@ fn main() -> anyhow::Result<()> {
     // Silence the default panic message: panics are caught and counted.
     std::panic::set_hook(Box::new(|_| {}));
     let t = Instant::now();
-    let cases: Vec<(u64, mutate::Case)> =
-        (0..n_cases).into_par_iter().map(|i| (i, mutate::run_case(&sources, SEED, i, &opts))).collect();
+    let cases: Vec<(u64, mutation::Case)> =
+        (0..n_cases).into_par_iter().map(|i| (i, mutation::run_case(&sources, SEED, i, &opts))).collect();
     let seconds = t.elapsed().as_secs_f64();
     let _ = std::panic::take_hook();
 
@@ -76,9 +77,9 @@ fn main() -> anyhow::Result<()> {
         if c.outcome.is_failure() {
             n_fail += 1;
             let msg = match &c.outcome {
-                mutate::Outcome::Panicked(m) => m.clone(),
-                mutate::Outcome::Refused { message, .. } => message.clone(),
-                mutate::Outcome::Analysed => String::new(),
+                mutation::Outcome::Panicked(m) => m.clone(),
+                mutation::Outcome::Refused { message, .. } => message.clone(),
+                mutation::Outcome::Analysed => String::new(),
             };
             let _ = writeln!(
                 failures,
@@ -161,7 +162,7 @@ fn write_readme(
     let _ = writeln!(
         s,
         "`cargo run --release --example fuzz_mutations`: {CASES} seeded cases (seed {SEED}) over {} source files \
-         ({}); even cases mutate the file's bytes, odd ones the parsed mesh (`rocking_stones::mesh::mutate`). \
+         ({}); even cases mutate the file's bytes, odd ones the parsed mesh (`rocking_stones::mutation`). \
          Each case is read, checked and analysed with panics caught; {seconds:.0} s on this machine (2 threads).\n",
         sources.len(),
         sources.iter().map(|(n, _)| format!("`{n}`")).collect::<Vec<_>>().join(", ")
@@ -173,7 +174,7 @@ fn write_readme(
     let _ = writeln!(
         s,
         "\n**Panics or failed internal checks: {n_fail}** (`failures.csv` lists them with the case number; \
-         `mutate::run_case(&sources, {SEED}, i, ..)` replays case i). `counts.csv` splits the outcomes by mutation.\n"
+         `mutation::run_case(&sources, {SEED}, i, ..)` replays case i). `counts.csv` splits the outcomes by mutation.\n"
     );
     let _ = writeln!(s, "## Self-intersection check (best of 3)\n\n| mesh | triangles | threads | seconds | crossing pairs |\n|---|---|---|---|---|");
     for (name, nt, th, sec, pairs) in timing {

@@ -22,10 +22,13 @@
 //! * [`tipping`] — a pose's support polygon (with a contact tolerance) and its quasi-static
 //!   tipping acceleration tan α against azimuth.
 //! * [`generate`] — seeded shape generators (Platonic solids, boxes, ellipsoids, pebbles).
-//! * [`morse_smale`] — the Morse–Smale graph of R on the hull and its cancellation hierarchy.
-//! * [`hierarchy`] — N(ν), the plateau (macro scale), flocks and rocking equilibria (2D and 3D).
+//! * [`morse_smale`] — the Morse–Smale graph of R on the hull.
+//! * [`hierarchy`] — its cancellation hierarchy, N(ν), the plateau (macro scale), flocks and
+//!   rocking equilibria (2D and 3D).
 //! * [`planar`] — the planar case: polygons and discretised ellipses.
 //! * [`analysis`] — the whole static pipeline and its serialisable result.
+//! * [`mutation`] — seeded mutations of mesh files and meshes, and the check that each ends in an
+//!   analysis or a named error (the bounded fuzz test and its experiment).
 //! * [`basins`] — quasi-static resting probabilities and the energy merge tree.
 //! * [`rng`], [`stats`] — per-item random streams, random rotations and directions, the
 //!   Fibonacci sphere; Wilson intervals, χ², KL, moments, log fits, log grids.
@@ -66,6 +69,7 @@ pub mod hull;
 pub mod mesh;
 pub mod monitor;
 pub mod morse_smale;
+pub mod mutation;
 pub mod planar;
 pub mod plot;
 pub mod report;

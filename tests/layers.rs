@@ -18,7 +18,7 @@ const LAYERS: &[&[&str]] = &[
     &["morse_smale"],
     &["hierarchy"],
     &["planar", "basins"],
-    &["analysis"],
+    &["analysis", "mutation"],
     &["bundled"],
     &["dynamics::size"],
     &["dynamics::engine"],
@@ -31,9 +31,9 @@ const LAYERS: &[&[&str]] = &[
     &["plot", "report"],
 ];
 
-/// Arrows that are known and being removed (each a module and what it imports): one up the
-/// layers, one that closes a circle. Every other arrow up, and every cycle, fails the tests below.
-const KNOWN_UPWARD: &[(&str, &str)] = &[("mesh::mutate", "analysis"), ("report::ensemble", "report::shake")];
+/// Arrows that are known and being removed (each a module and what it imports): one that closes a
+/// circle. Every other arrow up, and every cycle, fails the tests below.
+const KNOWN_UPWARD: &[(&str, &str)] = &[("report::ensemble", "report::shake")];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in std::fs::read_dir(dir).unwrap() {

@@ -5,7 +5,8 @@
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::generate;
 use rocking_stones::mesh::io::{self, load_solid};
-use rocking_stones::mesh::{intersect, mutate, TriMesh, SHALLOW_CROSSING_DEPTH};
+use rocking_stones::mesh::{intersect, TriMesh, SHALLOW_CROSSING_DEPTH};
+use rocking_stones::mutation;
 use rocking_stones::solid::MassProperties;
 use rocking_stones::{Error, Point3, Vec3};
 use std::path::{Path, PathBuf};
@@ -421,9 +422,9 @@ fn thousands_of_mutated_files_end_in_an_answer_or_a_named_error() {
     let mut by_kind = std::collections::BTreeMap::<&str, usize>::new();
     let prev = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let cases: Vec<mutate::Case> = {
+    let cases: Vec<mutation::Case> = {
         use rayon::prelude::*;
-        (0..n).into_par_iter().map(|i| mutate::run_case(&sources, 13, i, &opts)).collect()
+        (0..n).into_par_iter().map(|i| mutation::run_case(&sources, 13, i, &opts)).collect()
     };
     std::panic::set_hook(prev);
     for c in &cases {

@@ -4,7 +4,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use rocking_stones::analysis::Options;
-use rocking_stones::mesh::mutate::check_bytes;
+use rocking_stones::mutation::check_bytes;
 use std::path::Path;
 
 fuzz_target!(|data: &[u8]| {

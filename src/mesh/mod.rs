@@ -3,7 +3,6 @@
 
 pub mod intersect;
 pub mod io;
-pub mod mutate;
 
 use crate::{Error, Point3, Result, Vec3};
 use std::collections::HashMap;
