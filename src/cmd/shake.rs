@@ -225,12 +225,12 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         return super::emit(
             &run,
             args.json,
-            || report::ensemble::ensemble_summary(&run, &name),
+            || report::shake::ensemble_summary(&run, &name),
             args.output.as_deref(),
             |dir| {
-                let mut w = report::ensemble::write_ensemble_outputs(&run, &name, dir)?;
+                let mut w = report::shake::write_ensemble_outputs(&run, &name, dir)?;
                 let title = format!("rocking shake --ensemble: {}", report::short_name(&name));
-                report::html::add_page(dir, &mut w, &title, &report::ensemble::ensemble_summary(&run, &name), None)?;
+                report::html::add_page(dir, &mut w, &title, &report::shake::ensemble_summary(&run, &name), None)?;
                 Ok(w)
             },
         );

@@ -5,12 +5,12 @@
 //! * [`drops`] — drop runs: summary, `drops.json`, bar plots.
 //! * [`perturb`] — perturbation runs: summary, curves/thresholds/trials CSV, plots.
 //! * [`planar`] — the planar case: the summary of `rocking planar`.
-//! * [`shake`] — shaking runs: summary, fragility CSV and plot, ground-motion records.
+//! * [`shake`] — shaking runs, field-rock runs, ensembles and batches: summaries, fragility CSV
+//!   and plots, the fragility surface, ground-motion records.
 //! * [`study`] — field studies: pebble/sample/comparison CSVs, tables, Zingg and Figure 12 plots.
 
 pub mod analysis;
 pub mod drops;
-pub mod ensemble;
 pub mod html;
 pub mod names;
 pub mod perturb;

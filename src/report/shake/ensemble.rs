@@ -1,11 +1,11 @@
 //! Field-rock ensembles: summaries, the members' table, the tipping polar and the
 //! banded fragility contours of [`crate::dynamics::shaking::ensemble`].
 
-use super::shake::write_runs_csv;
-use super::{short_name, write_json, Folder};
+use super::runs::write_runs_csv;
 use crate::dynamics::shaking::ensemble::Sensitivity;
 use crate::dynamics::shaking::records::{Contour, EnsembleSummary};
 use crate::dynamics::shaking::{Ensemble, RecordRun, ShakeBatch};
+use crate::report::{short_name, write_json, Folder};
 use crate::tipping::TippingSummary;
 use std::path::{Path, PathBuf};
 
@@ -127,7 +127,7 @@ pub fn write_ensemble_outputs(e: &Ensemble, name: &str, dir: &Path) -> crate::Re
     out.file("ensemble.json", |p| write_json(p, e))?;
     out.file("members.csv", |p| write_runs_csv(p, &ensemble_runs(e)))?;
     let title = format!("{}: quasi-static tipping acceleration", short_name(name));
-    out.file("tipping_polar.png", |p| super::tipping::write_polar_plot(&e.tipping, &title, p))?;
+    out.file("tipping_polar.png", |p| crate::report::tipping::write_polar_plot(&e.tipping, &title, p))?;
     Ok(out.written)
 }
 
@@ -136,7 +136,7 @@ pub fn write_ensemble_outputs(e: &Ensemble, name: &str, dir: &Path) -> crate::Re
 /// their 95 % bands).
 pub(crate) fn write_batch_ensemble_outputs(b: &ShakeBatch, name: &str, out: &mut Folder) -> crate::Result<()> {
     let title = format!("{}: quasi-static tipping acceleration", short_name(name));
-    out.file("tipping_polar.png", |p| super::tipping::write_polar_plot(&b.tipping, &title, p))?;
+    out.file("tipping_polar.png", |p| crate::report::tipping::write_polar_plot(&b.tipping, &title, p))?;
     if b.ensemble.is_none() {
         return Ok(());
     }
