@@ -101,7 +101,12 @@ fn imports(me: &str, code: &str, modules: &BTreeSet<String>) -> BTreeSet<String>
 
 /// The library's module graph: each module and the modules it imports.
 fn graph() -> BTreeMap<String, BTreeSet<String>> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    graph_of("src")
+}
+
+/// The module graph of the crate whose sources are in `dir` (below the repository's root).
+fn graph_of(dir: &str) -> BTreeMap<String, BTreeSet<String>> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     files.retain(|f| !f.starts_with(src.join("cmd")) && !f.ends_with("main.rs"));
@@ -221,4 +226,13 @@ fn dynamics_has_at_most_six_files_at_its_top() {
         .collect();
     assert!(files.contains(&"mod.rs".to_string()), "{files:?}");
     assert!(files.len() <= 6, "{} files at the top of src/dynamics: {files:?}", files.len());
+}
+
+#[test]
+fn the_python_package_has_no_import_cycle() {
+    let g = graph_of("python/src");
+    let has = |a: &str, b: &str| g.get(a).is_some_and(|d| d.contains(b));
+    assert!(has("drops", "stone") && has("stone", "mesh_input"), "{g:?}");
+    let cycle = find_cycle(&g);
+    assert!(cycle.is_none(), "import cycle in the Python package: {}", cycle.unwrap().join(" → "));
 }

@@ -5,30 +5,12 @@
 use crate::basins::PyBasins;
 use crate::convert::{f64s, i64s, kind_name, matrix3, point, py_err, rows3, strs, to_json, to_py};
 use crate::mesh_input::{analyse, options, source};
+use crate::stone::PyAnalysis;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::analysis::{Analysis, Options, Report};
-use std::sync::Arc;
-
-/// The static analysis of one stone: mass properties, hull, micro-equilibria, the ν-hierarchy,
-/// the plateau, macro counts, flocks and rocking equilibria.
-#[pyclass(frozen, module = "rocking_stones", name = "Analysis")]
-pub(crate) struct PyAnalysis {
-    pub(crate) inner: Arc<Analysis>,
-    pub(crate) opts: Options,
-    pub(crate) name: String,
-    report: Report,
-}
-
-impl PyAnalysis {
-    fn new(a: Analysis, name: String, opts: Options) -> Self {
-        let report = a.report(&name, &opts);
-        PyAnalysis { inner: Arc::new(a), opts, name, report }
-    }
-}
 
 #[pymethods]
 impl PyAnalysis {

@@ -2,7 +2,7 @@
 //! (the area of its basin on the sphere of down directions / 4π) and of every flock.
 
 use crate::convert::{f64s, i64s, rows3};
-use crate::mesh_input::analysed;
+use crate::stone::analysed;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

@@ -5,7 +5,7 @@ use crate::convert::{bools, f64s, i64s, kind_name, opt_index, py_err, strs, to_j
 use crate::dynamics::real_size;
 use crate::kwargs::{enum_from_str, with_params};
 use crate::long_run::interruptible;
-use crate::mesh_input::analysed;
+use crate::stone::analysed;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

@@ -6,7 +6,7 @@
 use crate::convert::{columns, py_err, to_json, to_py};
 use crate::kwargs::{enum_from_str, with_params};
 use crate::long_run::interruptible;
-use crate::mesh_input::analysed;
+use crate::stone::analysed;
 use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;

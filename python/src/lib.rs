@@ -16,7 +16,7 @@
 //!   rayon's global pool (`RAYON_NUM_THREADS`), or `threads=` for one call.
 //!
 //! One module per concept: `convert` (errors and conversions), `mesh_input` (the `mesh`
-//! argument), `long_run` (worker thread, GIL released, Ctrl-C), `kwargs` (parameters from
+//! argument), `stone` (an analysed stone: the `Analysis` class's data), `long_run` (worker thread, GIL released, Ctrl-C), `kwargs` (parameters from
 //! `**kwargs`), then one per command: `analysis`, `basins`, `drops`, `dynamics` (perturb, shake,
 //! shake_rock), `study` and `generate`.
 //!
@@ -35,6 +35,7 @@ mod generate;
 mod kwargs;
 mod long_run;
 mod mesh_input;
+mod stone;
 mod study;
 
 use convert::MeshError;
@@ -47,7 +48,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_COPLANAR_TOL", rocking_stones::hull::DEFAULT_COPLANAR_TOL)?;
     m.add("PAPER_NU", PAPER_NU)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add_class::<analysis::PyAnalysis>()?;
+    m.add_class::<stone::PyAnalysis>()?;
     m.add_class::<basins::PyBasins>()?;
     m.add_class::<drops::PyDropResult>()?;
     m.add_class::<dynamics::PyDynamicsResult>()?;

@@ -2,7 +2,6 @@
 //! pair or an object with `.vertices` and `.faces`) read, checked and analysed exactly as
 //! `rocking analyze` does.
 
-use crate::analysis::PyAnalysis;
 use crate::convert::{py_err, MeshError};
 use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -12,7 +11,6 @@ use rocking_stones::analysis::{check_nu, Analysis, Options};
 use rocking_stones::mesh::{io, TriMesh};
 use rocking_stones::Point3;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 /// Where a mesh comes from.
 pub(crate) enum Source {
@@ -124,40 +122,4 @@ pub(crate) fn options(nu: Option<f64>, coplanar_tol: f64) -> PyResult<Options> {
         return Err(PyValueError::new_err(format!("coplanar_tol must be a finite number ≥ 0, got {coplanar_tol}")));
     }
     Ok(Options { nu: nu.map(check_nu).transpose().map_err(py_err)?, coplanar_tol, ..Options::default() })
-}
-
-/// An analysed stone: the argument itself when it is an [`PyAnalysis`] (with its ν unless `nu`
-/// is given), else a fresh analysis with the CLI's default options.
-pub(crate) fn analysed(
-    py: Python<'_>,
-    mesh: Option<&Bound<'_, PyAny>>,
-    name: Option<String>,
-    nu: Option<f64>,
-) -> PyResult<Stone> {
-    if let Some(obj) = mesh {
-        if let Ok(a) = obj.cast::<PyAnalysis>() {
-            let a = a.get();
-            let opts = match nu {
-                Some(nu) => Options { nu: Some(check_nu(nu).map_err(py_err)?), ..a.opts.clone() },
-                None => a.opts.clone(),
-            };
-            return Ok(Stone { analysis: a.inner.clone(), name: a.name.clone(), opts });
-        }
-    }
-    let opts = options(nu, rocking_stones::hull::DEFAULT_COPLANAR_TOL)?;
-    let src = source(mesh, name)?;
-    let (a, name) = py.detach(|| analyse(src, &opts)).map_err(py_err)?;
-    Ok(Stone { analysis: Arc::new(a), name, opts })
-}
-
-pub(crate) struct Stone {
-    pub(crate) analysis: Arc<Analysis>,
-    pub(crate) name: String,
-    pub(crate) opts: Options,
-}
-
-impl Stone {
-    pub(crate) fn nu(&self) -> f64 {
-        self.analysis.macro_nu(&self.opts).0
-    }
 }
