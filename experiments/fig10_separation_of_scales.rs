@@ -123,7 +123,7 @@ fn summary(path: &Path, reports: &[(String, Report)]) -> anyhow::Result<()> {
     writeln!(s, "\nEvery row satisfies S + U − H = 2 at the micro and at the macro scale (checked at every level of the hierarchy).")?;
     writeln!(
         s,
-        "Flocks follow the bottleneck rule of `src/hierarchy.rs`; a rocking equilibrium is a stable micro-equilibrium"
+        "Flocks follow the bottleneck rule of `src/hierarchy/flocks.rs`; a rocking equilibrium is a stable micro-equilibrium"
     )?;
     writeln!(s, "whose flock is unstable or saddle.")?;
     std::fs::write(path, s)?;

@@ -162,7 +162,7 @@ fn main() -> Result<()> {
         md,
         "Ellipse with semi-axes a (x, major) and 1 (y), discretised uniformly in arc length into N = 4k − 2 \
          sides, vertex 0 at (a, 0): vertices at both ends of the major axis, side midpoints at both ends of the \
-         minor axis. Flocks read at the automatic plateau of n(ν) (its geometric midpoint; see `src/hierarchy.rs`), \
+         minor axis. Flocks read at the automatic plateau of n(ν) (its geometric midpoint; see `src/hierarchy/plateau.rs`), \
          or at the paper's ν = 0.0035 where the plateau is not clear (`plateau_clear` = false, as in 3D), \
          flock membership by the bottleneck rule. Formula: m = ⌊a²/(2(a²−1))⌋, stable flock 2m+1 stable + 2m \
          unstable, unstable flock 2m + (2m+1), total S = 8m + 2.\n"

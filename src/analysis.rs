@@ -502,6 +502,6 @@ pub fn check_nu(nu: f64) -> Result<f64> {
     if nu.is_finite() && nu > 0.0 && nu <= 1.0 {
         Ok(nu)
     } else {
-        Err(Error::Usage(format!("ν must be in (0, 1], got {nu}")))
+        Err(Error::parameter("nu", nu, "in (0, 1]"))
     }
 }

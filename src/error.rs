@@ -99,9 +99,50 @@ pub enum Error {
         /// The range or form it must have.
         expected: String,
     },
-    /// Bad user input that is not a file (an option value, a generator parameter...).
+    /// A name that is not one of those known: a preset, a surface, a shape, a unit, a family.
+    #[error("unknown {what} {given:?}: expected one of {}", .allowed.join(", "))]
+    Unknown {
+        /// What kind of name was expected (`contact preset`, `acceleration unit`…).
+        what: &'static str,
+        /// The name given.
+        given: String,
+        /// The names known.
+        allowed: Vec<String>,
+    },
+    /// A ground motion (a record or a synthetic motion) that cannot drive a run: too short, not
+    /// finite, irregularly sampled, without horizontal acceleration, or given in a form not read.
+    #[error("{name}: {what}")]
+    Motion {
+        /// The motion's name (its file, or the kind of synthetic motion).
+        name: String,
+        /// What is wrong with it, and what to do.
+        what: String,
+    },
+    /// A pose in which a stone does not stand: not a stable equilibrium, or put down it rolls
+    /// away or does not come to rest.
+    #[error("pose {pose}: {what}")]
+    Pose {
+        /// The pose as given (`facet:3`, `as-scanned`, `quat:…`).
+        pose: String,
+        /// Why the stone does not stand in it, and what to choose instead.
+        what: String,
+    },
+    /// Results of long runs that do not belong together: a checkpoint written by a different
+    /// run, or partial results that differ in their parameters or outcomes.
     #[error("{0}")]
-    Usage(String),
+    Checkpoint(String),
+    /// A model that cannot be fitted to what it was given (a fragility surface to runs that all
+    /// ended alike, ν to samples without statistics…).
+    #[error("cannot fit {0}")]
+    Fit(String),
+    /// A field study whose folder or table does not match its scans.
+    #[error("{path}: {what}")]
+    Study {
+        /// The folder or table concerned.
+        path: PathBuf,
+        /// What does not match.
+        what: String,
+    },
     /// The caller stopped a long run ([`crate::monitor::Monitor::stopped`]).
     #[error("the run was stopped before it finished")]
     Cancelled,
@@ -126,7 +167,14 @@ impl Error {
                 Error::SelfIntersecting { path: fix(path), first, second, pairs, depth, relative_depth, near }
             }
             Error::CentreOutsideHull { path, g, what } => Error::CentreOutsideHull { path: fix(path), g, what },
-            e @ (Error::Usage(_) | Error::Parameter { .. } | Error::Cancelled) => e,
+            Error::Study { path, what } => Error::Study { path: fix(path), what },
+            e @ (Error::Unknown { .. }
+            | Error::Motion { .. }
+            | Error::Pose { .. }
+            | Error::Checkpoint(_)
+            | Error::Fit(_)
+            | Error::Parameter { .. }
+            | Error::Cancelled) => e,
         }
     }
 
@@ -151,7 +199,8 @@ impl Error {
     }
 
     /// A short stable name of the error's kind (`io`, `parse`, `invalid-mesh`, `degenerate`,
-    /// `self-intersecting`, `centre-outside-hull`, `internal-check`, `plot`, `usage`), for tallies.
+    /// `self-intersecting`, `centre-outside-hull`, `internal-check`, `plot`, `parameter`,
+    /// `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `cancelled`), for tallies.
     pub fn kind(&self) -> &'static str {
         match self {
             Error::Io { .. } => "io",
@@ -162,7 +211,13 @@ impl Error {
             Error::CentreOutsideHull { .. } => "centre-outside-hull",
             Error::Check { .. } => "internal-check",
             Error::Plot { .. } => "plot",
-            Error::Usage(_) | Error::Parameter { .. } => "usage",
+            Error::Parameter { .. } => "parameter",
+            Error::Unknown { .. } => "unknown-name",
+            Error::Motion { .. } => "motion",
+            Error::Pose { .. } => "pose",
+            Error::Checkpoint(_) => "checkpoint",
+            Error::Fit(_) => "fit",
+            Error::Study { .. } => "study",
             Error::Cancelled => "cancelled",
         }
     }
@@ -180,6 +235,16 @@ impl Error {
             Error::Parameter { name, value, expected } => format!("{} must be {expected}, got {value}", spell(name)),
             e => e.to_string(),
         }
+    }
+
+    /// An unknown name: `given` is not one of `allowed` (names of a `what`).
+    pub fn unknown(what: &'static str, given: &str, allowed: &[&str]) -> Self {
+        Error::Unknown { what, given: given.to_string(), allowed: allowed.iter().map(|s| s.to_string()).collect() }
+    }
+
+    /// A motion that cannot drive a run: `name` and what is wrong with it.
+    pub fn motion(name: impl Into<String>, what: impl Into<String>) -> Self {
+        Error::Motion { name: name.into(), what: what.into() }
     }
 
     /// Shorthand for an in-memory failed internal check.

@@ -291,7 +291,7 @@ fn check_axes(axes: [f64; 3]) -> Result<()> {
     if axes.iter().all(|x| x.is_finite() && *x > 0.0) {
         Ok(())
     } else {
-        Err(Error::Usage(format!("axes must be positive and finite, got {}, {}, {}", axes[0], axes[1], axes[2])))
+        Err(Error::parameter("axes", format!("{}, {}, {}", axes[0], axes[1], axes[2]), "positive and finite"))
     }
 }
 
@@ -299,7 +299,7 @@ fn check_n(n: usize) -> Result<()> {
     if n >= MIN_POINTS {
         Ok(())
     } else {
-        Err(Error::Usage(format!("n = {n} is too small: an ellipsoid or pebble needs at least {MIN_POINTS} points")))
+        Err(Error::parameter("n", n, format!("at least {MIN_POINTS} points for an ellipsoid or pebble")))
     }
 }
 
@@ -307,9 +307,7 @@ fn check_unit(what: &str, x: f64) -> Result<()> {
     if (0.0..1.0).contains(&x) {
         Ok(())
     } else {
-        Err(Error::Usage(format!(
-            "{what} = {x} must be in [0, 1) (a relative amplitude; 1 or more can collapse the surface)"
-        )))
+        Err(Error::parameter(what, x, "in [0, 1) (a relative amplitude; 1 or more can collapse the surface)"))
     }
 }
 
@@ -372,7 +370,7 @@ impl FromStr for Shape {
         ]);
         found
             .find(|shape| shape.name() == s.to_ascii_lowercase())
-            .ok_or_else(|| Error::Usage(format!("unknown shape '{s}': expected one of {}", Shape::NAMES.join(", "))))
+            .ok_or_else(|| Error::unknown("shape", s, &Shape::NAMES))
     }
 }
 
@@ -393,7 +391,7 @@ pub struct Params {
     pub seed: u64,
 }
 
-/// Build `shape` after checking the parameters it uses; bad values give [`Error::Usage`].
+/// Build `shape` after checking the parameters it uses; bad values give [`Error::Parameter`] naming the parameter.
 pub fn generate(shape: Shape, p: &Params) -> Result<TriMesh> {
     if shape.uses("axes") {
         check_axes(p.axes)?;
@@ -408,7 +406,7 @@ pub fn generate(shape: Shape, p: &Params) -> Result<TriMesh> {
         Shape::NoisyBox => {
             check_unit("noise", p.noise)?;
             if p.n == 0 {
-                return Err(Error::Usage("a noisy box needs n ≥ 1 grid cells per face side".into()));
+                return Err(Error::parameter("n", p.n, "≥ 1 grid cells per face side for a noisy box"));
             }
             noisy_cuboid(p.axes[0], p.axes[1], p.axes[2], p.n, p.noise, p.seed)
         }

@@ -41,7 +41,7 @@ fn a_negative_number_reaches_the_option_s_own_check() {
         for nu in [&["--nu", "-0.5"][..], &["--nu=-0.5"]] {
             let (ok, _, err) = rocking(&[cmd, nu].concat());
             assert!(!ok, "{cmd:?} {nu:?} ran");
-            assert!(err.contains("ν must be in (0, 1], got -0.5"), "{cmd:?} {nu:?}: {err}");
+            assert!(err.contains("--nu must be in (0, 1], got -0.5"), "{cmd:?} {nu:?}: {err}");
             assert!(!err.contains("unexpected argument"), "{cmd:?} {nu:?}: {err}");
         }
     }

@@ -251,18 +251,20 @@ fn generate_parses_names_and_rejects_bad_parameters() {
         assert_clean_solid(&generate(shape, &p).unwrap(), name);
     }
     assert_eq!("Cube".parse::<Shape>().unwrap(), Shape::Platonic(Platonic::Cube));
+    // Each bad value is refused as a parameter error that names the parameter.
     let err = |shape: &str, p: Params| match generate(shape.parse().unwrap(), &p) {
-        Err(Error::Usage(m)) => m,
-        other => panic!("{shape} {p:?}: expected a usage error, got {other:?}"),
+        Err(Error::Parameter { name, expected, .. }) => format!("{name}: {expected}"),
+        other => panic!("{shape} {p:?}: expected a parameter error, got {other:?}"),
     };
-    assert!(err("box", Params { axes: [3.0, -2.0, 1.0], ..p }).contains("positive"));
-    assert!(err("ellipsoid", Params { axes: [f64::NAN, 2.0, 1.0], ..p }).contains("positive"));
-    assert!(err("ellipsoid", Params { n: 5, ..p }).contains("too small"));
-    assert!(err("ellipsoid", Params { noise: 1.0, ..p }).contains("[0, 1)"));
-    assert!(err("noisy-box", Params { noise: -0.1, ..p }).contains("[0, 1)"));
-    assert!(err("noisy-box", Params { n: 0, ..p }).contains("n ≥ 1"));
-    assert!(err("pebble", Params { roughness: 1.5, ..p }).contains("roughness"));
-    assert!(matches!("sphere".parse::<Shape>(), Err(Error::Usage(m)) if m.contains("noisy-box")));
+    assert!(err("box", Params { axes: [3.0, -2.0, 1.0], ..p }).starts_with("axes: positive"));
+    assert!(err("ellipsoid", Params { axes: [f64::NAN, 2.0, 1.0], ..p }).starts_with("axes: positive"));
+    assert!(err("ellipsoid", Params { n: 5, ..p }).starts_with("n: at least"));
+    assert!(err("ellipsoid", Params { noise: 1.0, ..p }).starts_with("noise: in [0, 1)"));
+    assert!(err("noisy-box", Params { noise: -0.1, ..p }).starts_with("noise: in [0, 1)"));
+    assert!(err("noisy-box", Params { n: 0, ..p }).starts_with("n: ≥ 1"));
+    assert!(err("pebble", Params { roughness: 1.5, ..p }).starts_with("roughness: in [0, 1)"));
+    assert!(matches!("sphere".parse::<Shape>(),
+        Err(Error::Unknown { what: "shape", given, allowed }) if given == "sphere" && allowed.iter().any(|a| a == "noisy-box")));
 }
 
 #[test]

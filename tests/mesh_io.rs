@@ -494,17 +494,23 @@ fn bad_magic_headers_and_missing_parts() {
 }
 
 #[test]
-fn writer_usage_errors() {
+fn writer_errors_name_the_file_and_what_is_wrong() {
     let dir = tempfile::tempdir().unwrap();
+    let named = |e: &Error, file: &str| e.to_string().starts_with(&dir.path().join(file).display().to_string());
     let e = io::write(&dir.path().join("mesh.xyz"), &cube(1.0)).unwrap_err();
-    assert!(matches!(e, Error::Usage(_)) && e.to_string().contains("'.xyz'"), "{e}");
+    assert!(matches!(e, Error::Io { .. }) && named(&e, "mesh.xyz") && e.to_string().contains("'.xyz'"), "{e}");
+    assert!(e.to_string().contains("use .stl, .ply or .obj"), "{e}");
     let e = io::write(&dir.path().join("mesh"), &cube(1.0)).unwrap_err();
-    assert!(matches!(e, Error::Usage(_)) && e.to_string().contains("no extension"), "{e}");
+    assert!(matches!(e, Error::Io { .. }) && e.to_string().contains("no extension"), "{e}");
     let e = io::write_colored_ply(&dir.path().join("c.ply"), &cube(1.0), &[[0, 0, 0]; 5]).unwrap_err();
-    assert!(matches!(e, Error::Usage(_)) && e.to_string().contains("5 face colours given for 12 triangles"), "{e}");
+    assert!(matches!(e, Error::InvalidMesh { .. }) && named(&e, "c.ply"), "{e}");
+    assert!(e.to_string().contains("5 face colours given for 12 triangles"), "{e}");
     let broken = TriMesh::new(cube_vertices(1.0), vec![[0, 1, 8]]);
     let e = io::write(&dir.path().join("b.obj"), &broken).unwrap_err();
-    assert!(matches!(e, Error::Usage(_)) && e.to_string().contains("8 vertices"), "{e}");
+    assert!(
+        matches!(e, Error::InvalidMesh { .. }) && named(&e, "b.obj") && e.to_string().contains("8 vertices"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -387,7 +387,7 @@ fn nonsense_options_are_refused_with_a_message() {
     for bad in ["nan", "-1", "0", "2"] {
         let out = rocking(&["analyze", cube, &format!("--nu={bad}")]);
         assert!(!out.status.success(), "--nu {bad} accepted");
-        assert!(String::from_utf8_lossy(&out.stderr).contains("ν must be in (0, 1]"));
+        assert!(String::from_utf8_lossy(&out.stderr).contains("--nu must be in (0, 1]"));
     }
     let out = rocking(&["analyze", cube, "--coplanar-tol", "1e-6"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

@@ -508,7 +508,7 @@ fn options_that_do_not_apply_are_refused() {
     refused(&["shake", "--records", "dir"], "--pose");
     refused(&["shake", "--scales", "1,2"], "--pose");
     refused(&["perturb", "--length-unit", "mm", "--size", "0.2"], "--size");
-    refused(&["perturb", "--preset", "gravel"], "surface or damped");
+    refused(&["perturb", "--preset", "gravel"], "expected one of surface, damped");
     // The library names a parameter by its field; the command line by its flag.
     refused(&["perturb", "--dt", "1"], "error: --dt must be");
     refused(

@@ -25,7 +25,13 @@ pub(crate) fn py_err(e: Error) -> PyErr {
         Error::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
         Error::Io { .. } => PyOSError::new_err(msg),
         // A parameter is named by its field name, which is the keyword argument's.
-        Error::Usage(_) | Error::Parameter { .. } => PyValueError::new_err(msg),
+        Error::Parameter { .. }
+        | Error::Unknown { .. }
+        | Error::Motion { .. }
+        | Error::Pose { .. }
+        | Error::Checkpoint(_)
+        | Error::Fit(_)
+        | Error::Study { .. } => PyValueError::new_err(msg),
         Error::Parse { .. }
         | Error::InvalidMesh { .. }
         | Error::Degenerate { .. }

@@ -69,7 +69,7 @@ def test_truncated_file(cli, tmp_path):
 
 def test_bad_nu_has_the_library_message():
     v, f = rs.generate("cube")
-    with pytest.raises(ValueError, match=r"ν must be in \(0, 1\], got 2"):
+    with pytest.raises(ValueError, match=r"nu must be in \(0, 1\], got 2"):
         rs.analyze((v, f), nu=2.0)
 
 

@@ -348,7 +348,7 @@ fn unit(d: &Vec3) -> Result<Vec3> {
     if n > 0.0 && n.is_finite() {
         Ok(d / n)
     } else {
-        Err(Error::Usage(format!("a down direction must be a finite non-zero vector, not {d:?}")))
+        Err(Error::parameter("down", format!("{d:?}"), "a finite non-zero vector"))
     }
 }
 

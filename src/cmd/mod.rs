@@ -131,9 +131,28 @@ pub fn default_unit(name: &str, given: Option<&String>) -> rocking_stones::repor
 /// The command line's spelling of a library parameter (`max_time` → `--max-time`); the
 /// parameters that have no option of their own are named in words.
 pub fn flag(name: &str) -> String {
-    const NO_OPTION: [&str; 6] =
-        ["rest_time", "rest_linear_speed", "rest_angular_speed", "settle_time", "hold_time", "degeneracy_tol"];
-    if NO_OPTION.contains(&name) {
+    const NO_OPTION: [&str; 9] = [
+        "rest_time",
+        "rest_linear_speed",
+        "rest_angular_speed",
+        "settle_time",
+        "hold_time",
+        "degeneracy_tol",
+        "components",
+        "down",
+        "grid",
+    ];
+    // Parameters the command line builds from options of other names.
+    let built = match name {
+        "epsilons" => Some("the ε grid (--eps-min, --eps-max, --eps-steps)"),
+        "pgas" => Some("the PGA grid (--pga-max, --pga-steps)"),
+        "frequency_hz" => Some("the frequency of --pulse"),
+        "scale" => Some("each of --scales"),
+        _ => None,
+    };
+    if let Some(b) = built {
+        b.to_string()
+    } else if NO_OPTION.contains(&name) {
         format!("the {} (no option)", name.replace('_', " "))
     } else {
         format!("--{}", name.replace('_', "-"))

@@ -124,7 +124,7 @@ impl FromStr for Surface {
     fn from_str(s: &str) -> Result<Surface> {
         Surface::ALL.into_iter().find(|p| p.name() == s).ok_or_else(|| {
             let names: Vec<&str> = Surface::ALL.iter().map(|s| s.name()).collect();
-            Error::Usage(format!("unknown surface {s:?}: expected one of {}", names.join(", ")))
+            Error::unknown("surface", s, &names)
         })
     }
 }

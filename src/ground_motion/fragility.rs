@@ -55,21 +55,21 @@ impl FragilitySurface {
     /// and runs that all had the same outcome (nothing to fit).
     pub fn fit(runs: &[Run]) -> Result<FragilitySurface> {
         if runs.len() < 3 {
-            return Err(Error::Usage(format!("a fragility surface needs at least three runs, got {}", runs.len())));
+            return Err(Error::Fit(format!("a fragility surface: it needs at least three runs, got {}", runs.len())));
         }
         if let Some(r) = runs
             .iter()
             .find(|r| !(r.pga_g > 0.0 && r.pgv_over_pga_s > 0.0 && r.pga_g.is_finite() && r.pgv_over_pga_s.is_finite()))
         {
-            return Err(Error::Usage(format!(
-                "a fragility surface needs PGA > 0 and PGV/PGA > 0, got PGA {} g, PGV/PGA {} s",
+            return Err(Error::Fit(format!(
+                "a fragility surface: it needs PGA > 0 and PGV/PGA > 0, got PGA {} g, PGV/PGA {} s",
                 r.pga_g, r.pgv_over_pga_s
             )));
         }
         let k = runs.iter().filter(|r| r.overturned).count();
         if k == 0 || k == runs.len() {
-            return Err(Error::Usage(format!(
-                "all {} runs {}: the surface cannot be fitted; widen the range of scale factors",
+            return Err(Error::Fit(format!(
+                "a fragility surface: all {} runs {}; widen the range of scale factors",
                 runs.len(),
                 if k == 0 { "left the rock standing" } else { "overturned the rock" }
             )));

@@ -65,17 +65,16 @@ impl Record {
     pub fn new(name: impl Into<String>, dt: f64, accel: Vec<[f64; 3]>) -> Result<Record> {
         let name = name.into();
         if !(dt > 0.0 && dt.is_finite()) {
-            return Err(Error::Usage(format!("{name}: the sampling interval must be positive, got {dt} s")));
+            return Err(Error::motion(name, format!("the sampling interval must be positive, got {dt} s")));
         }
         if accel.len() < 2 {
-            return Err(Error::Usage(format!("{name}: a record needs at least two samples, got {}", accel.len())));
+            return Err(Error::motion(name, format!("a record needs at least two samples, got {}", accel.len())));
         }
         if let Some(k) = accel.iter().position(|a| a.iter().any(|x| !x.is_finite())) {
-            return Err(Error::Usage(format!(
-                "{name}: sample {} (t = {} s) is not a finite number",
-                k + 1,
-                k as f64 * dt
-            )));
+            return Err(Error::motion(
+                name,
+                format!("sample {} (t = {} s) is not a finite number", k + 1, k as f64 * dt),
+            ));
         }
         Ok(Record { name, dt, accel })
     }
@@ -162,7 +161,7 @@ impl Record {
     /// polynomial baseline fit (Boore & Bommer 2005, §4), applied to the velocity.
     pub fn baseline_corrected(&self, order: usize) -> Result<Record> {
         if order > 3 {
-            return Err(Error::Usage(format!("baseline correction order must be 0 to 3, got {order}")));
+            return Err(Error::parameter("baseline", order, "a polynomial order from 0 to 3"));
         }
         let v = self.velocity();
         let n = self.accel.len();
@@ -182,7 +181,7 @@ impl Record {
         }
         let chol = ata
             .cholesky()
-            .ok_or_else(|| Error::Usage(format!("{}: too few samples for a baseline of order {order}", self.name)))?;
+            .ok_or_else(|| Error::motion(&self.name, format!("too few samples for a baseline of order {order}")))?;
         let mut accel = self.accel.clone();
         for c in 0..3 {
             let mut atv = nalgebra::DVector::<f64>::zeros(m);
@@ -209,7 +208,7 @@ impl Record {
     /// times. A finer `dt` only interpolates (no new frequencies appear).
     pub fn resampled(&self, dt: f64) -> Result<Record> {
         if !(dt > 0.0 && dt.is_finite()) {
-            return Err(Error::Usage(format!("the resampling interval must be positive, got {dt} s")));
+            return Err(Error::parameter("dt", format!("{dt} s"), "a positive resampling interval"));
         }
         let source = if dt > self.dt * (1.0 + 1e-12) { self.low_passed(0.5 / dt) } else { self.clone() };
         let n = (self.duration() / dt + 1e-9).floor() as usize + 1;

@@ -66,7 +66,7 @@ impl FromStr for AccelUnit {
             "g" => Ok(AccelUnit::G),
             "m/s2" | "m/s^2" | "m/s²" | "mps2" => Ok(AccelUnit::MetresPerSecond2),
             "gal" | "cm/s2" | "cm/s^2" | "cm/s²" => Ok(AccelUnit::Gal),
-            other => Err(Error::Usage(format!("unknown acceleration unit {other:?}: use g, m/s2 or gal (cm/s2)"))),
+            other => Err(Error::unknown("acceleration unit", other, &["g", "m/s2", "gal (cm/s2)"])),
         }
     }
 }
@@ -105,17 +105,21 @@ impl FromStr for Columns {
             .map(|p| {
                 let p = p.trim();
                 match p.parse::<usize>() {
-                    Ok(0) => Err(Error::Usage("CSV columns are numbered from 1".into())),
+                    Ok(0) => Err(Error::parameter("columns", s, "column names or numbers counted from 1")),
                     Ok(k) => Ok(Column::Number(k)),
-                    Err(_) if p.is_empty() => Err(Error::Usage(format!("empty column name in {s:?}"))),
+                    Err(_) if p.is_empty() => {
+                        Err(Error::parameter("columns", s, "names or numbers without an empty one"))
+                    }
                     Err(_) => Ok(Column::Name(p.to_string())),
                 }
             })
             .collect::<Result<_>>()?;
         if !(2..=4).contains(&parts.len()) {
-            return Err(Error::Usage(format!(
-                "columns {s:?}: give the time and one to three accelerations (x, y, z), e.g. time_s,ax_g or 1,2,3"
-            )));
+            return Err(Error::parameter(
+                "columns",
+                s,
+                "the time and one to three accelerations (x, y, z), e.g. time_s,ax_g or 1,2,3",
+            ));
         }
         Ok(Columns { time: parts[0].clone(), accel: parts[1..].to_vec() })
     }
@@ -216,10 +220,13 @@ fn uniform(name: &str, times: &[f64], rows: &[[f64; 3]]) -> Result<Record> {
     let duration = times[times.len() - 1] - times[0];
     let n = (duration / smallest).floor() as usize + 1;
     if n > 20 * times.len() {
-        return Err(Error::Usage(format!(
-            "times are irregular (intervals from {smallest} to {} s) and a grid at the smallest would need {n} samples; resample the record first",
-            steps[steps.len() - 1]
-        )));
+        return Err(Error::motion(
+            name,
+            format!(
+                "times are irregular (intervals from {smallest} to {} s) and a grid at the smallest would need {n} samples; resample the record first",
+                steps[steps.len() - 1]
+            ),
+        ));
     }
     let accel = (0..n)
         .map(|k| {
@@ -292,7 +299,11 @@ fn at2_counts(line: &str) -> std::result::Result<(usize, f64), String> {
 /// A record from one to three `.AT2` files: x, y, z in that order (see the module doc).
 pub fn read_at2(paths: &[&Path]) -> Result<Record> {
     if !(1..=3).contains(&paths.len()) {
-        return Err(Error::Usage(format!("give one to three .AT2 files (x, y, z components), got {}", paths.len())));
+        return Err(Error::parameter(
+            "motion",
+            format!("{} files", paths.len()),
+            "one to three .AT2 files (x, y, z components)",
+        ));
     }
     let parts: Vec<(f64, Vec<f64>)> = paths.iter().map(|p| read_at2_component(p)).collect::<Result<_>>()?;
     let name = paths.iter().map(|p| file_name(p)).collect::<Vec<_>>().join("+");
@@ -333,6 +344,6 @@ pub fn read_record(paths: &[&Path], columns: &Columns, unit: AccelUnit) -> Resul
     }
     match paths {
         [one] => read_csv(one, columns, unit),
-        _ => Err(Error::Usage("give one CSV record or one to three .AT2 files (x, y, z), not a mix".into())),
+        _ => Err(Error::parameter("motion", "a mix of files", "one CSV record or one to three .AT2 files (x, y, z)")),
     }
 }

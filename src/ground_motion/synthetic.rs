@@ -29,10 +29,10 @@ pub fn one_sine_pulse(ap_g: f64, tp: f64, dt: f64) -> Result<Record> {
 /// period into a whole number of samples).
 pub fn sine_cycles(ap_g: f64, tp: f64, cycles: f64, dt: f64) -> Result<Record> {
     if !(tp > 0.0 && tp.is_finite() && dt > 0.0 && dt < tp) {
-        return Err(Error::Usage(format!("a sine pulse needs 0 < dt < T_p, got T_p = {tp} s, dt = {dt} s")));
+        return Err(Error::motion("sine pulse", format!("needs 0 < dt < T_p, got T_p = {tp} s, dt = {dt} s")));
     }
     if !(cycles > 0.0 && cycles.is_finite() && ap_g.is_finite()) {
-        return Err(Error::Usage(format!("a sine pulse needs a finite peak and cycles > 0, got {ap_g} g, {cycles}")));
+        return Err(Error::motion("sine pulse", format!("needs a finite peak and cycles > 0, got {ap_g} g, {cycles}")));
     }
     let n = (tp / dt).round() as usize;
     let dt = tp / n as f64;
@@ -75,15 +75,19 @@ impl Default for Noise {
 pub fn filtered_noise(noise: &Noise, pga_g: f64, seed: u64) -> Result<Record> {
     let Noise { duration, period, damping, dt, components } = *noise;
     if !(duration > 0.0 && period > 0.0 && damping > 0.0 && dt > 0.0 && duration > 10.0 * dt) {
-        return Err(Error::Usage(format!(
-            "filtered noise needs positive duration ≫ dt, period and damping, got {noise:?}"
-        )));
+        return Err(Error::motion(
+            "filtered noise",
+            format!("needs positive duration ≫ dt, period and damping, got {noise:?}"),
+        ));
     }
     if period < 4.0 * dt {
-        return Err(Error::Usage(format!("a predominant period of {period} s needs dt ≤ {} s", period / 4.0)));
+        return Err(Error::motion(
+            "filtered noise",
+            format!("a predominant period of {period} s needs dt ≤ {} s", period / 4.0),
+        ));
     }
     if !(1..=3).contains(&components) {
-        return Err(Error::Usage(format!("1 to 3 components, got {components}")));
+        return Err(Error::parameter("components", components, "1 to 3"));
     }
     let n = (duration / dt).round() as usize + 1;
     let mut accel = vec![[0.0; 3]; n];

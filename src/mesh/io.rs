@@ -41,18 +41,17 @@ pub fn load_solid(path: &Path) -> Result<(TriMesh, Repairs)> {
 
 /// Write a mesh; the format follows the extension: `.stl` binary STL, `.ply` binary little-endian
 /// PLY with float64 x/y/z and `uchar int vertex_indices`, `.obj` Wavefront OBJ. Any other
-/// extension is an [`Error::Usage`] naming it.
+/// extension is an [`Error::Io`] naming the file and the extensions it can write.
 pub fn write(path: &Path, mesh: &TriMesh) -> Result<()> {
     let bytes = match extension(path).as_deref() {
         Some("stl") => stl::binary(mesh),
         Some("ply") => ply::binary(mesh, None),
         Some("obj") => obj::text(mesh),
         other => {
-            return Err(Error::Usage(format!(
-                "cannot write {}: {} (use .stl, .ply or .obj)",
-                path.display(),
-                other.map_or("no extension".into(), |e| format!("unknown mesh extension '.{e}'"))
-            )))
+            let what = other.map_or("no extension".into(), |e| format!("unknown mesh extension '.{e}'"));
+            let error =
+                std::io::Error::new(std::io::ErrorKind::InvalidInput, format!("{what} (use .stl, .ply or .obj)"));
+            return Err(Error::Io { path: path.to_path_buf(), error });
         }
     };
     write_file(path, mesh, bytes)
@@ -72,15 +71,17 @@ pub fn write_ply_ascii(path: &Path, mesh: &TriMesh) -> Result<()> {
 
 /// Write a binary little-endian PLY with one colour per triangle (face properties `uchar red`,
 /// `uchar green`, `uchar blue` after `vertex_indices`), as MeshLab and ParaView display it.
-/// `face_colors` must have one entry per triangle, else [`Error::Usage`].
+/// `face_colors` must have one entry per triangle, else [`Error::InvalidMesh`].
 pub fn write_colored_ply(path: &Path, mesh: &TriMesh, face_colors: &[[u8; 3]]) -> Result<()> {
     if face_colors.len() != mesh.triangles.len() {
-        return Err(Error::Usage(format!(
-            "cannot write {}: {} face colours given for {} triangles",
-            path.display(),
-            face_colors.len(),
-            mesh.triangles.len()
-        )));
+        return Err(Error::InvalidMesh {
+            path: path.to_path_buf(),
+            what: format!(
+                "cannot write it: {} face colours given for {} triangles",
+                face_colors.len(),
+                mesh.triangles.len()
+            ),
+        });
     }
     write_file(path, mesh, ply::binary(mesh, Some(face_colors)))
 }
@@ -177,10 +178,10 @@ fn fan(polygon: &[u32], out: &mut Vec<[u32; 3]>) {
 fn write_file(path: &Path, mesh: &TriMesh, bytes: Vec<u8>) -> Result<()> {
     let n = mesh.vertices.len();
     if let Some((k, t)) = mesh.triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= n)) {
-        return Err(Error::Usage(format!(
-            "cannot write {}: triangle {k} refers to vertex {t:?} but the mesh has {n} vertices",
-            path.display()
-        )));
+        return Err(Error::InvalidMesh {
+            path: path.to_path_buf(),
+            what: format!("cannot write it: triangle {k} refers to vertex {t:?} but the mesh has {n} vertices"),
+        });
     }
     std::fs::write(path, bytes).map_err(|error| Error::Io { path: path.into(), error })
 }

@@ -146,10 +146,10 @@ fn ellipse_point(a: f64, t: f64) -> Point2 {
 /// docs), counter-clockwise from vertex 0.
 pub fn ellipse_vertices(a: f64, n: usize, sampling: Sampling) -> Result<Vec<Point2>> {
     if !(a >= 1.0 && a.is_finite()) {
-        return Err(Error::Usage(format!("the semi-axis a must be ≥ 1 (the major axis is x), got {a}")));
+        return Err(Error::parameter("a", a, "≥ 1 (the semi-axis along x, the major one)"));
     }
     if n < 3 {
-        return Err(Error::Usage(format!("an ellipse polygon needs at least 3 sides, got {n}")));
+        return Err(Error::parameter("sides", n, "at least 3"));
     }
     let arc = EllipseArc::new(a);
     let l = arc.perimeter();

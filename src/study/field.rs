@@ -123,7 +123,10 @@ pub fn mesh_files(folder: &Path) -> Result<Vec<PathBuf>> {
         .collect();
     found.sort();
     if found.is_empty() {
-        return Err(Error::Usage(format!("{}: no .stl, .obj or .ply files in this folder", folder.display())));
+        return Err(Error::Study {
+            path: folder.to_path_buf(),
+            what: "no .stl, .obj or .ply files in this folder".into(),
+        });
     }
     Ok(found)
 }
@@ -147,11 +150,13 @@ pub fn run_files(
     let mut seen: BTreeMap<&str, &Path> = BTreeMap::new();
     for (id, f) in ids.iter().zip(files) {
         if let Some(prev) = seen.insert(id, f) {
-            return Err(Error::Usage(format!(
-                "{} and {} have the same id {id:?}: ids (file names without extension) must be unique",
-                prev.display(),
-                f.display()
-            )));
+            return Err(Error::Study {
+                path: f.clone(),
+                what: format!(
+                    "has the same id {id:?} as {}: ids (file names without extension) must be unique",
+                    prev.display()
+                ),
+            });
         }
     }
     let mut unmatched = Vec::new();
@@ -160,14 +165,16 @@ pub fn run_files(
         unmatched = m.unmatched(&set).into_iter().map(String::from).collect();
         if !unmatched.is_empty() && !opts.allow_unmatched {
             let shown: Vec<&str> = unmatched.iter().take(10).map(|s| s.as_str()).collect();
-            return Err(Error::Usage(format!(
-                "{}: {} id(s) have no scan: {}{} (a scan's id is its file name without extension; \
+            return Err(Error::Study {
+                path: m.path.clone(),
+                what: format!(
+                    "{} id(s) have no scan: {}{} (a scan's id is its file name without extension; \
                  pass --allow-unmatched to only warn)",
-                m.path.display(),
-                unmatched.len(),
-                shown.join(", "),
-                if unmatched.len() > 10 { ", …" } else { "" }
-            )));
+                    unmatched.len(),
+                    shown.join(", "),
+                    if unmatched.len() > 10 { ", …" } else { "" }
+                ),
+            });
         }
     }
     let ncols = meta.map_or(0, |m| m.columns.len());

@@ -213,10 +213,10 @@ pub struct NuFit {
 /// replacement and draws the hand statistics from normals of their standard errors, then refits.
 pub fn fit_nu(hand: &[HandSample], pops: &[Vec<CountCurve>], opts: &FitOptions) -> Result<NuFit> {
     if hand.len() != pops.len() || hand.is_empty() {
-        return Err(Error::Usage(format!("{} hand samples but {} synthetic populations", hand.len(), pops.len())));
+        return Err(Error::Fit(format!("ν: {} hand samples but {} synthetic populations", hand.len(), pops.len())));
     }
     if opts.grid.len() < 3 || opts.grid.windows(2).any(|w| !(w[0] > 0.0 && w[1] > w[0])) {
-        return Err(Error::Usage("the ν grid needs at least 3 increasing positive values".into()));
+        return Err(Error::parameter("grid", format!("{:?}", opts.grid), "at least 3 increasing positive values of ν"));
     }
     // table[i][j][g] = (S, U) of pebble j of sample i at grid ν g.
     let table: Vec<Vec<Vec<(f64, f64)>>> = pops
@@ -238,7 +238,7 @@ pub fn fit_nu(hand: &[HandSample], pops: &[Vec<CountCurve>], opts: &FitOptions) 
     let se_hand: Vec<[f64; 4]> = hand.iter().map(|h| h.standard_errors()).collect();
     let used = opts.statistics;
     if !used.iter().any(|&u| u) {
-        return Err(Error::Usage("no statistic selected for the fit of ν".into()));
+        return Err(Error::Fit("ν: no statistic selected".into()));
     }
     let masked = |t: [f64; 4]| -> f64 { (0..4).filter(|&k| used[k]).map(|k| t[k]).sum() };
     let curve = |picks: &[Vec<usize>], targets: &[[f64; 4]]| -> Vec<f64> {

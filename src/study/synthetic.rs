@@ -69,19 +69,20 @@ pub const MIN_RATIO: f64 = 0.15;
 /// means μ are shifted by target − measured, and the specs are drawn again with the same z.
 /// So the population depends only on (target, params), not on other samples.
 pub fn synthetic_specs(target: &SampleTarget, params: &PopulationParams) -> Result<Vec<SyntheticSpec>> {
-    for (what, x) in [("c/b", target.c_over_b), ("c/a", target.c_over_a)] {
+    for (what, x) in [("c_over_b", target.c_over_b), ("c_over_a", target.c_over_a)] {
         if !(x > 0.0 && x <= 1.0) {
-            return Err(Error::Usage(format!("{}: target {what} must be in (0, 1], got {x}", target.name)));
+            return Err(Error::parameter(what, format!("{x} (target {})", target.name), "in (0, 1]"));
         }
     }
     if target.c_over_a > target.c_over_b {
-        return Err(Error::Usage(format!(
-            "{}: c/a ({}) cannot exceed c/b ({}) since b ≤ a",
-            target.name, target.c_over_a, target.c_over_b
-        )));
+        return Err(Error::parameter(
+            "c_over_a",
+            format!("{} (target {})", target.c_over_a, target.name),
+            format!("at most c/b = {}, since b ≤ a", target.c_over_b),
+        ));
     }
     if !(params.spread >= 0.0 && params.spread.is_finite()) {
-        return Err(Error::Usage(format!("spread must be ≥ 0, got {}", params.spread)));
+        return Err(Error::parameter("spread", params.spread, "≥ 0"));
     }
     let base = params.seed ^ fnv1a_str(&target.name);
     let draws: Vec<(u64, f64, f64)> = (0..params.count as u64)

@@ -234,7 +234,7 @@ impl FromStr for Preset {
         Preset::ALL
             .into_iter()
             .find(|p| p.name() == s)
-            .ok_or_else(|| Error::Usage(format!("unknown preset {s:?}: expected one of quasi-static, drop, throw")))
+            .ok_or_else(|| Error::unknown("preset", s, &["quasi-static", "drop", "throw"]))
     }
 }
 #[cfg(test)]

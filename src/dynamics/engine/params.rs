@@ -264,6 +264,6 @@ impl FromStr for Flight {
         Flight::ALL
             .into_iter()
             .find(|m| m.name() == s)
-            .ok_or_else(|| Error::Usage(format!("unknown flight mode {s:?}: expected rapier or free")))
+            .ok_or_else(|| Error::unknown("flight mode", s, &["rapier", "free"]))
     }
 }

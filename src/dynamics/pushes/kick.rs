@@ -34,7 +34,7 @@ impl std::str::FromStr for Family {
         match s {
             "push" => Ok(Family::Push),
             "spin" => Ok(Family::Spin),
-            _ => Err(Error::Usage(format!("unknown perturbation family {s:?}: expected push or spin"))),
+            _ => Err(Error::unknown("perturbation family", s, &["push", "spin"])),
         }
     }
 }

@@ -114,13 +114,13 @@ impl PerturbConfig {
     pub fn check(&self) -> Result<()> {
         self.params.check()?;
         if self.epsilons.is_empty() || self.epsilons.iter().any(|e| !(*e > 0.0 && e.is_finite())) {
-            return Err(Error::Usage("the ε grid must hold positive values".into()));
+            return Err(Error::parameter("epsilons", format!("{:?}", self.epsilons), "a non-empty grid of positive ε"));
         }
         if self.epsilons.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(Error::Usage("the ε grid must be increasing".into()));
+            return Err(Error::parameter("epsilons", format!("{:?}", self.epsilons), "an increasing grid"));
         }
         if self.trials == 0 {
-            return Err(Error::Usage("at least one trial per ε".into()));
+            return Err(Error::parameter("trials", 0, "at least 1 per ε"));
         }
         Ok(())
     }

@@ -82,7 +82,7 @@ impl FromStr for RestingPreset {
         RestingPreset::ALL
             .into_iter()
             .find(|p| p.name() == s)
-            .ok_or_else(|| Error::Usage(format!("unknown contact preset {s:?}: expected surface or damped")))
+            .ok_or_else(|| Error::unknown("contact preset", s, &["surface", "damped"]))
     }
 }
 

@@ -64,7 +64,7 @@ pub fn ramp_tipping(
 /// The ground acceleration a(t) = `rate`·t along x (g per s) up to `a_max` (g), in m/s².
 pub fn ramp_record(rate: f64, a_max: f64) -> Result<Record> {
     if !(rate > 0.0 && a_max > 0.0 && rate.is_finite() && a_max.is_finite()) {
-        return Err(Error::Usage(format!("a ramp needs a positive rate and peak, got {rate} g/s up to {a_max} g")));
+        return Err(Error::motion("ramp", format!("needs a positive rate and peak, got {rate} g/s up to {a_max} g")));
     }
     Record::new("ramp", a_max / rate, vec![[0.0; 3], [a_max * GRAVITY, 0.0, 0.0]])
 }

@@ -147,7 +147,7 @@ pub fn run_batch(
 ) -> Result<ShakeBatch> {
     use rayon::prelude::*;
     if records.is_empty() || scales.is_empty() {
-        return Err(Error::Usage("a batch needs at least one record and one scale factor".into()));
+        return Err(Error::parameter("scales", "none", "at least one record and one scale factor"));
     }
     if let Some(e) = ensemble {
         e.check()?;

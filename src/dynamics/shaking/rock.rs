@@ -125,18 +125,20 @@ fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32,
     let eq = |f: u32| stone.facet_equilibrium[f as usize].map_or("?".to_string(), |e| e.to_string());
     let off = stone.body.facet_normals[expected as usize].dot(down).clamp(-1.0, 1.0).acos().to_degrees();
     if !settled {
-        return Error::Usage(format!(
-            "pose {pose}: the rock did not come to rest after it was put down (it is still moving at the time cap)"
-        ));
+        return Error::Pose {
+            pose: pose.to_string(),
+            what: "the rock did not come to rest after it was put down (it is still moving at the time cap)".into(),
+        };
     }
-    Error::Usage(format!(
-        "pose {pose}: put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
+    let what = format!(
+        "put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
          ({} by the quasi-static descent, whose facet is {off:.2}° from the given down direction) but rolled \
          to {}: the rock does not stand still in this pose (a scan made standing should be within a fraction of a \
          degree of its resting facet); choose --pose facet:ID or a quat: that stands",
         eq(expected),
         eq(got)
-    ))
+    );
+    Error::Pose { pose: pose.to_string(), what }
 }
 
 /// Put the rock down in `pose` and let it settle under gravity (module docs of the field-rock
@@ -153,11 +155,14 @@ pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &RestingParams) -> Result<Pla
         Pose::Facet { id } => {
             let start = stone.position(id).ok_or_else(|| {
                 let list: Vec<String> = stone.stable().iter().map(|s| s.index.to_string()).collect();
-                Error::Usage(format!(
-                    "facet:{id} is not the index of a stable micro-equilibrium{}; stable ones: {}",
-                    stone.facet_hint(id),
-                    list.join(", ")
-                ))
+                Error::Pose {
+                    pose: format!("facet:{id}"),
+                    what: format!(
+                        "not the index of a stable micro-equilibrium{}; stable ones: {}",
+                        stone.facet_hint(id),
+                        list.join(", ")
+                    ),
+                }
             })?;
             return Ok(Placed::on(stone, start, p));
         }
@@ -326,7 +331,7 @@ impl RockSetup {
 /// ([`driven`] to the setup's real step).
 pub fn scaled_motion(record: &Record, scale: f64, setup: &RockSetup) -> Result<(Measures, Record)> {
     if !(scale.is_finite() && scale >= 0.0) {
-        return Err(Error::Usage(format!("scale factors must be ≥ 0, got {scale}")));
+        return Err(Error::parameter("scale", scale, "≥ 0"));
     }
     let scaled = record.scaled(scale);
     Ok((scaled.measures(), driven(&scaled, setup.real_dt())?))

@@ -61,7 +61,7 @@ pub struct ShakeTrial {
 /// (g), f = `frequency_hz` (Hz, real), sampled at `dt` (s, real).
 pub fn sine_pulse(amplitude_g: f64, frequency_hz: f64, cycles: f64, dt: f64) -> Result<Record> {
     if !(frequency_hz > 0.0 && frequency_hz.is_finite()) {
-        return Err(Error::Usage(format!("pulse frequency must be positive, got {frequency_hz}")));
+        return Err(Error::parameter("frequency_hz", frequency_hz, "a positive frequency (Hz)"));
     }
     synthetic::sine_cycles(amplitude_g, 1.0 / frequency_hz, cycles, dt)
 }
@@ -105,7 +105,10 @@ pub fn default_starts(stone: &Stone, p: &RestingParams) -> Result<Vec<usize>> {
     let (regular, rocking) = crate::dynamics::resting::default_pair(stone, p);
     let v: Vec<usize> = regular.into_iter().chain(rocking).collect();
     if v.is_empty() {
-        return Err(Error::Usage("no stable micro-equilibrium of this stone stays at rest in the simulation".into()));
+        return Err(Error::Pose {
+            pose: "on any stable equilibrium".into(),
+            what: "no stable micro-equilibrium of this stone stays at rest in the simulation".into(),
+        });
     }
     Ok(v)
 }
@@ -174,19 +177,19 @@ impl ShakeConfig {
     pub fn check(&self) -> Result<()> {
         self.params.check()?;
         if !(self.motion.measures().pga_g > 0.0) {
-            return Err(Error::Usage(format!("{}: the motion has no horizontal acceleration", self.motion.name)));
+            return Err(Error::motion(&self.motion.name, "the motion has no horizontal acceleration"));
         }
         if self.pgas.is_empty() || self.pgas.iter().any(|a| !(*a >= 0.0 && a.is_finite())) {
-            return Err(Error::Usage("the PGA grid must hold values ≥ 0".into()));
+            return Err(Error::parameter("pgas", format!("{:?}", self.pgas), "a non-empty grid of PGAs ≥ 0"));
         }
         if self.pgas.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(Error::Usage("the PGA grid must be increasing".into()));
+            return Err(Error::parameter("pgas", format!("{:?}", self.pgas), "an increasing grid"));
         }
         if self.trials == 0 {
-            return Err(Error::Usage("at least one trial per PGA".into()));
+            return Err(Error::parameter("trials", 0, "at least 1 per PGA"));
         }
         if !(self.r_max_m > 0.0 && self.r_max_m.is_finite()) {
-            return Err(Error::Usage(format!("the size must be positive, got {} m", self.r_max_m)));
+            return Err(Error::parameter("size", format!("{} m", self.r_max_m), "positive"));
         }
         Ok(())
     }

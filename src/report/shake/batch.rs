@@ -33,7 +33,7 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
                 }
             }
         }
-        (None, Some(e)) => s += &format!("no fragility surface: {e}\n"),
+        (None, Some(e)) => s += &format!("{e}\n"),
         (None, None) => {}
     }
     s += &batch_lines(b);

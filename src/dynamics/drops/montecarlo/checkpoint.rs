@@ -54,7 +54,7 @@ impl Checkpoint {
                 ));
             }
             if !differ.is_empty() {
-                return Err(Error::Usage(format!(
+                return Err(Error::Checkpoint(format!(
                     "{}: this checkpoint belongs to a different run; it differs in {}{}",
                     path.display(),
                     differ.join(", "),
@@ -187,12 +187,13 @@ pub fn check_outcomes(path: &Path, outcomes: &BTreeMap<u64, DropOutcome>, model:
 /// Combine partial results of one run. Headers must agree; an index present twice must have
 /// the same outcome.
 pub fn merge(parts: &[(RunHeader, BTreeMap<u64, DropOutcome>)]) -> Result<(RunHeader, BTreeMap<u64, DropOutcome>)> {
-    let (first, _) = parts.first().ok_or_else(|| Error::Usage("nothing to merge".into()))?;
+    let (first, _) =
+        parts.first().ok_or_else(|| Error::Checkpoint("nothing to merge: no partial results given".into()))?;
     let mut all = BTreeMap::new();
     for (h, outcomes) in parts {
         let differ = first.differences(h);
         if !differ.is_empty() {
-            return Err(Error::Usage(format!(
+            return Err(Error::Checkpoint(format!(
                 "partial results of different runs cannot be merged: they differ in {}",
                 differ.join(", ")
             )));
@@ -200,7 +201,9 @@ pub fn merge(parts: &[(RunHeader, BTreeMap<u64, DropOutcome>)]) -> Result<(RunHe
         for (i, o) in outcomes {
             if let Some(prev) = all.insert(*i, *o) {
                 if prev != *o {
-                    return Err(Error::Usage(format!("drop {i} has two different outcomes in the partial results")));
+                    return Err(Error::Checkpoint(format!(
+                        "drop {i} has two different outcomes in the partial results"
+                    )));
                 }
             }
         }

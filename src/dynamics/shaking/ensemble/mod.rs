@@ -71,11 +71,9 @@ pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
     use crate::dynamics::shaking::rock::Pose;
     let q = match setup.pose {
         Pose::Facet { id } => {
-            return stone.stable().iter().find(|s| s.index == id).map(|s| s.facet).ok_or_else(|| {
-                Error::Usage(format!(
-                    "facet:{id} is not the index of a stable micro-equilibrium{}",
-                    stone.facet_hint(id)
-                ))
+            return stone.stable().iter().find(|s| s.index == id).map(|s| s.facet).ok_or_else(|| Error::Pose {
+                pose: format!("facet:{id}"),
+                what: format!("not the index of a stable micro-equilibrium{}", stone.facet_hint(id)),
             })
         }
         Pose::AsScanned => nalgebra::UnitQuaternion::identity(),
@@ -116,7 +114,10 @@ pub fn run_member(
     };
     let motion: Cow<Record> = if d.sign < 0.0 { Cow::Owned(motion.scaled(-1.0)) } else { Cow::Borrowed(motion) };
     let azimuth = if u.azimuth_deg.is_some() { d.azimuth_deg.to_radians() } else { setup.azimuth };
-    let placed = place(&rock, &setup.pose, &p).map_err(|e| Error::Usage(format!("ensemble member {member}: {e}")))?;
+    let placed = place(&rock, &setup.pose, &p).map_err(|e| match e {
+        Error::Pose { pose, what } => Error::Pose { pose, what: format!("ensemble member {member}: {what}") },
+        e => e,
+    })?;
     let run = RockRun {
         size_assumed: setup.size_assumed,
         ..shake_record(&rock, placed, &p, &motion, azimuth, setup.r_max_m)
