@@ -80,6 +80,23 @@ pub(crate) fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|error| Error::Io { path: dir.to_path_buf(), error })
 }
 
+/// Write a CSV file at `path`: the `header`, then the rows that `rows` writes; a failure (of the
+/// file or of a row) is an [`Error::Io`] naming the file.
+pub(crate) fn write_csv(
+    path: &Path,
+    header: &[&str],
+    rows: impl FnOnce(&mut csv::Writer<std::fs::File>) -> csv::Result<()>,
+) -> Result<()> {
+    (|| -> std::result::Result<_, crate::error::BoxError> {
+        let mut w = csv::Writer::from_path(path)?;
+        w.write_record(header)?;
+        rows(&mut w)?;
+        w.flush()?;
+        Ok(())
+    })()
+    .map_err(|e| Error::write(path, e))
+}
+
 /// Write `value` as pretty JSON to `path`.
 pub(crate) fn write_json<T: serde::Serialize + ?Sized>(path: &Path, value: &T) -> Result<()> {
     let text = serde_json::to_string_pretty(value).map_err(|e| Error::write(path, e))?;

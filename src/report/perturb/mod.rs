@@ -139,9 +139,9 @@ pub fn summary(r: &PerturbReport, mesh: &str) -> String {
 
 /// Write the curves of a run as CSV (one row per equilibrium and ε).
 pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record([
+    crate::report::write_csv(
+        path,
+        &[
             "equilibrium",
             "facet",
             "flock",
@@ -165,48 +165,48 @@ pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
             "p_toppled_hi",
             "barrier_basin",
             "barrier_flock",
-        ])?;
-        for e in &r.equilibria {
-            let q = &e.equilibrium;
-            for c in &e.curve {
-                w.write_record([
-                    q.index.to_string(),
-                    q.facet.to_string(),
-                    q.flock.to_string(),
-                    q.flock_kind.name().to_string(),
-                    q.class.name().to_string(),
-                    r.family.name().into(),
-                    format!("{:.6e}", c.x),
-                    c.n.to_string(),
-                    c.same.to_string(),
-                    c.same_flock.to_string(),
-                    c.toppled.to_string(),
-                    c.unsettled.to_string(),
-                    format!("{:.4}", c.p_same),
-                    format!("{:.4}", c.ci_same.0),
-                    format!("{:.4}", c.ci_same.1),
-                    format!("{:.4}", c.p_in_flock),
-                    format!("{:.4}", c.ci_in_flock.0),
-                    format!("{:.4}", c.ci_in_flock.1),
-                    format!("{:.4}", c.p_toppled),
-                    format!("{:.4}", c.ci_toppled.0),
-                    format!("{:.4}", c.ci_toppled.1),
-                    format!("{:.6e}", q.basin_exit.epsilon),
-                    format!("{:.6e}", q.flock_exit.epsilon),
-                ])?;
+        ],
+        |w| {
+            for e in &r.equilibria {
+                let q = &e.equilibrium;
+                for c in &e.curve {
+                    w.write_record([
+                        q.index.to_string(),
+                        q.facet.to_string(),
+                        q.flock.to_string(),
+                        q.flock_kind.name().to_string(),
+                        q.class.name().to_string(),
+                        r.family.name().into(),
+                        format!("{:.6e}", c.x),
+                        c.n.to_string(),
+                        c.same.to_string(),
+                        c.same_flock.to_string(),
+                        c.toppled.to_string(),
+                        c.unsettled.to_string(),
+                        format!("{:.4}", c.p_same),
+                        format!("{:.4}", c.ci_same.0),
+                        format!("{:.4}", c.ci_same.1),
+                        format!("{:.4}", c.p_in_flock),
+                        format!("{:.4}", c.ci_in_flock.0),
+                        format!("{:.4}", c.ci_in_flock.1),
+                        format!("{:.4}", c.p_toppled),
+                        format!("{:.4}", c.ci_toppled.0),
+                        format!("{:.4}", c.ci_toppled.1),
+                        format!("{:.6e}", q.basin_exit.epsilon),
+                        format!("{:.6e}", q.flock_exit.epsilon),
+                    ])?;
+                }
             }
-        }
-        w.flush()?;
-        Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+            Ok(())
+        },
+    )
 }
 
 /// Write one row per equilibrium: static barriers, dynamic thresholds, classes.
 pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record([
+    crate::report::write_csv(
+        path,
+        &[
             "equilibrium",
             "facet",
             "r_normalised",
@@ -228,59 +228,59 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
             "ratio_flock",
             "uplift_acceleration_g",
             "dynamic_class",
-        ])?;
-        let th = |t: &Option<Threshold>| match t {
-            None => (String::new(), String::new()),
-            Some(t) => (
-                format!("{:.6e}", t.value()),
-                match t {
-                    Threshold::Below(_) => "below",
-                    Threshold::At(_) => "at",
-                    Threshold::Above(_) => "above",
-                }
-                .into(),
-            ),
-        };
-        let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
-        for e in &r.equilibria {
-            let q = &e.equilibrium;
-            let (m, mk) = th(&e.eps50_micro);
-            let (f, fk) = th(&e.eps50_flock);
-            w.write_record([
-                q.index.to_string(),
-                q.facet.to_string(),
-                format!("{:.6}", q.r_normalised),
-                q.flock.to_string(),
-                q.flock_kind.name().to_string(),
-                q.class.name().to_string(),
-                e.rest.stays.to_string(),
-                format!("{:.6e}", q.basin_exit.epsilon),
-                q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
-                format!("{:.6e}", q.flock_exit.epsilon),
-                q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
-                m,
-                mk,
-                f,
-                fk,
-                opt(e.first_leave),
-                opt(e.first_topple),
-                opt(e.ratio_micro),
-                opt(e.ratio_flock),
-                format!("{:.6e}", q.uplift_acceleration),
-                e.dynamic_class.map_or(String::new(), |c| c.name().to_string()),
-            ])?;
-        }
-        w.flush()?;
-        Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+        ],
+        |w| {
+            let th = |t: &Option<Threshold>| match t {
+                None => (String::new(), String::new()),
+                Some(t) => (
+                    format!("{:.6e}", t.value()),
+                    match t {
+                        Threshold::Below(_) => "below",
+                        Threshold::At(_) => "at",
+                        Threshold::Above(_) => "above",
+                    }
+                    .into(),
+                ),
+            };
+            let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
+            for e in &r.equilibria {
+                let q = &e.equilibrium;
+                let (m, mk) = th(&e.eps50_micro);
+                let (f, fk) = th(&e.eps50_flock);
+                w.write_record([
+                    q.index.to_string(),
+                    q.facet.to_string(),
+                    format!("{:.6}", q.r_normalised),
+                    q.flock.to_string(),
+                    q.flock_kind.name().to_string(),
+                    q.class.name().to_string(),
+                    e.rest.stays.to_string(),
+                    format!("{:.6e}", q.basin_exit.epsilon),
+                    q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
+                    format!("{:.6e}", q.flock_exit.epsilon),
+                    q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
+                    m,
+                    mk,
+                    f,
+                    fk,
+                    opt(e.first_leave),
+                    opt(e.first_topple),
+                    opt(e.ratio_micro),
+                    opt(e.ratio_flock),
+                    format!("{:.6e}", q.uplift_acceleration),
+                    e.dynamic_class.map_or(String::new(), |c| c.name().to_string()),
+                ])?;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// Write every trial as CSV.
 pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record([
+    crate::report::write_csv(
+        path,
+        &[
             "equilibrium",
             "family",
             "epsilon",
@@ -294,28 +294,28 @@ pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
             "non_stable_facet",
             "time",
             "max_level_rise",
-        ])?;
-        for t in trials {
-            w.write_record([
-                t.equilibrium.to_string(),
-                t.family.name().into(),
-                format!("{:.6e}", t.epsilon),
-                t.trial.to_string(),
-                t.outcome.name().into(),
-                t.final_facet.map_or(String::new(), |x| x.to_string()),
-                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
-                t.final_flock.to_string(),
-                t.settled.to_string(),
-                t.certified.to_string(),
-                t.non_stable_facet.to_string(),
-                format!("{:.4}", t.time),
-                format!("{:.3e}", t.max_level_rise),
-            ])?;
-        }
-        w.flush()?;
-        Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+        ],
+        |w| {
+            for t in trials {
+                w.write_record([
+                    t.equilibrium.to_string(),
+                    t.family.name().into(),
+                    format!("{:.6e}", t.epsilon),
+                    t.trial.to_string(),
+                    t.outcome.name().into(),
+                    t.final_facet.map_or(String::new(), |x| x.to_string()),
+                    t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                    t.final_flock.to_string(),
+                    t.settled.to_string(),
+                    t.certified.to_string(),
+                    t.non_stable_facet.to_string(),
+                    format!("{:.4}", t.time),
+                    format!("{:.3e}", t.max_level_rise),
+                ])?;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// Write `perturb.json`, `curves.csv`, `thresholds.csv`, `trials.csv` and (if any curve)

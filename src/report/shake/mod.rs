@@ -24,17 +24,13 @@ use std::path::Path;
 /// Write a record as CSV: time (s) and the three components in g (`time_s,ax_g,ay_g,az_g`, what
 /// `--columns time_s,ax_g,ay_g,az_g --accel-unit g` reads back).
 pub fn write_record(path: &Path, r: &Record) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record(["time_s", "ax_g", "ay_g", "az_g"])?;
+    crate::report::write_csv(path, &["time_s", "ax_g", "ay_g", "az_g"], |w| {
         for (k, a) in r.accel.iter().enumerate() {
             let g = |x: f64| format!("{:.6}", x / crate::GRAVITY);
             w.write_record([format!("{:.5}", k as f64 * r.dt), g(a[0]), g(a[1]), g(a[2])])?;
         }
-        w.flush()?;
         Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+    })
 }
 
 /// One line that says what a motion is: its name, PGA, PGV and duration.

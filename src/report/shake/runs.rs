@@ -68,16 +68,12 @@ pub fn run_csv_row(r: &RecordRun) -> Vec<String> {
 
 /// Write `runs.csv` (header and one row per run, in the batch's order).
 pub fn write_runs_csv(path: &Path, runs: &[RecordRun]) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record(RUN_CSV_HEADER)?;
+    crate::report::write_csv(path, &RUN_CSV_HEADER, |w| {
         for r in runs {
             w.write_record(run_csv_row(r))?;
         }
-        w.flush()?;
         Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+    })
 }
 
 /// A readable summary of one field-rock run.

@@ -100,9 +100,9 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
 
 /// Write the fragility curves as CSV.
 pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record([
+    crate::report::write_csv(
+        path,
+        &[
             "equilibrium",
             "facet",
             "static_class",
@@ -117,32 +117,32 @@ pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
             "p_toppled_lo",
             "p_toppled_hi",
             "uplift_acceleration_g",
-        ])?;
-        for f in &r.fragility {
-            let q = &f.equilibrium;
-            for c in &f.curve {
-                w.write_record([
-                    q.index.to_string(),
-                    q.facet.to_string(),
-                    q.class.name().to_string(),
-                    format!("{:.4}", c.x),
-                    c.n.to_string(),
-                    c.same.to_string(),
-                    c.same_flock.to_string(),
-                    c.toppled.to_string(),
-                    c.unsettled.to_string(),
-                    format!("{:.4}", c.p_same),
-                    format!("{:.4}", c.p_toppled),
-                    format!("{:.4}", c.ci_toppled.0),
-                    format!("{:.4}", c.ci_toppled.1),
-                    format!("{:.5}", q.uplift_acceleration),
-                ])?;
+        ],
+        |w| {
+            for f in &r.fragility {
+                let q = &f.equilibrium;
+                for c in &f.curve {
+                    w.write_record([
+                        q.index.to_string(),
+                        q.facet.to_string(),
+                        q.class.name().to_string(),
+                        format!("{:.4}", c.x),
+                        c.n.to_string(),
+                        c.same.to_string(),
+                        c.same_flock.to_string(),
+                        c.toppled.to_string(),
+                        c.unsettled.to_string(),
+                        format!("{:.4}", c.p_same),
+                        format!("{:.4}", c.p_toppled),
+                        format!("{:.4}", c.ci_toppled.0),
+                        format!("{:.4}", c.ci_toppled.1),
+                        format!("{:.5}", q.uplift_acceleration),
+                    ])?;
+                }
             }
-        }
-        w.flush()?;
-        Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+            Ok(())
+        },
+    )
 }
 
 /// Fragility curves P(toppled) against PGA, one line (with 95 % intervals) per
@@ -222,9 +222,9 @@ where
 
 /// Write one CSV row per shaking trial.
 pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()> {
-    (|| -> std::result::Result<_, crate::error::BoxError> {
-        let mut w = csv::Writer::from_path(path)?;
-        w.write_record([
+    crate::report::write_csv(
+        path,
+        &[
             "equilibrium",
             "pga_g",
             "azimuth_deg",
@@ -234,24 +234,24 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
             "final_flock",
             "settled",
             "max_tilt_rad",
-        ])?;
-        for t in trials {
-            w.write_record([
-                t.equilibrium.to_string(),
-                format!("{:.4}", t.pga),
-                format!("{:.2}", t.azimuth.to_degrees()),
-                t.trial.to_string(),
-                t.outcome.name().to_string(),
-                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
-                t.final_flock.to_string(),
-                t.settled.to_string(),
-                format!("{:.5}", t.max_tilt),
-            ])?;
-        }
-        w.flush()?;
-        Ok(())
-    })()
-    .map_err(|e| crate::Error::write(path, e))
+        ],
+        |w| {
+            for t in trials {
+                w.write_record([
+                    t.equilibrium.to_string(),
+                    format!("{:.4}", t.pga),
+                    format!("{:.2}", t.azimuth.to_degrees()),
+                    t.trial.to_string(),
+                    t.outcome.name().to_string(),
+                    t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                    t.final_flock.to_string(),
+                    t.settled.to_string(),
+                    format!("{:.5}", t.max_tilt),
+                ])?;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// Write `shake.json`, `fragility.csv`, `trials.csv` and (if any curve) `fragility.png/.svg` into
