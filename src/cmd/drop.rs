@@ -343,12 +343,8 @@ fn emit(
 ) -> Result<()> {
     use rocking_stones::report;
     let sized = Sized { report, r_max_m: size.map(|s| s.r_max_m), size_assumed: size.map(RealSize::assumed) };
-    let summary = || report::drop_summary_sized(report, sized.r_max_m);
-    super::emit(&sized, json, summary, output, |dir| {
-        let mut w = report::write_drop_outputs(report, dir)?;
-        let view = super::hull_view(analysis, &report.mesh, nu);
-        let title = format!("rocking drop: {}", report::short_name(&report.mesh));
-        report::html::add_page(dir, &mut w, &title, &summary(), Some(&view))?;
-        Ok(w)
-    })
+    let summary = report::drop_summary_sized(report, sized.r_max_m);
+    let hull = || super::hull_view(analysis, &report.mesh, nu);
+    let page = super::Page { title: format!("rocking drop: {}", report::short_name(&report.mesh)), hull: Some(&hull) };
+    super::emit(&sized, json, &summary, output, Some(page), |dir| report::write_drop_outputs(report, dir))
 }

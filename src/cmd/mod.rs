@@ -23,21 +23,37 @@ pub fn progress_bar(n: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// Print a report (JSON or its human summary) and, with `-o DIR`, write its files and list them.
+/// The page `report.html` that [`emit`] writes beside a report's files: its title, and the hull
+/// of the stone (for runs on one analysed stone), made only when the page is written.
+pub struct Page<'a> {
+    /// Title of the page (`rocking drop: pebble`).
+    pub title: String,
+    /// The 3D view of the stone, if the run has one.
+    pub hull: Option<&'a dyn Fn() -> rocking_stones::report::html::HullView>,
+}
+
+/// Print a report (JSON or its human `summary`) and, with `-o DIR`, write its files, then (with a
+/// `page`) `report.html` showing the summary and the files, and list what was written.
 pub fn emit<R: serde::Serialize>(
     report: &R,
     json: bool,
-    summary: impl FnOnce() -> String,
+    summary: &str,
     output: Option<&Path>,
-    write: impl FnOnce(&Path) -> anyhow::Result<Vec<PathBuf>>,
+    page: Option<Page>,
+    write: impl FnOnce(&Path) -> rocking_stones::Result<Vec<PathBuf>>,
 ) -> anyhow::Result<()> {
     if json {
         println!("{}", serde_json::to_string_pretty(report)?);
     } else {
-        print!("{}", summary());
+        print!("{summary}");
     }
     if let Some(dir) = output {
-        for w in write(dir)? {
+        let mut written = write(dir)?;
+        if let Some(page) = page {
+            let view = page.hull.map(|h| h());
+            rocking_stones::report::html::add_page(dir, &mut written, &page.title, summary, view.as_ref())?;
+        }
+        for w in written {
             if !json {
                 println!("wrote {}", w.display());
             }

@@ -183,18 +183,15 @@ pub fn run_perturb(args: Args) -> Result<()> {
     let report = pushes::perturb_equilibria_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let report = pushes::PerturbReport { r_max_m: Some(size.r_max_m), size_assumed: Some(size.assumed()), ..report };
+    let hull = || super::hull_view(&analysis, &name, stone.nu);
+    let page = super::Page { title: format!("rocking perturb: {}", report::short_name(&name)), hull: Some(&hull) };
     super::emit(
         &report,
         args.json,
-        || report::perturb::summary(&report, &name),
+        &report::perturb::summary(&report, &name),
         args.output.as_deref(),
-        |dir| {
-            let mut w = report::perturb::write_outputs(&report, &name, dir)?;
-            let view = super::hull_view(&analysis, &name, stone.nu);
-            let title = format!("rocking perturb: {}", report::short_name(&name));
-            report::html::add_page(dir, &mut w, &title, &report::perturb::summary(&report, &name), Some(&view))?;
-            Ok(w)
-        },
+        Some(page),
+        |dir| report::perturb::write_outputs(&report, &name, dir),
     )
 }
 

@@ -163,18 +163,15 @@ pub fn run_shake(args: Args) -> Result<()> {
     let report = shaking::sweep_fragility_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     let report = shaking::ShakeReport { size_assumed: Some(size.assumed()), ..report };
     bar.finish_and_clear();
+    let hull = || super::hull_view(&analysis, &name, stone.nu);
+    let page = super::Page { title: format!("rocking shake: {}", report::short_name(&name)), hull: Some(&hull) };
     super::emit(
         &report,
         args.json,
-        || report::shake::summary(&report, &name),
+        &report::shake::summary(&report, &name),
         args.output.as_deref(),
-        |dir| {
-            let mut w = report::shake::write_outputs(&report, &name, dir)?;
-            let view = super::hull_view(&analysis, &name, stone.nu);
-            let title = format!("rocking shake: {}", report::short_name(&name));
-            report::html::add_page(dir, &mut w, &title, &report::shake::summary(&report, &name), Some(&view))?;
-            Ok(w)
-        },
+        Some(page),
+        |dir| report::shake::write_outputs(&report, &name, dir),
     )
 }
 
@@ -222,17 +219,15 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         let bar = super::progress_bar(e.members, "members");
         let run = shaking::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
         bar.finish_and_clear();
+        let page =
+            super::Page { title: format!("rocking shake --ensemble: {}", report::short_name(&name)), hull: None };
         return super::emit(
             &run,
             args.json,
-            || report::shake::ensemble_summary(&run, &name),
+            &report::shake::ensemble_summary(&run, &name),
             args.output.as_deref(),
-            |dir| {
-                let mut w = report::shake::write_ensemble_outputs(&run, &name, dir)?;
-                let title = format!("rocking shake --ensemble: {}", report::short_name(&name));
-                report::html::add_page(dir, &mut w, &title, &report::shake::ensemble_summary(&run, &name), None)?;
-                Ok(w)
-            },
+            Some(page),
+            |dir| report::shake::write_ensemble_outputs(&run, &name, dir),
         );
     }
     if records.len() == 1 && args.scales.len() == 1 {
@@ -240,14 +235,10 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         return super::emit(
             &run,
             args.json,
-            || report::shake::rock_run_summary(&run, &name),
+            &report::shake::rock_run_summary(&run, &name),
             args.output.as_deref(),
-            |dir| {
-                std::fs::create_dir_all(dir)?;
-                let p = dir.join("runs.csv");
-                report::shake::write_runs_csv(&p, std::slice::from_ref(&run))?;
-                Ok(vec![p])
-            },
+            None,
+            |dir| report::shake::write_run_outputs(&run, dir),
         );
     }
     // Many runs: every finished run is appended to DIR/runs.jsonl (the journal `--resume` reads)
@@ -297,17 +288,14 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     }
     bar.finish_and_clear();
     drop(sink);
+    let page = super::Page { title: format!("rocking shake --pose: {}", report::short_name(&name)), hull: None };
     super::emit(
         &batch,
         args.json,
-        || report::shake::batch_summary(&batch, &name),
+        &report::shake::batch_summary(&batch, &name),
         args.output.as_deref(),
-        |dir| {
-            let mut w = report::shake::write_batch_outputs(&batch, &name, dir)?;
-            let title = format!("rocking shake --pose: {}", report::short_name(&name));
-            report::html::add_page(dir, &mut w, &title, &report::shake::batch_summary(&batch, &name), None)?;
-            Ok(w)
-        },
+        Some(page),
+        |dir| report::shake::write_batch_outputs(&batch, &name, dir),
     )
 }
 

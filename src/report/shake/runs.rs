@@ -76,6 +76,13 @@ pub fn write_runs_csv(path: &Path, runs: &[RecordRun]) -> crate::Result<()> {
     })
 }
 
+/// Write the files of one field-rock run into `dir`: `runs.csv` with its one row.
+pub fn write_run_outputs(run: &RecordRun, dir: &Path) -> crate::Result<Vec<std::path::PathBuf>> {
+    let mut out = crate::report::Folder::create(dir)?;
+    out.file("runs.csv", |p| write_runs_csv(p, std::slice::from_ref(run)))?;
+    Ok(out.written)
+}
+
 /// A readable summary of one field-rock run.
 pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
     format!(
