@@ -169,7 +169,7 @@ pub fn run_files(
                 path: m.path.clone(),
                 what: format!(
                     "{} id(s) have no scan: {}{} (a scan's id is its file name without extension; \
-                 pass --allow-unmatched to only warn)",
+                 allow unmatched ids to only warn of them)",
                     unmatched.len(),
                     shown.join(", "),
                     if unmatched.len() > 10 { ", …" } else { "" }

@@ -134,7 +134,7 @@ fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32,
         "put down on the ground, the rock does not rest on the stable micro-equilibrium under it \
          ({} by the quasi-static descent, whose facet is {off:.2}° from the given down direction) but rolled \
          to {}: the rock does not stand still in this pose (a scan made standing should be within a fraction of a \
-         degree of its resting facet); choose --pose facet:ID or a quat: that stands",
+         degree of its resting facet); choose a pose that stands: facet:ID of a stable equilibrium, or a quat:",
         eq(expected),
         eq(got)
     );
