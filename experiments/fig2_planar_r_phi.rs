@@ -10,7 +10,7 @@ use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{
     ellipse_polygon, ellipse_radius, FlockContents, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{colors, init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, FONT_FAMILY};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -77,94 +77,104 @@ fn main() -> Result<()> {
     }
     w.flush()?;
 
-    init_fonts();
     let path = out.join("fig2_r_phi.png");
-    let root = BitMapBackend::new(&path, (1400, 1000)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((2, 2));
-    let smooth_eq = [
-        (-PI / 2.0, 1.0, Kind::Stable),
-        (0.0, A, Kind::Unstable),
-        (PI / 2.0, 1.0, Kind::Stable),
-        (PI, A, Kind::Unstable),
-    ];
-    let colour = |k: Kind| if k == Kind::Stable { colors::VERMILLION } else { colors::BLUE };
-    let s = report.stable;
-    // A: smooth ellipse.
-    {
-        let mut c = ChartBuilder::on(&panels[0])
-            .caption(
-                format!("A. smooth ellipse 1 : {A}: S = U = 2 (vermillion: stable, blue: unstable)"),
-                (FONT_FAMILY, 22),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(-PI / 2.0..1.5 * PI, 0.95..A + 0.05)?;
-        c.configure_mesh().x_desc("φ (rad)").y_desc("R").label_style((FONT_FAMILY, 15)).draw()?;
-        c.draw_series(LineSeries::new(curve.iter().map(|p| (p.0, p.1)), BLACK.stroke_width(2)))?;
-        c.draw_series(smooth_eq.iter().map(|&(p, r, k)| Circle::new((p, r), 7, colour(k).filled())))?;
-    }
-    // B: the polygon.
-    {
-        let mut c = ChartBuilder::on(&panels[1])
-            .caption(
-                format!("B. N = {N} (arc length): S = {s}, U = {}, {} flocks", report.unstable, report.flocks.len()),
-                (FONT_FAMILY, 22),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(-PI / 2.0..1.5 * PI, 0.95..A + 0.05)?;
-        c.configure_mesh().x_desc("φ (rad)").y_desc("R").label_style((FONT_FAMILY, 15)).draw()?;
-        c.draw_series(LineSeries::new(curve.iter().map(|p| (p.0, p.2)), BLACK.stroke_width(1)))?;
-        c.draw_series(eqs.iter().map(|e| Circle::new((e.phi, e.r), 5, colour(e.kind).filled())))?;
-    }
-    // C, D: zooms on a stable flock (φ = π/2) and an unstable flock (φ = 0).
-    for (panel, centre, title) in [
-        (&panels[2], PI / 2.0, "C. zoom: stable flock at φ = π/2"),
-        (&panels[3], 0.0, "D. zoom: unstable flock at φ = 0"),
-    ] {
-        let half = 0.16;
-        let inside = |p: f64| (p - centre).abs() <= half;
-        let pts: Vec<(f64, f64)> = curve.iter().filter(|p| inside(p.0)).map(|p| (p.0, p.2)).collect();
-        let smooth: Vec<(f64, f64)> = curve.iter().filter(|p| inside(p.0)).map(|p| (p.0, p.1)).collect();
-        let (lo, hi) =
-            pts.iter().chain(&smooth).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
-        let pad = (hi - lo) * 0.08;
-        let mut c = ChartBuilder::on(panel)
-            .caption(title, (FONT_FAMILY, 22))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(centre - half..centre + half, lo - pad..hi + pad)?;
-        c.configure_mesh().x_desc("φ (rad)").y_desc("R").label_style((FONT_FAMILY, 15)).draw()?;
-        c.draw_series(LineSeries::new(smooth, BLACK.mix(0.35).stroke_width(1)))?
-            .label("smooth")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.35)));
-        c.draw_series(LineSeries::new(pts, BLACK.stroke_width(2)))?
-            .label(format!("N = {N}"))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
-        c.draw_series(
-            eqs.iter().filter(|e| inside(e.phi)).map(|e| Circle::new((e.phi, e.r), 6, colour(e.kind).filled())),
-        )?;
-        // Rocking equilibria: stable points in an unstable flock, ringed.
-        c.draw_series(
-            eqs.iter()
-                .filter(|e| inside(e.phi) && e.kind == Kind::Stable && e.flock_kind != Kind::Stable)
-                .map(|e| Circle::new((e.phi, e.r), 11, colors::ORANGE.stroke_width(3))),
-        )?
-        .label("rocking (stable in unstable flock)")
-        .legend(|(x, y)| Circle::new((x + 10, y), 6, colors::ORANGE.stroke_width(3)));
-        c.configure_series_labels()
-            // the curve's empty side: above a stable flock's valley, below an unstable flock's peak
-            .position(if centre == 0.0 { SeriesLabelPosition::LowerMiddle } else { SeriesLabelPosition::UpperMiddle })
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT_FAMILY, 14))
-            .draw()?;
-    }
-    root.present()?;
+    rocking_stones::plot::draw_png(&path, (1400, 1000), |root| {
+        root.fill(&WHITE)?;
+        let panels = root.split_evenly((2, 2));
+        let smooth_eq = [
+            (-PI / 2.0, 1.0, Kind::Stable),
+            (0.0, A, Kind::Unstable),
+            (PI / 2.0, 1.0, Kind::Stable),
+            (PI, A, Kind::Unstable),
+        ];
+        let colour = |k: Kind| if k == Kind::Stable { colors::VERMILLION } else { colors::BLUE };
+        let s = report.stable;
+        // A: smooth ellipse.
+        {
+            let mut c = ChartBuilder::on(&panels[0])
+                .caption(
+                    format!("A. smooth ellipse 1 : {A}: S = U = 2 (vermillion: stable, blue: unstable)"),
+                    (FONT_FAMILY, 22),
+                )
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d(-PI / 2.0..1.5 * PI, 0.95..A + 0.05)?;
+            c.configure_mesh().x_desc("φ (rad)").y_desc("R").label_style((FONT_FAMILY, 15)).draw()?;
+            c.draw_series(LineSeries::new(curve.iter().map(|p| (p.0, p.1)), BLACK.stroke_width(2)))?;
+            c.draw_series(smooth_eq.iter().map(|&(p, r, k)| Circle::new((p, r), 7, colour(k).filled())))?;
+        }
+        // B: the polygon.
+        {
+            let mut c = ChartBuilder::on(&panels[1])
+                .caption(
+                    format!(
+                        "B. N = {N} (arc length): S = {s}, U = {}, {} flocks",
+                        report.unstable,
+                        report.flocks.len()
+                    ),
+                    (FONT_FAMILY, 22),
+                )
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d(-PI / 2.0..1.5 * PI, 0.95..A + 0.05)?;
+            c.configure_mesh().x_desc("φ (rad)").y_desc("R").label_style((FONT_FAMILY, 15)).draw()?;
+            c.draw_series(LineSeries::new(curve.iter().map(|p| (p.0, p.2)), BLACK.stroke_width(1)))?;
+            c.draw_series(eqs.iter().map(|e| Circle::new((e.phi, e.r), 5, colour(e.kind).filled())))?;
+        }
+        // C, D: zooms on a stable flock (φ = π/2) and an unstable flock (φ = 0).
+        for (panel, centre, title) in [
+            (&panels[2], PI / 2.0, "C. zoom: stable flock at φ = π/2"),
+            (&panels[3], 0.0, "D. zoom: unstable flock at φ = 0"),
+        ] {
+            let half = 0.16;
+            let inside = |p: f64| (p - centre).abs() <= half;
+            let pts: Vec<(f64, f64)> = curve.iter().filter(|p| inside(p.0)).map(|p| (p.0, p.2)).collect();
+            let smooth: Vec<(f64, f64)> = curve.iter().filter(|p| inside(p.0)).map(|p| (p.0, p.1)).collect();
+            let (lo, hi) = pts
+                .iter()
+                .chain(&smooth)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
+            let pad = (hi - lo) * 0.08;
+            let mut c = ChartBuilder::on(panel)
+                .caption(title, (FONT_FAMILY, 22))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(80)
+                .build_cartesian_2d(centre - half..centre + half, lo - pad..hi + pad)?;
+            c.configure_mesh().x_desc("φ (rad)").y_desc("R").label_style((FONT_FAMILY, 15)).draw()?;
+            c.draw_series(LineSeries::new(smooth, BLACK.mix(0.35).stroke_width(1)))?
+                .label("smooth")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.35)));
+            c.draw_series(LineSeries::new(pts, BLACK.stroke_width(2)))?
+                .label(format!("N = {N}"))
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+            c.draw_series(
+                eqs.iter().filter(|e| inside(e.phi)).map(|e| Circle::new((e.phi, e.r), 6, colour(e.kind).filled())),
+            )?;
+            // Rocking equilibria: stable points in an unstable flock, ringed.
+            c.draw_series(
+                eqs.iter()
+                    .filter(|e| inside(e.phi) && e.kind == Kind::Stable && e.flock_kind != Kind::Stable)
+                    .map(|e| Circle::new((e.phi, e.r), 11, colors::ORANGE.stroke_width(3))),
+            )?
+            .label("rocking (stable in unstable flock)")
+            .legend(|(x, y)| Circle::new((x + 10, y), 6, colors::ORANGE.stroke_width(3)));
+            c.configure_series_labels()
+                // the curve's empty side: above a stable flock's valley, below an unstable flock's peak
+                .position(if centre == 0.0 {
+                    SeriesLabelPosition::LowerMiddle
+                } else {
+                    SeriesLabelPosition::UpperMiddle
+                })
+                .background_style(WHITE.mix(0.9))
+                .border_style(BLACK)
+                .label_font((FONT_FAMILY, 14))
+                .draw()?;
+        }
+        Ok(())
+    })?;
 
     let contents = FlockContents::of(&report.flocks);
     let p = report.plateau.expect("plateau");

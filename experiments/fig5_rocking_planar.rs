@@ -11,7 +11,7 @@ use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, FlockContents, PlanarAnalysis, PlanarEquilibrium, PlanarSite, Point2, Sampling,
     DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{colors, init_fonts, FONT_FAMILY};
+use rocking_stones::plot::{colors, FONT_FAMILY};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -95,25 +95,25 @@ fn main() -> Result<()> {
     }
     w.flush()?;
 
-    init_fonts();
     let path = out.join("fig5_rocking.png");
-    let root = BitMapBackend::new(&path, (1500, 560)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let (head, body) = root.split_vertically(50);
-    head.titled(
-        &format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable"),
-        (FONT_FAMILY, 24),
-    )?;
-    let panels = body.split_evenly((1, 3));
     let items = [
         (regular, "stable (stable flock)", colors::VERMILLION),
         (rocking, "rocking (stable in unstable flock)", colors::ORANGE),
         (unstable, "unstable (unstable flock)", colors::BLUE),
     ];
-    for (panel, &(i, title, colour)) in panels.iter().zip(&items) {
-        draw_resting(panel, &an, &eq[i], title, colour, &an.equilibria.points, &|j| flock_kind(j))?;
-    }
-    root.present()?;
+    rocking_stones::plot::draw_png(&path, (1500, 560), |root| {
+        root.fill(&WHITE)?;
+        let (head, body) = root.split_vertically(50);
+        head.titled(
+            &format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable"),
+            (FONT_FAMILY, 24),
+        )?;
+        let panels = body.split_evenly((1, 3));
+        for (panel, &(i, title, colour)) in panels.iter().zip(&items) {
+            draw_resting(panel, &an, &eq[i], title, colour, &an.equilibria.points, &|j| flock_kind(j))?;
+        }
+        Ok(())
+    })?;
 
     let c = FlockContents::of(&report.flocks);
     let mut md = String::new();

@@ -56,6 +56,28 @@ macro_rules! render {
 }
 pub(crate) use render;
 
+/// Draw a PNG picture of `size` pixels into `path` in the house style (the bundled font
+/// registered first): `draw` paints the drawing area, which is then written. The one way
+/// programs outside the library (the experiments) make a picture; a failure is an
+/// [`Error::Plot`](crate::Error::Plot) naming the file.
+pub fn draw_png(
+    path: &std::path::Path,
+    size: (u32, u32),
+    draw: impl FnOnce(
+        &plotters::prelude::DrawingArea<plotters::prelude::BitMapBackend<'_>, plotters::coord::Shift>,
+    ) -> DrawResult,
+) -> crate::Result<()> {
+    use plotters::prelude::IntoDrawingArea as _;
+    init_fonts();
+    let root = plotters::prelude::BitMapBackend::new(path, size).into_drawing_area();
+    (|| -> DrawResult {
+        draw(&root)?;
+        root.present()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::Plot { path: path.to_path_buf(), what: e.to_string() })
+}
+
 use plotters::style::RGBColor;
 
 /// The house style of every plot the project draws (library reports and experiments): one place
