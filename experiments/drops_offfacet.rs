@@ -18,7 +18,7 @@ use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -155,45 +155,43 @@ part.",
 
 fn plot(path: &Path, hist: &[(String, Vec<f64>, Vec<f64>)]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
-    let root = BitMapBackend::new(path, (1000, 560)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(150)
-        .caption(
-            "Height of G above the counted facet's rest: when the speed rule stopped (●) and after going on (×)",
-            (FONT_FAMILY, 18),
-        )
-        .build_cartesian_2d((1e-5f64..1.0).log_scale(), -0.5f64..hist.len() as f64 - 0.5)?;
-    chart
-        .configure_mesh()
-        .x_desc("h(down) − R_F (R_max, log scale); ≤ 10⁻³ counts as on the facet")
-        .y_labels(hist.len())
-        .y_label_formatter(&|y| hist.get(y.round() as usize).map_or(String::new(), |h| h.0.clone()))
-        .x_label_formatter(&|x| rocking_stones::plot::log_tick(*x))
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    for (k, (_, before, after)) in hist.iter().enumerate() {
-        let y = k as f64;
-        let c = series_color(k);
-        chart.draw_series(
-            before
-                .iter()
-                .enumerate()
-                .map(|(i, &h)| Circle::new((h.max(1e-5), y + 0.15 + 0.1 * ((i % 5) as f64 / 5.0)), 3, c.filled())),
-        )?;
-        chart.draw_series(
-            after.iter().enumerate().map(|(i, &h)| {
+    rocking_stones::plot::draw_png(path, (1000, 560), |root| {
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(150)
+            .caption(
+                "Height of G above the counted facet's rest: when the speed rule stopped (●) and after going on (×)",
+                (FONT_FAMILY, 18),
+            )
+            .build_cartesian_2d((1e-5f64..1.0).log_scale(), -0.5f64..hist.len() as f64 - 0.5)?;
+        chart
+            .configure_mesh()
+            .x_desc("h(down) − R_F (R_max, log scale); ≤ 10⁻³ counts as on the facet")
+            .y_labels(hist.len())
+            .y_label_formatter(&|y| hist.get(y.round() as usize).map_or(String::new(), |h| h.0.clone()))
+            .x_label_formatter(&|x| rocking_stones::plot::log_tick(*x))
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        for (k, (_, before, after)) in hist.iter().enumerate() {
+            let y = k as f64;
+            let c = series_color(k);
+            chart.draw_series(
+                before
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &h)| Circle::new((h.max(1e-5), y + 0.15 + 0.1 * ((i % 5) as f64 / 5.0)), 3, c.filled())),
+            )?;
+            chart.draw_series(after.iter().enumerate().map(|(i, &h)| {
                 Cross::new((h.max(1e-5), y - 0.15 - 0.1 * ((i % 5) as f64 / 5.0)), 4, c.stroke_width(2))
-            }),
-        )?;
-    }
-    chart.draw_series(std::iter::once(PathElement::new(
-        vec![(REST_TOLERANCE, -0.5), (REST_TOLERANCE, hist.len() as f64 - 0.5)],
-        BLACK.stroke_width(2),
-    )))?;
-    root.present()?;
+            }))?;
+        }
+        chart.draw_series(std::iter::once(PathElement::new(
+            vec![(REST_TOLERANCE, -0.5), (REST_TOLERANCE, hist.len() as f64 - 0.5)],
+            BLACK.stroke_width(2),
+        )))?;
+        Ok(())
+    })?;
     Ok(())
 }

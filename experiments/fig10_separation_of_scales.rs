@@ -7,7 +7,7 @@
 use plotters::prelude::*;
 use rocking_stones::analysis::{Analysis, Options, Report};
 use rocking_stones::generate;
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::plot::{log_tick, series_color};
 use rocking_stones::report::analysis::write_files;
 use std::fmt::Write as _;
@@ -43,42 +43,42 @@ fn main() -> anyhow::Result<()> {
 }
 
 fn overlay(path: &Path, reports: &[(String, Report)]) -> anyhow::Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("Separation of scales: n(ν) = N(ν)/N(0) (paper Fig. 10B)", (FONT_FAMILY, 22))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(55)
-        .build_cartesian_2d((1e-7f64..1.0).log_scale(), 0f64..1.05)?;
-    chart
-        .configure_mesh()
-        .x_desc("ν (log scale)")
-        .y_desc("n(ν)")
-        .x_label_formatter(&|x: &f64| log_tick(*x))
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    for (k, (_, r)) in reports.iter().enumerate() {
-        let color = series_color(k);
-        let mut pts = Vec::new();
-        for s in &r.staircase {
-            pts.push((s.nu_lo.max(1e-7), s.n));
-            pts.push((s.nu_hi.clamp(1e-7, 1.0), s.n));
+    rocking_stones::plot::draw_png(path, (1000, 600), |root| {
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("Separation of scales: n(ν) = N(ν)/N(0) (paper Fig. 10B)", (FONT_FAMILY, 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(55)
+            .build_cartesian_2d((1e-7f64..1.0).log_scale(), 0f64..1.05)?;
+        chart
+            .configure_mesh()
+            .x_desc("ν (log scale)")
+            .y_desc("n(ν)")
+            .x_label_formatter(&|x: &f64| log_tick(*x))
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        for (k, (_, r)) in reports.iter().enumerate() {
+            let color = series_color(k);
+            let mut pts = Vec::new();
+            for s in &r.staircase {
+                pts.push((s.nu_lo.max(1e-7), s.n));
+                pts.push((s.nu_hi.clamp(1e-7, 1.0), s.n));
+            }
+            chart
+                .draw_series(LineSeries::new(pts, color.stroke_width(2)))?
+                .label(r.file.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], color.stroke_width(2)));
         }
         chart
-            .draw_series(LineSeries::new(pts, color.stroke_width(2)))?
-            .label(r.file.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], color.stroke_width(2)));
-    }
-    chart
-        .configure_series_labels()
-        .label_font((FONT_FAMILY, 13))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::LowerLeft)
-        .draw()?;
-    root.present()?;
+            .configure_series_labels()
+            .label_font((FONT_FAMILY, 13))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::LowerLeft)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }
 

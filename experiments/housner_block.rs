@@ -16,7 +16,7 @@ use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ra
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::GRAVITY;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -194,87 +194,92 @@ fn main() -> anyhow::Result<()> {
 }
 
 fn plot(path: &Path, tips: &[Tip], decays: &[Decay], settings: &[Setting]) -> anyhow::Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (1400, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let (left, right) = root.split_horizontally(700);
-    let colors = [
-        RGBColor(200, 60, 40),
-        RGBColor(40, 90, 200),
-        RGBColor(40, 150, 70),
-        RGBColor(230, 150, 30),
-        RGBColor(150, 60, 170),
-    ];
-    let mut chart = ChartBuilder::on(&left)
-        .caption("Tipping under a slow ramp: measured − detection lag vs g·tan α", (FONT_FAMILY, 18))
-        .margin(14)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0..0.9, 0.0..0.9)?;
-    chart
-        .configure_mesh()
-        .x_desc("tan α = b/h")
-        .y_desc("tipping acceleration (g)")
-        .label_style((FONT_FAMILY, 13))
-        .draw()?;
-    chart
-        .draw_series(LineSeries::new(vec![(0.0, 0.0), (0.9, 0.9)], BLACK.stroke_width(1)))?
-        .label("Housner: a = g tan α")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
-    for (s, c) in settings.iter().zip(colors).filter(|(s, _)| s.tipping) {
-        let pts: Vec<(f64, f64)> = tips
-            .iter()
-            .filter(|t| t.setting == s.name && t.rate == 0.01)
-            .map(|t| (t.tan_a, t.measured - t.lag))
+    rocking_stones::plot::draw_png(path, (1400, 600), |root| {
+        root.fill(&WHITE)?;
+        let (left, right) = root.split_horizontally(700);
+        let colors = [
+            RGBColor(200, 60, 40),
+            RGBColor(40, 90, 200),
+            RGBColor(40, 150, 70),
+            RGBColor(230, 150, 30),
+            RGBColor(150, 60, 170),
+        ];
+        let mut chart = ChartBuilder::on(&left)
+            .caption("Tipping under a slow ramp: measured − detection lag vs g·tan α", (FONT_FAMILY, 18))
+            .margin(14)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..0.9, 0.0..0.9)?;
+        chart
+            .configure_mesh()
+            .x_desc("tan α = b/h")
+            .y_desc("tipping acceleration (g)")
+            .label_style((FONT_FAMILY, 13))
+            .draw()?;
+        chart
+            .draw_series(LineSeries::new(vec![(0.0, 0.0), (0.9, 0.9)], BLACK.stroke_width(1)))?
+            .label("Housner: a = g tan α")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK));
+        for (s, c) in settings.iter().zip(colors).filter(|(s, _)| s.tipping) {
+            let pts: Vec<(f64, f64)> = tips
+                .iter()
+                .filter(|t| t.setting == s.name && t.rate == 0.01)
+                .map(|t| (t.tan_a, t.measured - t.lag))
+                .collect();
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.stroke_width(2))))?
+                .label(s.name)
+                .legend(move |(x, y)| Circle::new((x + 8, y), 5, c.stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .label_font((FONT_FAMILY, 12))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()?;
+        let mut chart = ChartBuilder::on(&right)
+            .caption("Free rocking: angular-velocity ratio per impact", (FONT_FAMILY, 18))
+            .margin(14)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..42.0, 0.0..1.05)?;
+        chart
+            .configure_mesh()
+            .x_desc("α (degrees)")
+            .y_desc("ω after / ω before")
+            .label_style((FONT_FAMILY, 13))
+            .draw()?;
+        let curve: Vec<(f64, f64)> = (0..=84)
+            .map(|i| {
+                let a = (i as f64 * 0.5).to_radians();
+                (i as f64 * 0.5, 1.0 - 1.5 * a.sin().powi(2))
+            })
             .collect();
         chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 5, c.stroke_width(2))))?
-            .label(s.name)
-            .legend(move |(x, y)| Circle::new((x + 8, y), 5, c.stroke_width(2)));
-    }
-    chart
-        .configure_series_labels()
-        .label_font((FONT_FAMILY, 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
-    let mut chart = ChartBuilder::on(&right)
-        .caption("Free rocking: angular-velocity ratio per impact", (FONT_FAMILY, 18))
-        .margin(14)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0..42.0, 0.0..1.05)?;
-    chart.configure_mesh().x_desc("α (degrees)").y_desc("ω after / ω before").label_style((FONT_FAMILY, 13)).draw()?;
-    let curve: Vec<(f64, f64)> = (0..=84)
-        .map(|i| {
-            let a = (i as f64 * 0.5).to_radians();
-            (i as f64 * 0.5, 1.0 - 1.5 * a.sin().powi(2))
-        })
-        .collect();
-    chart
-        .draw_series(LineSeries::new(curve, BLACK.stroke_width(2)))?
-        .label("Housner: 1 − 1.5 sin² α")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
-    for (k, (s, c)) in settings.iter().zip(colors).enumerate() {
-        let pts: Vec<(f64, f64)> = decays
-            .iter()
-            .filter(|d| d.setting == s.name)
-            .filter_map(|d| d.mean_large().map(|m| (d.tan_a.atan().to_degrees() + 0.4 * k as f64 - 0.8, m)))
-            .collect();
+            .draw_series(LineSeries::new(curve, BLACK.stroke_width(2)))?
+            .label("Housner: 1 − 1.5 sin² α")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
+        for (k, (s, c)) in settings.iter().zip(colors).enumerate() {
+            let pts: Vec<(f64, f64)> = decays
+                .iter()
+                .filter(|d| d.setting == s.name)
+                .filter_map(|d| d.mean_large().map(|m| (d.tan_a.atan().to_degrees() + 0.4 * k as f64 - 0.8, m)))
+                .collect();
+            chart
+                .draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 6, c.filled())))?
+                .label(s.name)
+                .legend(move |(x, y)| TriangleMarker::new((x + 8, y), 6, c.filled()));
+        }
         chart
-            .draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 6, c.filled())))?
-            .label(s.name)
-            .legend(move |(x, y)| TriangleMarker::new((x + 8, y), 6, c.filled()));
-    }
-    chart
-        .configure_series_labels()
-        .label_font((FONT_FAMILY, 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::LowerLeft)
-        .draw()?;
-    root.present()?;
+            .configure_series_labels()
+            .label_font((FONT_FAMILY, 12))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::LowerLeft)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }
 

@@ -12,7 +12,7 @@ use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport,
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
+use rocking_stones::plot::{colors, draw_legend, legend_height, plain, style, Mark, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -116,72 +116,72 @@ fn main() {
 
 fn plot(path: &Path, title: &str, reports: &[DropReport]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
     let flocks = &reports[0].flocks;
-    let root = BitMapBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root = root.titled(&format!("{title}: resting flocks by launch preset"), (FONT_FAMILY, style::TITLE))?;
-    let (legend, area) = root.split_vertically(legend_height(1));
-    let colours = [colors::GREEN, colors::ORANGE, colors::SKY, colors::BLUE];
-    let labels = ["quasi-static basins (exact)", "quasi-static", "drop", "throw"];
-    let mut entries: Vec<(Mark, String)> =
-        colours.iter().zip(labels).map(|(&c, l)| (Mark::Box(c, 1.0), l.to_string())).collect();
-    entries.push((Mark::Line(BLACK), "95 % interval".into()));
-    draw_legend(&legend, &entries).map_err(|e| e.to_string())?;
-    let top = flocks
-        .iter()
-        .map(|f| f.static_probability)
-        .chain(reports.iter().flat_map(|r| r.flocks.iter().map(|g| g.ci95.1)))
-        .fold(0.0, f64::max);
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .margin_top(10)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .build_cartesian_2d(-0.5f64..flocks.len() as f64 - 0.5, 0.0f64..(top * 1.1).min(1.0))?;
-    chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .x_labels(flocks.len() + 1)
-        .x_label_formatter(&|x| {
-            // A label under each group of bars (centred on the integers), none between them.
-            let k = x.round();
-            if (x - k).abs() > 1e-6 || k < 0.0 {
-                return String::new();
-            }
-            flocks
-                .get(k as usize)
-                .map_or(String::new(), |f| format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()))
-        })
-        .y_label_formatter(&|y| plain(*y))
-        .x_desc("flock (number, type)")
-        .y_desc("fraction of drops")
-        .label_style((FONT_FAMILY, style::TICK))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .draw()?;
-    let w = 0.8 / 4.0;
-    for (s, &colour) in colours.iter().enumerate() {
-        let group =
-            |k: usize| reports.get(s.wrapping_sub(1)).and_then(|r| r.flocks.iter().find(|g| g.id == flocks[k].id));
-        let value = |k: usize| -> f64 {
-            if s == 0 {
-                flocks[k].static_probability
-            } else {
-                group(k).map_or(0.0, |g| g.fraction)
-            }
-        };
-        chart.draw_series((0..flocks.len()).map(|k| {
-            let x0 = k as f64 - 0.4 + s as f64 * w;
-            Rectangle::new([(x0, 0.0), (x0 + w * 0.9, value(k))], colour.filled())
-        }))?;
-        if s > 0 {
-            chart.draw_series((0..flocks.len()).filter_map(|k| {
-                let g = group(k)?;
-                let x = k as f64 - 0.4 + (s as f64 + 0.45) * w;
-                Some(PathElement::new(vec![(x, g.ci95.0), (x, g.ci95.1)], BLACK.stroke_width(1)))
+    rocking_stones::plot::draw_png(path, (900, 560), |root| {
+        root.fill(&WHITE)?;
+        let root = root.titled(&format!("{title}: resting flocks by launch preset"), (FONT_FAMILY, style::TITLE))?;
+        let (legend, area) = root.split_vertically(legend_height(1));
+        let colours = [colors::GREEN, colors::ORANGE, colors::SKY, colors::BLUE];
+        let labels = ["quasi-static basins (exact)", "quasi-static", "drop", "throw"];
+        let mut entries: Vec<(Mark, String)> =
+            colours.iter().zip(labels).map(|(&c, l)| (Mark::Box(c, 1.0), l.to_string())).collect();
+        entries.push((Mark::Line(BLACK), "95 % interval".into()));
+        draw_legend(&legend, &entries).map_err(|e| e.to_string())?;
+        let top = flocks
+            .iter()
+            .map(|f| f.static_probability)
+            .chain(reports.iter().flat_map(|r| r.flocks.iter().map(|g| g.ci95.1)))
+            .fold(0.0, f64::max);
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .margin_top(10)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-0.5f64..flocks.len() as f64 - 0.5, 0.0f64..(top * 1.1).min(1.0))?;
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(flocks.len() + 1)
+            .x_label_formatter(&|x| {
+                // A label under each group of bars (centred on the integers), none between them.
+                let k = x.round();
+                if (x - k).abs() > 1e-6 || k < 0.0 {
+                    return String::new();
+                }
+                flocks
+                    .get(k as usize)
+                    .map_or(String::new(), |f| format!("{} {}", f.id, format!("{:?}", f.kind).to_lowercase()))
+            })
+            .y_label_formatter(&|y| plain(*y))
+            .x_desc("flock (number, type)")
+            .y_desc("fraction of drops")
+            .label_style((FONT_FAMILY, style::TICK))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .draw()?;
+        let w = 0.8 / 4.0;
+        for (s, &colour) in colours.iter().enumerate() {
+            let group =
+                |k: usize| reports.get(s.wrapping_sub(1)).and_then(|r| r.flocks.iter().find(|g| g.id == flocks[k].id));
+            let value = |k: usize| -> f64 {
+                if s == 0 {
+                    flocks[k].static_probability
+                } else {
+                    group(k).map_or(0.0, |g| g.fraction)
+                }
+            };
+            chart.draw_series((0..flocks.len()).map(|k| {
+                let x0 = k as f64 - 0.4 + s as f64 * w;
+                Rectangle::new([(x0, 0.0), (x0 + w * 0.9, value(k))], colour.filled())
             }))?;
+            if s > 0 {
+                chart.draw_series((0..flocks.len()).filter_map(|k| {
+                    let g = group(k)?;
+                    let x = k as f64 - 0.4 + (s as f64 + 0.45) * w;
+                    Some(PathElement::new(vec![(x, g.ci95.0), (x, g.ci95.1)], BLACK.stroke_width(1)))
+                }))?;
+            }
         }
-    }
-    root.present()?;
+        Ok(())
+    })?;
     Ok(())
 }

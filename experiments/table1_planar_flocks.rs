@@ -10,8 +10,8 @@ use plotters::prelude::*;
 use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, table1, FlockContents, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL,
 };
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::plot::{draw_legend, legend_height, log_tick, series_color, Mark};
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -243,43 +243,44 @@ fn main() -> Result<()> {
 }
 
 fn plot(path: &Path, series: &[(f64, Vec<(usize, usize)>)]) -> Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let ymax = series.iter().flat_map(|(_, s)| s.iter().map(|p| p.1)).max().unwrap_or(10) as f64;
-    let root = root.titled(
-        "Discretised ellipse: total S against k (N = 4k − 2); dashed: 8⌊a²/(2(a²−1))⌋ + 2",
-        (FONT_FAMILY, 20),
-    )?;
-    // the legend in its own strip: it never covers a curve
-    let (legend, root) = root.split_vertically(legend_height(1));
-    let entries: Vec<(Mark, String)> =
-        series.iter().enumerate().map(|(i, (a, _))| (Mark::Line(series_color(i)), format!("a = {a}"))).collect();
-    draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(55)
-        .build_cartesian_2d((2f64..K_SCAN as f64).log_scale(), (1f64..ymax * 1.2).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("k")
-        .y_desc("S (micro)")
-        .x_label_formatter(&|x: &f64| log_tick(*x))
-        .y_label_formatter(&|y: &f64| log_tick(*y))
-        .label_style((FONT_FAMILY, 15))
-        .draw()?;
-    for (i, (a, s)) in series.iter().enumerate() {
-        let colour = series_color(i);
-        chart.draw_series(LineSeries::new(s.iter().map(|&(k, st)| (k as f64, st as f64)), colour.stroke_width(2)))?;
-        let lim = table1(*a).unwrap().total_stable as f64;
-        let dashes = (0..40).map(|j| {
-            let x0 = 2f64 * (K_SCAN as f64 / 2.0).powf(j as f64 / 40.0);
-            let x1 = 2f64 * (K_SCAN as f64 / 2.0).powf((j as f64 + 0.5) / 40.0);
-            PathElement::new(vec![(x0, lim), (x1, lim)], colour.stroke_width(1))
-        });
-        chart.draw_series(dashes)?;
-    }
-    root.present()?;
+    rocking_stones::plot::draw_png(path, (1000, 680), |root| {
+        root.fill(&WHITE)?;
+        let ymax = series.iter().flat_map(|(_, s)| s.iter().map(|p| p.1)).max().unwrap_or(10) as f64;
+        let root = root.titled(
+            "Discretised ellipse: total S against k (N = 4k − 2); dashed: 8⌊a²/(2(a²−1))⌋ + 2",
+            (FONT_FAMILY, 20),
+        )?;
+        // the legend in its own strip: it never covers a curve
+        let (legend, root) = root.split_vertically(legend_height(1));
+        let entries: Vec<(Mark, String)> =
+            series.iter().enumerate().map(|(i, (a, _))| (Mark::Line(series_color(i)), format!("a = {a}"))).collect();
+        draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&root)
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(55)
+            .build_cartesian_2d((2f64..K_SCAN as f64).log_scale(), (1f64..ymax * 1.2).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("k")
+            .y_desc("S (micro)")
+            .x_label_formatter(&|x: &f64| log_tick(*x))
+            .y_label_formatter(&|y: &f64| log_tick(*y))
+            .label_style((FONT_FAMILY, 15))
+            .draw()?;
+        for (i, (a, s)) in series.iter().enumerate() {
+            let colour = series_color(i);
+            chart
+                .draw_series(LineSeries::new(s.iter().map(|&(k, st)| (k as f64, st as f64)), colour.stroke_width(2)))?;
+            let lim = table1(*a).unwrap().total_stable as f64;
+            let dashes = (0..40).map(|j| {
+                let x0 = 2f64 * (K_SCAN as f64 / 2.0).powf(j as f64 / 40.0);
+                let x1 = 2f64 * (K_SCAN as f64 / 2.0).powf((j as f64 + 0.5) / 40.0);
+                PathElement::new(vec![(x0, lim), (x1, lim)], colour.stroke_width(1))
+            });
+            chart.draw_series(dashes)?;
+        }
+        Ok(())
+    })?;
     Ok(())
 }

@@ -20,7 +20,7 @@ use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::mesh::TriMesh;
-use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
+use rocking_stones::plot::{colors, draw_legend, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::wilson;
 use rocking_stones::Point3;
 use std::fmt::Write as _;
@@ -152,58 +152,61 @@ type Row = (f64, f64, f64, f64, f64, f64, f64, f64);
 
 fn plot(out: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
     let path = out.join("p_edge.png");
-    let root = BitMapBackend::new(&path, (900, 640)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root = root.titled("Thick coin: P(lands on its edge) against h/d", (FONT_FAMILY, style::TITLE))?;
-    let (legend, area) = root.split_vertically(legend_height(2));
-    let (basin, qs, throw, grey) = (colors::GREEN, colors::ORANGE, colors::BLUE, colors::GREY);
-    draw_legend(
-        &legend,
-        &[
-            (Mark::Line(basin), "quasi-static basins (exact)".into()),
-            (Mark::Line(qs), "quasi-static preset (simulated)".into()),
-            (Mark::LineDot(throw), "throw preset, 95 % Wilson intervals".into()),
-            (Mark::Dashed(grey), "P = 1/3 and the published fair-coin ratios".into()),
-        ],
-    )
-    .map_err(|e| e.to_string())?;
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.0f64..1.05, 0.0f64..1.0)?;
-    chart
-        .configure_mesh()
-        .x_desc("h / d (coin height over diameter)")
-        .y_desc("P(edge)")
-        .x_label_formatter(&|x| plain(*x))
-        .y_label_formatter(&|y| plain(*y))
-        .label_style((FONT_FAMILY, style::TICK))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .draw()?;
-    let dashed = |a: (f64, f64), b: (f64, f64)| {
-        (0..40).filter(|k| k % 2 == 0).map(move |k| {
-            let (s, t) = (k as f64 / 40.0, (k + 1) as f64 / 40.0);
-            PathElement::new(
-                vec![(a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1)), (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))],
-                grey.stroke_width(1),
-            )
-        })
-    };
-    for (x, label) in [(0.354, "solid angle 1/(2√2)"), (0.577, "Yong & Mahadevan 1/√3")] {
-        chart.draw_series(dashed((x, 0.0), (x, 1.0)))?;
-        chart.draw_series(std::iter::once(Text::new(label, (x + 0.01, 0.97), (FONT_FAMILY, style::LEGEND))))?;
-    }
-    chart.draw_series(dashed((0.0, 1.0 / 3.0), (1.05, 1.0 / 3.0)))?;
-    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.1)), basin.stroke_width(style::LINE)))?;
-    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.5)), qs.stroke_width(style::LINE)))?;
-    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.2)), throw.stroke_width(style::LINE)))?;
-    chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.2), style::MARKER, throw.filled())))?;
-    chart.draw_series(
-        rows.iter().map(|r| PathElement::new(vec![(r.0, r.3), (r.0, r.4)], throw.stroke_width(style::LINE))),
-    )?;
-    root.present()?;
+    rocking_stones::plot::draw_png(&path, (900, 640), |root| {
+        root.fill(&WHITE)?;
+        let root = root.titled("Thick coin: P(lands on its edge) against h/d", (FONT_FAMILY, style::TITLE))?;
+        let (legend, area) = root.split_vertically(legend_height(2));
+        let (basin, qs, throw, grey) = (colors::GREEN, colors::ORANGE, colors::BLUE, colors::GREY);
+        draw_legend(
+            &legend,
+            &[
+                (Mark::Line(basin), "quasi-static basins (exact)".into()),
+                (Mark::Line(qs), "quasi-static preset (simulated)".into()),
+                (Mark::LineDot(throw), "throw preset, 95 % Wilson intervals".into()),
+                (Mark::Dashed(grey), "P = 1/3 and the published fair-coin ratios".into()),
+            ],
+        )
+        .map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0f64..1.05, 0.0f64..1.0)?;
+        chart
+            .configure_mesh()
+            .x_desc("h / d (coin height over diameter)")
+            .y_desc("P(edge)")
+            .x_label_formatter(&|x| plain(*x))
+            .y_label_formatter(&|y| plain(*y))
+            .label_style((FONT_FAMILY, style::TICK))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .draw()?;
+        let dashed = |a: (f64, f64), b: (f64, f64)| {
+            (0..40).filter(|k| k % 2 == 0).map(move |k| {
+                let (s, t) = (k as f64 / 40.0, (k + 1) as f64 / 40.0);
+                PathElement::new(
+                    vec![
+                        (a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1)),
+                        (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)),
+                    ],
+                    grey.stroke_width(1),
+                )
+            })
+        };
+        for (x, label) in [(0.354, "solid angle 1/(2√2)"), (0.577, "Yong & Mahadevan 1/√3")] {
+            chart.draw_series(dashed((x, 0.0), (x, 1.0)))?;
+            chart.draw_series(std::iter::once(Text::new(label, (x + 0.01, 0.97), (FONT_FAMILY, style::LEGEND))))?;
+        }
+        chart.draw_series(dashed((0.0, 1.0 / 3.0), (1.05, 1.0 / 3.0)))?;
+        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.1)), basin.stroke_width(style::LINE)))?;
+        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.5)), qs.stroke_width(style::LINE)))?;
+        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.2)), throw.stroke_width(style::LINE)))?;
+        chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.2), style::MARKER, throw.filled())))?;
+        chart.draw_series(
+            rows.iter().map(|r| PathElement::new(vec![(r.0, r.3), (r.0, r.4)], throw.stroke_width(style::LINE))),
+        )?;
+        Ok(())
+    })?;
     Ok(())
 }
