@@ -157,7 +157,7 @@ fn plot(path: &Path, hist: &[(String, Vec<f64>, Vec<f64>)]) -> Result<(), Box<dy
     use plotters::prelude::*;
     rocking_stones::plot::draw_png(path, (1000, 560), |root| {
         root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
+        let mut chart = ChartBuilder::on(root)
             .margin(20)
             .x_label_area_size(50)
             .y_label_area_size(150)

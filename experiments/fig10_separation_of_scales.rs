@@ -45,7 +45,7 @@ fn main() -> anyhow::Result<()> {
 fn overlay(path: &Path, reports: &[(String, Report)]) -> anyhow::Result<()> {
     rocking_stones::plot::draw_png(path, (1000, 600), |root| {
         root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
+        let mut chart = ChartBuilder::on(root)
             .caption("Separation of scales: n(ν) = N(ν)/N(0) (paper Fig. 10B)", (FONT_FAMILY, 22))
             .margin(12)
             .x_label_area_size(45)
