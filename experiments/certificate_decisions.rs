@@ -24,7 +24,7 @@ use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::engine::run::{Decided, NoCertificate, CERTIFICATE_EVERY};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -291,48 +291,51 @@ first impacts.\n",
 
 fn plot(path: &Path, per_body: &[(String, [f64; 2])]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
-    let root = BitMapBackend::new(path, (1100, 900)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let n = per_body.len();
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(330)
-        .caption("Largest later rise of h(down) above the certificate's level L, per body (R_max)", (FONT_FAMILY, 18))
-        .build_cartesian_2d((1e-6f64..1e-2).log_scale(), -0.5f64..n as f64 - 0.5)?;
-    chart
-        .configure_mesh()
-        .x_desc("max over states and later times of h(down(t')) − L(t) (R_max, log scale)")
-        .y_labels(n)
-        .y_label_formatter(&|y| per_body.get(y.round() as usize).map_or(String::new(), |b| b.0.clone()))
-        .x_label_formatter(&|x| rocking_stones::plot::log_tick(*x))
-        .label_style((FONT_FAMILY, 12))
-        .draw()?;
-    for (fi, label) in ["rapier's flight", "exact landings (--flight free)"].iter().enumerate() {
-        let c = series_color(fi);
+    rocking_stones::plot::draw_png(path, (1100, 900), |root| {
+        root.fill(&WHITE)?;
+        let n = per_body.len();
+        let mut chart = ChartBuilder::on(root)
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(330)
+            .caption(
+                "Largest later rise of h(down) above the certificate's level L, per body (R_max)",
+                (FONT_FAMILY, 18),
+            )
+            .build_cartesian_2d((1e-6f64..1e-2).log_scale(), -0.5f64..n as f64 - 0.5)?;
         chart
-            .draw_series(per_body.iter().enumerate().map(|(k, b)| {
-                let y = k as f64 + if fi == 0 { 0.15 } else { -0.15 };
-                Circle::new((b.1[fi].max(1e-6), y), 4, c.filled())
-            }))?
-            .label(*label)
-            .legend(move |(x, y)| Circle::new((x + 6, y), 4, c.filled()));
-    }
-    chart
-        .draw_series(std::iter::once(PathElement::new(
-            vec![(CERTIFICATE_MARGIN, -0.5), (CERTIFICATE_MARGIN, n as f64 - 0.5)],
-            BLACK.stroke_width(2),
-        )))?
-        .label(format!("margin {CERTIFICATE_MARGIN} R_max"))
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK.stroke_width(2)));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font((FONT_FAMILY, 13))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
+            .configure_mesh()
+            .x_desc("max over states and later times of h(down(t')) − L(t) (R_max, log scale)")
+            .y_labels(n)
+            .y_label_formatter(&|y| per_body.get(y.round() as usize).map_or(String::new(), |b| b.0.clone()))
+            .x_label_formatter(&|x| rocking_stones::plot::log_tick(*x))
+            .label_style((FONT_FAMILY, 12))
+            .draw()?;
+        for (fi, label) in ["rapier's flight", "exact landings (--flight free)"].iter().enumerate() {
+            let c = series_color(fi);
+            chart
+                .draw_series(per_body.iter().enumerate().map(|(k, b)| {
+                    let y = k as f64 + if fi == 0 { 0.15 } else { -0.15 };
+                    Circle::new((b.1[fi].max(1e-6), y), 4, c.filled())
+                }))?
+                .label(*label)
+                .legend(move |(x, y)| Circle::new((x + 6, y), 4, c.filled()));
+        }
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(CERTIFICATE_MARGIN, -0.5), (CERTIFICATE_MARGIN, n as f64 - 0.5)],
+                BLACK.stroke_width(2),
+            )))?
+            .label(format!("margin {CERTIFICATE_MARGIN} R_max"))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font((FONT_FAMILY, 13))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }

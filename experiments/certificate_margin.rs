@@ -35,7 +35,7 @@ use rocking_stones::dynamics::engine::run::{
 use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -296,53 +296,53 @@ fn main() -> anyhow::Result<()> {
 
 fn plot(path: &Path, curves: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
-    let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let values = || curves.iter().flat_map(|(_, c)| c.iter().map(|p| p.1));
-    let top = values().fold(1.0f64, f64::max) + 0.02;
-    let bottom = (values().fold(1.0f64, f64::min) * 20.0).floor() / 20.0 - 0.05;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .caption("Mean simulated time per drop vs the certificate's margin (÷ default margin)", (FONT_FAMILY, 20))
-        .build_cartesian_2d(-1e-4f64..CERTIFICATE_MARGIN * 1.05, bottom..top)?;
-    chart
-        .configure_mesh()
-        .x_desc("margin (R_max)")
-        .y_desc("mean simulated time per drop ÷ at the default margin")
-        .x_label_formatter(&|x| format!("{x:.4}"))
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    // Colour by body, line width by level; drop and throw share the colour, throws dashed by marker.
-    for (k, (label, c)) in curves.iter().enumerate() {
-        let colour = series_color(k / 4).to_rgba();
-        let width = if k % 2 == 0 { 1 } else { 3 };
-        chart.draw_series(LineSeries::new(c.clone(), colour.stroke_width(width)))?.label(label.clone()).legend(
-            move |(x, y)| {
-                let line = PathElement::new(vec![(x - 4, y), (x + 18, y)], colour.stroke_width(width));
-                let marker = if (k / 2) % 2 == 0 {
-                    Circle::new((x + 7, y), 4, colour.filled()).into_dyn()
-                } else {
-                    TriangleMarker::new((x + 7, y), 5, colour.filled()).into_dyn()
-                };
-                EmptyElement::at((0, 0)) + line + marker
-            },
-        );
-        if (k / 2) % 2 == 0 {
-            chart.draw_series(c.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
-        } else {
-            chart.draw_series(c.iter().map(|&p| TriangleMarker::new(p, 5, colour.filled())))?;
+    rocking_stones::plot::draw_png(path, (1000, 600), |root| {
+        root.fill(&WHITE)?;
+        let values = || curves.iter().flat_map(|(_, c)| c.iter().map(|p| p.1));
+        let top = values().fold(1.0f64, f64::max) + 0.02;
+        let bottom = (values().fold(1.0f64, f64::min) * 20.0).floor() / 20.0 - 0.05;
+        let mut chart = ChartBuilder::on(root)
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .caption("Mean simulated time per drop vs the certificate's margin (÷ default margin)", (FONT_FAMILY, 20))
+            .build_cartesian_2d(-1e-4f64..CERTIFICATE_MARGIN * 1.05, bottom..top)?;
+        chart
+            .configure_mesh()
+            .x_desc("margin (R_max)")
+            .y_desc("mean simulated time per drop ÷ at the default margin")
+            .x_label_formatter(&|x| format!("{x:.4}"))
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        // Colour by body, line width by level; drop and throw share the colour, throws dashed by marker.
+        for (k, (label, c)) in curves.iter().enumerate() {
+            let colour = series_color(k / 4).to_rgba();
+            let width = if k % 2 == 0 { 1 } else { 3 };
+            chart.draw_series(LineSeries::new(c.clone(), colour.stroke_width(width)))?.label(label.clone()).legend(
+                move |(x, y)| {
+                    let line = PathElement::new(vec![(x - 4, y), (x + 18, y)], colour.stroke_width(width));
+                    let marker = if (k / 2) % 2 == 0 {
+                        Circle::new((x + 7, y), 4, colour.filled()).into_dyn()
+                    } else {
+                        TriangleMarker::new((x + 7, y), 5, colour.filled()).into_dyn()
+                    };
+                    EmptyElement::at((0, 0)) + line + marker
+                },
+            );
+            if (k / 2) % 2 == 0 {
+                chart.draw_series(c.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+            } else {
+                chart.draw_series(c.iter().map(|&p| TriangleMarker::new(p, 5, colour.filled())))?;
+            }
         }
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .label_font((FONT_FAMILY, 12))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .label_font((FONT_FAMILY, 12))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }

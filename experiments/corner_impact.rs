@@ -31,7 +31,7 @@ use rocking_stones::dynamics::engine::world::BodyState;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::rng::item_rng;
 use rocking_stones::Vec3;
 use std::fmt::Write as _;
@@ -270,45 +270,48 @@ fn readme(rows: &[Row], sticking: usize, sliding: usize, two_corners: usize) -> 
 }
 
 fn plot(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let lo = rows.iter().map(|r| r.slip_range.0).fold(0.0, f64::min) - 0.05;
-    let hi = rows.iter().map(|r| r.slip_range.1).fold(1.0, f64::max) + 0.05;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("Corner impact of a box: where the contact's spin lies (φ)", (FONT_FAMILY, 20))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(64)
-        .build_cartesian_2d((0.8f64..40.0f64).log_scale(), lo..hi)?;
-    chart
-        .configure_mesh()
-        .x_desc("rapier solver sub-steps per step (default 4)")
-        .y_desc("φ: 0 Newton + sticking friction, 1 frictionless restitution")
-        .x_label_formatter(&|x| format!("{x:.0}"))
-        .light_line_style(TRANSPARENT)
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    for (e, color) in RESTITUTIONS.iter().zip([RGBColor(200, 60, 40), RGBColor(40, 90, 200)]) {
-        let of: Vec<&Row> = rows.iter().filter(|r| r.e == *e).collect();
-        chart.draw_series(of.iter().map(|r| {
-            PathElement::new(
-                vec![(r.substeps as f64, r.slip_range.0), (r.substeps as f64, r.slip_range.1)],
-                color.stroke_width(2),
-            )
-        }))?;
+    rocking_stones::plot::draw_png(path, (900, 560), |root| {
+        root.fill(&WHITE)?;
+        let lo = rows.iter().map(|r| r.slip_range.0).fold(0.0, f64::min) - 0.05;
+        let hi = rows.iter().map(|r| r.slip_range.1).fold(1.0, f64::max) + 0.05;
+        let mut chart = ChartBuilder::on(root)
+            .caption("Corner impact of a box: where the contact's spin lies (φ)", (FONT_FAMILY, 20))
+            .margin(16)
+            .x_label_area_size(48)
+            .y_label_area_size(64)
+            .build_cartesian_2d((0.8f64..40.0f64).log_scale(), lo..hi)?;
         chart
-            .draw_series(LineSeries::new(of.iter().map(|r| (r.substeps as f64, r.slip_median)), color.stroke_width(3)))?
-            .label(format!("e = {e}: median and range"))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3)));
-    }
-    chart.draw_series(LineSeries::new(vec![(0.8, 0.0), (40.0, 0.0)], BLACK.stroke_width(1)))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT_FAMILY, 14))
-        .draw()?;
-    root.present()?;
+            .configure_mesh()
+            .x_desc("rapier solver sub-steps per step (default 4)")
+            .y_desc("φ: 0 Newton + sticking friction, 1 frictionless restitution")
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .light_line_style(TRANSPARENT)
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        for (e, color) in RESTITUTIONS.iter().zip([RGBColor(200, 60, 40), RGBColor(40, 90, 200)]) {
+            let of: Vec<&Row> = rows.iter().filter(|r| r.e == *e).collect();
+            chart.draw_series(of.iter().map(|r| {
+                PathElement::new(
+                    vec![(r.substeps as f64, r.slip_range.0), (r.substeps as f64, r.slip_range.1)],
+                    color.stroke_width(2),
+                )
+            }))?;
+            chart
+                .draw_series(LineSeries::new(
+                    of.iter().map(|r| (r.substeps as f64, r.slip_median)),
+                    color.stroke_width(3),
+                ))?
+                .label(format!("e = {e}: median and range"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3)));
+        }
+        chart.draw_series(LineSeries::new(vec![(0.8, 0.0), (40.0, 0.0)], BLACK.stroke_width(1)))?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FONT_FAMILY, 14))
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }

@@ -36,7 +36,7 @@ use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
-use rocking_stones::plot::{colors, draw_legend, init_fonts, legend_height, plain, style, Mark, FONT_FAMILY};
+use rocking_stones::plot::{colors, draw_legend, legend_height, plain, style, Mark, FONT_FAMILY};
 use rocking_stones::stats::{chi_square_homogeneity, wilson};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::fmt::Write as _;
@@ -366,49 +366,50 @@ type Row = (f64, f64, u64, f64, f64, f64, f64, f64, f64);
 
 fn plot(out: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
     let path = out.join("p_square.png");
-    let root = BitMapBackend::new(&path, (900, 640)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root = root.titled("Cuboid dice: P(lands on a square face) against x/y", (FONT_FAMILY, style::TITLE))?;
-    let (legend, area) = root.split_vertically(legend_height(2));
-    let (throw, drop, basins, measured) = (colors::BLUE, colors::ORANGE, colors::GREEN, BLACK);
-    draw_legend(
-        &legend,
-        &[
-            (Mark::LineDot(measured), "measured (hand throws, 95 % Wilson interval)".into()),
-            (Mark::Line(throw), "calibrated throw".into()),
-            (Mark::Box(throw, 0.25), "its 95 % Monte Carlo band".into()),
-            (Mark::Line(drop), "drop preset (from rest, 1 R_max)".into()),
-            (Mark::Line(basins), "quasi-static basins (exact)".into()),
-        ],
-    )
-    .map_err(|e| e.to_string())?;
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .margin_top(10)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .build_cartesian_2d(0.3f64..2.8, 0.0f64..1.0)?;
-    chart
-        .configure_mesh()
-        .x_desc("x / y (long side over square side)")
-        .y_desc("P(lands on a square face)")
-        .x_label_formatter(&|x| plain(*x))
-        .y_label_formatter(&|y| plain(*y))
-        .label_style((FONT_FAMILY, style::TICK))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .draw()?;
-    let band: Vec<(f64, f64)> = rows.iter().map(|r| (r.0, r.5)).chain(rows.iter().rev().map(|r| (r.0, r.4))).collect();
-    chart.draw_series(std::iter::once(Polygon::new(band, throw.mix(0.25).filled())))?;
-    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.8)), basins.stroke_width(style::LINE)))?;
-    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.7)), drop.stroke_width(style::LINE)))?;
-    chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.3)), throw.stroke_width(style::LINE)))?;
-    chart.draw_series(rows.iter().map(|r| {
-        let (lo, hi) = wilson((r.1 * r.2 as f64).round() as u64, r.2, 1.96);
-        PathElement::new(vec![(r.0, lo), (r.0, hi)], measured.stroke_width(style::LINE))
-    }))?;
-    chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.1), style::MARKER, measured.filled())))?;
-    root.present()?;
+    rocking_stones::plot::draw_png(&path, (900, 640), |root| {
+        root.fill(&WHITE)?;
+        let root = root.titled("Cuboid dice: P(lands on a square face) against x/y", (FONT_FAMILY, style::TITLE))?;
+        let (legend, area) = root.split_vertically(legend_height(2));
+        let (throw, drop, basins, measured) = (colors::BLUE, colors::ORANGE, colors::GREEN, BLACK);
+        draw_legend(
+            &legend,
+            &[
+                (Mark::LineDot(measured), "measured (hand throws, 95 % Wilson interval)".into()),
+                (Mark::Line(throw), "calibrated throw".into()),
+                (Mark::Box(throw, 0.25), "its 95 % Monte Carlo band".into()),
+                (Mark::Line(drop), "drop preset (from rest, 1 R_max)".into()),
+                (Mark::Line(basins), "quasi-static basins (exact)".into()),
+            ],
+        )
+        .map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .margin_top(10)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.3f64..2.8, 0.0f64..1.0)?;
+        chart
+            .configure_mesh()
+            .x_desc("x / y (long side over square side)")
+            .y_desc("P(lands on a square face)")
+            .x_label_formatter(&|x| plain(*x))
+            .y_label_formatter(&|y| plain(*y))
+            .label_style((FONT_FAMILY, style::TICK))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .draw()?;
+        let band: Vec<(f64, f64)> =
+            rows.iter().map(|r| (r.0, r.5)).chain(rows.iter().rev().map(|r| (r.0, r.4))).collect();
+        chart.draw_series(std::iter::once(Polygon::new(band, throw.mix(0.25).filled())))?;
+        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.8)), basins.stroke_width(style::LINE)))?;
+        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.7)), drop.stroke_width(style::LINE)))?;
+        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.3)), throw.stroke_width(style::LINE)))?;
+        chart.draw_series(rows.iter().map(|r| {
+            let (lo, hi) = wilson((r.1 * r.2 as f64).round() as u64, r.2, 1.96);
+            PathElement::new(vec![(r.0, lo), (r.0, hi)], measured.stroke_width(style::LINE))
+        }))?;
+        chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.1), style::MARKER, measured.filled())))?;
+        Ok(())
+    })?;
     Ok(())
 }

@@ -25,7 +25,7 @@ use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, FONT_FAMILY};
 use rocking_stones::stats::chi_square_homogeneity;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -336,53 +336,53 @@ fn main() -> anyhow::Result<()> {
 
 fn plot(path: &Path, bars: &[(String, Vec<f64>)]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
-    let root = BitMapBackend::new(path, (1300, 640)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let top = bars.iter().flat_map(|(_, v)| v.iter().copied()).fold(1.0, f64::max) * 1.15;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(60)
-        .y_label_area_size(60)
-        .caption("Drops per core: speed-up over plain (one drop per world, full settling)", (FONT_FAMILY, 20))
-        .build_cartesian_2d(-0.5f64..bars.len() as f64 - 0.5, 0.0f64..top)?;
-    chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .x_labels(bars.len() + 1)
-        .x_label_formatter(&|x| {
-            let k = x.round();
-            if (x - k).abs() > 1e-6 || k < 0.0 {
-                return String::new();
-            }
-            bars.get(k as usize).map_or(String::new(), |b| b.0.clone())
-        })
-        .y_desc("speed-up (same run, same drops)")
-        .label_style((FONT_FAMILY, 13))
-        .draw()?;
-    let w = 0.84 / PLOTTED.len() as f64;
-    for (slot, &s) in PLOTTED.iter().enumerate() {
-        let m = &MODES[s];
-        let colour = series_color(slot);
+    rocking_stones::plot::draw_png(path, (1300, 640), |root| {
+        root.fill(&WHITE)?;
+        let top = bars.iter().flat_map(|(_, v)| v.iter().copied()).fold(1.0, f64::max) * 1.15;
+        let mut chart = ChartBuilder::on(root)
+            .margin(20)
+            .x_label_area_size(60)
+            .y_label_area_size(60)
+            .caption("Drops per core: speed-up over plain (one drop per world, full settling)", (FONT_FAMILY, 20))
+            .build_cartesian_2d(-0.5f64..bars.len() as f64 - 0.5, 0.0f64..top)?;
         chart
-            .draw_series(bars.iter().enumerate().map(|(k, (_, v))| {
-                let x0 = k as f64 - 0.42 + slot as f64 * w;
-                Rectangle::new([(x0, 0.0), (x0 + w * 0.9, v[s])], colour.filled())
-            }))?
-            .label(m.name)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
-    }
-    chart
-        .draw_series(std::iter::once(PathElement::new(vec![(-0.5, 7.0), (bars.len() as f64 - 0.5, 7.0)], BLACK)))?
-        .label("target 7×")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font((FONT_FAMILY, 13))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(bars.len() + 1)
+            .x_label_formatter(&|x| {
+                let k = x.round();
+                if (x - k).abs() > 1e-6 || k < 0.0 {
+                    return String::new();
+                }
+                bars.get(k as usize).map_or(String::new(), |b| b.0.clone())
+            })
+            .y_desc("speed-up (same run, same drops)")
+            .label_style((FONT_FAMILY, 13))
+            .draw()?;
+        let w = 0.84 / PLOTTED.len() as f64;
+        for (slot, &s) in PLOTTED.iter().enumerate() {
+            let m = &MODES[s];
+            let colour = series_color(slot);
+            chart
+                .draw_series(bars.iter().enumerate().map(|(k, (_, v))| {
+                    let x0 = k as f64 - 0.42 + slot as f64 * w;
+                    Rectangle::new([(x0, 0.0), (x0 + w * 0.9, v[s])], colour.filled())
+                }))?
+                .label(m.name)
+                .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
+        }
+        chart
+            .draw_series(std::iter::once(PathElement::new(vec![(-0.5, 7.0), (bars.len() as f64 - 0.5, 7.0)], BLACK)))?
+            .label("target 7×")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font((FONT_FAMILY, 13))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }

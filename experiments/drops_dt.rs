@@ -29,7 +29,7 @@ use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::chi_square_homogeneity;
 use statrs::distribution::{Binomial, DiscreteCDF};
@@ -271,58 +271,58 @@ fn statistics_reading(tests: u64, low: &[String]) -> String {
 
 fn plot(path: &Path, curves: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
-    let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .caption("Per-flock statistics vs dt: χ² homogeneity p-value against 1/dt = 240", (FONT_FAMILY, 20))
-        .build_cartesian_2d(60.0f64..500.0, (1e-3f64..1.0).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("1/dt (steps per s of the scaled body)")
-        .y_desc("p-value (log scale)")
-        .x_label_formatter(&|x| rocking_stones::plot::plain(*x))
-        .y_label_formatter(&|y| rocking_stones::plot::log_tick(*y))
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    // Colour by body, line width by preset (three presets per body, in curve order).
-    for (k, (label, c)) in curves.iter().enumerate() {
-        let colour = rocking_stones::plot::series_color(k / 3).to_rgba();
-        let width = [3, 1, 2][k % 3];
-        // The reference dt itself (p = 1 against itself) is not a comparison: leave it out.
-        let pts: Vec<(f64, f64)> =
-            c.iter().filter(|&&(x, _)| (x - 240.0).abs() > 1e-6).map(|&(x, p)| (x, p.max(1e-3))).collect();
-        chart.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(width)))?.label(label.clone()).legend(
-            move |(x, y)| {
-                let line = PathElement::new(vec![(x - 4, y), (x + 18, y)], colour.stroke_width(width));
-                let marker = match k % 3 {
-                    0 => Circle::new((x + 7, y), 4, colour.filled()).into_dyn(),
-                    1 => TriangleMarker::new((x + 7, y), 5, colour.filled()).into_dyn(),
-                    _ => Cross::new((x + 7, y), 4, colour.stroke_width(2)).into_dyn(),
-                };
-                EmptyElement::at((0, 0)) + line + marker
-            },
-        );
-        match k % 3 {
-            0 => chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?,
-            1 => chart.draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 5, colour.filled())))?,
-            _ => chart.draw_series(pts.iter().map(|&p| Cross::new(p, 4, colour.stroke_width(2))))?,
-        };
-    }
-    chart
-        .draw_series(std::iter::once(PathElement::new(vec![(60.0, 0.05), (500.0, 0.05)], BLACK)))?
-        .label("p = 0.05 (the reading's level)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .label_font((FONT_FAMILY, 13))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
+    rocking_stones::plot::draw_png(path, (1000, 600), |root| {
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(root)
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .caption("Per-flock statistics vs dt: χ² homogeneity p-value against 1/dt = 240", (FONT_FAMILY, 20))
+            .build_cartesian_2d(60.0f64..500.0, (1e-3f64..1.0).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("1/dt (steps per s of the scaled body)")
+            .y_desc("p-value (log scale)")
+            .x_label_formatter(&|x| rocking_stones::plot::plain(*x))
+            .y_label_formatter(&|y| rocking_stones::plot::log_tick(*y))
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        // Colour by body, line width by preset (three presets per body, in curve order).
+        for (k, (label, c)) in curves.iter().enumerate() {
+            let colour = rocking_stones::plot::series_color(k / 3).to_rgba();
+            let width = [3, 1, 2][k % 3];
+            // The reference dt itself (p = 1 against itself) is not a comparison: leave it out.
+            let pts: Vec<(f64, f64)> =
+                c.iter().filter(|&&(x, _)| (x - 240.0).abs() > 1e-6).map(|&(x, p)| (x, p.max(1e-3))).collect();
+            chart.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(width)))?.label(label.clone()).legend(
+                move |(x, y)| {
+                    let line = PathElement::new(vec![(x - 4, y), (x + 18, y)], colour.stroke_width(width));
+                    let marker = match k % 3 {
+                        0 => Circle::new((x + 7, y), 4, colour.filled()).into_dyn(),
+                        1 => TriangleMarker::new((x + 7, y), 5, colour.filled()).into_dyn(),
+                        _ => Cross::new((x + 7, y), 4, colour.stroke_width(2)).into_dyn(),
+                    };
+                    EmptyElement::at((0, 0)) + line + marker
+                },
+            );
+            match k % 3 {
+                0 => chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?,
+                1 => chart.draw_series(pts.iter().map(|&p| TriangleMarker::new(p, 5, colour.filled())))?,
+                _ => chart.draw_series(pts.iter().map(|&p| Cross::new(p, 4, colour.stroke_width(2))))?,
+            };
+        }
+        chart
+            .draw_series(std::iter::once(PathElement::new(vec![(60.0, 0.05), (500.0, 0.05)], BLACK)))?
+            .label("p = 0.05 (the reading's level)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .label_font((FONT_FAMILY, 13))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }

@@ -26,7 +26,7 @@ use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
-use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::chi_square_homogeneity;
 use std::fmt::Write as _;
@@ -208,53 +208,58 @@ every drop.\n",
 fn plot(path: &Path, bars: &[(String, f64, f64)]) -> rocking_stones::plot::DrawResult {
     use plotters::prelude::*;
     use rocking_stones::plot::{draw_legend, legend_height, Mark};
-    init_fonts();
-    let root = BitMapBackend::new(path, (1100, 760)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let (legend, area) = root.split_vertically(legend_height(1));
-    let (rapier, exact) = (series_color(0), series_color(1));
-    draw_legend(
-        &legend,
-        &[
-            (Mark::Box(rapier, 1.0), "rapier's flight (contacts at the step boundaries)".into()),
-            (Mark::Box(exact, 1.0), "exact landings + sub-stepped impacts (flight = free)".into()),
-            (Mark::Line(BLACK), format!("depth at which a run warns, {DEPTH_BOUND} R_max")),
-        ],
-    )?;
-    let n = bars.len();
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .x_label_area_size(250)
-        .y_label_area_size(80)
-        .caption("Deepest hull corner below the ground, at any step or sub-step, per configuration", (FONT_FAMILY, 20))
-        .build_cartesian_2d(0.0f64..n as f64, (5e-5f64..1.0).log_scale())?;
-    chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .x_labels(0)
-        .y_desc("depth, largest over the drops (R_max, log scale)")
-        .y_label_formatter(&|y| rocking_stones::plot::log_tick(*y))
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    for (k, (label, r, f)) in bars.iter().enumerate() {
-        let x = k as f64;
-        chart.draw_series(std::iter::once(Rectangle::new(
-            [(x + 0.1, 5e-5), (x + 0.48, r.max(5e-5))],
-            rapier.filled(),
-        )))?;
+    rocking_stones::plot::draw_png(path, (1100, 760), |root| {
+        root.fill(&WHITE)?;
+        let (legend, area) = root.split_vertically(legend_height(1));
+        let (rapier, exact) = (series_color(0), series_color(1));
+        draw_legend(
+            &legend,
+            &[
+                (Mark::Box(rapier, 1.0), "rapier's flight (contacts at the step boundaries)".into()),
+                (Mark::Box(exact, 1.0), "exact landings + sub-stepped impacts (flight = free)".into()),
+                (Mark::Line(BLACK), format!("depth at which a run warns, {DEPTH_BOUND} R_max")),
+            ],
+        )?;
+        let n = bars.len();
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .x_label_area_size(250)
+            .y_label_area_size(80)
+            .caption(
+                "Deepest hull corner below the ground, at any step or sub-step, per configuration",
+                (FONT_FAMILY, 20),
+            )
+            .build_cartesian_2d(0.0f64..n as f64, (5e-5f64..1.0).log_scale())?;
         chart
-            .draw_series(std::iter::once(Rectangle::new([(x + 0.52, 5e-5), (x + 0.9, f.max(5e-5))], exact.filled())))?;
-        let pos = chart.backend_coord(&(x + 0.5, 5e-5));
-        area.draw(&Text::new(
-            label.clone(),
-            (pos.0 - 6, pos.1 + 8),
-            TextStyle::from((FONT_FAMILY, 13)).transform(FontTransform::Rotate90),
-        ))?;
-    }
-    chart.draw_series(std::iter::once(PathElement::new(
-        vec![(0.0, DEPTH_BOUND), (n as f64, DEPTH_BOUND)],
-        BLACK.stroke_width(2),
-    )))?;
-    root.present()?;
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(0)
+            .y_desc("depth, largest over the drops (R_max, log scale)")
+            .y_label_formatter(&|y| rocking_stones::plot::log_tick(*y))
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        for (k, (label, r, f)) in bars.iter().enumerate() {
+            let x = k as f64;
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(x + 0.1, 5e-5), (x + 0.48, r.max(5e-5))],
+                rapier.filled(),
+            )))?;
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(x + 0.52, 5e-5), (x + 0.9, f.max(5e-5))],
+                exact.filled(),
+            )))?;
+            let pos = chart.backend_coord(&(x + 0.5, 5e-5));
+            area.draw(&Text::new(
+                label.clone(),
+                (pos.0 - 6, pos.1 + 8),
+                TextStyle::from((FONT_FAMILY, 13)).transform(FontTransform::Rotate90),
+            ))?;
+        }
+        chart.draw_series(std::iter::once(PathElement::new(
+            vec![(0.0, DEPTH_BOUND), (n as f64, DEPTH_BOUND)],
+            BLACK.stroke_width(2),
+        )))?;
+        Ok(())
+    })?;
     Ok(())
 }

@@ -16,7 +16,7 @@ use rocking_stones::dynamics::drops::params::{DropParams, Launch};
 use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate;
-use rocking_stones::plot::{draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY};
+use rocking_stones::plot::{draw_legend, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -187,59 +187,59 @@ fn write_box_faces(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
 }
 
 fn plot(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (1000, 640)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root = root.titled(
-        "Drops vs quasi-static basins: KL divergence of the flock shares against drop height",
-        (FONT_FAMILY, style::TITLE),
-    )?;
-    let (legend, area) = root.split_vertically(legend_height(2));
-    let bodies = [("box 2x1.4x1", "box 2 × 1.4 × 1"), ("pebble 1:0.72:0.5", "pebble 1 : 0.72 : 0.5")];
-    let mut entries = Vec::new();
-    for (b, (_, label)) in bodies.iter().enumerate() {
-        for (k, &e) in RESTITUTIONS.iter().enumerate() {
-            let c = series_color(k);
-            let mark = if b == 0 { Mark::LineDot(c) } else { Mark::Dashed(c) };
-            entries.push((mark, format!("{label}, restitution {e}")));
-        }
-    }
-    draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .margin_top(10)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d((1e-3f64..2.0).log_scale(), (3e-4f64..0.2).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("drop height / R_max (log scale)")
-        .y_desc("KL(drops ‖ static), nats (log scale)")
-        .x_label_formatter(&|x: &f64| log_tick(*x))
-        .y_label_formatter(&|y: &f64| log_tick(*y))
-        .label_style((FONT_FAMILY, style::TICK))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .draw()?;
-    for (b, (body, _)) in bodies.iter().enumerate() {
-        for (k, &e) in RESTITUTIONS.iter().enumerate() {
-            let color = series_color(k);
-            // wider lines first, so curves that coincide (the pebble's) stay visible side by side.
-            let width = style::LINE + 2 - k as u32;
-            let pts: Vec<(f64, f64)> = rows
-                .iter()
-                .filter(|r| r.body == *body && r.restitution == e)
-                .map(|r| (r.height, r.report.fit_flocks.kl_divergence.max(3e-4)))
-                .collect();
-            if b == 0 {
-                chart.draw_series(LineSeries::new(pts.clone(), color.stroke_width(width)))?;
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, style::MARKER, color.filled())))?;
-            } else {
-                chart.draw_series(DashedLineSeries::new(pts.clone(), 8, 5, color.stroke_width(width)))?;
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, style::MARKER, color.stroke_width(2))))?;
+    rocking_stones::plot::draw_png(path, (1000, 640), |root| {
+        root.fill(&WHITE)?;
+        let root = root.titled(
+            "Drops vs quasi-static basins: KL divergence of the flock shares against drop height",
+            (FONT_FAMILY, style::TITLE),
+        )?;
+        let (legend, area) = root.split_vertically(legend_height(2));
+        let bodies = [("box 2x1.4x1", "box 2 × 1.4 × 1"), ("pebble 1:0.72:0.5", "pebble 1 : 0.72 : 0.5")];
+        let mut entries = Vec::new();
+        for (b, (_, label)) in bodies.iter().enumerate() {
+            for (k, &e) in RESTITUTIONS.iter().enumerate() {
+                let c = series_color(k);
+                let mark = if b == 0 { Mark::LineDot(c) } else { Mark::Dashed(c) };
+                entries.push((mark, format!("{label}, restitution {e}")));
             }
         }
-    }
-    root.present()?;
+        draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .margin_top(10)
+            .x_label_area_size(50)
+            .y_label_area_size(70)
+            .build_cartesian_2d((1e-3f64..2.0).log_scale(), (3e-4f64..0.2).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("drop height / R_max (log scale)")
+            .y_desc("KL(drops ‖ static), nats (log scale)")
+            .x_label_formatter(&|x: &f64| log_tick(*x))
+            .y_label_formatter(&|y: &f64| log_tick(*y))
+            .label_style((FONT_FAMILY, style::TICK))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .draw()?;
+        for (b, (body, _)) in bodies.iter().enumerate() {
+            for (k, &e) in RESTITUTIONS.iter().enumerate() {
+                let color = series_color(k);
+                // wider lines first, so curves that coincide (the pebble's) stay visible side by side.
+                let width = style::LINE + 2 - k as u32;
+                let pts: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.body == *body && r.restitution == e)
+                    .map(|r| (r.height, r.report.fit_flocks.kl_divergence.max(3e-4)))
+                    .collect();
+                if b == 0 {
+                    chart.draw_series(LineSeries::new(pts.clone(), color.stroke_width(width)))?;
+                    chart.draw_series(pts.iter().map(|&p| Circle::new(p, style::MARKER, color.filled())))?;
+                } else {
+                    chart.draw_series(DashedLineSeries::new(pts.clone(), 8, 5, color.stroke_width(width)))?;
+                    chart.draw_series(pts.iter().map(|&p| Circle::new(p, style::MARKER, color.stroke_width(2))))?;
+                }
+            }
+        }
+        Ok(())
+    })?;
     Ok(())
 }
 

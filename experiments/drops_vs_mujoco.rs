@@ -46,7 +46,7 @@ use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{init_fonts, series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::stuart_maxwell;
 use rocking_stones::Vec3;
@@ -1566,7 +1566,6 @@ fn readme(
 
 fn plot(path: &Path, modes: &[Mode], bars: &[(String, Vec<(f64, f64)>)]) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    init_fonts();
     let dts = mj_dts();
     let (r_l, d_l) = (step_label(dts[0]), step_label(dts[1]));
     // One bar per mode against MuJoCo at the reference step, then the default numerics against
@@ -1574,96 +1573,97 @@ fn plot(path: &Path, modes: &[Mode], bars: &[(String, Vec<(f64, f64)>)]) -> Resu
     let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l}", m.short)).collect();
     series.push(format!("{} ÷ MuJoCo at {d_l}, the same step", modes[3].short));
     let slots = series.len();
-    let root = BitMapBackend::new(path, (1200, 720)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));
-    // Log axis: a ratio and its inverse are as far from 1×; room above the bars for the legend.
-    let bottom = values().fold(0.5, f64::min) * 0.8;
-    let top = values().fold(10.0, f64::max) * 12.0;
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .caption("Drops per core: this project ÷ MuJoCo, same physics, one core", (FONT_FAMILY, 20))
-        .build_cartesian_2d(-0.5f64..bars.len() as f64 - 0.5, (bottom..top).log_scale())?;
-    chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .x_labels(bars.len() + 1)
-        .x_label_formatter(&|x| {
-            let k = x.round();
-            if (x - k).abs() > 1e-6 || k < 0.0 {
-                return String::new();
-            }
-            bars.get(k as usize).map_or(String::new(), |b| match b.0.as_str() {
-                "stone" => "bundled stone (581 hull vertices)".into(),
-                "pebble" => "synthetic pebble (500 hull vertices)".into(),
-                other => format!("{other} 1 × 0.8 × 0.5"),
-            })
-        })
-        .y_label_formatter(&|y| format!("{y}×"))
-        .y_desc("drops/s of the project ÷ drops/s of MuJoCo (log scale)")
-        .label_style((FONT_FAMILY, 14))
-        .draw()?;
-    // The reference level 1×, drawn first so that the bars and their labels lie over it (10× and
-    // 100× are the axis' major grid lines).
-    let references = [(1.0, "1×: as fast as MuJoCo")];
-    let reference_style = |_: f64| BLACK.stroke_width(2);
-    for (level, _) in references {
-        chart.draw_series(DashedLineSeries::new(
-            vec![(-0.5, level), (bars.len() as f64 - 0.5, level)],
-            10,
-            6,
-            reference_style(level),
-        ))?;
-    }
-    let w = 0.86 / slots as f64;
-    let x0 = |k: usize, slot: usize| k as f64 - 0.43 + slot as f64 * w;
-    for (slot, label) in series.iter().enumerate() {
-        let colour = series_color(slot);
+    rocking_stones::plot::draw_png(path, (1200, 720), |root| {
+        root.fill(&WHITE)?;
+        let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));
+        // Log axis: a ratio and its inverse are as far from 1×; room above the bars for the legend.
+        let bottom = values().fold(0.5, f64::min) * 0.8;
+        let top = values().fold(10.0, f64::max) * 12.0;
+        let mut chart = ChartBuilder::on(root)
+            .margin(20)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .caption("Drops per core: this project ÷ MuJoCo, same physics, one core", (FONT_FAMILY, 20))
+            .build_cartesian_2d(-0.5f64..bars.len() as f64 - 0.5, (bottom..top).log_scale())?;
         chart
-            .draw_series(bars.iter().enumerate().map(|(k, (_, v))| {
-                Rectangle::new([(x0(k, slot), bottom), (x0(k, slot) + w * 0.9, v[slot].0)], colour.filled())
-            }))?
-            .label(format!("{label} (its mj_step loop + rest check)"))
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
-    }
-    // The ratio against MuJoCo's loop, written above each bar.
-    use plotters::style::text_anchor::{HPos, Pos, VPos};
-    let label = TextStyle::from((FONT_FAMILY, 12).into_font()).pos(Pos::new(HPos::Center, VPos::Bottom));
-    chart.draw_series(bars.iter().enumerate().flat_map(|(k, (_, v))| {
-        let label = label.clone();
-        (0..slots).map(move |slot| {
-            let top = v[slot].0.max(v[slot].1) * 1.04;
-            Text::new(format!("{:.1}×", v[slot].0), (x0(k, slot) + w * 0.45, top), label.clone())
-        })
-    }))?;
-    chart
-        .draw_series(bars.iter().enumerate().flat_map(|(k, (_, v))| {
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(bars.len() + 1)
+            .x_label_formatter(&|x| {
+                let k = x.round();
+                if (x - k).abs() > 1e-6 || k < 0.0 {
+                    return String::new();
+                }
+                bars.get(k as usize).map_or(String::new(), |b| match b.0.as_str() {
+                    "stone" => "bundled stone (581 hull vertices)".into(),
+                    "pebble" => "synthetic pebble (500 hull vertices)".into(),
+                    other => format!("{other} 1 × 0.8 × 0.5"),
+                })
+            })
+            .y_label_formatter(&|y| format!("{y}×"))
+            .y_desc("drops/s of the project ÷ drops/s of MuJoCo (log scale)")
+            .label_style((FONT_FAMILY, 14))
+            .draw()?;
+        // The reference level 1×, drawn first so that the bars and their labels lie over it (10× and
+        // 100× are the axis' major grid lines).
+        let references = [(1.0, "1×: as fast as MuJoCo")];
+        let reference_style = |_: f64| BLACK.stroke_width(2);
+        for (level, _) in references {
+            chart.draw_series(DashedLineSeries::new(
+                vec![(-0.5, level), (bars.len() as f64 - 0.5, level)],
+                10,
+                6,
+                reference_style(level),
+            ))?;
+        }
+        let w = 0.86 / slots as f64;
+        let x0 = |k: usize, slot: usize| k as f64 - 0.43 + slot as f64 * w;
+        for (slot, label) in series.iter().enumerate() {
+            let colour = series_color(slot);
+            chart
+                .draw_series(bars.iter().enumerate().map(|(k, (_, v))| {
+                    Rectangle::new([(x0(k, slot), bottom), (x0(k, slot) + w * 0.9, v[slot].0)], colour.filled())
+                }))?
+                .label(format!("{label} (its mj_step loop + rest check)"))
+                .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled()));
+        }
+        // The ratio against MuJoCo's loop, written above each bar.
+        use plotters::style::text_anchor::{HPos, Pos, VPos};
+        let label = TextStyle::from((FONT_FAMILY, 12).into_font()).pos(Pos::new(HPos::Center, VPos::Bottom));
+        chart.draw_series(bars.iter().enumerate().flat_map(|(k, (_, v))| {
+            let label = label.clone();
             (0..slots).map(move |slot| {
-                PathElement::new(
-                    vec![(x0(k, slot), v[slot].1), (x0(k, slot) + w * 0.9, v[slot].1)],
-                    BLACK.stroke_width(3),
-                )
+                let top = v[slot].0.max(v[slot].1) * 1.04;
+                Text::new(format!("{:.1}×", v[slot].0), (x0(k, slot) + w * 0.45, top), label.clone())
             })
-        }))?
-        .label("the same bar against MuJoCo's stepping alone (no Python per step)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK.stroke_width(3)));
-    // The reference lines' legend entries (the lines themselves are drawn under the bars).
-    for (level, label) in references {
-        let style = reference_style(level);
+        }))?;
         chart
-            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
-            .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], style));
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font((FONT_FAMILY, 13))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
+            .draw_series(bars.iter().enumerate().flat_map(|(k, (_, v))| {
+                (0..slots).map(move |slot| {
+                    PathElement::new(
+                        vec![(x0(k, slot), v[slot].1), (x0(k, slot) + w * 0.9, v[slot].1)],
+                        BLACK.stroke_width(3),
+                    )
+                })
+            }))?
+            .label("the same bar against MuJoCo's stepping alone (no Python per step)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK.stroke_width(3)));
+        // The reference lines' legend entries (the lines themselves are drawn under the bars).
+        for (level, label) in references {
+            let style = reference_style(level);
+            chart
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], style));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font((FONT_FAMILY, 13))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()?;
+        Ok(())
+    })?;
     Ok(())
 }

@@ -19,7 +19,7 @@ use rocking_stones::dynamics::stone::{resting_orientation, Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
 use rocking_stones::planar::{self, Point2};
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use rocking_stones::Vec3;
@@ -134,65 +134,70 @@ fn rebuild<'a>(p: &report::perturb::Panel<'a>) -> report::perturb::Panel<'a> {
 /// the outline of the hull seen along y in its resting orientation, the ground, G and the
 /// contact point straight below it.
 fn plot_poses(path: &Path, stone: &Stone, a: &Analysis, which: &[usize]) -> anyhow::Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (1200, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let g = a.mass.center_of_mass;
-    let r_max = stone.body.r_max;
-    for (area, &i) in root.split_evenly((1, which.len())).iter().zip(which) {
-        let s = &stone.stable()[i];
-        let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
-        let pts: Vec<(f64, f64)> = a
-            .hull
-            .vertices
-            .iter()
-            .map(|p| {
-                let w = q * ((p - g) / r_max) + Vec3::new(0.0, 0.0, s.r_normalised);
-                (w.x, w.z)
-            })
-            .collect();
-        let outline: Vec<(f64, f64)> =
-            planar::Polygon::convex_hull(&pts.iter().map(|&(x, y)| Point2::new(x, y)).collect::<Vec<_>>())?
+    rocking_stones::plot::draw_png(path, (1200, 520), |root| {
+        root.fill(&WHITE)?;
+        let g = a.mass.center_of_mass;
+        let r_max = stone.body.r_max;
+        for (area, &i) in root.split_evenly((1, which.len())).iter().zip(which) {
+            let s = &stone.stable()[i];
+            let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
+            let pts: Vec<(f64, f64)> = a
+                .hull
                 .vertices
                 .iter()
-                .map(|p| (p.x, p.y))
+                .map(|p| {
+                    let w = q * ((p - g) / r_max) + Vec3::new(0.0, 0.0, s.r_normalised);
+                    (w.x, w.z)
+                })
                 .collect();
-        let title = format!(
-            "{} equilibrium {} (facet {}): {:?} flock {}",
-            match s.class {
-                Class::Regular => "regular",
-                Class::Rocking => "rocking",
-            },
-            s.index,
-            s.facet,
-            s.flock_kind,
-            s.flock
-        );
-        let mut chart = ChartBuilder::on(area)
-            .caption(title, (FONT_FAMILY, 18))
-            .margin(15)
-            .build_cartesian_2d(-1.2f64..1.2, -0.15f64..2.05)?;
-        chart.draw_series(std::iter::once(Polygon::new(outline.clone(), RGBColor(190, 175, 150).filled())))?;
-        chart.draw_series(std::iter::once(PathElement::new(
-            outline.iter().chain(outline.first()).copied().collect::<Vec<_>>(),
-            BLACK.stroke_width(1),
-        )))?;
-        chart.draw_series(std::iter::once(PathElement::new(vec![(-1.2, 0.0), (1.2, 0.0)], BLACK.stroke_width(2))))?;
-        chart.draw_series(std::iter::once(PathElement::new(
-            vec![(0.0, 0.0), (0.0, s.r_normalised)],
-            RGBColor(200, 40, 40).stroke_width(1),
-        )))?;
-        chart.draw_series(std::iter::once(Circle::new((0.0, s.r_normalised), 5, RGBColor(200, 40, 40).filled())))?;
-        chart.draw_series(std::iter::once(Text::new(
-            format!(
-                "G, R = {:.4} R_max; barriers: basin {:.1e}, flock {:.1e} m g R_max",
-                s.r_normalised, s.basin_exit.epsilon, s.flock_exit.epsilon
-            ),
-            (-1.15, 1.95),
-            (FONT_FAMILY, 14),
-        )))?;
-    }
-    root.present()?;
+            let outline: Vec<(f64, f64)> =
+                planar::Polygon::convex_hull(&pts.iter().map(|&(x, y)| Point2::new(x, y)).collect::<Vec<_>>())?
+                    .vertices
+                    .iter()
+                    .map(|p| (p.x, p.y))
+                    .collect();
+            let title = format!(
+                "{} equilibrium {} (facet {}): {:?} flock {}",
+                match s.class {
+                    Class::Regular => "regular",
+                    Class::Rocking => "rocking",
+                },
+                s.index,
+                s.facet,
+                s.flock_kind,
+                s.flock
+            );
+            let mut chart = ChartBuilder::on(area)
+                .caption(title, (FONT_FAMILY, 18))
+                .margin(15)
+                .build_cartesian_2d(-1.2f64..1.2, -0.15f64..2.05)?;
+            chart.draw_series(std::iter::once(Polygon::new(outline.clone(), RGBColor(190, 175, 150).filled())))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                outline.iter().chain(outline.first()).copied().collect::<Vec<_>>(),
+                BLACK.stroke_width(1),
+            )))?;
+            chart
+                .draw_series(std::iter::once(PathElement::new(vec![(-1.2, 0.0), (1.2, 0.0)], BLACK.stroke_width(2))))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(0.0, 0.0), (0.0, s.r_normalised)],
+                RGBColor(200, 40, 40).stroke_width(1),
+            )))?;
+            chart.draw_series(std::iter::once(Circle::new(
+                (0.0, s.r_normalised),
+                5,
+                RGBColor(200, 40, 40).filled(),
+            )))?;
+            chart.draw_series(std::iter::once(Text::new(
+                format!(
+                    "G, R = {:.4} R_max; barriers: basin {:.1e}, flock {:.1e} m g R_max",
+                    s.r_normalised, s.basin_exit.epsilon, s.flock_exit.epsilon
+                ),
+                (-1.15, 1.95),
+                (FONT_FAMILY, 14),
+            )))?;
+        }
+        Ok(())
+    })?;
     Ok(())
 }
 

@@ -43,7 +43,7 @@ use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::colors::GREY;
-use rocking_stones::plot::{draw_legend, init_fonts, legend_height, plain, series_color, style, Mark, FONT_FAMILY};
+use rocking_stones::plot::{draw_legend, legend_height, plain, series_color, style, Mark, FONT_FAMILY};
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::{chi_square, chi_square_homogeneity, wilson};
 use rocking_stones::{Point3, Vec3};
@@ -1076,130 +1076,130 @@ type PlotResult = std::result::Result<(), Box<dyn std::error::Error>>;
 
 fn plot(path: &Path, results: &[ShapeResult]) -> PlotResult {
     use plotters::prelude::*;
-    init_fonts();
-    let root = BitMapBackend::new(path, (1200, 980)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root = root.titled(
-        "Printed dice: measured hand throws against the predictors (validation, nothing fitted)",
-        (FONT_FAMILY, style::TITLE),
-    )?;
-    let (legend, area) = root.split_vertically(legend_height(2));
-    let mut entries = vec![(Mark::LineDot(BLACK), "measured (95 % Wilson interval)".to_string())];
-    for (k, p) in Predictor::ALL.iter().enumerate() {
-        entries.push((Mark::Box(series_color(k), 0.85), p.label().to_string()));
-    }
-    entries.push((Mark::Line(GREY), "thin whiskers: 95 % Monte Carlo interval of a simulated predictor".into()));
-    entries.push((
-        Mark::Line(BLACK),
-        "last panel: noise level (95th percentile of the TV if the predictor were exact)".into(),
-    ));
-    draw_legend(&legend, &entries).map_err(|e| e.to_string())?;
-    let panels = area.split_evenly((2, 2));
-    let slots = Predictor::ALL.len() + 1;
-    let width = 0.8 / slots as f64;
-    let offset = |slot: usize| -0.4 + width * (slot as f64 + 0.5);
-    for (r, panel) in results.iter().zip(&panels) {
-        let k = r.shape.outcomes.len();
-        let top = r
-            .shape
-            .outcomes
-            .iter()
-            .map(|o| wilson(o.count, r.shape.n, 1.96).1)
-            .chain(r.predictions.iter().flat_map(|p| p.p.iter().copied()))
-            .fold(0.0f64, f64::max);
-        let y_max = ((top * 1.1) * 10.0).ceil() / 10.0;
-        let ids: Vec<String> = r.shape.outcomes.iter().map(|o| o.id.clone()).collect();
+    rocking_stones::plot::draw_png(path, (1200, 980), |root| {
+        root.fill(&WHITE)?;
+        let root = root.titled(
+            "Printed dice: measured hand throws against the predictors (validation, nothing fitted)",
+            (FONT_FAMILY, style::TITLE),
+        )?;
+        let (legend, area) = root.split_vertically(legend_height(2));
+        let mut entries = vec![(Mark::LineDot(BLACK), "measured (95 % Wilson interval)".to_string())];
+        for (k, p) in Predictor::ALL.iter().enumerate() {
+            entries.push((Mark::Box(series_color(k), 0.85), p.label().to_string()));
+        }
+        entries.push((Mark::Line(GREY), "thin whiskers: 95 % Monte Carlo interval of a simulated predictor".into()));
+        entries.push((
+            Mark::Line(BLACK),
+            "last panel: noise level (95th percentile of the TV if the predictor were exact)".into(),
+        ));
+        draw_legend(&legend, &entries).map_err(|e| e.to_string())?;
+        let panels = area.split_evenly((2, 2));
+        let slots = Predictor::ALL.len() + 1;
+        let width = 0.8 / slots as f64;
+        let offset = |slot: usize| -0.4 + width * (slot as f64 + 0.5);
+        for (r, panel) in results.iter().zip(&panels) {
+            let k = r.shape.outcomes.len();
+            let top = r
+                .shape
+                .outcomes
+                .iter()
+                .map(|o| wilson(o.count, r.shape.n, 1.96).1)
+                .chain(r.predictions.iter().flat_map(|p| p.p.iter().copied()))
+                .fold(0.0f64, f64::max);
+            let y_max = ((top * 1.1) * 10.0).ceil() / 10.0;
+            let ids: Vec<String> = r.shape.outcomes.iter().map(|o| o.id.clone()).collect();
+            let mut chart = ChartBuilder::on(panel)
+                .caption(format!("{} (N = {} hand throws)", r.shape.name, r.shape.n), (FONT_FAMILY, style::PANEL_TITLE))
+                .margin(12)
+                .x_label_area_size(45)
+                .y_label_area_size(60)
+                .build_cartesian_2d(-0.5f64..(k as f64 - 0.5), 0.0f64..y_max)?;
+            chart
+                .configure_mesh()
+                .disable_x_mesh()
+                .x_labels(4 * k + 1)
+                .x_label_formatter(&|x| {
+                    let i = x.round();
+                    if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < ids.len() {
+                        ids[i as usize].clone()
+                    } else {
+                        String::new()
+                    }
+                })
+                .y_label_formatter(&|y| plain(*y))
+                .light_line_style(WHITE.mix(0.0))
+                .x_desc("outcome (id of outcomes.csv)")
+                .y_desc("frequency")
+                .label_style((FONT_FAMILY, style::TICK))
+                .axis_desc_style((FONT_FAMILY, style::AXIS))
+                .draw()?;
+            for (slot, pred) in r.predictions.iter().enumerate() {
+                let c = series_color(slot);
+                let x0 = |i: usize| i as f64 + offset(slot + 1) - 0.45 * width;
+                let x1 = |i: usize| i as f64 + offset(slot + 1) + 0.45 * width;
+                chart.draw_series(
+                    (0..k).map(|i| Rectangle::new([(x0(i), 0.0), (x1(i), pred.p[i])], c.mix(0.85).filled())),
+                )?;
+                if let Some((counts, total)) = &pred.counts {
+                    chart.draw_series((0..k).map(|i| {
+                        let (lo, hi) = wilson(counts[i], *total, 1.96);
+                        let x = i as f64 + offset(slot + 1);
+                        PathElement::new(vec![(x, lo), (x, hi)], GREY.stroke_width(1))
+                    }))?;
+                }
+            }
+            chart.draw_series(r.shape.outcomes.iter().enumerate().map(|(i, o)| {
+                let (lo, hi) = wilson(o.count, r.shape.n, 1.96);
+                let x = i as f64 + offset(0);
+                PathElement::new(vec![(x, lo), (x, hi)], BLACK.stroke_width(style::LINE))
+            }))?;
+            chart.draw_series(r.shape.outcomes.iter().enumerate().map(|(i, o)| {
+                Circle::new((i as f64 + offset(0), o.count as f64 / r.shape.n as f64), style::MARKER, BLACK.filled())
+            }))?;
+        }
+        // Last panel: TV per shape and predictor, with the noise level.
+        let panel = &panels[3];
+        let top = results.iter().flat_map(|r| r.scores.iter().map(|s| s.tv.max(s.noise_q95))).fold(0.0f64, f64::max);
+        let y_max = ((top * 1.15) * 20.0).ceil() / 20.0;
+        let names: Vec<&str> = results.iter().map(|r| r.shape.name).collect();
         let mut chart = ChartBuilder::on(panel)
-            .caption(format!("{} (N = {} hand throws)", r.shape.name, r.shape.n), (FONT_FAMILY, style::PANEL_TITLE))
+            .caption("total variation distance to the measurement", (FONT_FAMILY, style::PANEL_TITLE))
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(60)
-            .build_cartesian_2d(-0.5f64..(k as f64 - 0.5), 0.0f64..y_max)?;
+            .build_cartesian_2d(-0.5f64..(results.len() as f64 - 0.5), 0.0f64..y_max)?;
         chart
             .configure_mesh()
             .disable_x_mesh()
-            .x_labels(4 * k + 1)
+            .x_labels(4 * results.len() + 1)
             .x_label_formatter(&|x| {
                 let i = x.round();
-                if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < ids.len() {
-                    ids[i as usize].clone()
+                if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < names.len() {
+                    names[i as usize].to_string()
                 } else {
                     String::new()
                 }
             })
             .y_label_formatter(&|y| plain(*y))
             .light_line_style(WHITE.mix(0.0))
-            .x_desc("outcome (id of outcomes.csv)")
-            .y_desc("frequency")
+            .x_desc("die")
+            .y_desc("TV = ½ Σ |p_pred − p_meas|")
             .label_style((FONT_FAMILY, style::TICK))
             .axis_desc_style((FONT_FAMILY, style::AXIS))
             .draw()?;
-        for (slot, pred) in r.predictions.iter().enumerate() {
+        let w = 0.8 / Predictor::ALL.len() as f64;
+        for slot in 0..Predictor::ALL.len() {
             let c = series_color(slot);
-            let x0 = |i: usize| i as f64 + offset(slot + 1) - 0.45 * width;
-            let x1 = |i: usize| i as f64 + offset(slot + 1) + 0.45 * width;
-            chart.draw_series(
-                (0..k).map(|i| Rectangle::new([(x0(i), 0.0), (x1(i), pred.p[i])], c.mix(0.85).filled())),
-            )?;
-            if let Some((counts, total)) = &pred.counts {
-                chart.draw_series((0..k).map(|i| {
-                    let (lo, hi) = wilson(counts[i], *total, 1.96);
-                    let x = i as f64 + offset(slot + 1);
-                    PathElement::new(vec![(x, lo), (x, hi)], GREY.stroke_width(1))
-                }))?;
-            }
+            let x = |i: usize| i as f64 - 0.4 + w * (slot as f64 + 0.5);
+            chart.draw_series(results.iter().enumerate().map(|(i, r)| {
+                Rectangle::new([(x(i) - 0.45 * w, 0.0), (x(i) + 0.45 * w, r.scores[slot].tv)], c.mix(0.85).filled())
+            }))?;
+            chart.draw_series(results.iter().enumerate().map(|(i, r)| {
+                let q = r.scores[slot].noise_q95;
+                PathElement::new(vec![(x(i) - 0.5 * w, q), (x(i) + 0.5 * w, q)], BLACK.stroke_width(style::LINE))
+            }))?;
         }
-        chart.draw_series(r.shape.outcomes.iter().enumerate().map(|(i, o)| {
-            let (lo, hi) = wilson(o.count, r.shape.n, 1.96);
-            let x = i as f64 + offset(0);
-            PathElement::new(vec![(x, lo), (x, hi)], BLACK.stroke_width(style::LINE))
-        }))?;
-        chart.draw_series(r.shape.outcomes.iter().enumerate().map(|(i, o)| {
-            Circle::new((i as f64 + offset(0), o.count as f64 / r.shape.n as f64), style::MARKER, BLACK.filled())
-        }))?;
-    }
-    // Last panel: TV per shape and predictor, with the noise level.
-    let panel = &panels[3];
-    let top = results.iter().flat_map(|r| r.scores.iter().map(|s| s.tv.max(s.noise_q95))).fold(0.0f64, f64::max);
-    let y_max = ((top * 1.15) * 20.0).ceil() / 20.0;
-    let names: Vec<&str> = results.iter().map(|r| r.shape.name).collect();
-    let mut chart = ChartBuilder::on(panel)
-        .caption("total variation distance to the measurement", (FONT_FAMILY, style::PANEL_TITLE))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(-0.5f64..(results.len() as f64 - 0.5), 0.0f64..y_max)?;
-    chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .x_labels(4 * results.len() + 1)
-        .x_label_formatter(&|x| {
-            let i = x.round();
-            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < names.len() {
-                names[i as usize].to_string()
-            } else {
-                String::new()
-            }
-        })
-        .y_label_formatter(&|y| plain(*y))
-        .light_line_style(WHITE.mix(0.0))
-        .x_desc("die")
-        .y_desc("TV = ½ Σ |p_pred − p_meas|")
-        .label_style((FONT_FAMILY, style::TICK))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .draw()?;
-    let w = 0.8 / Predictor::ALL.len() as f64;
-    for slot in 0..Predictor::ALL.len() {
-        let c = series_color(slot);
-        let x = |i: usize| i as f64 - 0.4 + w * (slot as f64 + 0.5);
-        chart.draw_series(results.iter().enumerate().map(|(i, r)| {
-            Rectangle::new([(x(i) - 0.45 * w, 0.0), (x(i) + 0.45 * w, r.scores[slot].tv)], c.mix(0.85).filled())
-        }))?;
-        chart.draw_series(results.iter().enumerate().map(|(i, r)| {
-            let q = r.scores[slot].noise_q95;
-            PathElement::new(vec![(x(i) - 0.5 * w, q), (x(i) + 0.5 * w, q)], BLACK.stroke_width(style::LINE))
-        }))?;
-    }
-    root.present()?;
+        Ok(())
+    })?;
     Ok(())
 }

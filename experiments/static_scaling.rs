@@ -14,9 +14,7 @@ use rocking_stones::hierarchy::Hierarchy;
 use rocking_stones::hull::{convex_hull, Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::mesh::io;
 use rocking_stones::morse_smale::MorseSmaleGraph;
-use rocking_stones::plot::{
-    colors, draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY,
-};
+use rocking_stones::plot::{colors, draw_legend, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY};
 use rocking_stones::solid::MassProperties;
 use rocking_stones::stats::log_fit;
 use std::fmt::Write as _;
@@ -195,49 +193,49 @@ fn write_summary(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
 }
 
 fn plot(path: &Path, rows: &[Row]) -> anyhow::Result<()> {
-    init_fonts();
-    let root = BitMapBackend::new(path, (900, 640)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root =
-        root.titled("Static analysis time per stage (synthetic pebbles, one thread)", (FONT_FAMILY, style::TITLE))?;
-    let (legend, area) = root.split_vertically(legend_height(1));
-    let peb: Vec<&Row> = rows.iter().filter(|r| r.name.starts_with("pebble")).collect();
-    // stages drawn: mass … hierarchy in the series colours, the total in black, parry3d dashed grey.
-    let color = |k: usize| if k == 8 { BLACK } else { series_color(k - 2) };
-    let mut entries: Vec<(Mark, String)> = (2..9).map(|k| (Mark::Line(color(k)), STAGES[k].to_string())).collect();
-    entries.push((Mark::Dashed(colors::GREY), "parry3d hull (f32 baseline)".into()));
-    draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
-    let all = peb.iter().flat_map(|r| r.seconds[2..].iter().copied().chain([r.parry_hull])).filter(|&t| t > 0.0);
-    let (lo, hi) = all.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (lo.min(t), hi.max(t)));
-    let (lo, hi) = (10f64.powf((lo * 0.8).log10().floor()), 10f64.powf((hi * 1.25).log10().ceil()));
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .margin_top(10)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d((5e2f64..2e6).log_scale(), (lo..hi).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("mesh vertices (log scale)")
-        .y_desc("time (s, log scale)")
-        .x_label_formatter(&|x: &f64| log_tick(*x))
-        .y_label_formatter(&|y: &f64| log_tick(*y))
-        .label_style((FONT_FAMILY, style::TICK))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .draw()?;
-    chart.draw_series(DashedLineSeries::new(
-        peb.iter().map(|r| (r.vertices as f64, r.parry_hull.max(lo))),
-        8,
-        5,
-        colors::GREY.stroke_width(style::LINE),
-    ))?;
-    for k in 2..9 {
-        let width = if k == 8 { style::LINE + 1 } else { style::LINE };
-        chart.draw_series(LineSeries::new(
-            peb.iter().map(|r| (r.vertices as f64, r.seconds[k].max(lo))),
-            color(k).stroke_width(width),
+    rocking_stones::plot::draw_png(path, (900, 640), |root| {
+        root.fill(&WHITE)?;
+        let root =
+            root.titled("Static analysis time per stage (synthetic pebbles, one thread)", (FONT_FAMILY, style::TITLE))?;
+        let (legend, area) = root.split_vertically(legend_height(1));
+        let peb: Vec<&Row> = rows.iter().filter(|r| r.name.starts_with("pebble")).collect();
+        // stages drawn: mass … hierarchy in the series colours, the total in black, parry3d dashed grey.
+        let color = |k: usize| if k == 8 { BLACK } else { series_color(k - 2) };
+        let mut entries: Vec<(Mark, String)> = (2..9).map(|k| (Mark::Line(color(k)), STAGES[k].to_string())).collect();
+        entries.push((Mark::Dashed(colors::GREY), "parry3d hull (f32 baseline)".into()));
+        draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e.to_string()))?;
+        let all = peb.iter().flat_map(|r| r.seconds[2..].iter().copied().chain([r.parry_hull])).filter(|&t| t > 0.0);
+        let (lo, hi) = all.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (lo.min(t), hi.max(t)));
+        let (lo, hi) = (10f64.powf((lo * 0.8).log10().floor()), 10f64.powf((hi * 1.25).log10().ceil()));
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .margin_top(10)
+            .x_label_area_size(50)
+            .y_label_area_size(70)
+            .build_cartesian_2d((5e2f64..2e6).log_scale(), (lo..hi).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("mesh vertices (log scale)")
+            .y_desc("time (s, log scale)")
+            .x_label_formatter(&|x: &f64| log_tick(*x))
+            .y_label_formatter(&|y: &f64| log_tick(*y))
+            .label_style((FONT_FAMILY, style::TICK))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .draw()?;
+        chart.draw_series(DashedLineSeries::new(
+            peb.iter().map(|r| (r.vertices as f64, r.parry_hull.max(lo))),
+            8,
+            5,
+            colors::GREY.stroke_width(style::LINE),
         ))?;
-    }
-    root.present()?;
+        for k in 2..9 {
+            let width = if k == 8 { style::LINE + 1 } else { style::LINE };
+            chart.draw_series(LineSeries::new(
+                peb.iter().map(|r| (r.vertices as f64, r.seconds[k].max(lo))),
+                color(k).stroke_width(width),
+            ))?;
+        }
+        Ok(())
+    })?;
     Ok(())
 }
