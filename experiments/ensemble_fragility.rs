@@ -59,9 +59,7 @@ use rocking_stones::ground_motion::fragility::FragilitySurface;
 use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::plot::colors::GREY;
-use rocking_stones::plot::{
-    draw_legend, init_fonts, legend_height, log_tick, plain, series_color, style, Mark, FONT_FAMILY,
-};
+use rocking_stones::plot::{draw_legend, legend_height, log_tick, plain, series_color, style, Mark, FONT_FAMILY};
 use rocking_stones::GRAVITY as G;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -392,7 +390,6 @@ fn run_stone() -> anyhow::Result<(Vec<Case>, String, f64, String)> {
 }
 
 fn main() -> anyhow::Result<()> {
-    init_fonts();
     let out = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/results/ensemble_fragility"));
     std::fs::create_dir_all(&out)?;
     let records = records()?;
@@ -643,67 +640,71 @@ fn reading_a(blocks: &[BlockResult], readme: &mut String) -> anyhow::Result<()> 
 /// Housner (dashed), as PGA₅₀/(g tan α) against p·PGV/PGA.
 fn plot_dimensionless(out: &Path, blocks: &[BlockResult]) -> anyhow::Result<()> {
     let path = out.join("dimensionless.png");
-    let root = BitMapBackend::new(&path, (1000, 700)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root = root.titled(
-        "Freestanding blocks: P = 0.5 contour in Housner's dimensionless variables",
-        (FONT_FAMILY, style::TITLE),
-    )?;
-    let (legend, area) = root.split_vertically(legend_height(3));
-    let mut entries: Vec<(Mark, String)> = BLOCKS
-        .iter()
-        .enumerate()
-        .map(|(k, b)| (Mark::Line(series_color(k + 1)), format!("tan α = {}, R = {} m", b.tan_alpha, b.r_m)))
-        .collect();
-    entries.push((Mark::Line(BLACK), "solid: simulation (shaded: 95 % band)".into()));
-    entries.push((Mark::Dashed(BLACK), "Housner's equation, same members".into()));
-    entries.push((Mark::Line(GREY), "PGA = g tan α (quasi-static threshold)".into()));
-    draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e))?;
-    let mut chart = ChartBuilder::on(&area)
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d((TAU_AXIS[0]..TAU_AXIS[1]).log_scale(), (0.8f64..8.0).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("p · PGV/PGA")
-        .y_desc("PGA₅₀ / (g tan α)")
-        .x_label_formatter(&|x| log_tick(*x))
-        .y_label_formatter(&|y| log_tick(*y))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .label_style((FONT_FAMILY, style::TICK))
-        .draw()?;
-    chart.draw_series(LineSeries::new(vec![(TAU_AXIS[0], 1.0), (TAU_AXIS[1], 1.0)], GREY.stroke_width(style::LINE)))?;
-    for (k, (b, r)) in BLOCKS.iter().zip(blocks).enumerate() {
-        let colour = series_color(k + 1);
-        // The range of p·PGV/PGA the block's records cover.
-        let taus: Vec<f64> = r.cases.iter().map(|c| b.p() * c.pgv_over_pga_s).collect();
-        let (lo, hi) = taus.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &t| (l.min(t), h.max(t)));
-        let (lo, hi) = (lo.max(TAU_AXIS[0]), hi.min(TAU_AXIS[1]));
-        let grid: Vec<f64> = (0..=60).map(|k| lo * (hi / lo).powf(k as f64 / 60.0)).collect();
-        let contour = |s: &FragilitySurface| -> Vec<(f64, f64)> {
-            grid.iter().filter_map(|&t| s.pga_at(0.5, t / b.p()).map(|p| (t, p / b.tan_alpha))).collect()
-        };
-        if let Some(s) = &r.surface {
-            let band: Vec<(f64, f64, f64)> = grid
-                .iter()
-                .filter_map(|&t| {
-                    let [lo, _, hi] = s.pga_band_at(0.5, t / b.p(), 1.96)?;
-                    Some((t, lo? / b.tan_alpha, hi? / b.tan_alpha))
-                })
-                .collect();
-            let mut poly: Vec<(f64, f64)> = band.iter().map(|&(t, l, _)| (t, l)).collect();
-            poly.extend(band.iter().rev().map(|&(t, _, h)| (t, h)));
-            if poly.len() > 2 {
-                chart.draw_series(std::iter::once(Polygon::new(poly, colour.mix(0.12).filled())))?;
+    rocking_stones::plot::draw_png(&path, (1000, 700), |root| {
+        root.fill(&WHITE)?;
+        let root = root.titled(
+            "Freestanding blocks: P = 0.5 contour in Housner's dimensionless variables",
+            (FONT_FAMILY, style::TITLE),
+        )?;
+        let (legend, area) = root.split_vertically(legend_height(3));
+        let mut entries: Vec<(Mark, String)> = BLOCKS
+            .iter()
+            .enumerate()
+            .map(|(k, b)| (Mark::Line(series_color(k + 1)), format!("tan α = {}, R = {} m", b.tan_alpha, b.r_m)))
+            .collect();
+        entries.push((Mark::Line(BLACK), "solid: simulation (shaded: 95 % band)".into()));
+        entries.push((Mark::Dashed(BLACK), "Housner's equation, same members".into()));
+        entries.push((Mark::Line(GREY), "PGA = g tan α (quasi-static threshold)".into()));
+        draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e))?;
+        let mut chart = ChartBuilder::on(&area)
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(70)
+            .build_cartesian_2d((TAU_AXIS[0]..TAU_AXIS[1]).log_scale(), (0.8f64..8.0).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("p · PGV/PGA")
+            .y_desc("PGA₅₀ / (g tan α)")
+            .x_label_formatter(&|x| log_tick(*x))
+            .y_label_formatter(&|y| log_tick(*y))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .label_style((FONT_FAMILY, style::TICK))
+            .draw()?;
+        chart.draw_series(LineSeries::new(
+            vec![(TAU_AXIS[0], 1.0), (TAU_AXIS[1], 1.0)],
+            GREY.stroke_width(style::LINE),
+        ))?;
+        for (k, (b, r)) in BLOCKS.iter().zip(blocks).enumerate() {
+            let colour = series_color(k + 1);
+            // The range of p·PGV/PGA the block's records cover.
+            let taus: Vec<f64> = r.cases.iter().map(|c| b.p() * c.pgv_over_pga_s).collect();
+            let (lo, hi) = taus.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &t| (l.min(t), h.max(t)));
+            let (lo, hi) = (lo.max(TAU_AXIS[0]), hi.min(TAU_AXIS[1]));
+            let grid: Vec<f64> = (0..=60).map(|k| lo * (hi / lo).powf(k as f64 / 60.0)).collect();
+            let contour = |s: &FragilitySurface| -> Vec<(f64, f64)> {
+                grid.iter().filter_map(|&t| s.pga_at(0.5, t / b.p()).map(|p| (t, p / b.tan_alpha))).collect()
+            };
+            if let Some(s) = &r.surface {
+                let band: Vec<(f64, f64, f64)> = grid
+                    .iter()
+                    .filter_map(|&t| {
+                        let [lo, _, hi] = s.pga_band_at(0.5, t / b.p(), 1.96)?;
+                        Some((t, lo? / b.tan_alpha, hi? / b.tan_alpha))
+                    })
+                    .collect();
+                let mut poly: Vec<(f64, f64)> = band.iter().map(|&(t, l, _)| (t, l)).collect();
+                poly.extend(band.iter().rev().map(|&(t, _, h)| (t, h)));
+                if poly.len() > 2 {
+                    chart.draw_series(std::iter::once(Polygon::new(poly, colour.mix(0.12).filled())))?;
+                }
+                chart.draw_series(LineSeries::new(contour(s), colour.stroke_width(3)))?;
             }
-            chart.draw_series(LineSeries::new(contour(s), colour.stroke_width(3)))?;
+            if let Some(s) = &r.ode_surface {
+                chart.draw_series(DashedLineSeries::new(contour(s), 6, 4, colour.stroke_width(style::LINE)))?;
+            }
         }
-        if let Some(s) = &r.ode_surface {
-            chart.draw_series(DashedLineSeries::new(contour(s), 6, 4, colour.stroke_width(style::LINE)))?;
-        }
-    }
-    root.present()?;
+        Ok(())
+    })?;
     Ok(())
 }
 
@@ -899,45 +900,46 @@ fn reliability_bins(cases: &[&Case]) -> Vec<Bin> {
 
 fn plot_reliability(out: &Path, sets: &[(&str, Vec<Bin>)]) -> anyhow::Result<()> {
     let path = out.join("reliability.png");
-    let root = BitMapBackend::new(&path, (760, 700)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let root =
-        root.titled("Reliability: forecast P(overturn) against the truth's frequency", (FONT_FAMILY, style::TITLE))?;
-    let (legend, area) = root.split_vertically(legend_height(2));
-    let mut entries: Vec<(Mark, String)> = sets
-        .iter()
-        .enumerate()
-        .map(|(k, (name, bins))| {
+    rocking_stones::plot::draw_png(&path, (760, 700), |root| {
+        root.fill(&WHITE)?;
+        let root = root
+            .titled("Reliability: forecast P(overturn) against the truth's frequency", (FONT_FAMILY, style::TITLE))?;
+        let (legend, area) = root.split_vertically(legend_height(2));
+        let mut entries: Vec<(Mark, String)> = sets
+            .iter()
+            .enumerate()
+            .map(|(k, (name, bins))| {
+                let total: usize = bins.iter().map(|b| b.2).sum();
+                (Mark::LineDot(series_color(k + 1)), format!("{name} ({total} truths; dot area ∝ truths in the bin)"))
+            })
+            .collect();
+        entries.push((Mark::Line(GREY), "perfectly reliable".into()));
+        draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e))?;
+        let mut chart = ChartBuilder::on(&area)
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-0.02f64..1.02, -0.02f64..1.02)?;
+        chart
+            .configure_mesh()
+            .x_desc("ensemble P (bin mean)")
+            .y_desc("observed frequency in the truths")
+            .x_label_formatter(&|x| plain(*x))
+            .y_label_formatter(&|y| plain(*y))
+            .axis_desc_style((FONT_FAMILY, style::AXIS))
+            .label_style((FONT_FAMILY, style::TICK))
+            .draw()?;
+        chart.draw_series(LineSeries::new(vec![(0.0, 0.0), (1.0, 1.0)], GREY.stroke_width(1)))?;
+        for (k, (_, bins)) in sets.iter().enumerate() {
+            let colour = series_color(k + 1);
             let total: usize = bins.iter().map(|b| b.2).sum();
-            (Mark::LineDot(series_color(k + 1)), format!("{name} ({total} truths; dot area ∝ truths in the bin)"))
-        })
-        .collect();
-    entries.push((Mark::Line(GREY), "perfectly reliable".into()));
-    draw_legend(&legend, &entries).map_err(|e| anyhow::anyhow!(e))?;
-    let mut chart = ChartBuilder::on(&area)
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(60)
-        .build_cartesian_2d(-0.02f64..1.02, -0.02f64..1.02)?;
-    chart
-        .configure_mesh()
-        .x_desc("ensemble P (bin mean)")
-        .y_desc("observed frequency in the truths")
-        .x_label_formatter(&|x| plain(*x))
-        .y_label_formatter(&|y| plain(*y))
-        .axis_desc_style((FONT_FAMILY, style::AXIS))
-        .label_style((FONT_FAMILY, style::TICK))
-        .draw()?;
-    chart.draw_series(LineSeries::new(vec![(0.0, 0.0), (1.0, 1.0)], GREY.stroke_width(1)))?;
-    for (k, (_, bins)) in sets.iter().enumerate() {
-        let colour = series_color(k + 1);
-        let total: usize = bins.iter().map(|b| b.2).sum();
-        chart.draw_series(LineSeries::new(bins.iter().map(|b| (b.0, b.1)), colour.stroke_width(style::LINE)))?;
-        chart.draw_series(bins.iter().map(|b| {
-            let r = (4.0 + 30.0 * (b.2 as f64 / total as f64).sqrt()) as i32;
-            Circle::new((b.0, b.1), r, colour.mix(0.6).filled())
-        }))?;
-    }
-    root.present()?;
+            chart.draw_series(LineSeries::new(bins.iter().map(|b| (b.0, b.1)), colour.stroke_width(style::LINE)))?;
+            chart.draw_series(bins.iter().map(|b| {
+                let r = (4.0 + 30.0 * (b.2 as f64 / total as f64).sqrt()) as i32;
+                Circle::new((b.0, b.1), r, colour.mix(0.6).filled())
+            }))?;
+        }
+        Ok(())
+    })?;
     Ok(())
 }

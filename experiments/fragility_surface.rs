@@ -26,7 +26,7 @@ use rocking_stones::generate;
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
 use rocking_stones::ground_motion::Record;
-use rocking_stones::plot::{init_fonts, FONT_FAMILY};
+use rocking_stones::plot::FONT_FAMILY;
 use rocking_stones::rng::item_rng;
 use rocking_stones::stats::wilson;
 use std::fmt::Write as _;
@@ -129,49 +129,50 @@ fn part_a(out: &Path, readme: &mut String) -> anyhow::Result<()> {
     // Plot: the overturning region in (ω_p/p, a_p/(g tan α)) for the ODE and the rapier run.
     let path = out.join("one_sine_pulse.png");
     {
-        let root = BitMapBackend::new(&path, (900, 600)).into_drawing_area();
-        root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("One-sine pulse, block b/h = 0.25: overturning region", (FONT_FAMILY, 22))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.5f64..8.5, 0.8f64..AMP_MAX + 0.2)?;
-        chart.configure_mesh().x_desc("ω_p / p").y_desc("a_p / (g tan α)").label_style((FONT_FAMILY, 16)).draw()?;
-        let dx = 0.12;
-        chart
-            .draw_series(rows.iter().filter(|x| x.ode).map(|x| {
-                Rectangle::new(
-                    [(x.ratio - dx, x.amp - AMP_STEP / 2.0), (x.ratio, x.amp + AMP_STEP / 2.0)],
-                    RGBColor(120, 120, 120).filled(),
-                )
-            }))?
-            .label("Housner ODE overturns (left)")
-            .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], RGBColor(120, 120, 120).filled()));
-        chart
-            .draw_series(rows.iter().filter(|x| x.rapier_ideal).map(|x| {
-                Rectangle::new(
-                    [(x.ratio, x.amp - AMP_STEP / 2.0), (x.ratio + dx, x.amp + AMP_STEP / 2.0)],
-                    RED.mix(0.7).filled(),
-                )
-            }))?
-            .label("rapier (e = 0, μ = 1) overturns (right)")
-            .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], RED.mix(0.7).filled()));
-        chart
-            .draw_series(LineSeries::new(
-                curve.iter().filter(|c| c.3.is_finite()).map(|c| (c.0, c.3)),
-                BLUE.stroke_width(2),
-            ))?
-            .label("rapier, rock on concrete: minimum")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT_FAMILY, 15))
-            .draw()?;
-        root.present()?;
+        rocking_stones::plot::draw_png(&path, (900, 600), |root| {
+            root.fill(&WHITE)?;
+            let mut chart = ChartBuilder::on(root)
+                .caption("One-sine pulse, block b/h = 0.25: overturning region", (FONT_FAMILY, 22))
+                .margin(15)
+                .x_label_area_size(45)
+                .y_label_area_size(60)
+                .build_cartesian_2d(0.5f64..8.5, 0.8f64..AMP_MAX + 0.2)?;
+            chart.configure_mesh().x_desc("ω_p / p").y_desc("a_p / (g tan α)").label_style((FONT_FAMILY, 16)).draw()?;
+            let dx = 0.12;
+            chart
+                .draw_series(rows.iter().filter(|x| x.ode).map(|x| {
+                    Rectangle::new(
+                        [(x.ratio - dx, x.amp - AMP_STEP / 2.0), (x.ratio, x.amp + AMP_STEP / 2.0)],
+                        RGBColor(120, 120, 120).filled(),
+                    )
+                }))?
+                .label("Housner ODE overturns (left)")
+                .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], RGBColor(120, 120, 120).filled()));
+            chart
+                .draw_series(rows.iter().filter(|x| x.rapier_ideal).map(|x| {
+                    Rectangle::new(
+                        [(x.ratio, x.amp - AMP_STEP / 2.0), (x.ratio + dx, x.amp + AMP_STEP / 2.0)],
+                        RED.mix(0.7).filled(),
+                    )
+                }))?
+                .label("rapier (e = 0, μ = 1) overturns (right)")
+                .legend(|(x, y)| Rectangle::new([(x, y - 5), (x + 10, y + 5)], RED.mix(0.7).filled()));
+            chart
+                .draw_series(LineSeries::new(
+                    curve.iter().filter(|c| c.3.is_finite()).map(|c| (c.0, c.3)),
+                    BLUE.stroke_width(2),
+                ))?
+                .label("rapier, rock on concrete: minimum")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerRight)
+                .background_style(WHITE.mix(0.9))
+                .border_style(BLACK)
+                .label_font((FONT_FAMILY, 15))
+                .draw()?;
+            Ok(())
+        })?;
     }
     Ok(())
 }
@@ -353,7 +354,6 @@ const READING: &str = "
 ";
 
 fn main() -> anyhow::Result<()> {
-    init_fonts();
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_surface");
     std::fs::create_dir_all(&out)?;
     let mut readme = String::from("# Fragility of field rocks under ground motion\n\nRegenerate: `cargo run --release --example fragility_surface`.\n\n");

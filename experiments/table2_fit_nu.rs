@@ -16,9 +16,7 @@
 
 use plotters::prelude::*;
 use rocking_stones::analysis::PAPER_NU;
-use rocking_stones::plot::{
-    colors, draw_legend, init_fonts, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY,
-};
+use rocking_stones::plot::{colors, draw_legend, legend_height, log_tick, series_color, style, Mark, FONT_FAMILY};
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -198,16 +196,19 @@ fn write_csv(out: &Path, runs: &[Run]) -> anyhow::Result<()> {
 /// χ²(ν) curves of several fits (log–log), the fitted ν̂ marked on each, the paper's ν dashed:
 /// house style (Okabe–Ito series colours, series beyond the 8th dashed, legend strip above).
 fn plot_loss(path: &Path, title: &str, fits: &[(String, &NuFit)]) -> anyhow::Result<()> {
-    init_fonts();
     let size = (1000, 680);
     if path.extension().is_some_and(|e| e == "svg") {
-        let root = SVGBackend::new(path, size).into_drawing_area();
-        draw_loss(&root, title, fits)?;
-        root.present()?;
+        rocking_stones::plot::draw_svg(
+            path,
+            size,
+            |root| Ok(draw_loss(root, title, fits).map_err(|e| e.to_string())?),
+        )?;
     } else {
-        let root = BitMapBackend::new(path, size).into_drawing_area();
-        draw_loss(&root, title, fits)?;
-        root.present()?;
+        rocking_stones::plot::draw_png(
+            path,
+            size,
+            |root| Ok(draw_loss(root, title, fits).map_err(|e| e.to_string())?),
+        )?;
     }
     Ok(())
 }
@@ -296,16 +297,15 @@ where
 
 /// Fitted ν (bootstrap 16–84 % bars) against the roughness amplitude, log–log, with 0.0035.
 fn plot_nu_vs_roughness(path: &Path, runs: &[&Run]) -> anyhow::Result<()> {
-    init_fonts();
     let size = (900, 600);
     if path.extension().is_some_and(|e| e == "svg") {
-        let root = SVGBackend::new(path, size).into_drawing_area();
-        draw_nu_vs_roughness(&root, runs)?;
-        root.present()?;
+        rocking_stones::plot::draw_svg(path, size, |root| {
+            Ok(draw_nu_vs_roughness(root, runs).map_err(|e| e.to_string())?)
+        })?;
     } else {
-        let root = BitMapBackend::new(path, size).into_drawing_area();
-        draw_nu_vs_roughness(&root, runs)?;
-        root.present()?;
+        rocking_stones::plot::draw_png(path, size, |root| {
+            Ok(draw_nu_vs_roughness(root, runs).map_err(|e| e.to_string())?)
+        })?;
     }
     Ok(())
 }

@@ -78,6 +78,25 @@ pub fn draw_png(
     .map_err(|e| crate::Error::Plot { path: path.to_path_buf(), what: e.to_string() })
 }
 
+/// [`draw_png`]'s twin for an SVG picture of `size` pixels.
+pub fn draw_svg(
+    path: &std::path::Path,
+    size: (u32, u32),
+    draw: impl FnOnce(
+        &plotters::prelude::DrawingArea<plotters::prelude::SVGBackend<'_>, plotters::coord::Shift>,
+    ) -> DrawResult,
+) -> crate::Result<()> {
+    use plotters::prelude::IntoDrawingArea as _;
+    init_fonts();
+    let root = plotters::prelude::SVGBackend::new(path, size).into_drawing_area();
+    (|| -> DrawResult {
+        draw(&root)?;
+        root.present()?;
+        Ok(())
+    })()
+    .map_err(|e| crate::Error::Plot { path: path.to_path_buf(), what: e.to_string() })
+}
+
 use plotters::style::RGBColor;
 
 /// The house style of every plot the project draws (library reports and experiments): one place
