@@ -262,10 +262,12 @@ fn statistics_reading(tests: u64, low: &[String]) -> String {
     };
     format!(
         "## Reading\n\n* **Statistics.** Of the {tests} homogeneity tests against 1/240 s (every body, preset and dt), \
-         {k} have p < 0.05{which}, where chance alone gives {:.1} on average (P(≥ {k}) = {tail:.2} for a binomial \
-         of {tests} trials at 0.05): {verdict}. The test's power is that of independent samples of this size: \
-         differences of a few per cent in a flock's share would pass.\n",
-        0.05 * tests as f64
+         {k} {have} p < 0.05{which}, where chance alone gives {:.1} on average{chance}: {verdict}. The test's power \
+         is that of independent samples of this size: differences of a few per cent in a flock's share would pass.\n",
+        0.05 * tests as f64,
+        have = if k == 1 { "has" } else { "have" },
+        // The chance of at least k such p-values says something only when some were found.
+        chance = if k > 0 { format!(" (P(≥ {k}) = {tail:.2} for a binomial of {tests} trials at 0.05)") } else { String::new() },
     )
 }
 

@@ -111,7 +111,7 @@ pub struct Args {
     /// preset's longest stable step, measured) is checked against — on the same releases, drop
     /// by drop, the paired test does not tell their per-flock statistics apart on the bundled
     /// stone, a pebble and a box (results/drops_vs_mujoco/), and every throw of the 40 shared
-    /// meshes settles at both (results/drops_settling/). 1.4–2.5× the cost. --dt and --flight
+    /// meshes settles at both (results/drops_settling/). 1.5–2.0× the cost (results/drops_dt/). --dt and --flight
     /// still override it.
     #[arg(long, conflicts_with = "fast")]
     pub reference: bool,
