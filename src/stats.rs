@@ -16,6 +16,16 @@ pub fn wilson(k: u64, n: u64, z: f64) -> (f64, f64) {
     ((centre - half).max(0.0), (centre + half).min(1.0))
 }
 
+/// P(χ²_dof ≥ `chi2`), the upper tail of the χ² distribution with `dof` degrees of freedom
+/// (crate `statrs`); 1 for no degree of freedom (nothing to test), NaN where undefined.
+pub fn chi_square_tail(chi2: f64, dof: usize) -> f64 {
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    if dof == 0 {
+        return 1.0;
+    }
+    ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
+}
+
 /// Pearson's χ² of counts against probabilities (categories with expected count < 5 are pooled
 /// into one), its degrees of freedom and p-value. Counts in categories of probability 0 make
 /// χ² infinite and p = 0 (the model says they cannot happen), never silently dropped.
@@ -40,13 +50,7 @@ pub fn chi_square(counts: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
         return (f64::INFINITY, cats.max(1), 0.0);
     }
     let dof = cats.saturating_sub(1);
-    let p = if dof == 0 {
-        1.0
-    } else {
-        use statrs::distribution::{ChiSquared, ContinuousCDF};
-        ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
-    };
-    (chi2, dof, p)
+    (chi2, dof, chi_square_tail(chi2, dof))
 }
 
 /// Pearson's χ² test of homogeneity of two samples of counts over the same categories (a 2 × k
@@ -70,13 +74,7 @@ pub fn chi_square_homogeneity(a: &[u64], b: &[u64]) -> (f64, usize, f64) {
         }
     }
     let dof = cats.saturating_sub(1);
-    let p = if dof == 0 {
-        1.0
-    } else {
-        use statrs::distribution::{ChiSquared, ContinuousCDF};
-        ChiSquared::new(dof as f64).map(|d| 1.0 - d.cdf(chi2)).unwrap_or(f64::NAN)
-    };
-    (chi2, dof, p)
+    (chi2, dof, chi_square_tail(chi2, dof))
 }
 
 /// The Stuart–Maxwell test of marginal homogeneity of a paired sample (Stuart 1955, Maxwell
@@ -114,8 +112,7 @@ pub fn stuart_maxwell(table: &[Vec<u64>]) -> (f64, usize, f64) {
         Some(c) => d.dot(&c.solve(&d)),
         None => return (f64::INFINITY, m, 0.0),
     };
-    use statrs::distribution::{ChiSquared, ContinuousCDF};
-    let p = ChiSquared::new(m as f64).map(|dist| 1.0 - dist.cdf(chi2)).unwrap_or(f64::NAN);
+    let p = chi_square_tail(chi2, m);
     (chi2, m, p)
 }
 
@@ -235,6 +232,16 @@ pub fn log_grid(lo: f64, hi: f64, size: GridSize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn chi_square_tail_matches_its_closed_forms() {
+        // Two degrees of freedom: P(χ² ≥ x) = exp(−x/2); one: erfc(√(x/2)), at x = 3.841 it is 0.05.
+        for x in [0.1, 1.0, 4.0, 12.0] {
+            assert!((chi_square_tail(x, 2) - (-x / 2.0).exp()).abs() < 1e-12, "{x}");
+        }
+        assert!((chi_square_tail(3.841_458_820_694_124, 1) - 0.05).abs() < 1e-9);
+        assert_eq!(chi_square_tail(7.0, 0), 1.0);
+    }
 
     #[test]
     fn wilson_interval_matches_a_hand_computation() {
