@@ -20,7 +20,9 @@ rs.drop(a, n=10**6, seed=1)
 
 
 def test_ctrl_c_stops_a_long_drop_quickly():
-    p = subprocess.Popen([sys.executable, "-c", LONG_DROP], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # -X faulthandler: if the run does not stop, SIGABRT makes it print where its threads are.
+    cmd = [sys.executable, "-X", "faulthandler", "-c", LONG_DROP]
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     assert p.stdout.readline().strip() == "ready"
     time.sleep(1.0)
     sent = time.monotonic()
@@ -28,8 +30,13 @@ def test_ctrl_c_stops_a_long_drop_quickly():
     try:
         _, err = p.communicate(timeout=20)
     except subprocess.TimeoutExpired:
-        p.kill()
-        raise AssertionError("the drop run did not stop on SIGINT")
+        p.send_signal(signal.SIGABRT)
+        try:
+            _, err = p.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            _, err = p.communicate()
+        raise AssertionError(f"the drop run did not stop on SIGINT; where it was:\n{err}")
     waited = time.monotonic() - sent
     assert "KeyboardInterrupt" in err, err
     assert waited < 5.0, f"stopped {waited:.1f} s after Ctrl-C"
