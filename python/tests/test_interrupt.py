@@ -11,8 +11,11 @@ import time
 
 import rocking_stones as rs
 
+# The run installs Python's own Ctrl-C handler: a Python started with SIGINT ignored (as a
+# background job of a shell without job control starts it) would otherwise never see the signal.
 LONG_DROP = """
-import sys, rocking_stones as rs
+import signal, sys, rocking_stones as rs
+signal.signal(signal.SIGINT, signal.default_int_handler)
 a = rs.analyze(rs.generate("pebble", n=400, seed=1))
 print("ready", flush=True)
 rs.drop(a, n=10**6, seed=1)
