@@ -11,7 +11,7 @@
 //! Neither is a calibration target; they bracket what a physical throw should give.
 //!
 //! Run: `cargo run --release --example thick_coin [-- N]` (N = 300 per point and preset) →
-//! `results/thick_coin/`.
+//! `results/thick_coin/`; the README's prose is `experiments/readme/thick_coin.md`.
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::CertificateMode;
@@ -20,11 +20,13 @@ use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::mesh::TriMesh;
-use rocking_stones::plot::{colors, draw_legend, legend_height, plain, style, Mark, FONT_FAMILY};
+use rocking_stones::plot::{colors, Axis, Chart, Mark};
 use rocking_stones::stats::wilson;
 use rocking_stones::Point3;
-use std::fmt::Write as _;
-use std::path::Path;
+
+#[path = "shared/harness.rs"]
+mod harness;
+use harness::{fixed, Common, Parser, Result, Results};
 
 const SIDES: usize = 32;
 
@@ -52,12 +54,12 @@ fn coin(h: f64) -> TriMesh {
 }
 
 /// (edge count, drops, quasi-static P(edge)).
-fn p_edge(stone: &Stone, p: &DropParams, n: u64) -> (u64, u64, f64) {
+fn p_edge(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
     let header = RunHeader {
         format: FORMAT.into(),
         mesh: "coin".into(),
         mesh_fingerprint: String::new(),
-        seed: 5,
+        seed,
         drops: n,
         params: p.clone(),
         certificate: CertificateMode::Facet,
@@ -74,139 +76,117 @@ fn p_edge(stone: &Stone, p: &DropParams, n: u64) -> (u64, u64, f64) {
     )
 }
 
-fn main() {
-    let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N"));
-    let out = Path::new("results/thick_coin");
-    std::fs::create_dir_all(out).expect("results folder");
+/// P(edge) of the thick coin against h/d.
+#[derive(Parser)]
+struct Args {
+    /// Drops per point and preset
+    #[arg(default_value_t = 300)]
+    n: u64,
+    #[command(flatten)]
+    common: Common,
+}
+
+/// One h/d: the basin probability, then each preset's P(edge) with its 95 % Wilson interval.
+struct Row {
+    hd: f64,
+    basin: f64,
+    throw: (f64, f64, f64),
+    qs: (f64, f64, f64),
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let (n, seed) = (args.n, args.common.seed_or(5));
+    let out = Results::open("thick_coin", &args.common)?;
     let ratios = [0.1, 0.2, 0.3, 0.354, 0.45, 0.577, 0.7, 0.85, 1.0];
     let mut rows = Vec::new();
-    let mut csv = String::from("h_over_d,quasi_static_basin,throw,throw_lo,throw_hi,quasi_static_preset,qs_lo,qs_hi\n");
     for &hd in &ratios {
-        let (mesh, rep) = coin(hd).into_solid_boundary().expect("a closed prism");
-        let a = Analysis::of_solid(mesh, rep, &Options::default()).expect("a prism analyses");
-        let stone = Stone::new(&a, 0.0035).expect("stable facets");
-        let (kt, nt, basin) = p_edge(&stone, &Preset::Throw.params(Surface::SteelOnWood), n);
-        let (kq, nq, _) = p_edge(&stone, &Preset::QuasiStatic.params(Surface::SteelOnWood), n);
-        let (pt, pq) = (kt as f64 / nt as f64, kq as f64 / nq as f64);
-        let (tl, th) = wilson(kt, nt, 1.96);
-        let (ql, qh) = wilson(kq, nq, 1.96);
-        eprintln!("h/d {hd}: basin {basin:.3}, throw {pt:.3}, quasi-static {pq:.3}");
-        let _ = writeln!(csv, "{hd},{basin:.4},{pt:.4},{tl:.4},{th:.4},{pq:.4},{ql:.4},{qh:.4}");
-        rows.push((hd, basin, pt, tl, th, pq, ql, qh));
+        let (mesh, rep) = coin(hd).into_solid_boundary()?;
+        let a = Analysis::of_solid(mesh, rep, &Options::default())?;
+        let stone = Stone::new(&a, 0.0035)?;
+        let share = |preset: Preset| {
+            let (k, n, basin) = p_edge(&stone, &preset.params(Surface::SteelOnWood), n, seed);
+            let (lo, hi) = wilson(k, n, 1.96);
+            ((k as f64 / n as f64, lo, hi), basin)
+        };
+        let ((throw, basin), (qs, _)) = (share(Preset::Throw), share(Preset::QuasiStatic));
+        eprintln!("h/d {hd}: basin {basin:.3}, throw {:.3}, quasi-static {:.3}", throw.0, qs.0);
+        rows.push(Row { hd, basin, throw, qs });
     }
-    std::fs::write(out.join("p_edge.csv"), csv).expect("csv");
-    plot(out, &rows).expect("plot");
+    let f4 = |x: f64| fixed(x, 4);
+    out.csv(
+        "p_edge.csv",
+        &["h_over_d", "quasi_static_basin", "throw", "throw_lo", "throw_hi", "quasi_static_preset", "qs_lo", "qs_hi"],
+        rows.iter().map(|r| {
+            [
+                r.hd.to_string(),
+                f4(r.basin),
+                f4(r.throw.0),
+                f4(r.throw.1),
+                f4(r.throw.2),
+                f4(r.qs.0),
+                f4(r.qs.1),
+                f4(r.qs.2),
+            ]
+        }),
+    )?;
+    plot(&out, &rows)?;
+    // h/d where a curve crosses P = 1/3, interpolated linearly between grid points.
     let cross = |f: &dyn Fn(&Row) -> f64| {
         rows.windows(2).find(|w| f(&w[0]) < 1.0 / 3.0 && f(&w[1]) >= 1.0 / 3.0).map(|w| {
             let (a, b) = (f(&w[0]), f(&w[1]));
-            w[0].0 + (1.0 / 3.0 - a) / (b - a) * (w[1].0 - w[0].0)
+            w[0].hd + (1.0 / 3.0 - a) / (b - a) * (w[1].hd - w[0].hd)
         })
     };
     let fmt = |x: Option<f64>| x.map_or("not on the grid".to_string(), |v| format!("{v:.3}"));
-    let mut md = String::new();
-    let _ = writeln!(md, "# The thick coin: P(edge) against h/d\n");
-    let _ = writeln!(md, "Regenerate: `cargo run --release --example thick_coin`.\n");
-    let _ = writeln!(md, "A prism over a regular {SIDES}-gon (diameter d = 1, height h), {n} drops per point and preset, steel on wood. `p_edge.png`: the quasi-static basin probability (exact), the `quasi-static` preset (damped creep from contact), the calibrated `throw` with 95 % Wilson intervals; dashed: P = 1/3 and vertical lines at the two published fair-coin ratios.\n");
-    let _ = writeln!(md, "| h/d where P(edge) = 1/3 | value |\n|---|---|");
-    let _ = writeln!(md, "| quasi-static basins (this code) | {} |", fmt(cross(&|r| r.1)));
-    let _ = writeln!(md, "| solid-angle closed form | 0.354 |");
-    let _ = writeln!(md, "| `quasi-static` preset | {} |", fmt(cross(&|r| r.5)));
-    let _ = writeln!(md, "| calibrated `throw` | {} |", fmt(cross(&|r| r.2)));
-    let _ = writeln!(md, "| Yong & Mahadevan 2011, vigorous flip | 0.577 |\n");
-    let throw_fair = cross(&|r| r.2);
+    let throw_fair = cross(&|r| r.throw.0);
     // Thin coins: does the throw's P(edge) stay up where a round coin's would vanish (rim rolling)?
-    let thin: Vec<f64> = rows.iter().filter(|r| r.0 <= 0.36).map(|r| r.2).collect();
-    let thin_floor = thin.iter().copied().fold(f64::INFINITY, f64::min);
-    let _ = writeln!(
-        md,
-        "Reading: the `quasi-static` preset follows the exact basins (the overdamped limit, as it must), and their \
-         fair ratio matches the solid-angle closed form. The calibrated `throw` — fitted to dice, not to coins — is \
-         fair at h/d = {}, against Yong & Mahadevan's vigorous-flip ratio 0.577{}: an independent check of the throw.{}\n",
-        fmt(throw_fair),
-        throw_fair.map_or(String::new(), |v| format!(" ({:+.0} %)", 100.0 * (v / 0.577 - 1.0))),
-        if thin.len() > 1 && thin_floor > 0.05 {
-            format!(
-                " For thin coins (h/d ≤ 0.35) the throw's P(edge) does not fall towards zero but stays at {:.2}–{:.2}, \
-                 most likely because thin coins roll on their rim like wheels and stop upright on one of the {SIDES} \
-                 flat side facets, a seat that a polygonal rim offers and a real round rim does not; read the \
-                 thin-coin edge landings as a limit of the polygonal model (not checked drop by drop).",
-                thin_floor,
-                thin.iter().copied().fold(0.0, f64::max)
-            )
-        } else {
-            String::new()
-        }
-    );
-    let _ = writeln!(md, "| h/d | basin | quasi-static preset | throw |\n|---|---|---|---|");
-    for r in &rows {
-        let _ = writeln!(
-            md,
-            "| {} | {:.3} | {:.3} [{:.3}, {:.3}] | {:.3} [{:.3}, {:.3}] |",
-            r.0, r.1, r.5, r.6, r.7, r.2, r.3, r.4
-        );
-    }
-    std::fs::write(out.join("README.md"), md).expect("README");
+    let thin: Vec<f64> = rows.iter().filter(|r| r.hd <= 0.36).map(|r| r.throw.0).collect();
+    let (thin_lo, thin_hi) =
+        (thin.iter().copied().fold(f64::INFINITY, f64::min), thin.iter().copied().fold(0.0, f64::max));
+    let f3 = |x: f64| fixed(x, 3);
+    out.readme(
+        "README.md",
+        include_str!("readme/thick_coin.md"),
+        serde_json::json!({
+            "sides": SIDES,
+            "n": n,
+            "fair": {
+                "basin": fmt(cross(&|r| r.basin)),
+                "quasi_static": fmt(cross(&|r| r.qs.0)),
+                "throw": fmt(throw_fair),
+            },
+            "throw_vs_flip": throw_fair.map_or(String::new(), |v| format!(" ({:+.0} %)", 100.0 * (v / 0.577 - 1.0))),
+            "thin": (thin.len() > 1 && thin_lo > 0.05).then(|| serde_json::json!({"lo": fixed(thin_lo, 2), "hi": fixed(thin_hi, 2)})),
+            "rows": rows.iter().map(|r| serde_json::json!({
+                "hd": r.hd.to_string(), "basin": f3(r.basin),
+                "qs": f3(r.qs.0), "qs_lo": f3(r.qs.1), "qs_hi": f3(r.qs.2),
+                "throw": f3(r.throw.0), "throw_lo": f3(r.throw.1), "throw_hi": f3(r.throw.2),
+            })).collect::<Vec<_>>(),
+        }),
+    )
 }
 
-type Row = (f64, f64, f64, f64, f64, f64, f64, f64);
-
-fn plot(out: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
-    use plotters::prelude::*;
-    let path = out.join("p_edge.png");
-    rocking_stones::plot::draw_png(&path, (900, 640), |root| {
-        root.fill(&WHITE)?;
-        let root = root.titled("Thick coin: P(lands on its edge) against h/d", (FONT_FAMILY, style::TITLE))?;
-        let (legend, area) = root.split_vertically(legend_height(2));
-        let (basin, qs, throw, grey) = (colors::GREEN, colors::ORANGE, colors::BLUE, colors::GREY);
-        draw_legend(
-            &legend,
-            &[
-                (Mark::Line(basin), "quasi-static basins (exact)".into()),
-                (Mark::Line(qs), "quasi-static preset (simulated)".into()),
-                (Mark::LineDot(throw), "throw preset, 95 % Wilson intervals".into()),
-                (Mark::Dashed(grey), "P = 1/3 and the published fair-coin ratios".into()),
-            ],
-        )
-        .map_err(|e| e.to_string())?;
-        let mut chart = ChartBuilder::on(&area)
-            .margin(20)
-            .x_label_area_size(50)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.0f64..1.05, 0.0f64..1.0)?;
-        chart
-            .configure_mesh()
-            .x_desc("h / d (coin height over diameter)")
-            .y_desc("P(edge)")
-            .x_label_formatter(&|x| plain(*x))
-            .y_label_formatter(&|y| plain(*y))
-            .label_style((FONT_FAMILY, style::TICK))
-            .axis_desc_style((FONT_FAMILY, style::AXIS))
-            .draw()?;
-        let dashed = |a: (f64, f64), b: (f64, f64)| {
-            (0..40).filter(|k| k % 2 == 0).map(move |k| {
-                let (s, t) = (k as f64 / 40.0, (k + 1) as f64 / 40.0);
-                PathElement::new(
-                    vec![
-                        (a.0 + s * (b.0 - a.0), a.1 + s * (b.1 - a.1)),
-                        (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)),
-                    ],
-                    grey.stroke_width(1),
-                )
-            })
-        };
-        for (x, label) in [(0.354, "solid angle 1/(2√2)"), (0.577, "Yong & Mahadevan 1/√3")] {
-            chart.draw_series(dashed((x, 0.0), (x, 1.0)))?;
-            chart.draw_series(std::iter::once(Text::new(label, (x + 0.01, 0.97), (FONT_FAMILY, style::LEGEND))))?;
-        }
-        chart.draw_series(dashed((0.0, 1.0 / 3.0), (1.05, 1.0 / 3.0)))?;
-        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.1)), basin.stroke_width(style::LINE)))?;
-        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.5)), qs.stroke_width(style::LINE)))?;
-        chart.draw_series(LineSeries::new(rows.iter().map(|r| (r.0, r.2)), throw.stroke_width(style::LINE)))?;
-        chart.draw_series(rows.iter().map(|r| Circle::new((r.0, r.2), style::MARKER, throw.filled())))?;
-        chart.draw_series(
-            rows.iter().map(|r| PathElement::new(vec![(r.0, r.3), (r.0, r.4)], throw.stroke_width(style::LINE))),
-        )?;
-        Ok(())
-    })?;
+fn plot(out: &Results, rows: &[Row]) -> Result<()> {
+    let (basin, qs, throw, grey) = (colors::GREEN, colors::ORANGE, colors::BLUE, colors::GREY);
+    let curve = |f: fn(&Row) -> f64| rows.iter().map(|r| (r.hd, f(r))).collect::<Vec<_>>();
+    let mut chart =
+        Chart::new(Axis::linear("h / d (coin height over diameter)", 0.0, 1.05), Axis::linear("P(edge)", 0.0, 1.0))
+            .title("Thick coin: P(lands on its edge) against h/d")
+            .legend(Mark::Line(basin), "quasi-static basins (exact)")
+            .legend(Mark::Line(qs), "quasi-static preset (simulated)")
+            .legend(Mark::LineDot(throw), "throw preset, 95 % Wilson intervals")
+            .legend(Mark::Dashed(grey), "P = 1/3 and the published fair-coin ratios")
+            .hline(1.0 / 3.0, grey);
+    for (x, label) in [(0.354, "solid angle 1/(2√2)"), (0.577, "Yong & Mahadevan 1/√3")] {
+        chart = chart.vline(x, grey).text(label, (x + 0.01, 0.97));
+    }
+    chart
+        .line(&curve(|r| r.basin), basin)
+        .line(&curve(|r| r.qs.0), qs)
+        .line(&curve(|r| r.throw.0), throw)
+        .dots(&curve(|r| r.throw.0), throw)
+        .y_bars(&rows.iter().map(|r| (r.hd, r.throw.1, r.throw.2)).collect::<Vec<_>>(), throw)
+        .save(&out.path("p_edge.png"), (900, 640))?;
     Ok(())
 }

@@ -7,10 +7,13 @@
 //! `render!` is the one place that picks the backend (SVG for a `.svg`
 //! path, PNG otherwise) and turns plotters' errors into [`crate::Error::Plot`].
 
+mod chart;
+pub use chart::{Axis, Chart, Figure, Marker};
+
 use std::sync::Once;
 
 static FONT: Once = Once::new();
-static DEJAVU: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+static DEJAVU: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Register the bundled font as "sans-serif" (idempotent). Call before drawing any text.
 pub fn init_fonts() {
@@ -265,6 +268,34 @@ pub enum Mark {
     Ring(RGBColor),
 }
 
+/// Where each legend entry goes in `area` (its top-left pixel), wrapping left to right, and
+/// how many lines the entries take.
+pub(crate) fn layout_legend<DB: plotters::prelude::DrawingBackend>(
+    area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(Mark, String)],
+) -> std::result::Result<(Vec<(i32, i32)>, u32), crate::error::BoxError>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let width = area.dim_in_pixel().0 as i32;
+    let font = (FONT_FAMILY, style::LEGEND);
+    let (mut x, mut y, mut lines) = (16, 6, 1);
+    let mut at = Vec::with_capacity(entries.len());
+    for (_, text) in entries {
+        let text_w = area.estimate_text_size(text, &font.into_text_style(area))?.0 as i32;
+        let item_w = 30 + text_w + 26;
+        if x + item_w > width && x > 16 {
+            x = 16;
+            y += 24;
+            lines += 1;
+        }
+        at.push((x, y));
+        x += item_w;
+    }
+    Ok((at, lines))
+}
+
 /// Draw a legend in its own strip `area` (outside every chart, so it never covers data): the
 /// entries left to right, wrapping to new lines, each a mark and its text in the house font.
 /// Returns nothing but plotters' errors as text.
@@ -277,16 +308,9 @@ where
 {
     use plotters::prelude::*;
     let err = |x: DrawingAreaErrorKind<DB::ErrorType>| format!("{x:?}");
-    let width = area.dim_in_pixel().0 as i32;
     let font = (FONT_FAMILY, style::LEGEND);
-    let (mut x, mut y) = (16, 6);
-    for (mark, text) in entries {
-        let text_w = area.estimate_text_size(text, &font.into_text_style(area)).map_err(err)?.0 as i32;
-        let item_w = 30 + text_w + 26;
-        if x + item_w > width && x > 16 {
-            x = 16;
-            y += 24;
-        }
+    let (at, _) = layout_legend(area, entries)?;
+    for ((mark, text), (x, y)) in entries.iter().zip(at) {
         let my = y + 9;
         match *mark {
             Mark::Line(c) => {
@@ -312,7 +336,6 @@ where
             Mark::Ring(c) => area.draw(&Circle::new((x + 11, my), 4, c.stroke_width(2))).map_err(err)?,
         }
         area.draw(&Text::new(text.clone(), (x + 30, y), font)).map_err(err)?;
-        x += item_w;
     }
     Ok(())
 }

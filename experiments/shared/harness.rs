@@ -1,0 +1,108 @@
+//! The harness every experiment runs on: its command line (clap), its results folder, CSV
+//! files, and its `README.md` rendered from a template in `experiments/readme/`.
+//!
+//! An experiment is `fn main() -> Result<()>`: it parses its arguments (a clap struct that
+//! flattens [`Common`]), opens its [`Results`] folder, computes through the library, writes
+//! CSV with [`Results::csv`], plots with the library's [`rocking_stones::plot::Chart`], and
+//! renders its README with [`Results::readme`]: the prose lives in the template, the numbers
+//! come from the run. Included by each experiment with `#[path = "shared/harness.rs"] mod harness;`.
+#![allow(dead_code)] // each experiment uses the part of the harness it needs
+
+pub use anyhow::{Context, Result};
+pub use clap::Parser;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// The arguments every experiment takes.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Common {
+    /// Folder to write the results to [default: results/<the experiment's folder> in the
+    /// repository]
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Seed of every random draw [default: the experiment's own, so that a rerun reproduces the
+    /// committed results]
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
+impl Common {
+    /// The seed: `--seed` if given, the experiment's `default` otherwise.
+    pub fn seed_or(&self, default: u64) -> u64 {
+        self.seed.unwrap_or(default)
+    }
+}
+
+/// The results folder of one experiment.
+pub struct Results {
+    dir: PathBuf,
+}
+
+impl Results {
+    /// Open (create) the results folder: `--out` if given, `results/<folder>` of the repository
+    /// otherwise.
+    pub fn open(folder: &str, common: &Common) -> Result<Self> {
+        let dir = match &common.out {
+            Some(d) => d.clone(),
+            None => Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join(folder),
+        };
+        std::fs::create_dir_all(&dir).with_context(|| format!("cannot create the results folder {}", dir.display()))?;
+        Ok(Results { dir })
+    }
+
+    /// The path of `file` in the folder.
+    pub fn path(&self, file: &str) -> PathBuf {
+        self.dir.join(file)
+    }
+
+    /// Write `text` to `file`.
+    pub fn write(&self, file: &str, text: impl AsRef<[u8]>) -> Result<()> {
+        let path = self.path(file);
+        std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))
+    }
+
+    /// Write a CSV `file`: the `header`, then one record per row (each already formatted).
+    pub fn csv<R, S>(&self, file: &str, header: &[&str], rows: impl IntoIterator<Item = R>) -> Result<()>
+    where
+        R: IntoIterator<Item = S>,
+        S: AsRef<[u8]>,
+    {
+        let path = self.path(file);
+        let mut w = csv::Writer::from_path(&path).with_context(|| format!("cannot write {}", path.display()))?;
+        w.write_record(header)?;
+        for row in rows {
+            w.write_record(row)?;
+        }
+        w.flush().with_context(|| format!("cannot write {}", path.display()))
+    }
+
+    /// Render `template` (an `experiments/readme/*.md`, included with `include_str!`) with the
+    /// run's values `context` and write it as `file` (usually `README.md`). A value the
+    /// template names but the context lacks is an error, not an empty string.
+    pub fn readme(&self, file: &str, template: &str, context: impl Serialize) -> Result<()> {
+        let text = render(template, context)?;
+        self.write(file, text)
+    }
+}
+
+/// Render a README template: minijinja with blocks trimmed (a `{% … %}` line leaves no blank
+/// line), the trailing newline kept, and undefined values an error.
+pub fn render(template: &str, context: impl Serialize) -> Result<String> {
+    let mut env = minijinja::Environment::new();
+    env.set_syntax(
+        minijinja::syntax::SyntaxConfig::builder()
+            .trim_blocks(true)
+            .lstrip_blocks(true)
+            .keep_trailing_newline(true)
+            .build()?,
+    );
+    env.set_undefined_behavior(minijinja::UndefinedBehavior::Strict);
+    env.add_template("readme", template).context("the README template does not parse")?;
+    let t = env.get_template("readme")?;
+    t.render(minijinja::value::Serde(context)).context("the README template does not render")
+}
+
+/// A number with `digits` decimals, as the READMEs write it.
+pub fn fixed(x: f64, digits: usize) -> String {
+    format!("{x:.digits$}")
+}
