@@ -127,6 +127,12 @@ enum Layer {
         color: RGBColor,
     },
     /// A dashed line across the whole plot at `y` (`horizontal`) or `x`.
+    /// A filled polygon with an opacity.
+    Polygon {
+        points: Vec<(f64, f64)>,
+        color: RGBColor,
+        alpha: f64,
+    },
     Rule {
         at: f64,
         color: RGBColor,
@@ -217,6 +223,13 @@ impl Chart {
     /// (maps, per-category bars).
     pub fn colored_boxes(mut self, boxes: &[(f64, f64, f64, f64, RGBColor)], alpha: f64) -> Self {
         self.layers.push(Layer::Boxes { boxes: boxes.to_vec(), alpha });
+        self
+    }
+
+    /// A filled polygon through `points` with opacity `alpha` (a band between two curves: the
+    /// upper curve, then the lower one reversed; a shape's outline).
+    pub fn polygon(mut self, points: &[(f64, f64)], color: RGBColor, alpha: f64) -> Self {
+        self.layers.push(Layer::Polygon { points: points.to_vec(), color, alpha });
         self
     }
 
@@ -351,6 +364,9 @@ impl Chart {
                         (FONT_FAMILY, style::LEGEND).into_font().color(color),
                     )))?;
                 }
+                Layer::Polygon { points, color, alpha } => {
+                    chart.draw_series(std::iter::once(Polygon::new(points.clone(), color.mix(*alpha).filled())))?;
+                }
                 Layer::Rule { at, color, horizontal } => {
                     let ends = if *horizontal {
                         vec![(self.x.lo, *at), (self.x.hi, *at)]
@@ -456,9 +472,10 @@ mod tests {
             .line(&pts, colors::VERMILLION)
             .dots(&pts, colors::BLUE)
             .hline(0.5, colors::GREY)
+            .polygon(&[(2.0, 0.1), (3.0, 0.1), (3.0, 0.3)], colors::PURPLE, 1.0)
             .legend(Mark::Line(colors::VERMILLION), "model");
         let svg = svg_of(&Figure { title: None, legend: vec![], cols: 1, panels: vec![chart] }, (600, 400));
-        for needle in ["a test chart", "ν (log scale)", "probability", "model", "#D55E00", "#0072B2"] {
+        for needle in ["a test chart", "ν (log scale)", "probability", "model", "#D55E00", "#0072B2", "#CC79A7"] {
             assert!(svg.contains(needle), "{needle} missing from the SVG");
         }
         // the log axis writes its ticks as a person reads them
