@@ -6,7 +6,7 @@ use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::certificate::CERTIFICATE_MARGIN;
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
 use rocking_stones::dynamics::drops::montecarlo::{
-    merge, read_partial, run_drops, summarize, Checkpoint, DropRun, RunHeader, Shard, FORMAT,
+    merge, read_partial, run_drops, summarize, Checkpoint, DropRun, RunHeader, Shard,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Launch};
 use rocking_stones::dynamics::drops::simulate::simulate;
@@ -18,6 +18,8 @@ use rocking_stones::rng::item_rng;
 use rocking_stones::stats::wilson;
 use std::collections::BTreeMap;
 use std::sync::Mutex;
+
+mod common;
 
 fn setup(mesh: TriMesh) -> (Analysis, Stone) {
     let (mesh, rep) = mesh.into_solid_boundary().unwrap();
@@ -34,18 +36,7 @@ fn damped_drop(height: f64) -> DropParams {
 }
 
 fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
-    RunHeader {
-        format: FORMAT.into(),
-        mesh: "test".into(),
-        mesh_fingerprint: "0".into(),
-        seed,
-        drops,
-        params: damped_drop(0.5),
-        certificate,
-        preset: None,
-        center_of_mass: None,
-        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
-    }
+    common::drop_header(drops, seed, damped_drop(0.5), certificate, None)
 }
 
 fn run_all(s: &Stone, h: &RunHeader, shard: Shard) -> Vec<DropOutcome> {

@@ -4,7 +4,10 @@
 //! resolved to the deepest module of the tree that it names).
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+mod common;
+use common::rust_files;
 
 /// The layers of the library, lowest first: a module may import its own layer and those below,
 /// never one above. Within `dynamics`, the stages are layers of their own.
@@ -30,17 +33,6 @@ const LAYERS: &[&[&str]] = &[
     &["study"],
     &["plot", "report"],
 ];
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
-}
 
 /// The module path of a source file (`dynamics::engine::world`; `` for lib.rs).
 fn module_of(src: &Path, file: &Path) -> String {

@@ -7,6 +7,9 @@ use rocking_stones::mesh::TriMesh;
 use rocking_stones::{Error, Point3};
 use std::path::{Path, PathBuf};
 
+mod common;
+use common::load_error;
+
 fn meshes() -> PathBuf {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes")).to_path_buf()
 }
@@ -350,16 +353,6 @@ fn format_is_detected_by_content_when_the_extension_is_unknown() {
 
 // ---------------------------------------------------------------------------------------------
 // Malformed inputs: each error names the file and says what is wrong
-
-/// Write `bytes` to `name` in a fresh directory and return the error of `load_solid`.
-fn load_error(name: &str, bytes: &[u8]) -> Error {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(name);
-    std::fs::write(&path, bytes).unwrap();
-    let e = load_solid(&path).expect_err(name);
-    assert!(e.to_string().contains(name), "the message must name the file: {e}");
-    e
-}
 
 /// Like [`load_error`] for a mesh written with [`io::write`].
 fn mesh_error(name: &str, mesh: &TriMesh) -> Error {

@@ -12,6 +12,9 @@ use rocking_stones::{Error, Point3, Vec3};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+use common::load_error;
+
 fn repo() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
@@ -247,15 +250,6 @@ fn tiny_stone_gets_the_same_nu_as_the_unscaled_one() {
 
 // ---------------------------------------------------------------------------------------------
 // Messages
-
-fn load_error(name: &str, bytes: &[u8]) -> Error {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(name);
-    std::fs::write(&path, bytes).unwrap();
-    let e = load_solid(&path).expect_err(name);
-    assert!(e.to_string().contains(name), "the message must name the file: {e}");
-    e
-}
 
 fn tetra_ply(nv_header: usize, nf_header: usize) -> String {
     format!(

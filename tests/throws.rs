@@ -4,13 +4,15 @@
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::launch::DropOutcome;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, summarize, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, summarize, RunHeader};
 use rocking_stones::dynamics::drops::params::DropParams;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::generate::{self, Platonic};
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::stats::wilson;
 use std::collections::BTreeMap;
+
+mod common;
 
 fn stone_of(a: &Analysis) -> Stone {
     let (nu, _) = a.macro_nu(&Options::default());
@@ -23,18 +25,7 @@ fn analyse(mesh: TriMesh) -> Analysis {
 }
 
 fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
-    RunHeader {
-        format: FORMAT.into(),
-        mesh: "test".into(),
-        mesh_fingerprint: "0".into(),
-        seed,
-        drops,
-        params: DropParams::default(),
-        certificate,
-        preset: Some("throw".into()),
-        center_of_mass: None,
-        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
-    }
+    common::drop_header(drops, seed, DropParams::default(), certificate, Some("throw"))
 }
 
 #[test]

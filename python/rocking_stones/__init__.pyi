@@ -6,26 +6,6 @@ from typing import Any, Callable, Dict, List, Literal, Optional, Protocol, Seque
 import numpy as np
 import numpy.typing as npt
 
-__all__ = [
-    "DEFAULT_COPLANAR_TOL",
-    "PAPER_NU",
-    "Analysis",
-    "Basins",
-    "DropResult",
-    "DynamicsResult",
-    "MeshError",
-    "Study",
-    "__version__",
-    "analyze",
-    "basins",
-    "drop",
-    "generate",
-    "num_threads",
-    "perturb",
-    "shake",
-    "study",
-]
-
 __version__: str
 DEFAULT_COPLANAR_TOL: float
 """Default relative coplanarity tolerance of the facet merge (× bounding-box diagonal)."""
