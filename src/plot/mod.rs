@@ -266,6 +266,12 @@ pub enum Mark {
     Dot(RGBColor),
     /// An open circle (scattered points of a second kind).
     Ring(RGBColor),
+    /// A filled triangle (scattered points of a third kind).
+    Triangle(RGBColor),
+    /// A cross (scattered points of a fourth kind).
+    Cross(RGBColor),
+    /// A solid line of a given width in pixels (a series drawn wider than the others).
+    WideLine(RGBColor, u32),
 }
 
 /// Where each legend entry goes in `area` (its top-left pixel), wrapping left to right, and
@@ -334,6 +340,11 @@ where
             }
             Mark::Dot(c) => area.draw(&Circle::new((x + 11, my), 4, c.filled())).map_err(err)?,
             Mark::Ring(c) => area.draw(&Circle::new((x + 11, my), 4, c.stroke_width(2))).map_err(err)?,
+            Mark::Triangle(c) => area.draw(&TriangleMarker::new((x + 11, my), 5, c.filled())).map_err(err)?,
+            Mark::Cross(c) => area.draw(&Cross::new((x + 11, my), 4, c.stroke_width(2))).map_err(err)?,
+            Mark::WideLine(c, w) => {
+                area.draw(&PathElement::new(vec![(x, my), (x + 22, my)], c.stroke_width(w))).map_err(err)?
+            }
         }
         area.draw(&Text::new(text.clone(), (x + 30, y), font)).map_err(err)?;
     }
