@@ -99,11 +99,7 @@ impl PyDropResult {
         }
         d.set_item("equilibrium", i64s(py, f.iter().map(|x| opt_index(x.equilibrium)).collect()))?;
         d.set_item("flock", i64s(py, f.iter().map(|x| opt_index(x.flock)).collect()))?;
-        d.set_item("count", i64s(py, f.iter().map(|x| x.count as i64).collect()))?;
-        d.set_item("fraction", f64s(py, f.iter().map(|x| x.fraction).collect()))?;
-        d.set_item("ci95_lo", f64s(py, f.iter().map(|x| x.ci95.0).collect()))?;
-        d.set_item("ci95_hi", f64s(py, f.iter().map(|x| x.ci95.1).collect()))?;
-        d.set_item("static_probability", f64s(py, f.iter().map(|x| x.static_probability).collect()))?;
+        share_columns(&d, f.iter().map(|x| (x.count, x.fraction, x.ci95, x.static_probability)))?;
         Ok(d)
     }
     /// Per flock as columns: id, type, count, fraction, ci95_lo, ci95_hi, static_probability.
@@ -113,11 +109,7 @@ impl PyDropResult {
         let d = PyDict::new(py);
         d.set_item("id", i64s(py, f.iter().map(|x| x.id as i64).collect()))?;
         d.set_item("type", strs(py, f.iter().map(|x| kind_name(x.kind)).collect())?)?;
-        d.set_item("count", i64s(py, f.iter().map(|x| x.count as i64).collect()))?;
-        d.set_item("fraction", f64s(py, f.iter().map(|x| x.fraction).collect()))?;
-        d.set_item("ci95_lo", f64s(py, f.iter().map(|x| x.ci95.0).collect()))?;
-        d.set_item("ci95_hi", f64s(py, f.iter().map(|x| x.ci95.1).collect()))?;
-        d.set_item("static_probability", f64s(py, f.iter().map(|x| x.static_probability).collect()))?;
+        share_columns(&d, f.iter().map(|x| (x.count, x.fraction, x.ci95, x.static_probability)))?;
         Ok(d)
     }
     /// Every drop as columns: index, settled, facet, flock (-1: none), time, certified,
@@ -165,6 +157,18 @@ impl PyDropResult {
             self.report.mesh, self.report.drops, self.report.seed, self.report.settled, self.report.certified
         )
     }
+}
+
+/// The columns facets and flocks share, from (count, fraction, 95 % interval, static
+/// probability) per row: count, fraction, ci95_lo, ci95_hi, static_probability.
+fn share_columns(d: &Bound<'_, PyDict>, rows: impl Iterator<Item = (u64, f64, (f64, f64), f64)>) -> PyResult<()> {
+    let py = d.py();
+    let rows: Vec<_> = rows.collect();
+    d.set_item("count", i64s(py, rows.iter().map(|r| r.0 as i64).collect()))?;
+    d.set_item("fraction", f64s(py, rows.iter().map(|r| r.1).collect()))?;
+    d.set_item("ci95_lo", f64s(py, rows.iter().map(|r| r.2 .0).collect()))?;
+    d.set_item("ci95_hi", f64s(py, rows.iter().map(|r| r.2 .1).collect()))?;
+    d.set_item("static_probability", f64s(py, rows.iter().map(|r| r.3).collect()))
 }
 
 // The drops run as `rocking drop` runs them ([`DropRun`]); the caller's Ctrl-C stops the run

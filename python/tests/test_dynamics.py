@@ -24,6 +24,11 @@ def test_drop_with_a_seed_gives_the_cli_counts(cli, box_file):
     assert d.drops == 20 and d.settled + d.unsettled == 20
     assert list(d.facets["count"]) == [f["count"] for f in expected["facets"]]
     assert int(d.facets["count"].sum()) == d.settled
+    # the columns facets and flocks share are those of the JSON, row by row
+    for table, rows in ((d.facets, expected["facets"]), (d.flocks, expected["flocks"])):
+        assert list(table["fraction"]) == [r["fraction"] for r in rows]
+        assert [list(r["ci95"]) for r in rows] == [[lo, hi] for lo, hi in zip(table["ci95_lo"], table["ci95_hi"])]
+        assert list(table["static_probability"]) == [r["static_probability"] for r in rows]
     # The run's depth is the deepest of its drops', measured after every step and sub-step.
     assert d.deepest_penetration == float(d.outcomes["deepest_penetration"].max())
     assert 0.0 < d.deepest_penetration < 0.02
