@@ -6,11 +6,15 @@
 //! up to a few 10⁻³ R_max above the facet. Here every such drop is continued (up to 30 s more,
 //! same numerics) until it is on its equilibrium: is it the facet it was counted on?
 //!
-//! Run: `cargo run --release --example drops_offfacet [-- N]` (N = 400) → `results/drops_offfacet/`.
+//! Run: `cargo run --release --example drops_offfacet [-- N]` (N = 400) → `results/drops_offfacet/`;
+//! the README's prose is `experiments/readme/drops_offfacet.md`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
+#[path = "shared/harness.rs"]
+mod harness;
 use benchmark_bodies::benchmark_bodies;
+use harness::{fixed, Common, Parser, Result, Results};
 use rocking_stones::dynamics::drops::launch::{launch, release_height};
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::rest::RestKind;
@@ -18,39 +22,37 @@ use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{series_color, FONT_FAMILY};
+use rocking_stones::plot::{colors, series_color, Axis, Chart, Mark, Marker};
 use rocking_stones::rng::item_rng;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// One drop that the speed rule ended above its facet, and what became of it.
-struct Continued {
-    index: u64,
-    height_above: f64,
-    speed: f64,
-    spin: f64,
-    same_facet: bool,
-    seconds_more: f64,
-    height_after: f64,
+/// Quasi-static drops that stop above their facet, continued until they are on it.
+#[derive(Parser)]
+struct Args {
+    /// Drops per body
+    #[arg(default_value_t = 400)]
+    n: u64,
+    #[command(flatten)]
+    common: Common,
 }
 
-fn main() -> anyhow::Result<()> {
-    let n: u64 = std::env::args().nth(1).map_or(400, |s| s.parse().expect("N"));
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let out = root.join("results/drops_offfacet");
-    std::fs::create_dir_all(&out)?;
-    let mut md = String::new();
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let (n, seed) = (args.n, args.common.seed_or(1));
+    let out = Results::open("drops_offfacet", &args.common)?;
     let mut csv = String::from("body,drop,height_above,speed,spin,same_facet,seconds_more,height_after\n");
-    let mut hist: Vec<(String, Vec<f64>, Vec<f64>)> = Vec::new();
+    let p = Preset::QuasiStatic.params(Surface::SteelOnWood);
+    // Per body: its table row, and the heights above the facet when stopped and after going on.
+    let (mut rows, mut hist, mut changed, mut medians) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let (mut all_off, mut all_same) = (0usize, 0usize);
-    let mut changed = String::new();
-    let mut medians: Vec<f64> = Vec::new();
-    for (name, a) in benchmark_bodies(&root, false)? {
+    for (name, a) in benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), false)? {
         let stone = Stone::new(&a, 0.0035)?;
-        let p = Preset::QuasiStatic.params(Surface::SteelOnWood);
+        // Each drop the speed rule ended above its facet: (height above, speed, same facet after
+        // going on, seconds more, height after).
         let mut off = Vec::new();
         for i in 0..n {
-            let r = launch(&mut item_rng(1, i), &p);
+            let r = launch(&mut item_rng(seed, i), &p);
             let z0 = release_height(&stone, &p, &r);
             let mut sim = Simulation::new(&stone.body, &p.sim, &r.orientation, z0, &r.linvel, &r.angvel);
             let end = run_to_end(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |_| {});
@@ -58,140 +60,79 @@ fn main() -> anyhow::Result<()> {
             if first.on_equilibrium() {
                 continue;
             }
-            let steps_max = (30.0 / p.sim.numerics.dt) as u64;
-            let mut k = 0;
-            let mut now = first;
+            let (steps_max, mut k, mut now) = ((30.0 / p.sim.numerics.dt) as u64, 0, first);
             while k < steps_max && !now.on_equilibrium() {
                 sim.step();
                 k += 1;
                 now = stone.rest(&sim.state().down);
             }
-            off.push(Continued {
-                index: i,
-                height_above: first.height_above,
-                speed: end.state.linvel.norm(),
-                spin: end.state.angvel.norm(),
-                same_facet: now.facet == first.facet,
-                seconds_more: k as f64 * p.sim.numerics.dt,
-                height_after: now.height_above,
-            });
+            let (v, w, more) = (end.state.linvel.norm(), end.state.angvel.norm(), k as f64 * p.sim.numerics.dt);
+            let same = now.facet == first.facet;
+            writeln!(csv, "{name},{i},{:e},{v:e},{w:e},{same},{more:.3},{:e}", first.height_above, now.height_above)?;
+            if !same {
+                changed.push(
+                    serde_json::json!({"body": name, "drop": i, "height": format!("{:.1e}", first.height_above)}),
+                );
+            }
+            off.push((first.height_above, v, same, more, now.height_above));
         }
-        for c in &off {
-            writeln!(
-                csv,
-                "{name},{},{:e},{:e},{:e},{},{:.3},{:e}",
-                c.index, c.height_above, c.speed, c.spin, c.same_facet, c.seconds_more, c.height_after
-            )?;
-        }
-        let same = off.iter().filter(|c| c.same_facet).count();
+        let same = off.iter().filter(|c| c.2).count();
         (all_off, all_same) = (all_off + off.len(), all_same + same);
-        for c in off.iter().filter(|c| !c.same_facet) {
-            let _ = write!(changed, " {name}, drop {} (stopped {:.1e} R_max above);", c.index, c.height_above);
-        }
-        let reached = off.iter().filter(|c| c.height_after <= REST_TOLERANCE).count();
-        let max_h = off.iter().map(|c| c.height_above).fold(0.0, f64::max);
-        let max_v = off.iter().map(|c| c.speed).fold(0.0, f64::max);
-        let mut t: Vec<f64> = off.iter().filter(|c| c.height_after <= REST_TOLERANCE).map(|c| c.seconds_more).collect();
+        let reached: Vec<f64> = off.iter().filter(|c| c.4 <= REST_TOLERANCE).map(|c| c.3).collect();
+        let max_h = off.iter().map(|c| c.0).fold(0.0, f64::max);
+        let max_v = off.iter().map(|c| c.1).fold(0.0, f64::max);
+        let mut t = reached.clone();
         t.sort_by(f64::total_cmp);
         let median = if t.is_empty() { f64::NAN } else { t[t.len() / 2] };
-        if median.is_finite() {
-            medians.push(median);
-        }
-        writeln!(
-            md,
-            "| {name} | {n} | {} | {max_h:.1e} | {max_v:.1e} | {same}/{} | {reached}/{} | {median:.1} |",
-            off.len(),
-            off.len(),
-            off.len()
-        )?;
-        println!("{name}: {} of {n} above the facet; {same} same facet, {reached} reached it", off.len());
-        hist.push((name, off.iter().map(|c| c.height_above).collect(), off.iter().map(|c| c.height_after).collect()));
+        medians.extend(Some(median).filter(|m| m.is_finite()));
+        let k = off.len();
+        let cells = [name.clone(), n.to_string(), k.to_string(), format!("{max_h:.1e}"), format!("{max_v:.1e}")];
+        let cells = [&cells[..], &[format!("{same}/{k}"), format!("{}/{k}", reached.len()), fixed(median, 1)]].concat();
+        println!("{name}: {k} of {n} above the facet; {same} same facet, {} reached it", reached.len());
+        rows.push(cells);
+        hist.push((name, off.iter().map(|c| c.0).collect::<Vec<_>>(), off.iter().map(|c| c.4).collect::<Vec<_>>()));
     }
-    std::fs::write(out.join("offfacet.csv"), csv)?;
-    plot(&out.join("offfacet.png"), &hist).map_err(|e| anyhow::anyhow!("{e}"))?;
-    let inv_dt = 1.0 / Preset::QuasiStatic.params(Surface::SteelOnWood).sim.numerics.dt;
-    let readme = format!(
-        "# Quasi-static drops that stop above their facet: creep, not a wrong outcome\n\n\
-Generated by `cargo run --release --example drops_offfacet -- {n}`: per body, {n} drops with the `quasi-static` preset \
-(released at rest 10⁻³ R_max above the ground, no restitution, global damping 10 s⁻¹, the default dt = 1/{inv_dt:.0} s, steel on wood, one \
-stone per world, seed 1). A drop is *above its facet* when the speed rule (|v| < 2·10⁻³ m/s and |ω| < 5·10⁻³ rad/s \
-for 0.25 s) ended it with G more than {REST_TOLERANCE} R_max above the rest height of the facet it is counted on \
-(`DropOutcome::off_equilibrium`). Each such drop is then continued, same numerics, for up to 30 s more, until it is on \
-its equilibrium.\n\n\
-| body | drops | above the facet | largest height above (R_max) | largest speed at \"rest\" (m/s) | continued: same facet | reached the facet within 30 s | median s to reach it |\n\
-|---|---|---|---|---|---|---|---|\n{md}\n![heights above the facet](offfacet.png)\n\n## Reading\n\n\
-* **Why.** Under a global damping c every velocity decays at rate c, so a stone on a slope of its support function \
-creeps down it at a terminal speed proportional to the slope / c. Near a smooth pebble's facet the slope is tiny and \
-that speed is below the rest thresholds: the speed rule ends the run while the stone still creeps (the speeds in the \
-table are below the thresholds but not zero). Drops and throws without global damping do not creep: their off-facet \
-rests (a few per 400, `results/drops_dt/`) are stones held on a slope by friction or rolling resistance.\n\
-* **What it does to the outcome.** The outcome is never the facet under the stone but the end of the quasi-static \
-descent from its final down direction (`Stone::rest`), which is where a creep goes: continued, {all_same} of {all_off} \
-of these drops ended on the facet they had been counted on.{}\n\
-* **So it is bounded and reported, not removed.** Making the speed rule wait for the facet would cost {:.1}–{:.1} s of \
-simulated creep per such drop (the medians are in the table) to move {} of {} counts ({} of the {} drops); the \
-quasi-static preset exists to check the static limit (`results/drops_quasistatic_limit/`). Some of these drops stop \
-far above the facet (up to the largest height in the table): they creep off a near-balance on a wide, nearly flat \
-part of the hull, where the slope of h — and so the damped creep — is smallest.\n",
-        if changed.is_empty() {
-            String::new()
-        } else {
-            format!(
-                " The exception{}:{changed} it stopped near a watershed of h, where the damped motion and the descent of h \
-part.",
-                if all_off - all_same > 1 { "s" } else { "" }
-            )
-        },
-        medians.iter().copied().fold(f64::INFINITY, f64::min),
-        medians.iter().copied().fold(0.0, f64::max),
-        all_off - all_same,
-        all_off,
-        all_off - all_same,
-        3 * n,
-    );
-    std::fs::write(out.join("README.md"), readme)?;
-    Ok(())
+    out.write("offfacet.csv", csv)?;
+    plot(&out, &hist)?;
+    out.readme(
+        "README.md",
+        include_str!("readme/drops_offfacet.md"),
+        serde_json::json!({
+            "n": n, "inv_dt": fixed(1.0 / p.sim.numerics.dt, 0), "tolerance": REST_TOLERANCE.to_string(),
+            "rows": rows, "all_off": all_off, "all_same": all_same, "moved": all_off - all_same, "drops": 3 * n,
+            "changed": changed,
+            "median_lo": fixed(medians.iter().copied().fold(f64::INFINITY, f64::min), 1),
+            "median_hi": fixed(medians.iter().copied().fold(0.0, f64::max), 1),
+        }),
+    )
 }
 
-fn plot(path: &Path, hist: &[(String, Vec<f64>, Vec<f64>)]) -> Result<(), Box<dyn std::error::Error>> {
-    use plotters::prelude::*;
-    rocking_stones::plot::draw_png(path, (1000, 560), |root| {
-        root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(root)
-            .margin(20)
-            .x_label_area_size(50)
-            .y_label_area_size(150)
-            .caption(
-                "Height of G above the counted facet's rest: when the speed rule stopped (●) and after going on (×)",
-                (FONT_FAMILY, 18),
-            )
-            .build_cartesian_2d((1e-5f64..1.0).log_scale(), -0.5f64..hist.len() as f64 - 0.5)?;
-        chart
-            .configure_mesh()
-            .x_desc("h(down) − R_F (R_max, log scale); ≤ 10⁻³ counts as on the facet")
-            .y_labels(hist.len())
-            .y_label_formatter(&|y| hist.get(y.round() as usize).map_or(String::new(), |h| h.0.clone()))
-            .x_label_formatter(&|x| rocking_stones::plot::log_tick(*x))
-            .label_style((FONT_FAMILY, 14))
-            .draw()?;
-        for (k, (_, before, after)) in hist.iter().enumerate() {
-            let y = k as f64;
-            let c = series_color(k);
-            chart.draw_series(
-                before
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &h)| Circle::new((h.max(1e-5), y + 0.15 + 0.1 * ((i % 5) as f64 / 5.0)), 3, c.filled())),
-            )?;
-            chart.draw_series(after.iter().enumerate().map(|(i, &h)| {
-                Cross::new((h.max(1e-5), y - 0.15 - 0.1 * ((i % 5) as f64 / 5.0)), 4, c.stroke_width(2))
-            }))?;
-        }
-        chart.draw_series(std::iter::once(PathElement::new(
-            vec![(REST_TOLERANCE, -0.5), (REST_TOLERANCE, hist.len() as f64 - 0.5)],
-            BLACK.stroke_width(2),
-        )))?;
-        Ok(())
-    })?;
+/// Per body, the heights above the facet when stopped (dots) and after going on (crosses), on
+/// rows of their own, jittered over five lines so that equal heights stay apart.
+fn plot(out: &Results, hist: &[(String, Vec<f64>, Vec<f64>)]) -> Result<()> {
+    let rows = hist.len() as f64;
+    let mut chart = Chart::new(
+        Axis::log("h(down) − R_F (R_max, log scale); ≤ 10⁻³ counts as on the facet", 1e-5, 1.0),
+        Axis::linear("", -0.5, rows - 0.5).ticks(0).no_grid(),
+    )
+    .title("Height of G above the counted facet's rest: when the speed rule stopped (●) and after going on (×)")
+    .line_width(&[(REST_TOLERANCE, -0.5), (REST_TOLERANCE, rows - 0.5)], colors::GREY, 2);
+    for (k, (name, before, after)) in hist.iter().enumerate() {
+        let (y, c) = (k as f64, series_color(k));
+        let at = |h: &[f64], side: f64| -> Vec<(f64, f64)> {
+            h.iter()
+                .enumerate()
+                .map(|(i, &h)| (h.max(1e-5), y + side * (0.15 + 0.1 * ((i % 5) as f64 / 5.0))))
+                .collect()
+        };
+        chart = chart
+            .markers_sized(&at(before, 1.0), c, Marker::Dot, 3)
+            .markers(&at(after, -1.0), c, Marker::Cross)
+            .text_colored(name.clone(), (1.3e-5, y + 0.45), c);
+    }
+    chart
+        .legend(Mark::Dot(colors::GREY), "when the speed rule stopped the drop")
+        .legend(Mark::Cross(colors::GREY), "after going on, up to 30 s more")
+        .save(&out.path("offfacet.png"), (1000, 560))?;
     Ok(())
 }
