@@ -57,16 +57,8 @@ pub struct Args {
     /// for the real stone; rms for the Gaussian law of the presets (default: the preset's).
     #[arg(long)]
     pub spin: Option<f64>,
-    /// Coulomb friction coefficient, ≥ 0 (default: the --surface pair's).
-    #[arg(long)]
-    pub friction: Option<f64>,
-    /// Restitution coefficient in [0, 1] (default: the --surface pair's).
-    #[arg(long)]
-    pub restitution: Option<f64>,
-    /// Rolling-resistance length δ / R_max (torque ≤ δ N at the contact); default: the --surface
-    /// pair's δ over the real R_max.
-    #[arg(long)]
-    pub rolling_resistance: Option<f64>,
+    #[command(flatten)]
+    pub contact: super::ContactArgs,
     /// Torsional-friction length δ_t / R_max (default: the preset's).
     #[arg(long)]
     pub torsional_friction: Option<f64>,
@@ -224,9 +216,7 @@ fn params(a: &Args, r_max_m: f64) -> Result<DropParams> {
     set(&mut p.launch.height, a.height);
     set(&mut p.launch.horizontal_speed, a.horizontal_speed);
     set(&mut p.launch.spin, a.spin);
-    set(&mut p.sim.contact.friction, a.friction);
-    set(&mut p.sim.contact.restitution, a.restitution);
-    set(&mut p.sim.contact.rolling_resistance, a.rolling_resistance);
+    a.contact.apply(&mut p.sim.contact);
     set(&mut p.sim.contact.torsional_friction, a.torsional_friction);
     set(&mut p.sim.contact.linear_damping, a.linear_damping);
     set(&mut p.sim.contact.angular_damping, a.angular_damping);
@@ -344,7 +334,6 @@ fn emit(
     use rocking_stones::report;
     let sized = Sized { report, r_max_m: size.map(|s| s.r_max_m), size_assumed: size.map(RealSize::assumed) };
     let summary = report::drop_summary_sized(report, sized.r_max_m);
-    let hull = || super::hull_view(analysis, &report.mesh, nu);
-    let page = super::Page { title: format!("rocking drop: {}", report::short_name(&report.mesh)), hull: Some(&hull) };
+    let page = super::Page::with_hull("drop", analysis, &report.mesh, nu);
     super::emit(&sized, json, &summary, output, Some(page), |dir| report::write_drop_outputs(report, dir))
 }

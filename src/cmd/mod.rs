@@ -29,7 +29,20 @@ pub struct Page<'a> {
     /// Title of the page (`rocking drop: pebble`).
     pub title: String,
     /// The 3D view of the stone, if the run has one.
-    pub hull: Option<&'a dyn Fn() -> rocking_stones::report::html::HullView>,
+    pub hull: Option<Box<dyn Fn() -> rocking_stones::report::html::HullView + 'a>>,
+}
+
+impl<'a> Page<'a> {
+    /// The page of `rocking <command>` on the mesh `name`, without a 3D view.
+    pub fn titled(command: &str, name: &str) -> Self {
+        Page { title: format!("rocking {command}: {}", rocking_stones::report::short_name(name)), hull: None }
+    }
+
+    /// The page of `rocking <command>` on one analysed stone, with its hull in 3D, flocks at
+    /// `nu` ([`hull_view`]).
+    pub fn with_hull(command: &str, analysis: &'a rocking_stones::analysis::Analysis, name: &'a str, nu: f64) -> Self {
+        Page { hull: Some(Box::new(move || hull_view(analysis, name, nu))), ..Page::titled(command, name) }
+    }
 }
 
 /// Print a report (JSON or its human `summary`) and, with `-o DIR`, write its files, then (with a
@@ -86,6 +99,35 @@ pub fn real_size(
         eprintln!("warning: {warning}.");
     }
     Ok(real)
+}
+
+/// The contact overrides of every command that simulates (each defaults to the surface pair's).
+#[derive(clap::Args, Clone)]
+pub struct ContactArgs {
+    /// Coulomb friction coefficient, ≥ 0 (default: the surface pair's).
+    #[arg(long)]
+    pub friction: Option<f64>,
+    /// Restitution coefficient in [0, 1] (default: the surface pair's).
+    #[arg(long)]
+    pub restitution: Option<f64>,
+    /// Rolling-resistance length δ / R_max (torque ≤ δ N at the contact); default: the surface
+    /// pair's δ over the stone's real R_max.
+    #[arg(long)]
+    pub rolling_resistance: Option<f64>,
+}
+
+impl ContactArgs {
+    /// Set the overrides given on `contact`.
+    pub fn apply(&self, contact: &mut rocking_stones::dynamics::engine::params::ContactParams) {
+        contact.friction = self.friction.unwrap_or(contact.friction);
+        contact.restitution = self.restitution.unwrap_or(contact.restitution);
+        contact.rolling_resistance = self.rolling_resistance.unwrap_or(contact.rolling_resistance);
+    }
+
+    /// Which of friction, restitution and rolling resistance are given.
+    pub fn pinned(&self) -> [bool; 3] {
+        [self.friction.is_some(), self.restitution.is_some(), self.rolling_resistance.is_some()]
+    }
 }
 
 /// A whole number of at least `MIN` (a count, an id, a seed), refused in the option's words: a

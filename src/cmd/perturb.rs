@@ -38,15 +38,8 @@ pub struct SimArgs {
     /// instead of --length-unit; default as --length-unit's.
     #[arg(long, value_name = "R_MAX_M")]
     pub size: Option<f64>,
-    /// Coulomb friction coefficient (default: the surface pair's).
-    #[arg(long)]
-    pub friction: Option<f64>,
-    /// Restitution coefficient (default: the surface pair's).
-    #[arg(long)]
-    pub restitution: Option<f64>,
-    /// Rolling-resistance length δ_r / R_max (default: the surface pair's δ over the real size).
-    #[arg(long)]
-    pub rolling_resistance: Option<f64>,
+    #[command(flatten)]
+    pub contact: super::ContactArgs,
     /// Time step T in s at R_max = 1 m: 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the real
     /// stone (default 1/240).
     #[arg(long)]
@@ -86,9 +79,7 @@ impl SimArgs {
         let surface = self.surface.unwrap_or(default_surface);
         let mut p = RestingParams::of(self.preset, surface, size.r_max_m)?;
         let sim = &mut p.sim;
-        sim.contact.friction = self.friction.unwrap_or(sim.contact.friction);
-        sim.contact.restitution = self.restitution.unwrap_or(sim.contact.restitution);
-        sim.contact.rolling_resistance = self.rolling_resistance.unwrap_or(sim.contact.rolling_resistance);
+        self.contact.apply(&mut sim.contact);
         sim.numerics.dt = self.dt.unwrap_or(sim.numerics.dt);
         sim.numerics.max_time = self.max_time.unwrap_or(sim.numerics.max_time);
         sim.numerics.solver_iterations = self.solver_iterations.unwrap_or(sim.numerics.solver_iterations);
@@ -149,14 +140,14 @@ pub struct Args {
     /// static-barrier check then proves nothing).
     #[arg(long)]
     pub certificate: bool,
-    #[command(flatten)]
-    pub sim: SimArgs,
     /// Print the report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
     /// Write perturb.json, CSVs (curves, thresholds, trials), plots and report.html into this folder.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub sim: SimArgs,
 }
 
 pub fn run_perturb(args: Args) -> Result<()> {
@@ -183,16 +174,10 @@ pub fn run_perturb(args: Args) -> Result<()> {
     let report = pushes::perturb_equilibria_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let report = pushes::PerturbReport { r_max_m: Some(size.r_max_m), size_assumed: Some(size.assumed()), ..report };
-    let hull = || super::hull_view(&analysis, &name, stone.nu);
-    let page = super::Page { title: format!("rocking perturb: {}", report::short_name(&name)), hull: Some(&hull) };
-    super::emit(
-        &report,
-        args.json,
-        &report::perturb::summary(&report, &name),
-        args.output.as_deref(),
-        Some(page),
-        |dir| report::perturb::write_outputs(&report, &name, dir),
-    )
+    let page = super::Page::with_hull("perturb", &analysis, &name, stone.nu);
+    let summary = report::perturb::summary(&report, &name);
+    let write = |dir: &Path| report::perturb::write_outputs(&report, &name, dir);
+    super::emit(&report, args.json, &summary, args.output.as_deref(), Some(page), write)
 }
 
 fn parse_family(s: &str) -> std::result::Result<Family, String> {

@@ -12,7 +12,7 @@ use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::ground_motion::read::{self, AccelUnit, Columns};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::report;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 #[derive(clap::Args)]
@@ -163,16 +163,10 @@ pub fn run_shake(args: Args) -> Result<()> {
     let report = shaking::sweep_fragility_monitored(&stone, &starts, &cfg, &|| bar.inc(1))?;
     let report = shaking::ShakeReport { size_assumed: Some(size.assumed()), ..report };
     bar.finish_and_clear();
-    let hull = || super::hull_view(&analysis, &name, stone.nu);
-    let page = super::Page { title: format!("rocking shake: {}", report::short_name(&name)), hull: Some(&hull) };
-    super::emit(
-        &report,
-        args.json,
-        &report::shake::summary(&report, &name),
-        args.output.as_deref(),
-        Some(page),
-        |dir| report::shake::write_outputs(&report, &name, dir),
-    )
+    let page = super::Page::with_hull("shake", &analysis, &name, stone.nu);
+    let summary = report::shake::summary(&report, &name);
+    let write = |dir: &Path| report::shake::write_outputs(&report, &name, dir);
+    super::emit(&report, args.json, &summary, args.output.as_deref(), Some(page), write)
 }
 
 /// The records of the command line (one --motion, or the --records folder), each baseline
@@ -219,27 +213,16 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         let bar = super::progress_bar(e.members, "members");
         let run = shaking::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
         bar.finish_and_clear();
-        let page =
-            super::Page { title: format!("rocking shake --ensemble: {}", report::short_name(&name)), hull: None };
-        return super::emit(
-            &run,
-            args.json,
-            &report::shake::ensemble_summary(&run, &name),
-            args.output.as_deref(),
-            Some(page),
-            |dir| report::shake::write_ensemble_outputs(&run, &name, dir),
-        );
+        let page = super::Page::titled("shake --ensemble", &name);
+        let summary = report::shake::ensemble_summary(&run, &name);
+        let write = |dir: &Path| report::shake::write_ensemble_outputs(&run, &name, dir);
+        return super::emit(&run, args.json, &summary, args.output.as_deref(), Some(page), write);
     }
     if records.len() == 1 && args.scales.len() == 1 {
         let run = shaking::run_record(&stone, &setup, &records[0], args.scales[0])?;
-        return super::emit(
-            &run,
-            args.json,
-            &report::shake::rock_run_summary(&run, &name),
-            args.output.as_deref(),
-            None,
-            |dir| report::shake::write_run_outputs(&run, dir),
-        );
+        let summary = report::shake::rock_run_summary(&run, &name);
+        let write = |dir: &Path| report::shake::write_run_outputs(&run, dir);
+        return super::emit(&run, args.json, &summary, args.output.as_deref(), None, write);
     }
     // Many runs: every finished run is appended to DIR/runs.jsonl (the journal `--resume` reads)
     // and DIR/runs.csv as it comes (never lose finished work); runs.csv is rewritten in the
@@ -288,15 +271,10 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     }
     bar.finish_and_clear();
     drop(sink);
-    let page = super::Page { title: format!("rocking shake --pose: {}", report::short_name(&name)), hull: None };
-    super::emit(
-        &batch,
-        args.json,
-        &report::shake::batch_summary(&batch, &name),
-        args.output.as_deref(),
-        Some(page),
-        |dir| report::shake::write_batch_outputs(&batch, &name, dir),
-    )
+    let page = super::Page::titled("shake --pose", &name);
+    let summary = report::shake::batch_summary(&batch, &name);
+    let write = |dir: &Path| report::shake::write_batch_outputs(&batch, &name, dir);
+    super::emit(&batch, args.json, &summary, args.output.as_deref(), Some(page), write)
 }
 
 /// A `LOW,HIGH` range (or one number T: [0, T] when `from_zero`, else [T, T]) of option `flag`.
@@ -341,7 +319,7 @@ fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shaking::Ensem
     };
     given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;
     let surface = args.sim.surface.unwrap_or(Surface::RockOnConcrete);
-    let pinned = [args.sim.friction.is_some(), args.sim.restitution.is_some(), args.sim.rolling_resistance.is_some()];
+    let pinned = args.sim.contact.pinned();
     let uncertainty = shaking::Uncertainty::stated(&given, surface, setup.length_unit_m, pinned);
     let spec = shaking::EnsembleSpec { uncertainty, seed: args.seed, members };
     spec.check().map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;

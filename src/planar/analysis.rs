@@ -65,6 +65,17 @@ pub struct RockingSide {
     pub flock: usize,
 }
 
+impl RockingSide {
+    /// Micro-equilibrium `index`, `p`, a rocking equilibrium in `flock`.
+    fn of(index: usize, p: &PlanarEquilibrium, flock: usize) -> Self {
+        let side = match p.site {
+            PlanarSite::Side(s) => s,
+            PlanarSite::Vertex(_) => unreachable!("rocking equilibria are stable"),
+        };
+        RockingSide { index, side, point: p.point, r: p.r, phi: p.phi, flock }
+    }
+}
+
 /// The serialisable result of a planar analysis.
 #[derive(Clone, Debug, Serialize)]
 pub struct PlanarReport {
@@ -130,26 +141,9 @@ impl PlanarAnalysis {
     /// The report at the user's ν, else at the automatic macro scale.
     pub fn report(&self, user_nu: Option<f64>) -> PlanarReport {
         let m = self.hierarchy.macro_scale(user_nu);
-        let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         let eq = &self.equilibria;
-        let rocking = m
-            .rocking
-            .into_iter()
-            .map(|i| {
-                let p = &eq.points[i];
-                RockingSide {
-                    index: i,
-                    side: match p.site {
-                        PlanarSite::Side(s) => s,
-                        PlanarSite::Vertex(_) => unreachable!("rocking equilibria are stable"),
-                    },
-                    point: p.point,
-                    r: p.r,
-                    phi: p.phi,
-                    flock: flocks.membership[i],
-                }
-            })
-            .collect();
+        let rocking = m.rocking.iter().map(|&i| RockingSide::of(i, &eq.points[i], m.flocks.membership[i])).collect();
+        let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         PlanarReport {
             sides: self.polygon.len(),
             area: self.polygon.area,

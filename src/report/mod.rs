@@ -80,17 +80,19 @@ pub(crate) fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|error| Error::Io { path: dir.to_path_buf(), error })
 }
 
-/// Write a CSV file at `path`: the `header`, then the rows that `rows` writes; a failure (of the
-/// file or of a row) is an [`Error::Io`] naming the file.
-pub(crate) fn write_csv(
-    path: &Path,
-    header: &[&str],
-    rows: impl FnOnce(&mut csv::Writer<std::fs::File>) -> csv::Result<()>,
-) -> Result<()> {
+/// Write a CSV file at `path`: the `header`, then one record per row of `rows` (each already
+/// formatted); a failure (of the file or of a row) is an [`Error::Io`] naming the file.
+pub(crate) fn write_csv<R, S>(path: &Path, header: &[&str], rows: impl IntoIterator<Item = R>) -> Result<()>
+where
+    R: IntoIterator<Item = S>,
+    S: AsRef<[u8]>,
+{
     (|| -> std::result::Result<_, crate::error::BoxError> {
         let mut w = csv::Writer::from_path(path)?;
         w.write_record(header)?;
-        rows(&mut w)?;
+        for row in rows {
+            w.write_record(row)?;
+        }
         w.flush()?;
         Ok(())
     })()

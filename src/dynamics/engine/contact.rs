@@ -160,14 +160,24 @@ pub fn step_world(
         (Vec::new(), Vec3::zeros())
     };
     world.step();
-    for (k, &(handle, collider)) in stones.iter().enumerate() {
+    for (k, &(rigid, collider)) in stones.iter().enumerate() {
+        let pair = StoneOnGround { rigid, collider, ground };
         if let Some(m) = before.get(k) {
-            law.restitute(world, body, handle, collider, ground, m, &ground_velocity);
+            law.restitute(world, body, pair, m, &ground_velocity);
         }
         if law.resists() {
-            law.apply(world, body, handle, collider, ground);
+            law.apply(world, body, pair);
         }
     }
+}
+
+/// One stone of a world and the ground under it: the stone's rigid body and collider, the
+/// ground's collider.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StoneOnGround {
+    rigid: RigidBodyHandle,
+    collider: ColliderHandle,
+    ground: ColliderHandle,
 }
 
 /// The ground's velocity (world frame): the body that carries the ground collider.
@@ -285,17 +295,15 @@ impl ContactLaw {
     /// is scaled back to that larger one (measured: 27 of 20 000 passes on thrown dice, by at most
     /// 1.4·10⁻³ R_max). Energy that rapier's step itself added (after it exceeds the start) is
     /// kept, not taken back.
-    #[allow(clippy::too_many_arguments)]
     fn restitute(
         &self,
         world: &mut PhysicsWorld,
         body: &Body,
-        handle: RigidBodyHandle,
-        stone: ColliderHandle,
-        ground: ColliderHandle,
+        pair: StoneOnGround,
         before: &Motion,
         ground_velocity: &Vec3,
     ) {
+        let StoneOnGround { rigid: handle, collider: stone, ground } = pair;
         // No point of the hull (|r| ≤ 1 R_max) approaches faster than this: nothing to strike.
         let rel = before.linvel - ground_velocity;
         let omega_perp = (before.angvel.x * before.angvel.x + before.angvel.y * before.angvel.y).sqrt();
@@ -416,14 +424,8 @@ impl ContactLaw {
     /// `stone`) after a rapier step, from the normal impulse the ground (collider `ground`) gave
     /// it during the step: about the contact patch's centre, or about G where that would add
     /// kinetic energy (the parent module's "About the contact, not about G").
-    pub fn apply(
-        &self,
-        world: &mut PhysicsWorld,
-        body: &Body,
-        handle: RigidBodyHandle,
-        stone: ColliderHandle,
-        ground: ColliderHandle,
-    ) {
+    pub(crate) fn apply(&self, world: &mut PhysicsWorld, body: &Body, on: StoneOnGround) {
+        let StoneOnGround { rigid: handle, collider: stone, ground } = on;
         // One look-up of the pair for the normal impulse and rapier's twist limit.
         let Some(pair) = world.narrow_phase.contact_pair(ground, stone) else { return };
         let jn = pair.total_impulse_magnitude() as f64;

@@ -166,39 +166,36 @@ pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
             "barrier_basin",
             "barrier_flock",
         ],
-        |w| {
-            for e in &r.equilibria {
-                let q = &e.equilibrium;
-                for c in &e.curve {
-                    w.write_record([
-                        q.index.to_string(),
-                        q.facet.to_string(),
-                        q.flock.to_string(),
-                        q.flock_kind.name().to_string(),
-                        q.class.name().to_string(),
-                        r.family.name().into(),
-                        format!("{:.6e}", c.x),
-                        c.n.to_string(),
-                        c.same.to_string(),
-                        c.same_flock.to_string(),
-                        c.toppled.to_string(),
-                        c.unsettled.to_string(),
-                        format!("{:.4}", c.p_same),
-                        format!("{:.4}", c.ci_same.0),
-                        format!("{:.4}", c.ci_same.1),
-                        format!("{:.4}", c.p_in_flock),
-                        format!("{:.4}", c.ci_in_flock.0),
-                        format!("{:.4}", c.ci_in_flock.1),
-                        format!("{:.4}", c.p_toppled),
-                        format!("{:.4}", c.ci_toppled.0),
-                        format!("{:.4}", c.ci_toppled.1),
-                        format!("{:.6e}", q.basin_exit.epsilon),
-                        format!("{:.6e}", q.flock_exit.epsilon),
-                    ])?;
-                }
-            }
-            Ok(())
-        },
+        r.equilibria.iter().flat_map(|e| {
+            let q = &e.equilibrium;
+            e.curve.iter().map(move |c| {
+                [
+                    q.index.to_string(),
+                    q.facet.to_string(),
+                    q.flock.to_string(),
+                    q.flock_kind.name().to_string(),
+                    q.class.name().to_string(),
+                    r.family.name().into(),
+                    format!("{:.6e}", c.x),
+                    c.n.to_string(),
+                    c.same.to_string(),
+                    c.same_flock.to_string(),
+                    c.toppled.to_string(),
+                    c.unsettled.to_string(),
+                    format!("{:.4}", c.p_same),
+                    format!("{:.4}", c.ci_same.0),
+                    format!("{:.4}", c.ci_same.1),
+                    format!("{:.4}", c.p_in_flock),
+                    format!("{:.4}", c.ci_in_flock.0),
+                    format!("{:.4}", c.ci_in_flock.1),
+                    format!("{:.4}", c.p_toppled),
+                    format!("{:.4}", c.ci_toppled.0),
+                    format!("{:.4}", c.ci_toppled.1),
+                    format!("{:.6e}", q.basin_exit.epsilon),
+                    format!("{:.6e}", q.flock_exit.epsilon),
+                ]
+            })
+        }),
     )
 }
 
@@ -229,7 +226,7 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
             "uplift_acceleration_g",
             "dynamic_class",
         ],
-        |w| {
+        {
             let th = |t: &Option<Threshold>| match t {
                 None => (String::new(), String::new()),
                 Some(t) => (
@@ -243,11 +240,11 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
                 ),
             };
             let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
-            for e in &r.equilibria {
+            r.equilibria.iter().map(move |e| {
                 let q = &e.equilibrium;
                 let (m, mk) = th(&e.eps50_micro);
                 let (f, fk) = th(&e.eps50_flock);
-                w.write_record([
+                [
                     q.index.to_string(),
                     q.facet.to_string(),
                     format!("{:.6}", q.r_normalised),
@@ -269,9 +266,8 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
                     opt(e.ratio_flock),
                     format!("{:.6e}", q.uplift_acceleration),
                     e.dynamic_class.map_or(String::new(), |c| c.name().to_string()),
-                ])?;
-            }
-            Ok(())
+                ]
+            })
         },
     )
 }
@@ -295,26 +291,23 @@ pub fn write_trials_csv(path: &Path, trials: &[Trial]) -> crate::Result<()> {
             "time",
             "max_level_rise",
         ],
-        |w| {
-            for t in trials {
-                w.write_record([
-                    t.equilibrium.to_string(),
-                    t.family.name().into(),
-                    format!("{:.6e}", t.epsilon),
-                    t.trial.to_string(),
-                    t.outcome.name().into(),
-                    t.final_facet.map_or(String::new(), |x| x.to_string()),
-                    t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
-                    t.final_flock.to_string(),
-                    t.settled.to_string(),
-                    t.certified.to_string(),
-                    t.non_stable_facet.to_string(),
-                    format!("{:.4}", t.time),
-                    format!("{:.3e}", t.max_level_rise),
-                ])?;
-            }
-            Ok(())
-        },
+        trials.iter().map(|t| {
+            [
+                t.equilibrium.to_string(),
+                t.family.name().into(),
+                format!("{:.6e}", t.epsilon),
+                t.trial.to_string(),
+                t.outcome.name().into(),
+                t.final_facet.map_or(String::new(), |x| x.to_string()),
+                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                t.final_flock.to_string(),
+                t.settled.to_string(),
+                t.certified.to_string(),
+                t.non_stable_facet.to_string(),
+                format!("{:.4}", t.time),
+                format!("{:.3e}", t.max_level_rise),
+            ]
+        }),
     )
 }
 

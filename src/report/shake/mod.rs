@@ -24,13 +24,9 @@ use std::path::Path;
 /// Write a record as CSV: time (s) and the three components in g (`time_s,ax_g,ay_g,az_g`, what
 /// `--columns time_s,ax_g,ay_g,az_g --accel-unit g` reads back).
 pub fn write_record(path: &Path, r: &Record) -> crate::Result<()> {
-    crate::report::write_csv(path, &["time_s", "ax_g", "ay_g", "az_g"], |w| {
-        for (k, a) in r.accel.iter().enumerate() {
-            let g = |x: f64| format!("{:.6}", x / crate::GRAVITY);
-            w.write_record([format!("{:.5}", k as f64 * r.dt), g(a[0]), g(a[1]), g(a[2])])?;
-        }
-        Ok(())
-    })
+    let g = |x: f64| format!("{:.6}", x / crate::GRAVITY);
+    let rows = r.accel.iter().enumerate().map(|(k, a)| [format!("{:.5}", k as f64 * r.dt), g(a[0]), g(a[1]), g(a[2])]);
+    crate::report::write_csv(path, &["time_s", "ax_g", "ay_g", "az_g"], rows)
 }
 
 /// One line that says what a motion is: its name, PGA, PGV and duration.

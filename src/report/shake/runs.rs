@@ -68,12 +68,7 @@ pub fn run_csv_row(r: &RecordRun) -> Vec<String> {
 
 /// Write `runs.csv` (header and one row per run, in the batch's order).
 pub fn write_runs_csv(path: &Path, runs: &[RecordRun]) -> crate::Result<()> {
-    crate::report::write_csv(path, &RUN_CSV_HEADER, |w| {
-        for r in runs {
-            w.write_record(run_csv_row(r))?;
-        }
-        Ok(())
-    })
+    crate::report::write_csv(path, &RUN_CSV_HEADER, runs.iter().map(run_csv_row))
 }
 
 /// Write the files of one field-rock run into `dir`: `runs.csv` with its one row.

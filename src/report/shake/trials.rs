@@ -118,30 +118,27 @@ pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
             "p_toppled_hi",
             "uplift_acceleration_g",
         ],
-        |w| {
-            for f in &r.fragility {
-                let q = &f.equilibrium;
-                for c in &f.curve {
-                    w.write_record([
-                        q.index.to_string(),
-                        q.facet.to_string(),
-                        q.class.name().to_string(),
-                        format!("{:.4}", c.x),
-                        c.n.to_string(),
-                        c.same.to_string(),
-                        c.same_flock.to_string(),
-                        c.toppled.to_string(),
-                        c.unsettled.to_string(),
-                        format!("{:.4}", c.p_same),
-                        format!("{:.4}", c.p_toppled),
-                        format!("{:.4}", c.ci_toppled.0),
-                        format!("{:.4}", c.ci_toppled.1),
-                        format!("{:.5}", q.uplift_acceleration),
-                    ])?;
-                }
-            }
-            Ok(())
-        },
+        r.fragility.iter().flat_map(|f| {
+            let q = &f.equilibrium;
+            f.curve.iter().map(move |c| {
+                [
+                    q.index.to_string(),
+                    q.facet.to_string(),
+                    q.class.name().to_string(),
+                    format!("{:.4}", c.x),
+                    c.n.to_string(),
+                    c.same.to_string(),
+                    c.same_flock.to_string(),
+                    c.toppled.to_string(),
+                    c.unsettled.to_string(),
+                    format!("{:.4}", c.p_same),
+                    format!("{:.4}", c.p_toppled),
+                    format!("{:.4}", c.ci_toppled.0),
+                    format!("{:.4}", c.ci_toppled.1),
+                    format!("{:.5}", q.uplift_acceleration),
+                ]
+            })
+        }),
     )
 }
 
@@ -235,22 +232,19 @@ pub fn write_trials_csv(path: &Path, trials: &[ShakeTrial]) -> crate::Result<()>
             "settled",
             "max_tilt_rad",
         ],
-        |w| {
-            for t in trials {
-                w.write_record([
-                    t.equilibrium.to_string(),
-                    format!("{:.4}", t.pga),
-                    format!("{:.2}", t.azimuth.to_degrees()),
-                    t.trial.to_string(),
-                    t.outcome.name().to_string(),
-                    t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
-                    t.final_flock.to_string(),
-                    t.settled.to_string(),
-                    format!("{:.5}", t.max_tilt),
-                ])?;
-            }
-            Ok(())
-        },
+        trials.iter().map(|t| {
+            [
+                t.equilibrium.to_string(),
+                format!("{:.4}", t.pga),
+                format!("{:.2}", t.azimuth.to_degrees()),
+                t.trial.to_string(),
+                t.outcome.name().to_string(),
+                t.final_equilibrium.map_or(String::new(), |x| x.to_string()),
+                t.final_flock.to_string(),
+                t.settled.to_string(),
+                format!("{:.5}", t.max_tilt),
+            ]
+        }),
     )
 }
 
