@@ -20,19 +20,13 @@
 //! prose is `experiments/readme/corner_impact.md`.
 
 use nalgebra::{Matrix3, UnitQuaternion};
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
-use rocking_stones::dynamics::drops::launch::{launch, Release};
-use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::engine::run::NoCertificate;
-use rocking_stones::dynamics::engine::world::BodyState;
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::generate;
+use rocking_stones::dynamics::drops::{
+    batch::simulate_batch_observed, launch::launch, launch::Release, params::Preset,
+};
+use rocking_stones::dynamics::engine::{params::Flight, run::NoCertificate, world::BodyState};
+use rocking_stones::dynamics::{stone::Stone, surface::Surface};
 use rocking_stones::plot::{colors, Axis, Chart, Mark};
-use rocking_stones::rng::item_rng;
-use rocking_stones::Vec3;
+use rocking_stones::{analysis::Analysis, analysis::Options, generate, rng::item_rng, Vec3};
 
 #[path = "shared/harness.rs"]
 mod harness;

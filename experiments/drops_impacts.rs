@@ -19,22 +19,14 @@ mod cpu_time;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{Common, Parser, Result, Results};
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::batch::simulate_batch;
-use rocking_stones::dynamics::drops::launch::launch;
-use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::engine::flight::CONTACT_CLEARANCE;
+use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::launch, params::DropParams, params::Preset};
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
-use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::engine::run::NoCertificate;
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::generate;
+use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, params::Flight, run::NoCertificate};
+use rocking_stones::dynamics::{stone::Stone, surface::Surface};
 use rocking_stones::plot::{colors, series_color, Axis, Chart, Figure, Mark};
-use rocking_stones::rng::item_rng;
 use rocking_stones::stats::chi_square_homogeneity;
-use std::fmt::Write as _;
-use std::path::Path;
+use rocking_stones::{analysis::Analysis, analysis::Options, generate, rng::item_rng};
+use std::{fmt::Write as _, path::Path};
 
 /// The presets and steps (1/s) of the comparison.
 const PRESETS: [Preset; 2] = [Preset::Drop, Preset::Throw];
@@ -50,18 +42,20 @@ struct Args {
     common: Common,
 }
 
-/// One body, preset, dt and flight: the deepest penetration of each drop, drops/s, flock counts.
+/// One body, preset, dt and flight: the largest and 99th-percentile depth over the drops, the
+/// drops deeper than the bound, drops/s, settled drops and flock counts.
 struct Measured {
-    deepest: Vec<f64>,
+    max: f64,
+    p99: f64,
+    over: usize,
     per_s: f64,
-    flocks: Vec<u64>,
     settled: u64,
+    flocks: Vec<u64>,
 }
 
 fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
     let mut deepest = vec![f64::NAN; n as usize];
-    let mut flocks = vec![0u64; stone.flock_kinds.len()];
-    let mut settled = 0;
+    let (mut flocks, mut settled) = (vec![0u64; stone.flock_kinds.len()], 0);
     let mut queue = (0..n).map(|i| (i, launch(&mut item_rng(seed, i), p)));
     let clock = cpu_time::thread_cpu_seconds();
     simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut |o| {
@@ -72,13 +66,10 @@ fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
         }
     });
     let per_s = n as f64 / (cpu_time::thread_cpu_seconds() - clock);
-    Measured { deepest, per_s, flocks, settled }
-}
-
-fn percentile(x: &[f64], q: f64) -> f64 {
-    let mut v = x.to_vec();
-    v.sort_by(f64::total_cmp);
-    v[((v.len() - 1) as f64 * q).round() as usize]
+    let over = deepest.iter().filter(|&&d| d > DEPTH_BOUND).count();
+    deepest.sort_by(f64::total_cmp);
+    let at = |q: f64| deepest[((deepest.len() - 1) as f64 * q).round() as usize];
+    Measured { max: at(1.0), p99: at(0.99), over, per_s, settled, flocks }
 }
 
 fn main() -> Result<()> {
@@ -100,25 +91,22 @@ fn main() -> Result<()> {
         let stone = Stone::new(a, 0.0035)?;
         // At the default step with free flight: a drop spun at 400 rad/s and a throw at
         // 200 R_max/s sideways (N/3 drops each), default and strict impacts.
-        for (label, preset, set) in [
-            ("drop, spin 400 rad/s", Preset::Drop, (|p: &mut DropParams| p.launch.spin = 400.0) as fn(&mut DropParams)),
-            ("throw, 200 R_max/s", Preset::Throw, |p: &mut DropParams| p.launch.horizontal_speed = 200.0),
+        for (label, preset, spin, speed) in [
+            ("drop, spin 400 rad/s", Preset::Drop, Some(400.0), None),
+            ("throw, 200 R_max/s", Preset::Throw, None, Some(200.0)),
         ] {
-            for strict in [false, true] {
+            for (strict, numerics) in [(false, "default"), (true, "strict")] {
                 let mut p = preset.params(Surface::SteelOnWood);
-                set(&mut p);
+                (p.launch.spin, p.launch.horizontal_speed) =
+                    (spin.unwrap_or(p.launch.spin), speed.unwrap_or(p.launch.horizontal_speed));
                 p.sim.flight.strict_impacts = strict;
-                let m = measure(&stone, &p, beyond_seed, (n / 3).max(1));
-                let max = percentile(&m.deepest, 1.0);
-                let over = m.deepest.iter().filter(|&&d| d > DEPTH_BOUND).count();
+                let drops = (n / 3).max(1);
+                let Measured { max, p99, over, settled, .. } = measure(&stone, &p, beyond_seed, drops);
                 if strict {
                     worst_extreme = worst_extreme.max(max);
                 } else {
-                    worst_default = worst_default.max(max);
-                    beyond_default += over;
+                    (worst_default, beyond_default) = (worst_default.max(max), beyond_default + over);
                 }
-                let (numerics, p99) = (if strict { "strict" } else { "default" }, percentile(&m.deepest, 0.99));
-                let (drops, settled) = (m.deepest.len(), m.settled);
                 writeln!(
                     extreme,
                     "| {name} | {label} | {numerics} | {drops} | {max:.1e} | {p99:.1e} | {over} | {settled} |"
@@ -137,13 +125,12 @@ fn main() -> Result<()> {
                     measure(&stone, &p, seed, n)
                 });
                 let (_, _, p) = chi_square_homogeneity(&r.flocks, &f.flocks);
-                let [(rmax, r99), (fmax, f99)] =
-                    [&r, &f].map(|m| (percentile(&m.deepest, 1.0), percentile(&m.deepest, 0.99)));
                 let preset = preset.name();
-                for (m, flight, max, p99) in [(&r, Flight::Rapier, rmax, r99), (&f, Flight::Free, fmax, f99)] {
-                    let (flight, settled, per_s) = (flight.name(), m.settled, m.per_s);
+                for (m, flight) in [(&r, Flight::Rapier), (&f, Flight::Free)] {
+                    let (flight, settled, max, p99, per_s) = (flight.name(), m.settled, m.max, m.p99, m.per_s);
                     writeln!(csv, "{name},{preset},{inv_dt},{flight},{n},{settled},{max:e},{p99:e},{per_s:.1},{p:.3}")?;
                 }
+                let (rmax, r99, fmax, f99) = (r.max, r.p99, f.max, f.p99);
                 worst_free = worst_free.max(fmax);
                 if preset == Preset::Throw.name() {
                     least_rapier = least_rapier.min(rmax);

@@ -15,17 +15,13 @@ mod benchmark_bodies;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Common, Parser, Result, Results};
-use rocking_stones::dynamics::drops::launch::{launch, release_height};
-use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::engine::rest::RestKind;
+use rocking_stones::dynamics::drops::{launch::launch, launch::release_height, params::Preset};
 use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
-use rocking_stones::dynamics::engine::simulation::Simulation;
-use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
-use rocking_stones::dynamics::surface::Surface;
+use rocking_stones::dynamics::engine::{rest::RestKind, simulation::Simulation};
+use rocking_stones::dynamics::{stone::Stone, stone::REST_TOLERANCE, surface::Surface};
 use rocking_stones::plot::{colors, series_color, Axis, Chart, Mark, Marker};
 use rocking_stones::rng::item_rng;
-use std::fmt::Write as _;
-use std::path::Path;
+use std::{fmt::Write as _, path::Path};
 
 /// Quasi-static drops that stop above their facet, continued until they are on it.
 #[derive(Parser)]

@@ -11,13 +11,10 @@
 //! `results/drops_settling/`; the README's prose is `experiments/readme/drops_settling.md`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, Shard, FORMAT};
-use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::stone::Stone;
-use std::fmt::Write as _;
-use std::path::Path;
-use std::time::Instant;
+use rocking_stones::dynamics::{certificate::CertificateMode, drops::params::DropParams, drops::params::Preset};
+use std::{fmt::Write as _, path::Path, time::Instant};
 
 #[path = "shared/harness.rs"]
 mod harness;
