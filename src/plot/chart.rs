@@ -42,12 +42,13 @@ pub struct Axis {
     ticks: Option<usize>,
     grid: bool,
     format: Option<Formatter>,
+    space: Option<u32>,
 }
 
 impl Axis {
     /// A linear axis from `lo` to `hi`; ticks written by [`plain`].
     pub fn linear(label: impl Into<String>, lo: f64, hi: f64) -> Self {
-        Axis { label: label.into(), lo, hi, log: false, ticks: None, grid: true, format: None }
+        Axis { label: label.into(), lo, hi, log: false, ticks: None, grid: true, format: None, space: None }
     }
 
     /// A logarithmic axis from `lo` to `hi` (both > 0); ticks written by [`log_tick`].
@@ -70,6 +71,13 @@ impl Axis {
     /// Write the ticks with `f` (category names, percentages) instead of the default.
     pub fn format(mut self, f: impl Fn(f64) -> String + 'static) -> Self {
         self.format = Some(Rc::new(f));
+        self
+    }
+
+    /// `px` pixels beside the plot for this axis' tick labels and description (default 50 for x,
+    /// 60 for y): room for long category names.
+    pub fn space(mut self, px: u32) -> Self {
+        self.space = Some(px);
         self
     }
 
@@ -279,7 +287,7 @@ impl Chart {
         };
         let area = with_legend(&area, &self.legend)?;
         let mut builder = ChartBuilder::on(&area);
-        builder.margin(20).x_label_area_size(50).y_label_area_size(60);
+        builder.margin(20).x_label_area_size(self.x.space.unwrap_or(50)).y_label_area_size(self.y.space.unwrap_or(60));
         let (x, y) = ((self.x.lo..self.x.hi), (self.y.lo..self.y.hi));
         match (self.x.log, self.y.log) {
             (false, false) => self.paint(builder.build_cartesian_2d(x, y)?),

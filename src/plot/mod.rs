@@ -9,6 +9,9 @@
 
 mod chart;
 pub use chart::{Axis, Chart, Figure, Marker};
+/// The colour of every series (`RGBColor(r, g, b)`), so that a program drawing through [`Chart`]
+/// can name its own colour without depending on plotters.
+pub use plotters::style::RGBColor;
 
 use std::sync::Once;
 
@@ -100,7 +103,6 @@ pub fn draw_svg(
     .map_err(|e| crate::Error::Plot { path: path.to_path_buf(), what: e.to_string() })
 }
 
-use plotters::style::RGBColor;
 
 /// The house style of every plot the project draws (library reports and experiments): one place
 /// for font sizes, line widths and colours, so that all figures read alike. Sizes are in pixels
