@@ -2,130 +2,60 @@
 //! equilibria and the Morse–Smale graph G(0) (10A), the log ν – n(ν) staircase with its plateau
 //! (10B), the flocks at the plateau's ν (10C), and the rocking equilibria found.
 //!
-//! Run: `cargo run --release --example fig10_separation_of_scales` → `results/fig10/`.
+//! Run: `cargo run --release --example fig10_separation_of_scales` → `results/fig10/`; the
+//! README's prose is `experiments/readme/fig10_separation_of_scales.md`.
 
-use plotters::prelude::*;
-use rocking_stones::analysis::{Analysis, Options, Report};
+use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::generate;
-use rocking_stones::plot::FONT_FAMILY;
-use rocking_stones::plot::{log_tick, series_color};
+use rocking_stones::plot::{series_color, Axis, Chart, Mark};
 use rocking_stones::report::analysis::write_files;
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn main() -> anyhow::Result<()> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let out = root.join("results/fig10");
-    std::fs::create_dir_all(&out)?;
-    let meshes = root.join("data/meshes");
+#[path = "shared/harness.rs"]
+mod harness;
+use harness::{Common, Parser, Result, Results};
+
+/// Separation of scales on three quarry stones and a synthetic pebble.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    common: Common,
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let out = Results::open("fig10", &args.common)?;
+    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/meshes");
     let opts = Options::default();
-    let mut runs: Vec<(String, Analysis)> = Vec::new();
-    for f in [
-        "stone_quarry_ibois_E34_lowres_bin.ply",
-        "stone_quarry_ibois_AAA_lowres_bin.ply",
-        "stone_quarry_ibois_E22_lowres_bin.ply",
-    ] {
-        let name = f.trim_end_matches("_bin.ply").trim_start_matches("stone_quarry_ibois_").to_string();
-        runs.push((format!("stone {name}"), Analysis::of_file(&meshes.join(f), &opts)?));
+    let mut runs = Vec::new();
+    for name in ["E34", "AAA", "E22"] {
+        let file = meshes.join(format!("stone_quarry_ibois_{name}_lowres_bin.ply"));
+        runs.push((format!("stone {name}_lowres"), Analysis::of_file(&file, &opts)?));
     }
     let (mesh, rep) = generate::pebble([1.0, 0.72, 0.48], 0.02, 6000, 3).into_solid_boundary()?;
     runs.push(("synthetic pebble 1:0.72:0.48, roughness 0.02".into(), Analysis::of_solid(mesh, rep, &opts)?));
-    let mut reports = Vec::new();
-    for (name, a) in &runs {
+    let mut chart = Chart::new(Axis::log("ν (log scale)", 1e-7, 1.0), Axis::linear("n(ν)", 0.0, 1.05))
+        .title("Separation of scales: n(ν) = N(ν)/N(0) (paper Fig. 10B)");
+    let mut rows = Vec::new();
+    for (k, (name, a)) in runs.iter().enumerate() {
         let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
         let r = a.report(name, &opts);
-        write_files(a, &r, &out.join(&slug))?;
-        reports.push((slug, r));
+        write_files(a, &r, &out.path(&slug))?;
+        let steps: Vec<_> =
+            r.staircase.iter().flat_map(|s| [(s.nu_lo.max(1e-7), s.n), (s.nu_hi.clamp(1e-7, 1.0), s.n)]).collect();
+        chart = chart.line(&steps, series_color(k)).legend(Mark::Line(series_color(k)), r.file.clone());
+        let plateau = |f: &dyn Fn(&_) -> String| r.plateau.as_ref().map_or("—".into(), f);
+        let (mi, ma) = (&r.micro, &r.r#macro);
+        rows.push(serde_json::json!({
+            "slug": slug, "file": r.file, "rocking": r.rocking.len(),
+            "micro": format!("{}/{}/{}", mi.stable, mi.unstable, mi.saddle),
+            "macro": format!("{}/{}/{}", ma.stable, ma.unstable, ma.saddle),
+            "range": plateau(&|p| format!("{:.2e} – {:.2e}", p.nu_lo, p.nu_hi)),
+            "decades": plateau(&|p| format!("{:.2}", p.decades)),
+            "clarity": plateau(&|p| format!("{:.2}", p.clarity)),
+            "clear": plateau(&|p| p.clear.to_string()),
+        }));
     }
-    overlay(&out.join("n_nu_all.png"), &reports)?;
-    summary(&out.join("README.md"), &reports)?;
-    Ok(())
-}
-
-fn overlay(path: &Path, reports: &[(String, Report)]) -> anyhow::Result<()> {
-    rocking_stones::plot::draw_png(path, (1000, 600), |root| {
-        root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption("Separation of scales: n(ν) = N(ν)/N(0) (paper Fig. 10B)", (FONT_FAMILY, 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(55)
-            .build_cartesian_2d((1e-7f64..1.0).log_scale(), 0f64..1.05)?;
-        chart
-            .configure_mesh()
-            .x_desc("ν (log scale)")
-            .y_desc("n(ν)")
-            .x_label_formatter(&|x: &f64| log_tick(*x))
-            .label_style((FONT_FAMILY, 14))
-            .draw()?;
-        for (k, (_, r)) in reports.iter().enumerate() {
-            let color = series_color(k);
-            let mut pts = Vec::new();
-            for s in &r.staircase {
-                pts.push((s.nu_lo.max(1e-7), s.n));
-                pts.push((s.nu_hi.clamp(1e-7, 1.0), s.n));
-            }
-            chart
-                .draw_series(LineSeries::new(pts, color.stroke_width(2)))?
-                .label(r.file.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], color.stroke_width(2)));
-        }
-        chart
-            .configure_series_labels()
-            .label_font((FONT_FAMILY, 13))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::LowerLeft)
-            .draw()?;
-        Ok(())
-    })?;
-    Ok(())
-}
-
-fn summary(path: &Path, reports: &[(String, Report)]) -> anyhow::Result<()> {
-    let mut s = String::new();
-    writeln!(s, "# Figure 10: separation of scales\n")?;
-    writeln!(s, "Generated by `cargo run --release --example fig10_separation_of_scales`. One folder per body with")?;
-    writeln!(
-        s,
-        "`hull.png` (10A/C: hull tinted by the flock of each facet's basin, micro-equilibria as dots coloured"
-    )?;
-    writeln!(
-        s,
-        "by flock — reds stable, blues unstable, greens saddle flocks — and the Morse–Smale arcs), `n_nu.png/.svg`"
-    )?;
-    writeln!(s, "(10B), `hull_flocks.ply` (open in MeshLab/ParaView) and `report.json`. `n_nu_all.png` overlays the staircases.\n")?;
-    writeln!(s, "| body | micro S/U/H | plateau ν range | decades | clarity | clear | macro S/U/H | rocking |")?;
-    writeln!(s, "|---|---|---|---|---|---|---|---|")?;
-    for (slug, r) in reports {
-        let (range, dec, cla, clear) =
-            r.plateau.as_ref().map_or(("—".into(), "—".into(), "—".into(), "—".into()), |p| {
-                (
-                    format!("{:.2e} – {:.2e}", p.nu_lo, p.nu_hi),
-                    format!("{:.2}", p.decades),
-                    format!("{:.2}", p.clarity),
-                    p.clear.to_string(),
-                )
-            });
-        writeln!(
-            s,
-            "| [{}]({slug}/) | {}/{}/{} | {range} | {dec} | {cla} | {clear} | {}/{}/{} | {} |",
-            r.file,
-            r.micro.stable,
-            r.micro.unstable,
-            r.micro.saddle,
-            r.r#macro.stable,
-            r.r#macro.unstable,
-            r.r#macro.saddle,
-            r.rocking.len()
-        )?;
-    }
-    writeln!(s, "\nEvery row satisfies S + U − H = 2 at the micro and at the macro scale (checked at every level of the hierarchy).")?;
-    writeln!(
-        s,
-        "Flocks follow the bottleneck rule of `src/hierarchy/flocks.rs`; a rocking equilibrium is a stable micro-equilibrium"
-    )?;
-    writeln!(s, "whose flock is unstable or saddle.")?;
-    std::fs::write(path, s)?;
-    Ok(())
+    chart.save(&out.path("n_nu_all.png"), (1000, 600))?;
+    out.readme("README.md", include_str!("readme/fig10_separation_of_scales.md"), serde_json::json!({ "rows": rows }))
 }
