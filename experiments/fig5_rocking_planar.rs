@@ -1,27 +1,35 @@
 //! Figure 5 of the paper: a stable, a rocking and an unstable equilibrium of the discretised
 //! ellipse, each drawn resting on a ground line with G vertically above the contact point.
 //!
-//! Writes results/planar/fig5_equilibria.csv, fig5_rocking.png, fig5.md.
-//! Run: `cargo run --release --example fig5_rocking_planar`.
+//! Run: `cargo run --release --example fig5_rocking_planar` → `results/planar/`
+//! (fig5_equilibria.csv, fig5_rocking.png, fig5.md); the README's prose is
+//! `experiments/readme/fig5_rocking_planar.md`.
 
-use anyhow::{Context, Result};
-use plotters::prelude::*;
 use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{
-    ellipse_polygon, sides_for_k, FlockContents, PlanarAnalysis, PlanarEquilibrium, PlanarSite, Point2, Sampling,
-    DEFAULT_DEGENERACY_TOL,
+    ellipse_polygon, sides_for_k, FlockContents, PlanarAnalysis, PlanarSite, Point2, Sampling, DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{colors, FONT_FAMILY};
+use rocking_stones::plot::{colors, Axis, Chart, Figure, Marker, RGBColor};
 use std::f64::consts::PI;
-use std::fmt::Write as _;
-use std::path::Path;
+
+#[path = "shared/harness.rs"]
+mod harness;
+use harness::{Common, Context, Parser, Result, Results};
 
 const A: f64 = 1.2;
 const K: usize = 8;
+const BLACK: RGBColor = RGBColor(0, 0, 0);
+
+/// A stable, a rocking and an unstable equilibrium of the discretised ellipse.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    common: Common,
+}
 
 fn main() -> Result<()> {
-    let out = Path::new("results/planar");
-    std::fs::create_dir_all(out)?;
+    let args = Args::parse();
+    let out = Results::open("planar", &args.common)?;
     let n = sides_for_k(K);
     let an = PlanarAnalysis::new(ellipse_polygon(A, n, Sampling::ArcLength)?, DEFAULT_DEGENERACY_TOL)?;
     let report = an.report(None);
@@ -38,174 +46,98 @@ fn main() -> Result<()> {
     // The three: the regular stable point at the bottom of a stable flock (smallest R), a
     // rocking one (stable in an unstable flock, the deepest such well), the unstable point at the
     // top of an unstable flock (largest R).
-    let regular = (0..m)
-        .filter(|&i| eq[i].kind == Kind::Stable && flock_kind(i) == Kind::Stable)
-        .min_by(|&a, &b| eq[a].r.total_cmp(&eq[b].r))
-        .context("no regular stable point")?;
-    let rocking = (0..m)
-        .filter(|&i| eq[i].kind == Kind::Stable && flock_kind(i) != Kind::Stable)
-        .max_by(|&a, &b| depth(a).total_cmp(&depth(b)).then(b.cmp(&a)))
-        .context("no rocking equilibrium: choose a < √2 and k large enough")?;
-    let unstable = (0..m)
-        .filter(|&i| eq[i].kind == Kind::Unstable)
-        .max_by(|&a, &b| eq[a].r.total_cmp(&eq[b].r).then(b.cmp(&a)))
-        .context("no unstable point")?;
+    let pick = |keep: &dyn Fn(usize) -> bool, key: &dyn Fn(usize) -> f64| {
+        (0..m).filter(|&i| keep(i)).max_by(|&a, &b| key(a).total_cmp(&key(b)).then(b.cmp(&a)))
+    };
+    let rocks = |i: usize| eq[i].kind == Kind::Stable && flock_kind(i) != Kind::Stable;
+    let regular =
+        pick(&|i| eq[i].kind == Kind::Stable && !rocks(i), &|i| -eq[i].r).context("no regular stable point")?;
+    let rocking = pick(&rocks, &depth).context("no rocking equilibrium: choose a < √2 and k large enough")?;
+    let unstable = pick(&|i| eq[i].kind == Kind::Unstable, &|i| eq[i].r).context("no unstable point")?;
 
-    let mut w = csv::Writer::from_path(out.join("fig5_equilibria.csv"))?;
-    w.write_record([
-        "index",
-        "kind",
-        "site",
-        "site_index",
-        "phi",
-        "R",
-        "flock",
-        "flock_type",
-        "well_depth_over_Rmax",
-        "role",
-    ])?;
+    let lower = |x: Kind| format!("{x:?}").to_lowercase();
+    let mut csv = String::from("index,kind,site,site_index,phi,R,flock,flock_type,well_depth_over_Rmax,role\n");
     for (i, e) in eq.iter().enumerate() {
-        let role = if i == regular {
-            "regular (figure)"
-        } else if i == rocking {
-            "rocking (figure)"
-        } else if i == unstable {
-            "unstable (figure)"
-        } else if e.kind == Kind::Stable && flock_kind(i) != Kind::Stable {
-            "rocking"
-        } else {
-            ""
+        let role = match i {
+            _ if i == regular => "regular (figure)",
+            _ if i == rocking => "rocking (figure)",
+            _ if i == unstable => "unstable (figure)",
+            _ if rocks(i) => "rocking",
+            _ => "",
         };
         let (site, si) = match e.site {
             PlanarSite::Side(s) => ("side", s),
             PlanarSite::Vertex(v) => ("vertex", v),
         };
-        w.write_record([
-            i.to_string(),
-            format!("{:?}", e.kind).to_lowercase(),
-            site.into(),
-            si.to_string(),
-            format!("{:.8}", e.phi),
-            format!("{:.12}", e.r),
-            flocks.membership[i].to_string(),
-            format!("{:?}", flock_kind(i)).to_lowercase(),
-            if e.kind == Kind::Stable { format!("{:.4e}", depth(i)) } else { String::new() },
-            role.into(),
-        ])?;
+        let d = if e.kind == Kind::Stable { format!("{:.4e}", depth(i)) } else { String::new() };
+        let (kind, flock, fk) = (lower(e.kind), flocks.membership[i], lower(flock_kind(i)));
+        csv += &format!("{i},{kind},{site},{si},{:.8},{:.12},{flock},{fk},{d},{role}\n", e.phi, e.r);
     }
-    w.flush()?;
+    out.write("fig5_equilibria.csv", csv)?;
 
-    let path = out.join("fig5_rocking.png");
     let items = [
-        (regular, "stable (stable flock)", colors::VERMILLION),
-        (rocking, "rocking (stable in unstable flock)", colors::ORANGE),
-        (unstable, "unstable (unstable flock)", colors::BLUE),
+        (regular, "stable (stable flock)"),
+        (rocking, "rocking (stable in unstable flock)"),
+        (unstable, "unstable (unstable flock)"),
     ];
-    rocking_stones::plot::draw_png(&path, (1500, 560), |root| {
-        root.fill(&WHITE)?;
-        let (head, body) = root.split_vertically(50);
-        head.titled(
-            &format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable"),
-            (FONT_FAMILY, 24),
-        )?;
-        let panels = body.split_evenly((1, 3));
-        for (panel, &(i, title, colour)) in panels.iter().zip(&items) {
-            draw_resting(panel, &an, &eq[i], title, colour, &an.equilibria.points, &|j| flock_kind(j))?;
+    // Each one drawn resting on its contact point (G vertically above it) on the ground, with G,
+    // the vertical through G, and the micro-equilibria: stable in stable flocks vermillion,
+    // rocking orange, unstable blue.
+    let g = an.polygon.centroid;
+    let bare = |lo, hi| Axis::linear("", lo, hi).ticks(0).no_grid().space(0);
+    let dot = |j: usize| match (eq[j].kind, rocks(j)) {
+        (Kind::Stable, false) => colors::VERMILLION,
+        (Kind::Stable, true) => colors::ORANGE,
+        _ => colors::BLUE,
+    };
+    let resting = |&(i, title): &(usize, &str)| {
+        let u = eq[i].point - g;
+        let (s, c) = (-PI / 2.0 - u.y.atan2(u.x)).sin_cos();
+        let gy = u.norm();
+        let place = |p: &Point2| {
+            let d = p - g;
+            (c * d.x - s * d.y, gy + s * d.x + c * d.y)
+        };
+        let mut v: Vec<(f64, f64)> = an.polygon.vertices.iter().map(place).collect();
+        let mut chart = Chart::new(bare(-1.6, 1.6), bare(-0.25, 2.55))
+            .title(title)
+            .boxes(&[(-1.6, -0.25, 1.6, 0.0)], RGBColor(225, 215, 195), 1.0) // the ground
+            .line_width(&[(-1.6, 0.0), (1.6, 0.0)], BLACK, 2)
+            .polygon(&v, RGBColor(200, 200, 200), 0.6);
+        v.push(v[0]);
+        chart = chart.line_width(&v, BLACK, 2);
+        for (j, p) in eq.iter().enumerate() {
+            chart = chart.dots(&[place(&p.point)], dot(j));
         }
-        Ok(())
-    })?;
+        chart
+            .line_width(&[(0.0, 0.0), (0.0, gy)], colors::GREY, 1)
+            .markers_sized(&[(0.0, gy)], BLACK, Marker::Dot, 6)
+            .text("G", (0.06, gy + 0.08))
+            .markers_sized(&[(0.0, 0.0)], dot(i), Marker::Ring, 9)
+            .text(format!("R = {:.4}", eq[i].r), (0.1, -0.15))
+    };
+    let panels = items.iter().map(resting).collect();
+    let title = format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable");
+    Figure::new(title, 3, panels).save(&out.path("fig5_rocking.png"), (1500, 560))?;
 
     let c = FlockContents::of(&report.flocks);
-    let mut md = String::new();
-    writeln!(md, "# Figure 5: stable, rocking and unstable equilibrium (planar)\n")?;
-    writeln!(
-        md,
-        "Ellipse 1 : {A} (major axis x), N = 4k − 2 = {n} sides (k = {K}), arc-length sampling. Micro: S = U = {}; \
-         flocks at the plateau ν = {:.3e}: stable flocks {:?}, unstable flocks {:?} (stable + unstable micro-equilibria). \
-         Rocking equilibria (stable sides in unstable flocks): {}.\n",
-        report.stable,
-        report.nu,
-        c.stable_flocks,
-        c.unstable_flocks,
-        report.rocking.len()
-    )?;
-    writeln!(md, "| figure | site | φ (rad) | R | flock type | well depth / R_max |")?;
-    writeln!(md, "|---|---|---|---|---|---|")?;
-    for &(i, title, _) in &items {
-        let d = if eq[i].kind == Kind::Stable { format!("{:.3e}", depth(i)) } else { "— (a maximum)".into() };
-        writeln!(md, "| {title} | {:?} | {:.4} | {:.6} | {:?} | {d} |", eq[i].site, eq[i].phi, eq[i].r, flock_kind(i))?;
-    }
-    writeln!(
-        md,
-        "\nThe rocking equilibrium is a genuine minimum of R — the stone can rest on it — but its micro-well (to the lower neighbouring maximum) is {:.0}× \
-         shallower than the regular one's and it sits on top of the macro-scale peak: a small push rocks it to a \
-         neighbouring micro-equilibrium of the same unstable flock, a larger one topples it into a stable flock. \
-         Files: `fig5_rocking.png`, `fig5_equilibria.csv` (every micro-equilibrium with its flock and well depth).",
-        depth(regular) / depth(rocking)
-    )?;
-    std::fs::write(out.join("fig5.md"), md)?;
-    println!("wrote results/planar/fig5_rocking.png, fig5_equilibria.csv, fig5.md");
-    Ok(())
-}
-
-/// Draw the polygon resting on `contact` (G vertically above it), the ground line, G, the
-/// vertical through G, and the micro-equilibria coloured by flock type.
-fn draw_resting<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    an: &PlanarAnalysis,
-    contact: &PlanarEquilibrium,
-    title: &str,
-    colour: RGBColor,
-    eqs: &[PlanarEquilibrium],
-    flock_kind: &dyn Fn(usize) -> Kind,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    let g = an.polygon.centroid;
-    let u = contact.point - g;
-    let angle = -PI / 2.0 - u.y.atan2(u.x);
-    let g_new = Point2::new(0.0, u.norm());
-    let place = |p: &Point2| {
-        let d = p - g;
-        let (s, c) = angle.sin_cos();
-        (g_new.x + c * d.x - s * d.y, g_new.y + s * d.x + c * d.y)
-    };
-    let mut c = ChartBuilder::on(area)
-        .caption(title, (FONT_FAMILY, 20))
-        .margin(10)
-        .build_cartesian_2d(-1.6..1.6, -0.25..2.55)
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    // Ground.
-    c.draw_series(std::iter::once(Rectangle::new([(-1.6, -0.25), (1.6, 0.0)], RGBColor(225, 215, 195).filled())))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    c.draw_series(std::iter::once(PathElement::new(vec![(-1.6, 0.0), (1.6, 0.0)], BLACK.stroke_width(2))))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let mut v: Vec<(f64, f64)> = an.polygon.vertices.iter().map(place).collect();
-    c.draw_series(std::iter::once(Polygon::new(v.clone(), RGBColor(200, 200, 200).mix(0.6).filled())))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    v.push(v[0]);
-    c.draw_series(std::iter::once(PathElement::new(v, BLACK.stroke_width(2)))).map_err(|e| anyhow::anyhow!("{e}"))?;
-    // Micro-equilibria: stable in stable flocks red, rocking orange, unstable blue.
-    c.draw_series(eqs.iter().enumerate().map(|(i, p)| {
-        let col = match (p.kind, flock_kind(i)) {
-            (Kind::Stable, Kind::Stable) => colors::VERMILLION,
-            (Kind::Stable, _) => colors::ORANGE,
-            _ => colors::BLUE,
-        };
-        Circle::new(place(&p.point), 4, col.filled())
-    }))
-    .map_err(|e| anyhow::anyhow!("{e}"))?;
-    // Vertical through G and the contact point.
-    c.draw_series(std::iter::once(PathElement::new(vec![(0.0, 0.0), (0.0, g_new.y)], BLACK.mix(0.6).stroke_width(1))))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    c.draw_series(std::iter::once(Circle::new((0.0, g_new.y), 6, BLACK.filled())))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    c.draw_series(std::iter::once(Text::new("G", (0.06, g_new.y + 0.08), (FONT_FAMILY, 18))))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    c.draw_series(std::iter::once(Circle::new((0.0, 0.0), 9, colour.stroke_width(3))))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    c.draw_series(std::iter::once(Text::new(format!("R = {:.4}", contact.r), (0.1, -0.15), (FONT_FAMILY, 16))))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    Ok(())
+    let rows: Vec<_> = items
+        .iter()
+        .map(|&(i, title)| {
+            let d = if eq[i].kind == Kind::Stable { format!("{:.3e}", depth(i)) } else { "— (a maximum)".into() };
+            serde_json::json!({
+                "title": title, "site": format!("{:?}", eq[i].site), "phi": format!("{:.4}", eq[i].phi),
+                "r": format!("{:.6}", eq[i].r), "flock": format!("{:?}", flock_kind(i)), "depth": d,
+            })
+        })
+        .collect();
+    out.readme(
+        "fig5.md",
+        include_str!("readme/fig5_rocking_planar.md"),
+        serde_json::json!({
+            "a": A.to_string(), "n": n, "k": K, "s": report.stable, "nu": format!("{:.3e}", report.nu),
+            "stable_flocks": format!("{:?}", c.stable_flocks), "unstable_flocks": format!("{:?}", c.unstable_flocks),
+            "rocking": report.rocking.len(), "rows": rows, "ratio": format!("{:.0}", depth(regular) / depth(rocking)),
+        }),
+    )
 }
