@@ -10,8 +10,12 @@
 //! margin (`CERTIFICATE_MARGIN`) must cover.
 //!
 //! Run: `cargo run --release --example certificate_decisions [-- N]` (N = 300 drops per mesh,
-//! preset and numerics) → `results/certificate_decisions/`.
+//! preset and numerics) → `results/certificate_decisions/`; the README's prose is
+//! `experiments/readme/certificate_decisions.md`.
 
+#[path = "shared/harness.rs"]
+mod harness;
+use harness::{Common, Context, Parser, Result, Results};
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::{
@@ -21,11 +25,12 @@ use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
 use rocking_stones::dynamics::drops::launch::launch;
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::engine::run::{Decided, NoCertificate, CERTIFICATE_EVERY};
+use rocking_stones::dynamics::engine::run::{Certificate as _, Decided, NoCertificate, CERTIFICATE_EVERY};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{series_color, FONT_FAMILY};
+use rocking_stones::plot::{series_color, Axis, Chart, Mark, RGBColor};
 use rocking_stones::rng::item_rng;
+use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -61,14 +66,14 @@ struct Trace {
     levels: Vec<(Option<f64>, f64)>,
 }
 
-fn drops(stone: &Stone, preset: Preset, flight: Flight, indices: std::ops::Range<u64>) -> Tally {
+fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std::ops::Range<u64>) -> Result<Tally> {
     let mut p = preset.params(Surface::SteelOnWood);
     p.sim.flight.mode = flight;
-    let facet_cert = EnergyCertificate::new(stone, CertificateMode::Facet).expect("facet level");
-    let flock_cert = EnergyCertificate::new(stone, CertificateMode::Flock).expect("flock level");
+    let facet_cert = EnergyCertificate::new(stone, CertificateMode::Facet).context("the facet level")?;
+    let flock_cert = EnergyCertificate::new(stone, CertificateMode::Flock).context("the flock level")?;
     let mut tally = Tally::default();
     for i in indices {
-        let release = launch(&mut item_rng(17, i), &p);
+        let release = launch(&mut item_rng(seed, i), &p);
         let mut trace = Trace { decided: Vec::new(), levels: Vec::new() };
         let mut step = 0u64;
         let mut rest = None;
@@ -85,11 +90,11 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, indices: std::ops::Range
                 let relaxed = h - s.z <= CERTIFICATE_MAX_COMPRESSION;
                 trace.levels.push(((relaxed && s.level <= 1.0).then_some(s.level), h));
                 if step % CERTIFICATE_EVERY == 0 {
-                    let facet = match facet_cert_decided(&facet_cert, s) {
+                    let facet = match facet_cert.decided(s) {
                         Some(Decided::Facet(f)) => Some(f),
                         _ => None,
                     };
-                    let flock = match facet_cert_decided(&flock_cert, s) {
+                    let flock = match flock_cert.decided(s) {
                         Some(Decided::Flock(k)) => Some(k),
                         _ => None,
                     };
@@ -97,7 +102,7 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, indices: std::ops::Range
                 }
             },
         );
-        let facet = rest.expect("full settling decides the facet");
+        let facet = rest.context("full settling decides the facet")?;
         let truth = [Some(facet), stone.facet_flock[facet as usize].map(|k| k as u32)];
         tally.drops += 1;
         for l in 0..2 {
@@ -122,47 +127,42 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, indices: std::ops::Range
             }
         }
     }
-    tally
+    Ok(tally)
 }
 
-fn facet_cert_decided(
-    c: &EnergyCertificate,
-    s: &rocking_stones::dynamics::engine::world::BodyState,
-) -> Option<Decided> {
-    use rocking_stones::dynamics::engine::run::Certificate;
-    c.decided(s)
-}
-
-fn meshes(root: &Path) -> anyhow::Result<Vec<(String, Analysis)>> {
+fn meshes(root: &Path) -> Result<Vec<(String, Analysis)>> {
     let options = Options::default();
     let mut out = vec![("bundled stone".to_string(), rocking_stones::bundled::analysis(&options)?)];
-    let dir = root.join("data/meshes");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("data/meshes"))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "ply" || x == "obj"))
         .collect();
     files.sort();
     for f in files {
-        let name = f.file_stem().unwrap().to_string_lossy().to_string();
+        let name = f.file_stem().context("a mesh file name")?.to_string_lossy().to_string();
         out.push((name, Analysis::of_file(&f, &options)?));
     }
     Ok(out)
 }
 
-fn main() -> anyhow::Result<()> {
-    let n: u64 = std::env::args().nth(1).map_or(300, |s| s.parse().expect("N"));
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let out = root.join("results/certificate_decisions");
-    std::fs::create_dir_all(&out)?;
+/// Does the energy certificate ever decide wrongly?
+#[derive(Parser)]
+struct Args {
+    /// Drops per mesh, preset and numerics
+    #[arg(default_value_t = 300)]
+    n: u64,
+    #[command(flatten)]
+    common: Common,
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let (n, seed) = (args.n, args.common.seed_or(17));
+    let out = Results::open("certificate_decisions", &args.common)?;
     let clock = std::time::Instant::now();
-    let bodies = meshes(&root)?;
-    let stones: Vec<(String, Stone)> = bodies
-        .iter()
-        .map(|(name, a)| {
-            let (nu, _) = a.macro_nu(&Options::default());
-            Ok((name.clone(), Stone::new(a, nu)?))
-        })
-        .collect::<anyhow::Result<_>>()?;
+    let stones: Vec<(String, Stone)> = (meshes(Path::new(env!("CARGO_MANIFEST_DIR")))?.iter())
+        .map(|(name, a)| Ok((name.clone(), Stone::new(a, a.macro_nu(&Options::default()).0)?)))
+        .collect::<Result<_>>()?;
     println!("{} bodies analysed in {:.0} s", stones.len(), clock.elapsed().as_secs_f64());
     let presets = [Preset::Drop, Preset::Throw, Preset::QuasiStatic];
     let flights = [Flight::Rapier, Flight::Free];
@@ -170,8 +170,8 @@ fn main() -> anyhow::Result<()> {
     let chunk = 25u64;
     let mut items = Vec::new();
     for b in 0..stones.len() {
-        for (pi, _) in presets.iter().enumerate() {
-            for (fi, _) in flights.iter().enumerate() {
+        for pi in 0..presets.len() {
+            for fi in 0..flights.len() {
                 for c in (0..n).step_by(chunk as usize) {
                     items.push((b, pi, fi, c..(c + chunk).min(n)));
                 }
@@ -180,8 +180,8 @@ fn main() -> anyhow::Result<()> {
     }
     let tallies: Vec<((usize, usize, usize), Tally)> = items
         .into_par_iter()
-        .map(|(b, pi, fi, r)| ((b, pi, fi), drops(&stones[b].1, presets[pi], flights[fi], r)))
-        .collect();
+        .map(|(b, pi, fi, r)| Ok(((b, pi, fi), drops(&stones[b].1, presets[pi], flights[fi], seed, r)?)))
+        .collect::<Result<_>>()?;
     let mut table = vec![vec![vec![Tally::default(); flights.len()]; presets.len()]; stones.len()];
     for ((b, pi, fi), t) in &tallies {
         table[*b][*pi][*fi].add(t);
@@ -194,148 +194,65 @@ fn main() -> anyhow::Result<()> {
         for (pi, preset) in presets.iter().enumerate() {
             for (fi, flight) in flights.iter().enumerate() {
                 let t = &table[b][pi][fi];
-                writeln!(
-                    csv,
-                    "{name},{},{},{},{},{},{},{},{},{},{},{},{},{:e}",
-                    preset.name(),
-                    flight.name(),
-                    t.drops,
-                    t.decisions[0],
-                    t.wrong[0],
-                    t.decisions[1],
-                    t.wrong[1],
-                    t.first[0],
-                    t.first_wrong[0],
-                    t.first[1],
-                    t.first_wrong[1],
-                    t.asked,
-                    t.excess
-                )?;
+                let (d, w, f, fw) = (t.decisions, t.wrong, t.first, t.first_wrong);
+                let counts =
+                    [t.drops, d[0], w[0], d[1], w[1], f[0], fw[0], f[1], fw[1], t.asked].map(|x| x.to_string());
+                writeln!(csv, "{name},{},{},{},{:e}", preset.name(), flight.name(), counts.join(","), t.excess)?;
                 total[fi].add(t);
                 worst[fi] = worst[fi].max(t.excess);
             }
         }
         per_body.push((name.clone(), worst));
     }
-    std::fs::write(out.join("decisions.csv"), csv)?;
-    let body_max = |b: &[f64; 2]| b[0].max(b[1]);
-    let body_lo = per_body.iter().map(|(_, b)| body_max(b)).fold(f64::INFINITY, f64::min);
-    let body_hi = per_body.iter().map(|(_, b)| body_max(b)).fold(0.0, f64::max);
-    let cover = CERTIFICATE_MARGIN / body_hi;
-    let wrong: u64 = total.iter().map(|t| t.wrong[0] + t.wrong[1]).sum();
-    let (wrong_head, wrong_text) = if wrong == 0 {
-        ("No wrong decision", "not one names a facet or flock other than where the drop came to rest".to_string())
-    } else {
-        ("Wrong decisions", format!("{wrong} name a facet or flock other than where the drop came to rest"))
-    };
-    plot(&out.join("excess.png"), &per_body).map_err(|e| anyhow::anyhow!("{e}"))?;
-    let mut md = String::new();
-    for (fi, flight) in flights.iter().enumerate() {
-        let t = &total[fi];
-        writeln!(
-            md,
-            "| {} | {} | {} ({} wrong) | {} ({} wrong) | {} ({} wrong) | {} ({} wrong) | {} | {:.1e} |",
-            flight.name(),
-            t.drops,
-            t.decisions[0],
-            t.wrong[0],
-            t.decisions[1],
-            t.wrong[1],
-            t.first[0],
-            t.first_wrong[0],
-            t.first[1],
-            t.first_wrong[1],
-            t.asked,
-            t.excess
-        )?;
-    }
-    let readme = format!(
-        "# Does the energy certificate ever decide wrongly? 40 bodies, three presets, two numerics\n\n\
-Generated by `cargo run --release --example certificate_decisions -- {n}` in {:.0} s (two threads): the bundled stone \
-and the 39 meshes of `data/meshes` (each at its macro ν), presets `drop`, `throw` and `quasi-static` on steel on \
-wood, {n} drops each (seed 17) with rapier's flight (`rapier`) and with exact landings and sub-stepped impacts \
-(`free`), every drop simulated to rest without a certificate. At every step where the certificate would be asked \
-(every {CERTIFICATE_EVERY} steps, contact compressed by ≤ {CERTIFICATE_MAX_COMPRESSION} R_max) both the facet-level and \
-the flock-level certificate with the default margin ({CERTIFICATE_MARGIN} R_max) are asked. *Decisions*: states where \
-one decides (each one a decision a run would have acted on, had it been asked there first); *first*: the first \
-decision of each drop, the one a certified run acts on; *wrong*: not where the drop came to rest. *Excess*: over every \
-state where a certificate may be asked (relaxed, L ≤ 1 R_max), the largest later rise of the support height h(down) \
-above the energy level L read there — what the margin must cover.\n\n\
-| numerics | drops | facet decisions | flock decisions | first facet decisions | first flock decisions | states where it may be asked | largest excess (R_max) |\n\
-|---|---|---|---|---|---|---|---|\n{md}\n\
-Per body, preset and numerics: `decisions.csv`. The largest excess per body: \n\n![excess](excess.png)\n\n\
-## Reading\n\n\
-* **{wrong_head}**: {} decisions, {} of them the first of their drop (what a certified run acts on), on 40 \
-bodies, three presets and both numerics; {wrong_text}.\n\
-* **What the margin covers.** The largest later rise of h(down) above L is {:.1e} R_max, under the margin \
-{CERTIFICATE_MARGIN}. Most of it is the compression at the asked state itself (h = z_G + compression, and the \
-certificate is asked up to a compression of {CERTIFICATE_MAX_COMPRESSION}): the per-body maxima sit at \
-{body_lo:.1e}–{body_hi:.1e} R_max, the order of each body's contact compression, and the margin is {cover:.1} times the \
-largest. The old picture of a spring giving back ½(2πf)²c²/g (7.2·10⁻³ R_max at 60 Hz and \
-c = 10⁻³) does not happen: rapier's soft contact restores a compression as height, not as kinetic energy \
-(`run::CERTIFICATE_MAX_COMPRESSION`).\n\
-* **Both numerics decide alike**: the largest excess is {:.1e} R_max with rapier's flight (impacts found up to \
-0.2 R_max deep) and {:.1e} with exact landings, because the certificate is asked only below L = 1 R_max, after the hard \
-first impacts.\n",
-        clock.elapsed().as_secs_f64(),
-        total.iter().map(|t| t.decisions[0] + t.decisions[1]).sum::<u64>(),
-        total.iter().map(|t| t.first[0] + t.first[1]).sum::<u64>(),
-        total.iter().map(|t| t.excess).fold(0.0, f64::max),
-        total[0].excess,
-        total[1].excess,
-    );
-    std::fs::write(out.join("README.md"), readme)?;
-    println!("{}", std::fs::read_to_string(out.join("README.md"))?);
+    out.write("decisions.csv", csv)?;
+    let body_max = per_body.iter().map(|(_, b)| b[0].max(b[1]));
+    let (body_lo, body_hi) = (body_max.clone().fold(f64::INFINITY, f64::min), body_max.fold(0.0, f64::max));
+    plot(&out, &per_body)?;
+    let e = |x: f64| format!("{x:.1e}");
+    let totals: Vec<_> = (total.iter().zip(flights))
+        .map(|(t, flight)| {
+            json!({
+                "flight": flight.name(), "drops": t.drops, "decisions": t.decisions, "wrong": t.wrong,
+                "first": t.first, "first_wrong": t.first_wrong, "asked": t.asked, "excess": e(t.excess),
+            })
+        })
+        .collect();
+    let text = harness::render(
+        include_str!("readme/certificate_decisions.md"),
+        json!({
+            "n": n, "seed": seed, "seconds": format!("{:.0}", clock.elapsed().as_secs_f64()),
+            "every": CERTIFICATE_EVERY, "max_compression": CERTIFICATE_MAX_COMPRESSION.to_string(),
+            "margin": CERTIFICATE_MARGIN.to_string(), "totals": totals,
+            "wrong": total.iter().map(|t| t.wrong[0] + t.wrong[1]).sum::<u64>(),
+            "decisions": total.iter().map(|t| t.decisions[0] + t.decisions[1]).sum::<u64>(),
+            "first": total.iter().map(|t| t.first[0] + t.first[1]).sum::<u64>(),
+            "excess": e(total.iter().map(|t| t.excess).fold(0.0, f64::max)),
+            "body_lo": e(body_lo), "body_hi": e(body_hi), "cover": format!("{:.1}", CERTIFICATE_MARGIN / body_hi),
+        }),
+    )?;
+    out.write("README.md", &text)?;
+    println!("{text}");
     Ok(())
 }
 
-fn plot(path: &Path, per_body: &[(String, [f64; 2])]) -> Result<(), Box<dyn std::error::Error>> {
-    use plotters::prelude::*;
-    rocking_stones::plot::draw_png(path, (1100, 900), |root| {
-        root.fill(&WHITE)?;
-        let n = per_body.len();
-        let mut chart = ChartBuilder::on(root)
-            .margin(20)
-            .x_label_area_size(50)
-            .y_label_area_size(330)
-            .caption(
-                "Largest later rise of h(down) above the certificate's level L, per body (R_max)",
-                (FONT_FAMILY, 18),
-            )
-            .build_cartesian_2d((1e-6f64..1e-2).log_scale(), -0.5f64..n as f64 - 0.5)?;
-        chart
-            .configure_mesh()
-            .x_desc("max over states and later times of h(down(t')) − L(t) (R_max, log scale)")
-            .y_labels(n)
-            .y_label_formatter(&|y| per_body.get(y.round() as usize).map_or(String::new(), |b| b.0.clone()))
-            .x_label_formatter(&|x| rocking_stones::plot::log_tick(*x))
-            .label_style((FONT_FAMILY, 12))
-            .draw()?;
-        for (fi, label) in ["rapier's flight", "exact landings (--flight free)"].iter().enumerate() {
-            let c = series_color(fi);
-            chart
-                .draw_series(per_body.iter().enumerate().map(|(k, b)| {
-                    let y = k as f64 + if fi == 0 { 0.15 } else { -0.15 };
-                    Circle::new((b.1[fi].max(1e-6), y), 4, c.filled())
-                }))?
-                .label(*label)
-                .legend(move |(x, y)| Circle::new((x + 6, y), 4, c.filled()));
-        }
-        chart
-            .draw_series(std::iter::once(PathElement::new(
-                vec![(CERTIFICATE_MARGIN, -0.5), (CERTIFICATE_MARGIN, n as f64 - 0.5)],
-                BLACK.stroke_width(2),
-            )))?
-            .label(format!("margin {CERTIFICATE_MARGIN} R_max"))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 14, y)], BLACK.stroke_width(2)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font((FONT_FAMILY, 13))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()?;
-        Ok(())
-    })?;
+/// Per body, the largest excess with either numerics, and the margin.
+fn plot(out: &Results, per_body: &[(String, [f64; 2])]) -> Result<()> {
+    const BLACK: RGBColor = RGBColor(0, 0, 0);
+    let (names, top) = (per_body.iter().map(|b| b.0.clone()).collect::<Vec<_>>(), per_body.len() as f64 - 0.5);
+    let name = move |y: f64| names.get(y.round() as usize).cloned().unwrap_or_default();
+    let mut chart = Chart::new(
+        Axis::log("max over states and later times of h(down(t')) − L(t) (R_max, log scale)", 1e-6, 1e-2),
+        Axis::linear("", -0.5, top).ticks(per_body.len()).space(330).format(name),
+    )
+    .title("Largest later rise of h(down) above the certificate's level L, per body (R_max)");
+    for (fi, label) in ["rapier's flight", "exact landings (--flight free)"].into_iter().enumerate() {
+        let at = |k: usize| k as f64 + if fi == 0 { 0.15 } else { -0.15 };
+        let points: Vec<_> = per_body.iter().enumerate().map(|(k, b)| (b.1[fi].max(1e-6), at(k))).collect();
+        chart = chart.dots(&points, series_color(fi)).legend(Mark::Dot(series_color(fi)), label);
+    }
+    chart
+        .line_width(&[(CERTIFICATE_MARGIN, -0.5), (CERTIFICATE_MARGIN, top)], BLACK, 2)
+        .legend(Mark::Line(BLACK), format!("margin {CERTIFICATE_MARGIN} R_max"))
+        .save(&out.path("excess.png"), (1100, 900))?;
     Ok(())
 }
