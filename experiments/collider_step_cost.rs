@@ -11,7 +11,7 @@
 //! queries on the hot path (world AABB, support point, support feature) is timed separately.
 //!
 //! Run: `cargo run --release --example collider_step_cost` → `results/collider_step_cost/`
-//! (`step_cost.csv`, `README.md`).
+//! (`step_cost.csv`, `README.md`, its prose `experiments/readme/collider_step_cost.md`).
 
 use parry3d::math::{Pose, Real, Rotation, Vector};
 use parry3d::shape::{ConvexPolyhedron, PolygonalFeature, PolygonalFeatureMap, Shape, SupportMap};
@@ -27,10 +27,13 @@ use rocking_stones::dynamics::engine::hull_shape::HullShape;
 use rocking_stones::generate;
 use rocking_stones::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::solid;
-use std::fmt::Write as _;
+use serde_json::json;
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Instant;
+
+#[path = "shared/harness.rs"]
+mod harness;
+use harness::{fixed, Common, Context, Parser, Result, Results};
 
 /// Pebble generator point counts, chosen for ~10², 10³, 10⁴ and 3·10⁴ hull corners (all points are
 /// corners up to ~10³; the fraction drops for denser samplings of the rough surface).
@@ -39,42 +42,6 @@ const WARMUP_STEPS: usize = 60;
 const TIMED_STEPS: usize = 1_500;
 const REPEATS: usize = 5;
 const QUERY_CALLS: usize = 20_000;
-
-struct Pebble {
-    target: usize,
-    corners: usize,
-    facets: usize,
-    parry_faces: usize,
-    hull_shape: HullShape,
-    parry: ConvexPolyhedron,
-    mass: MassProperties,
-    build_hull_shape_ms: f64,
-    build_parry_ms: f64,
-}
-
-fn pebble(target: usize) -> Pebble {
-    let mesh = generate::pebble([1.0, 0.7, 0.5], 0.02, target, 1);
-    let poly = Polyhedron::new(&mesh.vertices, DEFAULT_COPLANAR_TOL).unwrap();
-    let solid = solid::MassProperties::of(&mesh).unwrap();
-    let g = solid.center_of_mass;
-    let t = Instant::now();
-    let hull_shape = HullShape::new(&poly, &g, 1.0).with_solid_mass(&solid);
-    let build_hull_shape_ms = t.elapsed().as_secs_f64() * 1e3;
-    let t = Instant::now();
-    let parry = ConvexPolyhedron::from_convex_hull(hull_shape.points()).expect("parry hull");
-    let build_parry_ms = t.elapsed().as_secs_f64() * 1e3;
-    Pebble {
-        target,
-        corners: hull_shape.num_vertices(),
-        facets: hull_shape.num_facets(),
-        parry_faces: parry.faces().len(),
-        mass: hull_shape.mass_properties(1.0),
-        hull_shape,
-        parry,
-        build_hull_shape_ms,
-        build_parry_ms,
-    }
-}
 
 /// Mean µs per step after the warm-up, for one collider shape, and the body's final speed and
 /// angular speed (to tell whether it has settled).
@@ -139,28 +106,29 @@ fn query_costs(shape: &(impl Shape + PolygonalFeatureMap), dirs: &[Vector], pose
     [aabb, support, feat]
 }
 
-/// The fastest repeat: on a shared machine, load only ever adds time.
-fn fastest(v: &[f64]) -> f64 {
-    v.iter().copied().fold(f64::INFINITY, f64::min)
-}
-
+/// One collider of one pebble: the hull's sizes, the fastest repeat's µs per step, the final
+/// speed and spin, the query costs (ns) and the build time (ms).
 struct Row {
-    p_target: usize,
-    corners: usize,
-    facets: usize,
-    parry_faces: usize,
+    target: usize,
+    sizes: [usize; 3],
     collider: &'static str,
     step_us: f64,
-    final_speed: f32,
-    final_spin: f32,
+    last: (f32, f32),
     queries_ns: [f64; 3],
     build_ms: f64,
 }
 
-fn main() -> anyhow::Result<()> {
-    let out = Path::new("results/collider_step_cost");
-    std::fs::create_dir_all(out)?;
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(2024);
+/// The per-step cost of `HullShape` against parry's `ConvexPolyhedron`.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    common: Common,
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let out = Results::open("collider_step_cost", &args.common)?;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(args.common.seed_or(2024));
     let mut unit = || {
         let mut g = || rng.sample::<f64, _>(StandardNormal) as Real;
         Vector::new(g(), g(), g()).normalize()
@@ -170,185 +138,95 @@ fn main() -> anyhow::Result<()> {
         (0..256).map(|_| Pose::from_parts(unit(), Rotation::from_scaled_axis(unit() * 2.0))).collect();
     // Released tilted: a fixed random orientation, lowest point 1 mm above the ground.
     let rot = Rotation::from_scaled_axis(unit() * 1.3);
-
+    let ms = |t: Instant| t.elapsed().as_secs_f64() * 1e3;
     let mut rows = Vec::new();
     for target in TARGETS {
-        let p = pebble(target);
+        let mesh = generate::pebble([1.0, 0.7, 0.5], 0.02, target, 1);
+        let poly = Polyhedron::new(&mesh.vertices, DEFAULT_COPLANAR_TOL)?;
+        let solid = solid::MassProperties::of(&mesh)?;
+        let t = Instant::now();
+        let ours = HullShape::new(&poly, &solid.center_of_mass, 1.0).with_solid_mass(&solid);
+        let build_ours = ms(t);
+        let t = Instant::now();
+        let parry = ConvexPolyhedron::from_convex_hull(ours.points()).context("parry hull")?;
+        let build_parry = ms(t);
+        let sizes = [ours.num_vertices(), ours.num_facets(), parry.faces().len()];
         let down = rot.inverse() * -Vector::Y;
-        let depth = p.hull_shape.local_support_point(down).dot(down);
-        let start = Pose::from_parts(Vector::new(0.0, depth + 1e-3, 0.0), rot);
-        let shapes: [(&'static str, SharedShape, f64); 2] = [
-            ("HullShape", SharedShape::new(p.hull_shape.clone()), p.build_hull_shape_ms),
-            ("ConvexPolyhedron", SharedShape::new(p.parry.clone()), p.build_parry_ms),
-        ];
-        let mut times: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
-        let mut finals = [(0.0, 0.0); 2];
+        let start = Pose::from_parts(Vector::new(0.0, ours.local_support_point(down).dot(down) + 1e-3, 0.0), rot);
+        let mass = ours.mass_properties(1.0);
+        let shapes = [SharedShape::new(ours.clone()), SharedShape::new(parry.clone())];
+        let (mut times, mut last) = ([f64::INFINITY; 2], [(0.0, 0.0); 2]);
         // Interleaved repeats, so both colliders see the same machine load (rapier is
-        // deterministic: every repeat runs the same trajectory).
+        // deterministic: every repeat runs the same trajectory); the fastest counts, since load
+        // on a shared machine only ever adds time.
         for _ in 0..REPEATS {
-            for (k, (_, shape, _)) in shapes.iter().enumerate() {
-                let (us, speed, spin) = step_cost(shape.clone(), p.mass, start);
-                times[k].push(us);
-                finals[k] = (speed, spin);
+            for (k, shape) in shapes.iter().enumerate() {
+                let (us, speed, spin) = step_cost(shape.clone(), mass, start);
+                (times[k], last[k]) = (times[k].min(us), (speed, spin));
             }
         }
         let best = |f: &dyn Fn() -> [f64; 3]| {
             (0..REPEATS).map(|_| f()).fold([f64::INFINITY; 3], |a, b| std::array::from_fn(|i| a[i].min(b[i])))
         };
-        let queries =
-            [best(&|| query_costs(&p.hull_shape, &dirs, &poses)), best(&|| query_costs(&p.parry, &dirs, &poses))];
-        for (k, (name, _, build)) in shapes.iter().enumerate() {
-            let row = Row {
-                p_target: p.target,
-                corners: p.corners,
-                facets: p.facets,
-                parry_faces: p.parry_faces,
-                collider: name,
-                step_us: fastest(&times[k]),
-                final_speed: finals[k].0,
-                final_spin: finals[k].1,
-                queries_ns: queries[k],
-                build_ms: *build,
-            };
+        let queries = [best(&|| query_costs(&ours, &dirs, &poses)), best(&|| query_costs(&parry, &dirs, &poses))];
+        let builds = [build_ours, build_parry];
+        for (k, collider) in ["HullShape", "ConvexPolyhedron"].into_iter().enumerate() {
+            let (step_us, queries_ns, build_ms) = (times[k], queries[k], builds[k]);
+            let row = Row { target, sizes, collider, step_us, last: last[k], queries_ns, build_ms };
             println!(
-                "{:>6} corners  {:<16} {:>8.2} µs/step  aabb {:>8.1} ns  support {:>8.1} ns  feature {:>8.1} ns",
-                row.corners, row.collider, row.step_us, row.queries_ns[0], row.queries_ns[1], row.queries_ns[2]
+                "{:>6} corners  {collider:<16} {step_us:>8.2} µs/step  aabb {:>8.1} ns  support {:>8.1} ns  feature {:>8.1} ns",
+                sizes[0], queries_ns[0], queries_ns[1], queries_ns[2]
             );
             rows.push(row);
         }
     }
-
-    let mut csv = csv::Writer::from_path(out.join("step_cost.csv"))?;
-    csv.write_record([
-        "target_points",
-        "hull_corners",
-        "hull_facets",
-        "parry_faces",
-        "collider",
-        "us_per_step",
-        "aabb_ns",
-        "support_point_ns",
-        "support_feature_ns",
-        "build_ms",
-        "final_speed",
-        "final_spin",
-    ])?;
-    for r in &rows {
-        csv.write_record([
-            r.p_target.to_string(),
-            r.corners.to_string(),
-            r.facets.to_string(),
-            r.parry_faces.to_string(),
-            r.collider.to_string(),
-            format!("{:.3}", r.step_us),
-            format!("{:.1}", r.queries_ns[0]),
-            format!("{:.1}", r.queries_ns[1]),
-            format!("{:.1}", r.queries_ns[2]),
-            format!("{:.2}", r.build_ms),
-            format!("{:.3e}", r.final_speed),
-            format!("{:.3e}", r.final_spin),
-        ])?;
-    }
-    csv.flush()?;
-
-    let mut md = String::new();
-    writeln!(md, "# Per-step cost of the pebble collider: `HullShape` vs parry `ConvexPolyhedron`\n")?;
-    writeln!(
-        md,
-        "Generated by `cargo run --release --example collider_step_cost` (`experiments/collider_step_cost.rs`); \
-         raw numbers in `step_cost.csv`.\n"
+    let sizes = |r: &Row| r.sizes.map(|n| n.to_string());
+    out.csv(
+        "step_cost.csv",
+        &[
+            "target_points",
+            "hull_corners",
+            "hull_facets",
+            "parry_faces",
+            "collider",
+            "us_per_step",
+            "aabb_ns",
+            "support_point_ns",
+            "support_feature_ns",
+            "build_ms",
+            "final_speed",
+            "final_spin",
+        ],
+        rows.iter().map(|r| {
+            let mut v = vec![r.target.to_string()];
+            v.extend(sizes(r));
+            v.extend([r.collider.into(), fixed(r.step_us, 3)]);
+            v.extend(r.queries_ns.map(|x| fixed(x, 1)));
+            v.extend([fixed(r.build_ms, 2), format!("{:.3e}", r.last.0), format!("{:.3e}", r.last.1)]);
+            v
+        }),
     )?;
-    writeln!(
-        md,
-        "Synthetic pebbles `generate::pebble([1.0, 0.7, 0.5], 0.02, n, 1)`, collider about the solid's G with the \
-         solid's mass properties (collider density 0). Each is released tilted, 1 mm above a half-space ground, \
-         never allowed to sleep, dt = 1/60 s: it rolls and rocks (the smooth large hulls are still rolling at the end, \
-         see the last column; rapier has no rolling resistance). `µs/step` is the mean wall time of \
-         `PhysicsPipeline::step` over {TIMED_STEPS} steps after {WARMUP_STEPS} warm-up steps, fastest of {REPEATS} \
-         interleaved repeats; the query columns are ns per call (fastest of {REPEATS}) of the shape queries on the hot path (world AABB \
-         for a random pose, support point and support feature for random directions). `build ms` is \
-         `HullShape::new` from the project's `Polyhedron` (hull already computed) and \
-         `ConvexPolyhedron::from_convex_hull` including parry's own hull. Same run, same initial \
-         conditions for both colliders. Wall-clock figures on a shared, loaded 2-core machine: single figures \
-         vary by up to ±40 % between runs; the trend over hull sizes is the result.\n"
-    )?;
-    writeln!(
-        md,
-        "| hull corners | our facets | parry faces | collider | µs/step | AABB ns | support point ns | support feature ns | build ms | final speed, spin |"
-    )?;
-    writeln!(md, "|---:|---:|---:|---|---:|---:|---:|---:|---:|---|")?;
-    for r in &rows {
-        writeln!(
-            md,
-            "| {} | {} | {} | {} | {:.2} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0e} m/s, {:.0e} rad/s |",
-            r.corners,
-            r.facets,
-            r.parry_faces,
-            r.collider,
-            r.step_us,
-            r.queries_ns[0],
-            r.queries_ns[1],
-            r.queries_ns[2],
-            r.build_ms,
-            r.final_speed,
-            r.final_spin
-        )?;
-    }
-    let ours: Vec<&Row> = rows.iter().filter(|r| r.collider == "HullShape").collect();
-    let theirs: Vec<&Row> = rows.iter().filter(|r| r.collider == "ConvexPolyhedron").collect();
-    writeln!(md, "\n## Ratios\n")?;
-    writeln!(md, "| hull corners | ConvexPolyhedron / HullShape per step | HullShape vs smallest | ConvexPolyhedron vs smallest |")?;
-    writeln!(md, "|---:|---:|---:|---:|")?;
-    for (a, b) in ours.iter().zip(&theirs) {
-        writeln!(
-            md,
-            "| {} | {:.2}× | {:.2}× | {:.2}× |",
-            a.corners,
-            b.step_us / a.step_us,
-            a.step_us / ours[0].step_us,
-            b.step_us / theirs[0].step_us
-        )?;
-    }
-    let (first, last) = (ours[0], ours[ours.len() - 1]);
-    let (pfirst, plast) = (theirs[0], theirs[theirs.len() - 1]);
-    writeln!(md, "\n## Reading\n")?;
-    writeln!(
-        md,
-        "* From {} to {} hull corners ({:.0}× more), `HullShape`'s step time changes by {:.2}× ({:.2} → {:.2} µs), \
-         `ConvexPolyhedron`'s by {:.2}× ({:.2} → {:.2} µs).",
-        first.corners,
-        last.corners,
-        last.corners as f64 / first.corners as f64,
-        last.step_us / first.step_us,
-        first.step_us,
-        last.step_us,
-        plast.step_us / pfirst.step_us,
-        pfirst.step_us,
-        plast.step_us
-    )?;
-    writeln!(
-        md,
-        "* The shape queries explain it: parry's world AABB and support point scan all points (O(n)), its support \
-         feature scans all faces; `HullShape` transforms a precomputed local box (O(1)) and hill-climbs from a cube-map \
-         start (a few neighbour scans), its feature is a facet at the support vertex."
-    )?;
-    writeln!(
-        md,
-        "* parry merges neighbouring triangles within ~1.5°: its face count is far below the exact facet count \
-         (the micro-facets this project studies are gone), so its contact features are not our facets."
-    )?;
-    writeln!(
-        md,
-        "* The trajectories are not identical (different contact features, and `HullShape` never merges facets), \
-         so part of the per-step difference at small sizes is solver work, not shape queries; how long a body \
-         moves before it settles also changes the mean (steps at rest are cheaper: rapier recycles contacts)."
-    )?;
-    writeln!(
-        md,
-        "* The query timings use random directions and poses (cold caches for large hulls); in a simulation \
-         successive queries are coherent, so the hill climb starts and stays in cache."
-    )?;
-    std::fs::write(out.join("README.md"), md)?;
-    println!("wrote {}", out.display());
-    Ok(())
+    let (ours, theirs): (Vec<&Row>, Vec<&Row>) = rows.iter().partition(|r| r.collider == "HullShape");
+    let (first, last, pfirst, plast) = (ours[0], ours[ours.len() - 1], theirs[0], theirs[theirs.len() - 1]);
+    let f2 = |x: f64| fixed(x, 2);
+    out.readme(
+        "README.md",
+        include_str!("readme/collider_step_cost.md"),
+        json!({
+            "timed_steps": TIMED_STEPS, "warmup_steps": WARMUP_STEPS, "repeats": REPEATS,
+            "rows": rows.iter().map(|r| json!({
+                "sizes": sizes(r), "collider": r.collider, "step_us": f2(r.step_us),
+                "queries": r.queries_ns.map(|x| fixed(x, 1)), "build_ms": fixed(r.build_ms, 1),
+                "speed": format!("{:.0e}", r.last.0), "spin": format!("{:.0e}", r.last.1),
+            })).collect::<Vec<_>>(),
+            "ratios": ours.iter().zip(&theirs).map(|(a, b)| json!({
+                "corners": a.sizes[0], "theirs_over_ours": f2(b.step_us / a.step_us),
+                "ours": f2(a.step_us / ours[0].step_us), "theirs": f2(b.step_us / theirs[0].step_us),
+            })).collect::<Vec<_>>(),
+            "first": first.sizes[0], "last": last.sizes[0],
+            "more": fixed(last.sizes[0] as f64 / first.sizes[0] as f64, 0),
+            "ours": [f2(last.step_us / first.step_us), f2(first.step_us), f2(last.step_us)],
+            "theirs": [f2(plast.step_us / pfirst.step_us), f2(pfirst.step_us), f2(plast.step_us)],
+        }),
+    )
 }
