@@ -12,8 +12,12 @@
 //! seeds) and the real quarry stones of `data/meshes` (IBOIS, EPFL; MIT licence, see
 //! `data/meshes/SOURCES.md`). Every stable micro-equilibrium that stays at rest in the simulation.
 //!
-//! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`.
+//! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`;
+//! the README's prose is `experiments/readme/rocking_confusion_table.md`.
 
+#[path = "shared/harness.rs"]
+mod harness;
+use harness::{fixed, Common, Context, Parser, Result, Results};
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::pushes::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
 use rocking_stones::dynamics::resting::outcome::Threshold;
@@ -21,18 +25,16 @@ use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::generate;
-use rocking_stones::report;
+use rocking_stones::report::perturb::{plot_thresholds, threshold_points};
 use rocking_stones::stats::{log_grid, GridSize};
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use serde_json::{json, Value};
+use std::path::PathBuf;
 
 const TRIALS: u32 = 30;
 /// R_max of the synthetic pebbles (m), as in `fig11_rocking_vs_regular`.
 const PEBBLE_R_MAX_M: f64 = 0.05;
 /// The surface pair: stones on rock.
 const SURFACE: Surface = Surface::StoneOnStone;
-const SEED: u64 = 77;
-const MESHES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes");
 
 struct StoneRun {
     name: String,
@@ -42,8 +44,9 @@ struct StoneRun {
     reports: Vec<PerturbReport>,
 }
 
-fn synthetic() -> Vec<(String, rocking_stones::mesh::TriMesh)> {
-    let mut v = Vec::new();
+/// The synthetic pebbles and the real quarry stones of `data/meshes`, analysed.
+fn inputs() -> Result<Vec<(String, &'static str, Analysis)>> {
+    let mut inputs = Vec::new();
     for (axes, rough, seeds) in [
         ([1.0, 0.75, 0.5], 0.02, 0..3u64),
         ([1.0, 0.75, 0.5], 0.04, 0..2),
@@ -51,36 +54,37 @@ fn synthetic() -> Vec<(String, rocking_stones::mesh::TriMesh)> {
         ([1.0, 0.85, 0.7], 0.02, 0..2),
     ] {
         for seed in seeds {
-            v.push((
-                format!("pebble {}:{}:{} r{} s{seed}", axes[0], axes[1], axes[2], rough),
-                generate::pebble(axes, rough, 600, seed),
-            ));
+            let (mesh, rep) = generate::pebble(axes, rough, 600, seed).into_solid_boundary()?;
+            let name = format!("pebble {}:{}:{} r{} s{seed}", axes[0], axes[1], axes[2], rough);
+            inputs.push((name, "synthetic", Analysis::of_solid(mesh, rep, &Options::default())?));
         }
     }
-    v
-}
-
-fn main() -> anyhow::Result<()> {
-    let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/rocking_confusion_table");
-    std::fs::create_dir_all(&out)?;
-    let mut inputs: Vec<(String, &'static str, Analysis)> = Vec::new();
-    for (name, mesh) in synthetic() {
-        let (mesh, rep) = mesh.into_solid_boundary()?;
-        inputs.push((name, "synthetic", Analysis::of_solid(mesh, rep, &Options::default())?));
-    }
-    let mut real: Vec<PathBuf> = std::fs::read_dir(MESHES)?
+    let mut real: Vec<PathBuf> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes"))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.file_name().is_some_and(|f| f.to_string_lossy().starts_with("stone_")))
         .collect();
     real.sort();
     for p in real {
-        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        let name = p.file_name().context("a mesh file name")?.to_string_lossy().into_owned();
         inputs.push((name, "real", Analysis::of_file(&p, &Options::default())?));
     }
+    Ok(inputs)
+}
+
+/// Static class against dynamic robustness over many stones.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    common: Common,
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let seed = args.common.seed_or(77);
+    let out = Results::open("rocking_confusion_table", &args.common)?;
     let mut runs = Vec::new();
-    for (name, kind, a) in inputs {
-        let (nu, _) = a.macro_nu(&Options::default());
-        let stone = Stone::new(&a, nu)?;
+    for (name, kind, a) in inputs()? {
+        let stone = Stone::new(&a, a.macro_nu(&Options::default()).0)?;
         // Real stones at their true size: the files in millimetres (A0, E34) are the ones whose
         // R_max exceeds 10 units, the others are in metres (`meshes/SOURCES.md`).
         let r_max_m = match kind {
@@ -92,42 +96,28 @@ fn main() -> anyhow::Result<()> {
         let all: Vec<usize> = (0..stone.stable().len()).collect();
         let mut reports = Vec::new();
         for family in [Family::Push, Family::Spin] {
-            let cfg = PerturbConfig {
-                params: params.clone(),
-                family,
-                epsilons: log_grid(1e-6, 1.0, GridSize::Points(13)),
-                trials: TRIALS,
-                seed: SEED,
-                epsilon_star: None,
-            };
+            let epsilons = log_grid(1e-6, 1.0, GridSize::Points(13));
+            let cfg =
+                PerturbConfig { params: params.clone(), family, epsilons, trials: TRIALS, seed, epsilon_star: None };
             let t = std::time::Instant::now();
             let r = pushes::perturb_equilibria(&stone, &all, &cfg);
+            let (n, secs) = (r.trials.len(), t.elapsed().as_secs_f64());
             eprintln!(
-                "{name}: {family:?}, {} equilibria, {} trials in {:.1} s; confusion {:?}",
+                "{name}: {family:?}, {} equilibria, {n} trials in {secs:.1} s; confusion {:?}",
                 all.len(),
-                r.trials.len(),
-                t.elapsed().as_secs_f64(),
                 r.confusion
             );
             reports.push(r);
         }
         runs.push(StoneRun { name, kind, stone, r_max_m, reports });
     }
-    write_csv(&out.join("equilibria.csv"), &runs)?;
-    let points: Vec<_> = runs.iter().flat_map(|r| report::perturb::threshold_points(&r.reports[0])).collect();
-    report::perturb::plot_thresholds(
-        &out.join("thresholds_vs_barriers_push.png"),
-        "All stones, pushes: ε₅₀ vs static barrier",
-        &points,
-    )?;
-    let points: Vec<_> = runs.iter().flat_map(|r| report::perturb::threshold_points(&r.reports[1])).collect();
-    report::perturb::plot_thresholds(
-        &out.join("thresholds_vs_barriers_spin.png"),
-        "All stones, spins: ε₅₀ vs static barrier",
-        &points,
-    )?;
-    readme(&out.join("README.md"), &runs)?;
-    Ok(())
+    out.csv("equilibria.csv", &HEADER, csv_rows(&runs))?;
+    for (fi, (family, what)) in [("push", "pushes"), ("spin", "spins")].into_iter().enumerate() {
+        let points: Vec<_> = runs.iter().flat_map(|r| threshold_points(&r.reports[fi])).collect();
+        let title = format!("All stones, {what}: ε₅₀ vs static barrier");
+        plot_thresholds(&out.path(&format!("thresholds_vs_barriers_{family}.png")), &title, &points)?;
+    }
+    out.readme("README.md", include_str!("readme/rocking_confusion_table.md"), context(&runs, seed))
 }
 
 /// ε₅₀(flock) as a sortable number (a bound for censored values; ∞ above the grid).
@@ -138,11 +128,15 @@ fn rank_value(t: &Option<Threshold>) -> f64 {
     }
 }
 
+/// The runs of stones of `kind` (all if `None`).
+fn of_kind<'a>(runs: &'a [StoneRun], kind: Option<&'a str>) -> impl Iterator<Item = &'a StoneRun> {
+    runs.iter().filter(move |r| kind.is_none_or(|k| r.kind == k))
+}
+
 /// P(ε₅₀ of a rocking equilibrium < ε₅₀ of a regular one), ties ½, over equilibria at rest.
 fn auc(runs: &[StoneRun], family: usize, kind: Option<&str>) -> (f64, usize, usize) {
-    let mut rock = Vec::new();
-    let mut reg = Vec::new();
-    for r in runs.iter().filter(|r| kind.is_none_or(|k| r.kind == k)) {
+    let (mut rock, mut reg) = (Vec::new(), Vec::new());
+    for r in of_kind(runs, kind) {
         for e in r.reports[family].equilibria.iter().filter(|e| e.rest.stays) {
             let v = rank_value(&e.eps50_flock);
             match e.equilibrium.class {
@@ -151,299 +145,196 @@ fn auc(runs: &[StoneRun], family: usize, kind: Option<&str>) -> (f64, usize, usi
             }
         }
     }
-    let mut s = 0.0;
-    for a in &rock {
-        for b in &reg {
-            s += if a < b {
-                1.0
-            } else if a == b {
-                0.5
-            } else {
-                0.0
-            };
+    let score = |a: f64, b: f64| {
+        if a < b {
+            1.0
+        } else if a == b {
+            0.5
+        } else {
+            0.0
         }
-    }
+    };
+    let s: f64 = rock.iter().flat_map(|&a| reg.iter().map(move |&b| score(a, b))).sum();
     let n = (rock.len() * reg.len()) as f64;
     (if n > 0.0 { s / n } else { f64::NAN }, rock.len(), reg.len())
 }
 
 fn confusion(runs: &[StoneRun], family: usize, factor: f64, kind: Option<&str>) -> Confusion {
     let mut c = Confusion::default();
-    for r in runs.iter().filter(|r| kind.is_none_or(|k| r.kind == k)) {
+    for r in of_kind(runs, kind) {
         let star = r.reports[family].epsilon_star * factor;
         for e in &r.reports[family].equilibria {
-            let d = if e.rest.stays { dynamic_class(e.eps50_flock, star) } else { None };
-            c.add(e.equilibrium.class, d);
+            c.add(e.equilibrium.class, if e.rest.stays { dynamic_class(e.eps50_flock, star) } else { None });
         }
     }
     c
 }
 
-fn th(t: &Option<Threshold>) -> String {
-    match t {
-        None => String::new(),
-        Some(t) => format!("{:.4e}", t.value()),
-    }
-}
+const HEADER: [&str; 21] = [
+    "stone",
+    "kind",
+    "nu",
+    "equilibrium",
+    "facet",
+    "flock",
+    "flock_type",
+    "static_class",
+    "stays_at_rest",
+    "barrier_basin",
+    "barrier_flock",
+    "push_eps50_micro",
+    "push_eps50_flock",
+    "push_eps50_flock_kind",
+    "push_dynamic_class_nu",
+    "push_dynamic_class_10nu",
+    "spin_eps50_micro",
+    "spin_eps50_flock",
+    "spin_eps50_flock_kind",
+    "spin_dynamic_class_nu",
+    "spin_dynamic_class_10nu",
+];
 
-fn th_kind(t: &Option<Threshold>) -> &'static str {
-    match t {
-        None => "",
-        Some(Threshold::Below(_)) => "below",
-        Some(Threshold::At(_)) => "at",
-        Some(Threshold::Above(_)) => "above",
-    }
-}
-
-fn write_csv(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
-    let mut w = csv::Writer::from_path(path)?;
-    w.write_record([
-        "stone",
-        "kind",
-        "nu",
-        "equilibrium",
-        "facet",
-        "flock",
-        "flock_type",
-        "static_class",
-        "stays_at_rest",
-        "barrier_basin",
-        "barrier_flock",
-        "push_eps50_micro",
-        "push_eps50_flock",
-        "push_eps50_flock_kind",
-        "push_dynamic_class_nu",
-        "push_dynamic_class_10nu",
-        "spin_eps50_micro",
-        "spin_eps50_flock",
-        "spin_eps50_flock_kind",
-        "spin_dynamic_class_nu",
-        "spin_dynamic_class_10nu",
-    ])?;
-    let cls = |c: Option<Class>| c.map_or(String::new(), |c| format!("{c:?}").to_lowercase());
+/// One row per equilibrium: its static barriers and, per family, ε₅₀ and the dynamic classes.
+fn csv_rows(runs: &[StoneRun]) -> Vec<Vec<String>> {
+    let lower = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
+    let th = |t: &Option<Threshold>| t.map_or(String::new(), |t| format!("{:.4e}", t.value()));
+    let kind = |t: &Option<Threshold>| t.map_or(String::new(), |t| lower(&t).split('(').next().unwrap_or("").into());
+    let mut rows = Vec::new();
     for r in runs {
-        let (p, s) = (&r.reports[0], &r.reports[1]);
-        for (ep, es) in p.equilibria.iter().zip(&s.equilibria) {
-            let q = &ep.equilibrium;
-            let stays = ep.rest.stays;
-            let dc = |e: &pushes::Robustness, f: f64| {
-                if stays {
-                    cls(dynamic_class(e.eps50_flock, r.stone.nu * f))
-                } else {
-                    String::new()
-                }
+        for (ep, es) in r.reports[0].equilibria.iter().zip(&r.reports[1].equilibria) {
+            let (q, stays) = (&ep.equilibrium, ep.rest.stays);
+            let class = |e: &pushes::Robustness, f: f64| match dynamic_class(e.eps50_flock, r.stone.nu * f) {
+                Some(c) if stays => lower(&c),
+                _ => String::new(),
             };
-            w.write_record([
-                r.name.clone(),
-                r.kind.into(),
-                format!("{:.4e}", r.stone.nu),
-                q.index.to_string(),
-                q.facet.to_string(),
-                q.flock.to_string(),
-                format!("{:?}", q.flock_kind).to_lowercase(),
-                format!("{:?}", q.class).to_lowercase(),
+            let mut row = vec![r.name.clone(), r.kind.into(), format!("{:.4e}", r.stone.nu), q.index.to_string()];
+            row.extend([q.facet.to_string(), q.flock.to_string(), lower(&q.flock_kind), lower(&q.class)]);
+            row.extend([
                 stays.to_string(),
                 format!("{:.4e}", q.basin_exit.epsilon),
                 format!("{:.4e}", q.flock_exit.epsilon),
-                th(&ep.eps50_micro),
-                th(&ep.eps50_flock),
-                th_kind(&ep.eps50_flock).into(),
-                dc(ep, 1.0),
-                dc(ep, 10.0),
-                th(&es.eps50_micro),
-                th(&es.eps50_flock),
-                th_kind(&es.eps50_flock).into(),
-                dc(es, 1.0),
-                dc(es, 10.0),
-            ])?;
+            ]);
+            for e in [ep, es] {
+                row.extend([
+                    th(&e.eps50_micro),
+                    th(&e.eps50_flock),
+                    kind(&e.eps50_flock),
+                    class(e, 1.0),
+                    class(e, 10.0),
+                ]);
+            }
+            rows.push(row);
         }
     }
-    w.flush()?;
-    Ok(())
+    rows
 }
 
-fn table(s: &mut String, title: &str, c: &Confusion) -> std::fmt::Result {
-    writeln!(
-        s,
-        "**{title}** (agreement {:.0} % of {} decided; {} undecided or not at rest)\n",
-        100.0 * c.agreement(),
-        c.regular_as_regular + c.regular_as_rocking + c.rocking_as_regular + c.rocking_as_rocking,
-        c.undecided
-    )?;
-    writeln!(s, "| static \\ dynamic | regular (stays in its flock) | rocking (topples out at ≤ ε*) |\n|---|---|---|")?;
-    writeln!(s, "| regular (stable flock) | {} | {} |", c.regular_as_regular, c.regular_as_rocking)?;
-    writeln!(s, "| rocking (unstable/saddle flock) | {} | {} |\n", c.rocking_as_regular, c.rocking_as_rocking)
-}
-
-/// (stone kind, static→dynamic, flock barrier / ν, ε₅₀(flock) / ν, flock type).
-type Disagreement<'a> = (&'a str, &'static str, f64, f64, String);
-
-fn readme(path: &Path, runs: &[StoneRun]) -> anyhow::Result<()> {
-    let mut s = String::new();
-    writeln!(s, "# Rocking vs regular: static class against dynamic robustness\n")?;
-    writeln!(s, "Regenerate: `cargo run --release --example rocking_confusion_table`.\n")?;
-    writeln!(
-        s,
-        "Every stable micro-equilibrium of {} stones ({} synthetic pebbles, {} real quarry stones from \
-         `data/meshes`, IBOIS/EPFL, MIT licence), flocks at each stone's automatic ν. Perturbations: \
-         {TRIALS} trials per ε on 13 ε from 10⁻⁶ to 1 (half-decade steps), pushes and spins, seed {SEED}, on the \
-         contact of every resting run: stones on rock ({SURFACE}: friction 0.6, restitution 0.3, rolling resistance \
-         and torsional friction δ = 0.1 mm through the contact, no global damping), the synthetic pebbles at \
-         R_max = {PEBBLE_R_MAX_M} m, the real stones at their true size (R_max {:.3}–{:.3} m), 120 Hz contacts, \
-         dt 1/240 s (scaled), rest by speeds held 0.5 s. Static class: the \
-         paper's (stable micro-equilibrium in a stable flock = regular, in an unstable or saddle flock = rocking). \
-         Dynamic class: rocking if ε₅₀(topple out of the flock) ≤ ε*, regular otherwise; ε* = ν (the energy m g ν \
-         R_max the hand experimenter cannot resolve), and 10 ν. Equilibria that do not stay at rest in the simulation \
-         (G within ~10⁻³ R_F of the edge of a tiny facet) are counted as undecided.\n",
-        runs.len(),
-        runs.iter().filter(|r| r.kind == "synthetic").count(),
-        runs.iter().filter(|r| r.kind == "real").count(),
-        runs.iter().filter(|r| r.kind == "real").map(|r| r.r_max_m).fold(f64::INFINITY, f64::min),
-        runs.iter().filter(|r| r.kind == "real").map(|r| r.r_max_m).fold(0.0, f64::max),
-    )?;
-    for (fi, fname) in [(0, "pushes"), (1, "spins about the contact")] {
-        writeln!(s, "## {fname}\n")?;
-        table(&mut s, "all stones, ε* = ν", &confusion(runs, fi, 1.0, None))?;
-        table(&mut s, "all stones, ε* = 10 ν", &confusion(runs, fi, 10.0, None))?;
-        table(&mut s, "synthetic pebbles, ε* = ν", &confusion(runs, fi, 1.0, Some("synthetic")))?;
-        table(&mut s, "real stones, ε* = ν", &confusion(runs, fi, 1.0, Some("real")))?;
-        for (k, label) in [(None, "all"), (Some("synthetic"), "synthetic"), (Some("real"), "real")] {
-            let (a, nr, ng) = auc(runs, fi, k);
-            writeln!(
-                s,
-                "AUC ({label}): P(ε₅₀ flock of a rocking < that of a regular equilibrium) = {a:.3} ({nr} rocking × {ng} regular at rest).  "
-            )?;
-        }
-        writeln!(s)?;
-    }
-    // The disagreements at ε* = ν (pushes): where they are and why.
-    let mut dis: Vec<Disagreement> = Vec::new();
+/// The README's values.
+fn context(runs: &[StoneRun], seed: u64) -> Value {
+    let real = || of_kind(runs, Some("real"));
+    let families: Vec<Value> = [(0, "pushes"), (1, "spins about the contact")]
+        .into_iter()
+        .map(|(fi, name)| {
+            let tables = [("all stones, ε* = ν", 1.0, None), ("all stones, ε* = 10 ν", 10.0, None)]
+                .into_iter()
+                .chain([
+                    ("synthetic pebbles, ε* = ν", 1.0, Some("synthetic")),
+                    ("real stones, ε* = ν", 1.0, Some("real")),
+                ])
+                .map(|(title, factor, kind)| {
+                    let c = confusion(runs, fi, factor, kind);
+                    let (rr, rk, kr, kk) =
+                        (c.regular_as_regular, c.regular_as_rocking, c.rocking_as_regular, c.rocking_as_rocking);
+                    json!({
+                        "title": title, "agreement": fixed(100.0 * c.agreement(), 0), "decided": rr + rk + kr + kk,
+                        "undecided": c.undecided, "rr": rr, "rk": rk, "kr": kr, "kk": kk,
+                    })
+                })
+                .collect::<Vec<_>>();
+            let aucs = [(None, "all"), (Some("synthetic"), "synthetic"), (Some("real"), "real")].map(|(k, label)| {
+                let (a, rock, reg) = auc(runs, fi, k);
+                json!({ "label": label, "auc": fixed(a, 3), "rock": rock, "reg": reg })
+            });
+            json!({ "name": name, "tables": tables, "aucs": aucs })
+        })
+        .collect();
+    // The disagreements at ε* = ν (pushes): (stone kind, rocking→regular, flock barrier / ν,
+    // ε₅₀(flock) / ν, flock type).
+    let mut dis = Vec::new();
     for r in runs {
         for e in r.reports[0].equilibria.iter().filter(|e| e.rest.stays) {
-            let d = dynamic_class(e.eps50_flock, r.stone.nu);
-            if d.is_some_and(|d| d != e.equilibrium.class) {
-                let q = &e.equilibrium;
-                dis.push((
-                    r.kind,
-                    if q.class == Class::Rocking { "rocking→regular" } else { "regular→rocking" },
-                    q.flock_exit.epsilon / r.stone.nu,
-                    e.eps50_flock.map_or(f64::NAN, |t| t.value()) / r.stone.nu,
-                    format!("{:?}", q.flock_kind).to_lowercase(),
-                ));
+            let (q, nu) = (&e.equilibrium, r.stone.nu);
+            if dynamic_class(e.eps50_flock, nu).is_some_and(|d| d != q.class) {
+                let eps50 = e.eps50_flock.map_or(f64::NAN, |t| t.value());
+                let kind = format!("{:?}", q.flock_kind).to_lowercase();
+                dis.push((r.kind, q.class == Class::Rocking, q.flock_exit.epsilon / nu, eps50 / nu, kind));
             }
         }
     }
-    if !dis.is_empty() {
-        let range = |v: Vec<f64>| {
-            let lo = v.iter().cloned().fold(f64::INFINITY, f64::min);
-            let hi = v.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-            format!("{lo:.2}–{hi:.2}")
-        };
-        let count = |f: &dyn Fn(&Disagreement) -> bool| dis.iter().filter(|d| f(d)).count();
-        writeln!(
-            s,
-            "**Reading (pushes, ε* = ν).** {} disagreements: {} rocking→regular and {} regular→rocking; {} on real \
-             stones; flock types {}. Their static flock barriers are {} ν and their dynamic thresholds ε₅₀ {} ν: \
-             statically within the micro scale, dynamically toppled only by energies above ν, because a push \
-             must give 5–30 times the static barrier (median 15, quartiles 11–27 for the rocking equilibria, below) \
-             to topple a stone half of the time. The ordering itself is almost perfect (AUC above): the disagreement is the choice of ε* against \
-             that factor and the small ν of the real stones (three of the seven have no clear plateau of n(ν) \
-             and use the paper's hand-experimenter value 0.0035, against 0.009–0.019 on the synthetic pebbles).\n",
-            dis.len(),
-            count(&|d| d.1 == "rocking→regular"),
-            count(&|d| d.1 == "regular→rocking"),
-            count(&|d| d.0 == "real"),
-            {
-                let mut k: Vec<String> = dis.iter().map(|d| d.4.clone()).collect();
-                k.sort();
-                k.dedup();
-                k.join(", ")
-            },
-            range(dis.iter().map(|d| d.2).collect()),
-            range(dis.iter().map(|d| d.3).collect()),
-        )?;
-    }
-    writeln!(s, "## Per stone (pushes)\n")?;
-    writeln!(s, "| stone | ν | stable micro | regular | rocking | not at rest | reg→reg | reg→rock | rock→reg | rock→rock | barrier check (below basin / violations; below flock / violations) |")?;
-    writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|")?;
-    for r in runs {
-        let p = &r.reports[0];
-        let c = &p.confusion;
-        let b = &p.barrier_check;
-        writeln!(
-            s,
-            "| {} | {:.2e} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {}; {} / {} |",
-            r.name,
-            r.stone.nu,
-            r.stone.stable().len(),
-            r.stone.stable().iter().filter(|e| e.class == Class::Regular).count(),
-            r.stone.stable().iter().filter(|e| e.class == Class::Rocking).count(),
-            p.equilibria.iter().filter(|e| !e.rest.stays).count(),
-            c.regular_as_regular,
-            c.regular_as_rocking,
-            c.rocking_as_regular,
-            c.rocking_as_rocking,
-            b.below_basin,
-            b.basin_violations,
-            b.below_flock,
-            b.flock_violations
-        )?;
-    }
-    let ratios = |fi: usize, class: Class| {
-        let mut v: Vec<f64> = runs
-            .iter()
-            .flat_map(|r| r.reports[fi].equilibria.iter())
-            .filter(|e| e.equilibrium.class == class)
-            .filter_map(|e| e.ratio_flock)
-            .collect();
-        v.sort_by(f64::total_cmp);
-        v
+    let range = |v: Vec<f64>| {
+        let (lo, hi) =
+            (v.iter().cloned().fold(f64::INFINITY, f64::min), v.iter().cloned().fold(f64::NEG_INFINITY, f64::max));
+        format!("{lo:.2}–{hi:.2}")
     };
-    writeln!(s, "\n## Dynamic thresholds against static barriers\n")?;
-    for (fi, fname) in [(0, "push"), (1, "spin")] {
+    let mut kinds: Vec<String> = dis.iter().map(|d| d.4.clone()).collect();
+    kinds.sort();
+    kinds.dedup();
+    let rock_reg = dis.iter().filter(|d| d.1).count();
+    let disagreements = (!dis.is_empty()).then(|| {
+        json!({
+            "count": dis.len(), "rock_reg": rock_reg, "reg_rock": dis.len() - rock_reg,
+            "real": dis.iter().filter(|d| d.0 == "real").count(), "kinds": kinds.join(", "),
+            "barriers": range(dis.iter().map(|d| d.2).collect()), "thresholds": range(dis.iter().map(|d| d.3).collect()),
+        })
+    });
+    let per_stone: Vec<Value> = (runs.iter())
+        .map(|r| {
+            let (p, stable) = (&r.reports[0], r.stone.stable());
+            let (c, b) = (&p.confusion, &p.barrier_check);
+            let cells = [
+                stable.len() as u64,
+                stable.iter().filter(|e| e.class == Class::Regular).count() as u64,
+                stable.iter().filter(|e| e.class == Class::Rocking).count() as u64,
+                p.equilibria.iter().filter(|e| !e.rest.stays).count() as u64,
+                c.regular_as_regular,
+                c.regular_as_rocking,
+                c.rocking_as_regular,
+                c.rocking_as_rocking,
+            ];
+            let check =
+                format!("{} / {}; {} / {}", b.below_basin, b.basin_violations, b.below_flock, b.flock_violations);
+            json!({ "name": r.name, "nu": format!("{:.2e}", r.stone.nu), "cells": cells, "check": check })
+        })
+        .collect();
+    let mut ratios = Vec::new();
+    for (fi, family) in [(0, "push"), (1, "spin")] {
         for class in [Class::Regular, Class::Rocking] {
-            let v = ratios(fi, class);
-            if v.is_empty() {
-                continue;
+            let mut v: Vec<f64> = (runs.iter().flat_map(|r| r.reports[fi].equilibria.iter()))
+                .filter(|e| e.equilibrium.class == class)
+                .filter_map(|e| e.ratio_flock)
+                .collect();
+            v.sort_by(f64::total_cmp);
+            if let (Some(&lo), Some(&hi)) = (v.first(), v.last()) {
+                let at = |k: usize| fixed(v[k], 1);
+                ratios.push(json!({
+                    "family": family, "class": format!("{class:?}"), "n": v.len(), "median": at(v.len() / 2),
+                    "q1": at(v.len() / 4), "q3": at(3 * v.len() / 4), "lo": fixed(lo, 1), "hi": fixed(hi, 1),
+                }));
             }
-            writeln!(
-                s,
-                "- {fname}, {:?}: ε₅₀(flock) / flock barrier over {} equilibria with an interpolated threshold: median {:.1}, \
-                 quartiles {:.1}–{:.1}, range {:.1}–{:.1}.",
-                class,
-                v.len(),
-                v[v.len() / 2],
-                v[v.len() / 4],
-                v[3 * v.len() / 4],
-                v[0],
-                v[v.len() - 1]
-            )?;
         }
     }
-    let (mut below, mut viol, mut fbelow, mut fviol, mut rise) = (0, 0, 0, 0, 0.0f64);
-    let mut smallest = f64::INFINITY;
-    for r in runs {
-        for p in &r.reports {
-            let b = &p.barrier_check;
-            below += b.below_basin;
-            viol += b.basin_violations;
-            fbelow += b.below_flock;
-            fviol += b.flock_violations;
-            rise = rise.max(b.max_level_rise);
-            smallest = smallest.min(b.smallest_exit_ratio.unwrap_or(f64::INFINITY));
-        }
-    }
-    writeln!(
-        s,
-        "\nBarrier check over all runs: {below} trials below their basin barrier, {viol} left the micro-equilibrium; \
-         {fbelow} below their flock barrier, {fviol} toppled; smallest ε / basin barrier among trials that left: \
-         {smallest:.2}; largest rise of the energy level during a trial: {rise:.1e} R_max.\n"
-    )?;
-    writeln!(
-        s,
-        "![push](thresholds_vs_barriers_push.png)\n\nFiles: `equilibria.csv` (one row per equilibrium: static \
-         barriers, ε₅₀ for both families, classes), `thresholds_vs_barriers_{{push,spin}}.png`."
-    )?;
-    std::fs::write(path, s)?;
-    Ok(())
+    let checks = || runs.iter().flat_map(|r| r.reports.iter().map(|p| &p.barrier_check));
+    let smallest = checks().map(|b| b.smallest_exit_ratio.unwrap_or(f64::INFINITY)).fold(f64::INFINITY, f64::min);
+    json!({
+        "stones": runs.len(), "synthetic": of_kind(runs, Some("synthetic")).count(), "real": real().count(),
+        "trials": TRIALS, "seed": seed, "surface": SURFACE.to_string(), "pebble_r": PEBBLE_R_MAX_M.to_string(),
+        "r_lo": fixed(real().map(|r| r.r_max_m).fold(f64::INFINITY, f64::min), 3),
+        "r_hi": fixed(real().map(|r| r.r_max_m).fold(0.0, f64::max), 3),
+        "families": families, "dis": disagreements, "per_stone": per_stone, "ratios": ratios,
+        "check": {
+            "below": checks().map(|b| b.below_basin).sum::<u64>(), "viol": checks().map(|b| b.basin_violations).sum::<u64>(),
+            "fbelow": checks().map(|b| b.below_flock).sum::<u64>(), "fviol": checks().map(|b| b.flock_violations).sum::<u64>(),
+            "smallest": format!("{smallest:.2}"), "rise": format!("{:.1e}", checks().map(|b| b.max_level_rise).fold(0.0, f64::max)),
+        },
+    })
 }
