@@ -111,7 +111,16 @@ fn main() -> Result<()> {
         }
         runs.push(StoneRun { name, kind, stone, r_max_m, reports });
     }
-    out.csv("equilibria.csv", &HEADER, csv_rows(&runs))?;
+    let mut header: Vec<String> = "stone,kind,nu,equilibrium,facet,flock,flock_type,static_class,stays_at_rest,\
+                                   barrier_basin,barrier_flock"
+        .split(',')
+        .map(String::from)
+        .collect();
+    for f in ["push", "spin"] {
+        let columns = ["eps50_micro", "eps50_flock", "eps50_flock_kind", "dynamic_class_nu", "dynamic_class_10nu"];
+        header.extend(columns.map(|c| format!("{f}_{c}")));
+    }
+    out.csv("equilibria.csv", &header.iter().map(String::as_str).collect::<Vec<_>>(), csv_rows(&runs))?;
     for (fi, (family, what)) in [("push", "pushes"), ("spin", "spins")].into_iter().enumerate() {
         let points: Vec<_> = runs.iter().flat_map(|r| threshold_points(&r.reports[fi])).collect();
         let title = format!("All stones, {what}: ε₅₀ vs static barrier");
@@ -145,15 +154,7 @@ fn auc(runs: &[StoneRun], family: usize, kind: Option<&str>) -> (f64, usize, usi
             }
         }
     }
-    let score = |a: f64, b: f64| {
-        if a < b {
-            1.0
-        } else if a == b {
-            0.5
-        } else {
-            0.0
-        }
-    };
+    let score = |a: f64, b: f64| if a == b { 0.5 } else { f64::from(u8::from(a < b)) };
     let s: f64 = rock.iter().flat_map(|&a| reg.iter().map(move |&b| score(a, b))).sum();
     let n = (rock.len() * reg.len()) as f64;
     (if n > 0.0 { s / n } else { f64::NAN }, rock.len(), reg.len())
@@ -170,34 +171,11 @@ fn confusion(runs: &[StoneRun], family: usize, factor: f64, kind: Option<&str>) 
     c
 }
 
-const HEADER: [&str; 21] = [
-    "stone",
-    "kind",
-    "nu",
-    "equilibrium",
-    "facet",
-    "flock",
-    "flock_type",
-    "static_class",
-    "stays_at_rest",
-    "barrier_basin",
-    "barrier_flock",
-    "push_eps50_micro",
-    "push_eps50_flock",
-    "push_eps50_flock_kind",
-    "push_dynamic_class_nu",
-    "push_dynamic_class_10nu",
-    "spin_eps50_micro",
-    "spin_eps50_flock",
-    "spin_eps50_flock_kind",
-    "spin_dynamic_class_nu",
-    "spin_dynamic_class_10nu",
-];
-
 /// One row per equilibrium: its static barriers and, per family, ε₅₀ and the dynamic classes.
 fn csv_rows(runs: &[StoneRun]) -> Vec<Vec<String>> {
     let lower = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
-    let th = |t: &Option<Threshold>| t.map_or(String::new(), |t| format!("{:.4e}", t.value()));
+    let e4 = |x: f64| format!("{x:.4e}");
+    let th = |t: &Option<Threshold>| t.map_or(String::new(), |t| e4(t.value()));
     let kind = |t: &Option<Threshold>| t.map_or(String::new(), |t| lower(&t).split('(').next().unwrap_or("").into());
     let mut rows = Vec::new();
     for r in runs {
@@ -207,21 +185,12 @@ fn csv_rows(runs: &[StoneRun]) -> Vec<Vec<String>> {
                 Some(c) if stays => lower(&c),
                 _ => String::new(),
             };
-            let mut row = vec![r.name.clone(), r.kind.into(), format!("{:.4e}", r.stone.nu), q.index.to_string()];
+            let mut row = vec![r.name.clone(), r.kind.into(), e4(r.stone.nu), q.index.to_string()];
             row.extend([q.facet.to_string(), q.flock.to_string(), lower(&q.flock_kind), lower(&q.class)]);
-            row.extend([
-                stays.to_string(),
-                format!("{:.4e}", q.basin_exit.epsilon),
-                format!("{:.4e}", q.flock_exit.epsilon),
-            ]);
+            row.extend([stays.to_string(), e4(q.basin_exit.epsilon), e4(q.flock_exit.epsilon)]);
             for e in [ep, es] {
-                row.extend([
-                    th(&e.eps50_micro),
-                    th(&e.eps50_flock),
-                    kind(&e.eps50_flock),
-                    class(e, 1.0),
-                    class(e, 10.0),
-                ]);
+                let f = e.eps50_flock;
+                row.extend([th(&e.eps50_micro), th(&f), kind(&f), class(e, 1.0), class(e, 10.0)]);
             }
             rows.push(row);
         }
@@ -235,22 +204,16 @@ fn context(runs: &[StoneRun], seed: u64) -> Value {
     let families: Vec<Value> = [(0, "pushes"), (1, "spins about the contact")]
         .into_iter()
         .map(|(fi, name)| {
-            let tables = [("all stones, ε* = ν", 1.0, None), ("all stones, ε* = 10 ν", 10.0, None)]
-                .into_iter()
-                .chain([
-                    ("synthetic pebbles, ε* = ν", 1.0, Some("synthetic")),
-                    ("real stones, ε* = ν", 1.0, Some("real")),
-                ])
-                .map(|(title, factor, kind)| {
-                    let c = confusion(runs, fi, factor, kind);
-                    let (rr, rk, kr, kk) =
-                        (c.regular_as_regular, c.regular_as_rocking, c.rocking_as_regular, c.rocking_as_rocking);
-                    json!({
-                        "title": title, "agreement": fixed(100.0 * c.agreement(), 0), "decided": rr + rk + kr + kk,
-                        "undecided": c.undecided, "rr": rr, "rk": rk, "kr": kr, "kk": kk,
-                    })
-                })
-                .collect::<Vec<_>>();
+            let tables = [
+                ("all stones, ε* = ν", 1.0, None),
+                ("all stones, ε* = 10 ν", 10.0, None),
+                ("synthetic pebbles, ε* = ν", 1.0, Some("synthetic")),
+                ("real stones, ε* = ν", 1.0, Some("real")),
+            ]
+            .map(|(title, factor, kind)| {
+                let c = confusion(runs, fi, factor, kind);
+                json!({ "title": title, "agreement": fixed(100.0 * c.agreement(), 0), "c": c })
+            });
             let aucs = [(None, "all"), (Some("synthetic"), "synthetic"), (Some("real"), "real")].map(|(k, label)| {
                 let (a, rock, reg) = auc(runs, fi, k);
                 json!({ "label": label, "auc": fixed(a, 3), "rock": rock, "reg": reg })
@@ -290,20 +253,10 @@ fn context(runs: &[StoneRun], seed: u64) -> Value {
     let per_stone: Vec<Value> = (runs.iter())
         .map(|r| {
             let (p, stable) = (&r.reports[0], r.stone.stable());
-            let (c, b) = (&p.confusion, &p.barrier_check);
-            let cells = [
-                stable.len() as u64,
-                stable.iter().filter(|e| e.class == Class::Regular).count() as u64,
-                stable.iter().filter(|e| e.class == Class::Rocking).count() as u64,
-                p.equilibria.iter().filter(|e| !e.rest.stays).count() as u64,
-                c.regular_as_regular,
-                c.regular_as_rocking,
-                c.rocking_as_regular,
-                c.rocking_as_rocking,
-            ];
-            let check =
-                format!("{} / {}; {} / {}", b.below_basin, b.basin_violations, b.below_flock, b.flock_violations);
-            json!({ "name": r.name, "nu": format!("{:.2e}", r.stone.nu), "cells": cells, "check": check })
+            let of = |class| stable.iter().filter(|e| e.class == class).count();
+            let moving = p.equilibria.iter().filter(|e| !e.rest.stays).count();
+            let counts = [stable.len(), of(Class::Regular), of(Class::Rocking), moving];
+            json!({ "name": r.name, "nu": format!("{:.2e}", r.stone.nu), "counts": counts, "c": p.confusion, "b": p.barrier_check })
         })
         .collect();
     let mut ratios = Vec::new();
