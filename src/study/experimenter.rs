@@ -3,7 +3,7 @@
 
 use crate::analysis::Analysis;
 use crate::dynamics::certificate::CertificateMode;
-use crate::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, FORMAT};
+use crate::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
 use crate::dynamics::drops::params::{DropParams, Preset};
 use crate::dynamics::size::REFERENCE_R_MAX_M;
 use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
@@ -78,18 +78,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
         params.sim.contact.rolling_resistance *= REFERENCE_R_MAX_M / size.r_max_m;
         params.sim.contact.torsional_friction *= REFERENCE_R_MAX_M / size.r_max_m;
     }
-    let header = RunHeader {
-        format: FORMAT.into(),
-        mesh: String::new(),
-        mesh_fingerprint: String::new(),
-        seed,
-        drops: exp.trials,
-        params,
-        certificate: CertificateMode::Flock,
-        preset: None,
-        center_of_mass: None,
-        shard: crate::dynamics::drops::montecarlo::Shard::ALL,
-    };
+    let header = RunHeader::of_params("", seed, exp.trials, params, CertificateMode::Flock);
     let (_, outcomes) = run_and_summarize(&stone, &header);
     let mut found = BTreeSet::new();
     let mut settled = 0;

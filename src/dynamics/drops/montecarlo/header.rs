@@ -102,6 +102,30 @@ impl RunHeader {
         }
     }
 
+    /// The header of a whole run (shard 0/1) of `drops` drops named `mesh_name` with explicit
+    /// `params`, kept in memory: no mesh fingerprint, no preset named (set them on the result
+    /// if the run is journalled). The runs of studies and experiments.
+    pub fn of_params(
+        mesh_name: impl Into<String>,
+        seed: u64,
+        drops: u64,
+        params: DropParams,
+        certificate: CertificateMode,
+    ) -> RunHeader {
+        RunHeader {
+            format: FORMAT.into(),
+            mesh: mesh_name.into(),
+            mesh_fingerprint: String::new(),
+            seed,
+            drops,
+            params,
+            certificate,
+            preset: None,
+            center_of_mass: None,
+            shard: Shard::ALL,
+        }
+    }
+
     /// The fields (other than the shard) in which `other` differs from this header: empty when
     /// both belong to the same run.
     pub fn differences(&self, other: &RunHeader) -> Vec<String> {
