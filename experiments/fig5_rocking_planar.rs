@@ -75,11 +75,6 @@ fn main() -> Result<()> {
     }
     out.write("fig5_equilibria.csv", csv)?;
 
-    let items = [
-        (regular, "stable (stable flock)"),
-        (rocking, "rocking (stable in unstable flock)"),
-        (unstable, "unstable (unstable flock)"),
-    ];
     // Each one drawn resting on its contact point (G vertically above it) on the ground, with G,
     // the vertical through G, and the micro-equilibria: stable in stable flocks vermillion,
     // rocking orange, unstable blue.
@@ -90,7 +85,7 @@ fn main() -> Result<()> {
         (Kind::Stable, true) => colors::ORANGE,
         _ => colors::BLUE,
     };
-    let resting = |&(i, title): &(usize, &str)| {
+    let resting = |i: usize, title: &str| {
         let u = eq[i].point - g;
         let (s, c) = (-PI / 2.0 - u.y.atan2(u.x)).sin_cos();
         let gy = u.norm();
@@ -116,21 +111,22 @@ fn main() -> Result<()> {
             .markers_sized(&[(0.0, 0.0)], dot(i), Marker::Ring, 9)
             .text(format!("R = {:.4}", eq[i].r), (0.1, -0.15))
     };
-    let panels = items.iter().map(resting).collect();
+    let (mut panels, mut rows) = (Vec::new(), Vec::new());
+    for (i, title) in [
+        (regular, "stable (stable flock)"),
+        (rocking, "rocking (stable in unstable flock)"),
+        (unstable, "unstable (unstable flock)"),
+    ] {
+        panels.push(resting(i, title));
+        let d = if eq[i].kind == Kind::Stable { format!("{:.3e}", depth(i)) } else { "— (a maximum)".into() };
+        rows.push(serde_json::json!({
+            "title": title, "site": format!("{:?}", eq[i].site), "phi": format!("{:.4}", eq[i].phi),
+            "r": format!("{:.6}", eq[i].r), "flock": format!("{:?}", flock_kind(i)), "depth": d,
+        }));
+    }
     let title = format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable");
     Figure::new(title, 3, panels).save(&out.path("fig5_rocking.png"), (1500, 560))?;
-
     let c = FlockContents::of(&report.flocks);
-    let rows: Vec<_> = items
-        .iter()
-        .map(|&(i, title)| {
-            let d = if eq[i].kind == Kind::Stable { format!("{:.3e}", depth(i)) } else { "— (a maximum)".into() };
-            serde_json::json!({
-                "title": title, "site": format!("{:?}", eq[i].site), "phi": format!("{:.4}", eq[i].phi),
-                "r": format!("{:.6}", eq[i].r), "flock": format!("{:?}", flock_kind(i)), "depth": d,
-            })
-        })
-        .collect();
     out.readme(
         "fig5.md",
         include_str!("readme/fig5_rocking_planar.md"),

@@ -53,14 +53,21 @@ fn main() -> Result<()> {
         let a = Analysis::of_file(&root.join(path), &Options::default())?;
         let (nu, _) = a.macro_nu(&Options::default());
         let stone = Stone::new(&a, nu)?;
-        let mut reports = Vec::new();
+        let (mut reports, mut fits) = (Vec::new(), Vec::new());
         for preset in Preset::ALL {
             let (params, surface) = (preset.params(Surface::StoneOnStone), Surface::StoneOnStone);
             let whole = RunHeader::new(name, &a.mesh, seed, n, params, CertificateMode::Flock, (preset, surface));
             let header = RunHeader { mesh_fingerprint: String::new(), preset: Some(preset.name().into()), ..whole };
             let t = std::time::Instant::now();
-            reports.push(run_and_summarize(&stone, &header).0);
+            let r = run_and_summarize(&stone, &header).0;
             eprintln!("{name} {preset}: {:.1} s", t.elapsed().as_secs_f64());
+            let f = &r.fit_flocks;
+            fits.push(json!({
+                "preset": preset.to_string(), "chi": fixed(f.chi_square, 1), "dof": f.dof, "p": fixed(f.p_value, 3),
+                "kl": fixed(f.kl_divergence, 4), "settled": r.settled, "drops": r.drops,
+                "time": r.mean_time_to_decision.map_or("–".into(), |t| fixed(t, 2)),
+            }));
+            reports.push(r);
         }
         let mut flocks = Vec::new();
         let cell = |g: &FlockRow| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1);
@@ -72,18 +79,6 @@ fn main() -> Result<()> {
             let p = fixed(f.static_probability, 3);
             flocks.push(json!({ "id": f.id, "kind": lower(f.kind), "static": p, "cells": cells }));
         }
-        let fits: Vec<_> = Preset::ALL
-            .iter()
-            .zip(&reports)
-            .map(|(preset, r)| {
-                let f = &r.fit_flocks;
-                json!({
-                    "preset": preset.to_string(), "chi": fixed(f.chi_square, 1), "dof": f.dof, "p": fixed(f.p_value, 3),
-                    "kl": fixed(f.kl_divergence, 4), "settled": r.settled, "drops": r.drops,
-                    "time": r.mean_time_to_decision.map_or("–".into(), |t| fixed(t, 2)),
-                })
-            })
-            .collect();
         meshes.push(json!({ "name": name, "nu": format!("{nu:.3e}"), "flocks": flocks, "fits": fits }));
         plot(&out, name, &reports)?;
     }
