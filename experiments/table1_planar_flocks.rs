@@ -7,7 +7,7 @@
 //! Run: `cargo run --release --example table1_planar_flocks`.
 
 use rocking_stones::planar::{
-    ellipse_polygon, sides_for_k, table1, FlockContents, PlanarAnalysis, Sampling, Table1, DEFAULT_DEGENERACY_TOL,
+    ellipse_polygon, sides_for_k, table1, PlanarAnalysis, PlanarReport, Sampling, Table1, DEFAULT_DEGENERACY_TOL,
 };
 use rocking_stones::plot::{series_color, Axis, Chart, Mark};
 use serde_json::json;
@@ -29,31 +29,15 @@ struct Args {
     common: Common,
 }
 
-struct Measured {
-    stable: usize,
-    unstable: usize,
-    contents: FlockContents,
-    clear: bool,
-    nu: f64,
-    degenerate: usize,
-}
-
-fn measure(a: f64, k: usize) -> Result<Measured> {
+/// The report of the ellipse 1 : a with N = 4k − 2 sides, discretised in arc length.
+fn measure(a: f64, k: usize) -> Result<PlanarReport> {
     let an = PlanarAnalysis::new(ellipse_polygon(a, sides_for_k(k), Sampling::ArcLength)?, DEFAULT_DEGENERACY_TOL)?;
-    let r = an.report(None);
-    Ok(Measured {
-        stable: r.stable,
-        unstable: r.unstable,
-        contents: r.flock_contents,
-        clear: r.plateau.is_some_and(|p| p.clear),
-        nu: r.nu,
-        degenerate: r.degenerate_decisions,
-    })
+    Ok(an.report(None))
 }
 
-fn matches(m: &Measured, t: &Table1) -> bool {
-    m.contents.stable_flocks == vec![t.stable_flock; 2]
-        && m.contents.unstable_flocks == vec![t.unstable_flock; 2]
+fn matches(m: &PlanarReport, t: &Table1) -> bool {
+    m.flock_contents.stable_flocks == vec![t.stable_flock; 2]
+        && m.flock_contents.unstable_flocks == vec![t.unstable_flock; 2]
         && m.stable == t.total_stable
 }
 
@@ -66,7 +50,7 @@ fn fmt_flocks(v: &[(usize, usize)]) -> String {
 struct Ratio {
     a: f64,
     t: Table1,
-    grid: Vec<(usize, Measured, bool)>,
+    grid: Vec<(usize, PlanarReport, bool)>,
     s_of_k: Vec<(f64, f64)>,
     last_bad: usize,
     bad: usize,
@@ -111,10 +95,10 @@ fn main() -> Result<()> {
                     sides_for_k(*k).to_string(),
                     m.stable.to_string(),
                     m.unstable.to_string(),
-                    m.clear.to_string(),
+                    m.plateau.is_some_and(|p| p.clear).to_string(),
                     format!("{:.4e}", m.nu),
-                    fmt_flocks(&m.contents.stable_flocks),
-                    fmt_flocks(&m.contents.unstable_flocks),
+                    fmt_flocks(&m.flock_contents.stable_flocks),
+                    fmt_flocks(&m.flock_contents.unstable_flocks),
                     r.t.m.to_string(),
                     pair(r.t.stable_flock),
                     pair(r.t.unstable_flock),
@@ -141,20 +125,18 @@ fn main() -> Result<()> {
 
     // The jump a = √2 (a²/(2(a²−1)) = 1 exactly).
     let sqrt2 = std::f64::consts::SQRT_2;
-    let jump = SQRT2_K.iter().map(|&k| Ok((k, measure(sqrt2, k)?))).collect::<Result<Vec<_>>>()?;
+    // k, S, degenerate decisions, stable and unstable flocks.
+    let mut jump = Vec::new();
+    for k in SQRT2_K {
+        let m = measure(sqrt2, k)?;
+        let (stable, unstable) = (&m.flock_contents.stable_flocks, &m.flock_contents.unstable_flocks);
+        let d = m.degenerate_decisions;
+        jump.push([k.to_string(), m.stable.to_string(), d.to_string(), fmt_flocks(stable), fmt_flocks(unstable)]);
+    }
     out.csv(
         "table1_sqrt2.csv",
         &["a", "k", "S", "degenerate_decisions", "stable_flocks(S+U)", "unstable_flocks(S+U)"],
-        jump.iter().map(|(k, m)| {
-            [
-                format!("{sqrt2}"),
-                k.to_string(),
-                m.stable.to_string(),
-                m.degenerate.to_string(),
-                fmt_flocks(&m.contents.stable_flocks),
-                fmt_flocks(&m.contents.unstable_flocks),
-            ]
-        }),
+        jump.iter().map(|row| [&[format!("{sqrt2}")], &row[..]].concat()),
     )?;
     plot(&out, &ratios)?;
 
@@ -165,25 +147,21 @@ fn main() -> Result<()> {
             "k_scan": K_SCAN,
             "k_grid": K_GRID,
             "ratios": ratios.iter().map(|r| (r, &r.grid[K_GRID.len() - 1].1)).map(|(r, limit)| json!({
+                "limit": [
+                    format!("{}", r.a),
+                    format!("{:.4}", r.a * r.a / (2.0 * (r.a * r.a - 1.0))),
+                    r.t.m.to_string(),
+                    format!("{} / {}", pair(r.t.stable_flock), fmt_flocks(&limit.flock_contents.stable_flocks)),
+                    format!("{} / {}", pair(r.t.unstable_flock), fmt_flocks(&limit.flock_contents.unstable_flocks)),
+                    format!("{} / {}", r.t.total_stable, limit.stable),
+                    (r.last_bad + 1).to_string(),
+                    r.bad.to_string(),
+                ],
                 "a": format!("{}", r.a),
-                "x": format!("{:.4}", r.a * r.a / (2.0 * (r.a * r.a - 1.0))),
-                "t": r.t,
-                "stable": pair(r.t.stable_flock),
-                "unstable": pair(r.t.unstable_flock),
-                "limit_stable": fmt_flocks(&limit.contents.stable_flocks),
-                "limit_unstable": fmt_flocks(&limit.contents.unstable_flocks),
-                "limit_s": limit.stable,
-                "k_star": r.last_bad + 1,
-                "bad": r.bad,
                 "cells": r.grid.iter().map(|(_, m, ok)| format!("{}{}", m.stable, if *ok { " ✓" } else { "" })).collect::<Vec<_>>(),
+                "s": r.t.total_stable,
             })).collect::<Vec<_>>(),
-            "jump": jump.iter().map(|(k, m)| json!({
-                "k": k,
-                "s": m.stable,
-                "degenerate": m.degenerate,
-                "stable": fmt_flocks(&m.contents.stable_flocks),
-                "unstable": fmt_flocks(&m.contents.unstable_flocks),
-            })).collect::<Vec<_>>(),
+            "jump": jump,
         }),
     )?;
     println!("wrote results/planar/table1.{{csv,md}}, table1_convergence.{{csv,png}}, table1_sqrt2.csv");
