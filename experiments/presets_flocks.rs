@@ -55,9 +55,9 @@ fn main() -> Result<()> {
         let stone = Stone::new(&a, nu)?;
         let (mut reports, mut fits) = (Vec::new(), Vec::new());
         for preset in Preset::ALL {
-            let (params, surface) = (preset.params(Surface::StoneOnStone), Surface::StoneOnStone);
-            let whole = RunHeader::new(name, &a.mesh, seed, n, params, CertificateMode::Flock, (preset, surface));
-            let header = RunHeader { mesh_fingerprint: String::new(), preset: Some(preset.name().into()), ..whole };
+            let whole =
+                RunHeader::of_params(name, seed, n, preset.params(Surface::StoneOnStone), CertificateMode::Flock);
+            let header = RunHeader { preset: Some(preset.name().into()), ..whole };
             let t = std::time::Instant::now();
             let r = run_and_summarize(&stone, &header).0;
             eprintln!("{name} {preset}: {:.1} s", t.elapsed().as_secs_f64());
