@@ -1,39 +1,24 @@
-//! Calibration of the `throw` preset on real dice: square cuboid steel dice
-//! y × y × x thrown by hand, `data/cuboid_dice_throws.csv` (Mathematical Gazette 97,
-//! note 97.16, Table 1: seven of its fifteen dice).
+//! Calibration of the `throw` preset on real dice: square cuboid steel dice y × y × x thrown by
+//! hand, `data/cuboid_dice_throws.csv` (Mathematical Gazette 97, note 97.16, Table 1: seven of its
+//! fifteen dice). Calibration, not validation: the seven dice are the data the throw is fitted to.
 //!
-//! The throw has three free parameters, the release height H (in R_max), the rms angular speed
-//! Ω of its Gaussian spin (rad/s of the body scaled to R_max = 1 m) and its horizontal speed v
-//! (m/s, scaled); the contact (steel on wood: μ = 0.4, e = 0.5, δ = 0.2 mm for a die with
-//! y = 16 mm) is fixed from published ranges, not fitted. On a grid of (H, Ω, v) every die is
-//! thrown `N` times (common random numbers: throw i of every grid point uses stream (seed, i)),
-//! and the binomial log-likelihood of the measured counts
-//!
-//! ```text
-//! ln L(H, Ω) = Σ_dice  k ln p(H, Ω) + (n − k) ln(1 − p(H, Ω)),   k = round(p_measured · n)
-//! ```
-//!
-//! is maximised. The Monte Carlo noise of ln L (a misfitting model turns the binomial noise of
-//! the simulated p into ln L noise of ±10) is measured by re-running the best point with
-//! another seed; the uncertainty of each parameter is the range of grid values whose ln L lies
-//! within twice that noise of the best. The best grid point is then re-run
-//! with 4N throws per die for the residuals, and the curve p(square) against x/y is drawn for the
-//! calibrated throw (with its 95 % Monte Carlo band), the `drop` preset and the quasi-static
-//! basins.
-//!
-//! Calibration, not validation: the seven dice are the data the throw is fitted to.
+//! On a grid of release height H, rms spin Ω and horizontal speed v every die is thrown N times
+//! (common random numbers) and the binomial log-likelihood of the measured counts,
+//! ln L = Σ_dice k ln p + (n − k) ln(1 − p), is maximised; its Monte Carlo noise is measured by
+//! re-running the best point with another seed and 4N throws, and the grid points within twice
+//! that noise of the best are the calibrated range (the README template,
+//! `experiments/readme/cuboid_dice.md`, gives the model and the readings).
 //!
 //! Run: `cargo run --release --example cuboid_dice [-- N [H,… [Ω,… [v,…]]]]` (N = 400, as
 //! the committed results; the default grid was refined from coarser grids over H 0.5–16,
-//! Ω 0–45, v 1–8) → `results/cuboid_dice/`; the README's prose is
-//! `experiments/readme/cuboid_dice.md`.
+//! Ω 0–45, v 1–8) → `results/cuboid_dice/`.
 
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Common, Context, Parser, Result, Results};
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, Shard, FORMAT};
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
@@ -66,20 +51,8 @@ fn die(x: f64) -> Result<(Stone, f64)> {
 }
 
 /// The drops (and the count) that end on a square face, and the quasi-static fraction.
-fn p_square(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
-    let header = RunHeader {
-        format: FORMAT.into(),
-        mesh: "die".into(),
-        mesh_fingerprint: String::new(),
-        seed,
-        drops: n,
-        params: p.clone(),
-        certificate: CertificateMode::Facet,
-        preset: None,
-        center_of_mass: None,
-        shard: Shard::ALL,
-    };
-    let (report, _) = run_and_summarize(stone, &header);
+fn p_square(stone: &Stone, p: DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
+    let (report, _) = run_and_summarize(stone, &RunHeader::of_params("die", seed, n, p, CertificateMode::Facet));
     let square = || report.facets.iter().filter(|f| f.normal.z.abs() > 0.99);
     (square().map(|f| f.count).sum(), report.facet_drops, square().map(|f| f.static_probability).sum())
 }
@@ -148,28 +121,22 @@ fn main() -> Result<()> {
         .collect::<Result<_>>()?;
     let stones: Vec<(Stone, f64)> = dice.iter().map(|d| die(d.x)).collect::<Result<_>>()?;
     let t0 = Instant::now();
-    let mut grid_csv = String::from("height_rmax,spin_rad_s,horizontal_speed_m_s,log_likelihood");
-    for x in &dice {
-        write!(grid_csv, ",p_square_x{}", x.x)?;
-    }
-    grid_csv.push('\n');
+    let columns: String = dice.iter().map(|d| format!(",p_square_x{}", d.x)).collect();
+    let mut grid_csv = format!("height_rmax,spin_rad_s,horizontal_speed_m_s,log_likelihood{columns}\n");
     let (mut grid, mut drops) = (Vec::new(), 0u64);
     for &v in &args.speeds {
         for &h in &args.heights {
             for &w in &args.spins {
                 let square = |(s, r): &(Stone, f64)| {
-                    let (k, m, _) = p_square(s, &throw(h, w, v, *r), n, seed);
+                    let (k, m, _) = p_square(s, throw(h, w, v, *r), n, seed);
                     k as f64 / m as f64
                 };
                 let p: Vec<f64> = stones.iter().map(square).collect();
                 drops += n * stones.len() as u64;
                 let ll = log_likelihood(&dice, &p);
                 eprintln!("v = {v}, H = {h:>4}, Ω = {w:>4}: ln L = {ll:.1}  ({:.0} s)", t0.elapsed().as_secs_f64());
-                write!(grid_csv, "{h},{w},{v},{ll:.3}")?;
-                for q in &p {
-                    write!(grid_csv, ",{q:.4}")?;
-                }
-                grid_csv.push('\n');
+                let columns: String = p.iter().map(|q| format!(",{q:.4}")).collect();
+                writeln!(grid_csv, "{h},{w},{v},{ll:.3}{columns}")?;
                 grid.push((h, w, v, ll));
             }
         }
@@ -184,10 +151,10 @@ fn main() -> Result<()> {
         String::from("x_over_y,measured,n_rolls,throw,throw_lo,throw_hi,residual_sigma,drop_preset,quasi_static\n");
     let (mut rows, mut counts, mut residuals, mut chi2) = (Vec::new(), Vec::new(), Vec::new(), 0.0);
     for (d, (s, r)) in dice.iter().zip(&stones) {
-        let (k, m, qs) = p_square(s, &throw(best.0, best.1, best.2, *r), 4 * n, seed + 1);
+        let (k, m, qs) = p_square(s, throw(best.0, best.1, best.2, *r), 4 * n, seed + 1);
         let mut dp = Preset::Drop.params(Surface::SteelOnWood);
         Surface::SteelOnWood.scaled(&mut dp.sim.contact, *r);
-        let (kd, md, _) = p_square(s, &dp, 2 * n, seed + 2);
+        let (kd, md, _) = p_square(s, dp, 2 * n, seed + 2);
         drops += 6 * n;
         let (q, (lo, hi), pd) = (k as f64 / m as f64, wilson(k, m, 1.96), kd as f64 / md as f64);
         let z = (q - d.p) / ((d.p * (1.0 - d.p) / d.n as f64) + q * (1.0 - q) / m as f64).sqrt();
@@ -223,7 +190,7 @@ fn main() -> Result<()> {
         for (k, (s, r)) in stones.iter().enumerate() {
             let mut p = throw(best.0, best.1, best.2, *r);
             (p.sim.flight.mode, p.sim.numerics.dt) = (flight, REFERENCE_DT);
-            let (kk, m, _) = p_square(s, &p, 4 * n, seed + 1);
+            let (kk, m, _) = p_square(s, p, 4 * n, seed + 1);
             let (k_ref, m_ref) = counts[k];
             let (x2, _, _) = chi_square_homogeneity(&[k_ref, m_ref - k_ref], &[kk, m - kk]);
             per_die.push((kk as f64 / m as f64, x2));

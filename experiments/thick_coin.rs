@@ -15,7 +15,7 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, FORMAT};
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
@@ -54,26 +54,10 @@ fn coin(h: f64) -> TriMesh {
 }
 
 /// (edge count, drops, quasi-static P(edge)).
-fn p_edge(stone: &Stone, p: &DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
-    let header = RunHeader {
-        format: FORMAT.into(),
-        mesh: "coin".into(),
-        mesh_fingerprint: String::new(),
-        seed,
-        drops: n,
-        params: p.clone(),
-        certificate: CertificateMode::Facet,
-        preset: None,
-        center_of_mass: None,
-        shard: rocking_stones::dynamics::drops::montecarlo::Shard::ALL,
-    };
-    let (r, _) = run_and_summarize(stone, &header);
-    let edge = |f: &&rocking_stones::dynamics::drops::montecarlo::FacetRow| f.normal.z.abs() < 0.5;
-    (
-        r.facets.iter().filter(edge).map(|f| f.count).sum(),
-        r.facet_drops,
-        r.facets.iter().filter(edge).map(|f| f.static_probability).sum(),
-    )
+fn p_edge(stone: &Stone, p: DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
+    let (r, _) = run_and_summarize(stone, &RunHeader::of_params("coin", seed, n, p, CertificateMode::Facet));
+    let edge = || r.facets.iter().filter(|f| f.normal.z.abs() < 0.5);
+    (edge().map(|f| f.count).sum(), r.facet_drops, edge().map(|f| f.static_probability).sum())
 }
 
 /// P(edge) of the thick coin against h/d.
@@ -105,7 +89,7 @@ fn main() -> Result<()> {
         let a = Analysis::of_solid(mesh, rep, &Options::default())?;
         let stone = Stone::new(&a, 0.0035)?;
         let share = |preset: Preset| {
-            let (k, n, basin) = p_edge(&stone, &preset.params(Surface::SteelOnWood), n, seed);
+            let (k, n, basin) = p_edge(&stone, preset.params(Surface::SteelOnWood), n, seed);
             let (lo, hi) = wilson(k, n, 1.96);
             ((k as f64 / n as f64, lo, hi), basin)
         };
@@ -118,16 +102,8 @@ fn main() -> Result<()> {
         "p_edge.csv",
         &["h_over_d", "quasi_static_basin", "throw", "throw_lo", "throw_hi", "quasi_static_preset", "qs_lo", "qs_hi"],
         rows.iter().map(|r| {
-            [
-                r.hd.to_string(),
-                f4(r.basin),
-                f4(r.throw.0),
-                f4(r.throw.1),
-                f4(r.throw.2),
-                f4(r.qs.0),
-                f4(r.qs.1),
-                f4(r.qs.2),
-            ]
+            let (t, q) = (r.throw, r.qs);
+            std::iter::once(r.hd.to_string()).chain([r.basin, t.0, t.1, t.2, q.0, q.1, q.2].map(f4))
         }),
     )?;
     plot(&out, &rows)?;
