@@ -1,23 +1,13 @@
-//! What a sharper energy certificate would buy: the certificate of `dynamics::engine::run`
-//! asks the merge tree with the energy level L = E/(m g) raised by a fixed margin
-//! (`run::CERTIFICATE_MARGIN`, in R_max) and only every `run::CERTIFICATE_EVERY` steps. Here
-//! every drop is simulated to rest once (reference numerics, one stone per world, no
-//! certificate) with an observer that asks, at every step and for every margin of a sweep from
-//! 0 to the default, whether the facet or the flock would be decided. Per body, preset and
-//! level this gives, for each margin:
-//!
-//! * how many drops it decides and how many of those decisions are **wrong** (not the facet or
-//!   flock the drop actually rests on): the margin's necessity, measured;
-//! * the mean simulated time per drop a run with that margin would need (the decision's step,
-//!   or the time to rest where it never decides), checked every step and every
-//!   `CERTIFICATE_EVERY` steps: the gain a sharper margin or more frequent checks could give.
-//!
-//! The contact's compression at rest and the energy rise between relaxed states, which the
-//! margin covers, are measured per body and dt in `results/drops_dt/`.
+//! What a sharper energy certificate would buy: every drop of the three benchmark bodies is
+//! simulated to rest once without a certificate, while an observer asks at every step, for each
+//! margin of a sweep from 0 to `CERTIFICATE_MARGIN`, whether the facet or the flock would be
+//! decided: how many decisions each margin makes, how many are wrong, and the mean simulated time
+//! per drop with a check every step or every `CERTIFICATE_EVERY` steps (the template,
+//! `experiments/readme/certificate_margin.md`, explains the columns; the compression and energy
+//! rise the margin covers are measured in `results/drops_dt/`).
 //!
 //! Run: `cargo run --release --example certificate_margin [-- N]` (N = 1000 drops per body and
-//! preset) → `results/certificate_margin/`; the README's prose is
-//! `experiments/readme/certificate_margin.md`.
+//! preset) → `results/certificate_margin/`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
@@ -119,18 +109,16 @@ struct Row {
 }
 
 fn summarise(obs: &[Observed], lvl: usize, k: usize, dt: f64) -> Row {
-    let (mut decided, mut wrong, mut t1, mut tk) = (0, 0, 0.0, 0.0);
-    for o in obs {
-        let f = o.first[lvl][k];
-        if let Some((_, d)) = f.every_step {
-            decided += 1;
-            wrong += usize::from(Some(d) != o.truth[lvl]);
-        }
-        t1 += f.every_step.map_or(o.steps, |(s, _)| s) as f64 * dt;
-        tk += f.every_k.map_or(o.steps, |(s, _)| s) as f64 * dt;
+    let mean = |at: fn(&First) -> Option<(u64, usize)>| {
+        obs.iter().map(|o| at(&o.first[lvl][k]).map_or(o.steps, |(s, _)| s) as f64 * dt).sum::<f64>() / obs.len() as f64
+    };
+    let decided = || obs.iter().filter_map(|o| o.first[lvl][k].every_step.map(|(_, d)| Some(d) != o.truth[lvl]));
+    Row {
+        decided: decided().count(),
+        wrong: decided().filter(|&w| w).count(),
+        every_step: mean(|f| f.every_step),
+        every_k: mean(|f| f.every_k),
     }
-    let n = obs.len() as f64;
-    Row { decided, wrong, every_step: t1 / n, every_k: tk / n }
 }
 
 /// Decisions and simulated time against the certificate's margin.

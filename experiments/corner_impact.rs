@@ -1,23 +1,10 @@
 //! A corner impact against the closed forms of a rigid body's impact, at rapier's solver sub-steps
-//! 1–32: where the contact law's impact lies between Newton's law with Coulomb friction and a
-//! sticking compression followed by a frictionless restitution (the law's two stages), and whether
-//! the solver's sub-steps move it.
+//! 1–32: a box 1 × 0.8 × 0.5 released at rest in random orientations lands on one corner, and
+//! the spin after the impact is placed by its slip fraction φ between Newton's law with sticking
+//! friction (φ = 0) and a sticking compression followed by a frictionless restitution (φ = 1),
+//! the contact law's two stages (the closed forms and φ: `experiments/readme/corner_impact.md`).
 //!
-//! A box 1 × 0.8 × 0.5 released at rest in a random orientation (the drop launch's stream) lands
-//! on one corner (lever r from G) at speed u. Two closed forms of the rigid body
-//! (K = 𝟙/m − [r]× I⁻¹ [r]×, n = +z):
-//!
-//! * **Newton with sticking friction**: the corner leaves at e u n, P = K⁻¹ (1 + e) u n — what
-//!   Coulomb's law gives when |P_t| ≤ μ P_n (checked per orientation; sliding ones are skipped);
-//! * **sticking compression, frictionless restitution**: P_c = K⁻¹ u n, then a normal impulse
-//!   e u / K_nn — a restitution that acts without friction on a corner that had stopped.
-//!
-//! The *slip fraction* φ places the simulated spin ω on the segment between them:
-//! φ = (ω − ω_N)·(ω_F − ω_N) / |ω_F − ω_N|² (0: Newton with sticking, 1: frictionless
-//! restitution). The spin error is |ω − ω_N| / |ω_N|.
-//!
-//! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`; the README's
-//! prose is `experiments/readme/corner_impact.md`.
+//! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`.
 
 use nalgebra::{Matrix3, UnitQuaternion};
 use rocking_stones::dynamics::drops::{

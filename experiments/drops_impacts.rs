@@ -1,15 +1,9 @@
 //! How deep the ground is entered: rapier's own flight, which finds a contact only at the step
-//! boundaries, against exact landings and sub-stepped impacts (`--flight free`,
-//! `dynamics::engine::flight`, `dynamics::engine::impact`). Per body (the three benchmark bodies), preset (drop,
-//! throw) and time step (1/240, 1/120 s): N drops each way (seed 1, one stone per world, one
-//! thread, full settling), with the depth of the deepest hull corner below the ground as each run
-//! measures it after every step and sub-step (`DropOutcome::deepest_penetration`): its largest
-//! value over all drops, its 99th percentile over the drops' own largest values, the drops per
-//! second, and the χ² homogeneity of the per-flock counts of the two numerics. Then launches far
-//! beyond the presets (a 400 rad/s spin, a 200 R_max/s throw) at the default step, free flight.
+//! boundaries, against exact landings and sub-stepped impacts (`--flight free`), per benchmark
+//! body, preset and time step, then launches far beyond the presets (what is measured:
+//! `experiments/readme/drops_impacts.md`).
 //!
-//! Run: `cargo run --release --example drops_impacts [-- N]` (N = 300) → `results/drops_impacts/`;
-//! the README's prose is `experiments/readme/drops_impacts.md`.
+//! Run: `cargo run --release --example drops_impacts [-- N]` (N = 300) → `results/drops_impacts/`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;

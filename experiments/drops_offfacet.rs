@@ -1,13 +1,10 @@
-//! Why quasi-static drops on a smooth pebble "rest" above their facet, and
-//! what it does to the outcome. The quasi-static preset damps every velocity at 10 s⁻¹, so a
-//! stone on a gentle slope of its support function creeps down it at a terminal speed set by
-//! the damping — below the speed rule's thresholds (2·10⁻³ m/s, 5·10⁻³ rad/s, scaled) once the
-//! slope is small enough. The speed rule then ends the run while the stone is still on its way,
-//! up to a few 10⁻³ R_max above the facet. Here every such drop is continued (up to 30 s more,
-//! same numerics) until it is on its equilibrium: is it the facet it was counted on?
+//! Why quasi-static drops on a smooth pebble "rest" above their facet, and what it does to the
+//! outcome: the speed rule ends a damped creep down a gentle slope of the support function before
+//! the stone reaches its facet; every such drop is continued (up to 30 s more, same numerics)
+//! until it is on its equilibrium — is it the facet it was counted on?
 //!
 //! Run: `cargo run --release --example drops_offfacet [-- N]` (N = 400) → `results/drops_offfacet/`;
-//! the README's prose is `experiments/readme/drops_offfacet.md`.
+//! the explanation is in `experiments/readme/drops_offfacet.md`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
