@@ -349,7 +349,8 @@ struct Chi {
 
 impl Chi {
     fn json(&self) -> Value {
-        json!({"same": self.same, "both": self.both, "chi2": fixed(self.chi2, 1), "dof": self.dof, "p": fixed(self.p, 3)})
+        let (chi2, p) = (fixed(self.chi2, 1), fixed(self.p, 3));
+        json!({"same": self.same, "both": self.both, "chi2": chi2, "dof": self.dof, "p": p})
     }
 }
 
@@ -462,8 +463,10 @@ fn main() -> Result<()> {
         "drops": n, "sample_drops": big, "repeats": 1,
         "orientations": (0..big).map(|i| { let q = release(i); [q.w, q.i, q.j, q.k] }).collect::<Vec<_>>(),
         "height": reference.launch.height, "friction": c.friction, "restitution": c.restitution,
-        "linear_damping": c.linear_damping, "angular_damping": c.angular_damping, "dt": num.dt, "max_time": num.max_time,
-        "rest_linear_speed": rest.rest_linear_speed, "rest_angular_speed": rest.rest_angular_speed, "rest_time": rest.rest_time,
+        "linear_damping": c.linear_damping, "angular_damping": c.angular_damping, "dt": num.dt,
+        "max_time": num.max_time,
+        "rest_linear_speed": rest.rest_linear_speed, "rest_angular_speed": rest.rest_angular_speed,
+        "rest_time": rest.rest_time,
         "bodies": bodies.iter().zip(&stones).enumerate().map(|(k, ((name, _), s))| json!({
             "name": name,
             "corners": s.body.corners.iter().map(|c| [c.x, c.y, c.z]).collect::<Vec<_>>(),
@@ -625,7 +628,8 @@ fn main() -> Result<()> {
         let sample = json!({
             "unsettled": [pb.unsettled, fb.unsettled, mj[0].big.unsettled, mj[1].big.unsettled],
             "ref": big_ref.json(), "mj_steps": big_mj_steps.json(), "fast_same": big_fast_same.json(),
-            "fast_ref": big_fast_ref.json(), "steps": big_steps.json(), "same_mj": same_mj, "same_project": same_project,
+            "fast_ref": big_fast_ref.json(), "steps": big_steps.json(), "same_mj": same_mj,
+            "same_project": same_project,
             "flocks": pb.flocks.iter().map(|f| json!({
                 "id": f.id, "kind": kind(f.id), "static": fixed(f.static_probability, 3),
                 "cells": [cell(pb, f.id), cell(&mj[0].big, f.id), cell(fb, f.id), cell(&mj[1].big, f.id)],
@@ -652,7 +656,8 @@ fn main() -> Result<()> {
                 diffs[axis_of(f.id)].push(format!("{:+.3}", fraction(&mj[0].big, f.id) - f.fraction));
             }
             box_pairs = json!({
-                "pooled": [pooled(pb, false), pooled(&mj[0].big, false), pooled(fb, false), pooled(&mj[1].big, false), pooled(pb, true)],
+                "pooled": [pooled(pb, false), pooled(&mj[0].big, false), pooled(fb, false), pooled(&mj[1].big, false),
+                    pooled(pb, true)],
                 "diffs": diffs.map(|d| d.join(" / ")),
                 "apart": big_ref.p < 0.05 && flat.iter().all(|&(_, r, m, _)| (r - m).abs() > 0.01),
             });
@@ -686,9 +691,10 @@ fn main() -> Result<()> {
                 "settled": rep.settled, "certified": rep.certified, "off": rep.off_equilibrium, "same": same,
                 "agree": format!("{}/{}", vs_same.same, vs_same.both), "p": fixed(p, 2), "p_same": fixed(p_same, 2),
             }));
-            csv += &format!(
-                "\"{name}\",project,\"{}\",{},{},{:.6},{n},{:.4},{rate:.2},{rl:.4},{rs:.4},{sl:.4},{ss:.4},{us_k:.3},{:.4},{},{},{},\
-                 {p:.4},{p_same:.4},{:.5}\n",
+            csv +=
+                &format!(
+                "\"{name}\",project,\"{}\",{},{},{:.6},{n},{:.4},{rate:.2},{rl:.4},{rs:.4},{sl:.4},{ss:.4},{us_k:.3},\
+                 {:.4},{},{},{},{p:.4},{p_same:.4},{:.5}\n",
                 m.name, m.batch, m.cert.name(), m.dt, r.seconds, rep.mean_time, rep.settled, rep.certified,
                 rep.off_equilibrium, rep.fit_flocks.kl_divergence
             );
@@ -709,8 +715,15 @@ fn main() -> Result<()> {
                     "t": fixed(rep.mean_time, 2), "settled": rep.settled, "off": rep.off_equilibrium, "p": p_cell(2),
                 }));
                 csv += &format!(
-                    "\"{name}\",mujoco,\"{label}\",1,none,{:.6},{n},{secs:.4},{:.2},,,,,{us:.3},{:.4},{},0,{},{},,{:.5}\n",
-                    dts[s], nd / secs, rep.mean_time, rep.settled, rep.off_equilibrium, p_cell(4), rep.fit_flocks.kl_divergence
+                    "\"{name}\",mujoco,\"{label}\",1,none,{:.6},{n},{secs:.4},{:.2},,,,,{us:.3},{:.4},{},0,{},{},,\
+                     {:.5}\n",
+                    dts[s],
+                    nd / secs,
+                    rep.mean_time,
+                    rep.settled,
+                    rep.off_equilibrium,
+                    p_cell(4),
+                    rep.fit_flocks.kl_divergence
                 );
             }
             if side.big.unsettled > 0 {
@@ -731,26 +744,34 @@ fn main() -> Result<()> {
         let t = |s: usize| fixed(mj[s].report.mean_time, 2);
         let (loop_rate, step_rate) = (|s: usize| nd / mj[s].loop_s, |s: usize| nd / mj[s].step_s);
         ctx.push(json!({
-            "name": name, "short": short, "rows": table, "mj_rows": mj_table, "checks": checks, "sample": sample, "sub": sub,
+            "name": name, "short": short, "rows": table, "mj_rows": mj_table, "checks": checks, "sample": sample,
+            "sub": sub,
             "ratios": ratios.iter().map(|r| json!({"l": fixed(r.0, 2), "s": fixed(r.1, 2)})).collect::<Vec<_>>(),
-            "us0": fixed(us[0], 2), "us1": fixed(us[1], 2), "t0": fixed(rows[0].report.mean_time, 2), "t2": fixed(rows[2].report.mean_time, 2),
+            "us0": fixed(us[0], 2), "us1": fixed(us[1], 2), "t0": fixed(rows[0].report.mean_time, 2),
+            "t2": fixed(rows[2].report.mean_time, 2),
             "mj_step_us0": fixed(step_us(0), 2), "mj_step_us1": fixed(step_us(1), 2), "mj_loop_us0": fixed(loop_us, 2),
             "mj_t0": t(0), "mj_t1": t(1), "loop_share": fixed(100.0 * (loop_us / step_us(0) - 1.0), 0),
             "mj_loop_rate0": fixed(loop_rate(0), 1), "mj_loop_rate1": fixed(loop_rate(1), 1),
-            "mj_loop_x": fixed(loop_rate(1) / loop_rate(0), 2), "mj_step_rate0": fixed(step_rate(0), 1), "mj_step_rate1": fixed(step_rate(1), 1),
+            "mj_loop_x": fixed(loop_rate(1) / loop_rate(0), 2), "mj_step_rate0": fixed(step_rate(0), 1),
+            "mj_step_rate1": fixed(step_rate(1), 1),
             "recal_unsettled": format!("{} of {}", recal_report.unsettled, recal_report.drops),
-            "recal_t": fixed(recal_report.mean_time, 2), "recal_warned": recal_drops.iter().filter(|d| d.warnings > 0).count(),
-            "p_mj_steps": fixed(p_mj_steps, 2), "big_mj_steps_p": fixed(big_mj_steps.p, 3), "mj_steps_low": big_mj_steps.p < 0.05,
+            "recal_t": fixed(recal_report.mean_time, 2),
+            "recal_warned": recal_drops.iter().filter(|d| d.warnings > 0).count(),
+            "p_mj_steps": fixed(p_mj_steps, 2), "big_mj_steps_p": fixed(big_mj_steps.p, 3),
+            "mj_steps_low": big_mj_steps.p < 0.05,
             "widest_mj_steps": widest(&shares_mj, &mj[1].big, &mj[0].big), "same_mj_big": format!("{same_mj} of {big}"),
             "p_modes": p_modes.join(" / "), "p_fast_same": fixed(p_fast_same, 2),
-            "same_flock": [same_modes[1], same_modes[2]], "big_ref_same": format!("{} of {}", big_ref.same, big_ref.both),
+            "same_flock": [same_modes[1], same_modes[2]],
+            "big_ref_same": format!("{} of {}", big_ref.same, big_ref.both),
             "big_ref_p": fixed(big_ref.p, 3), "ref_low": big_ref.p < 0.05, "widest": widest(&shares, pb, &mj[0].big),
             "big_fast_same_p": fixed(big_fast_same.p, 3), "fast_same_low": big_fast_same.p < 0.05,
             "widest_fast_same": widest(&fast_shares, fb, &mj[1].big),
             "big_fast_ref_p": fixed(big_fast_ref.p, 3), "fast_ref_low": big_fast_ref.p < 0.05,
             "big_steps_p": fixed(big_steps.p, 3), "steps_low": big_steps.p < 0.05,
-            "same_project_big": format!("{same_project} of {big}"), "big_unsettled": format!("{} / {}", pb.unsettled, fb.unsettled),
-            "flocks": rows[0].report.flocks.iter().map(|f| json!({"id": f.id, "kind": kind(f.id), "static": fixed(f.static_probability, 3),
+            "same_project_big": format!("{same_project} of {big}"),
+            "big_unsettled": format!("{} / {}", pb.unsettled, fb.unsettled),
+            "flocks": rows[0].report.flocks.iter().map(|f| json!({"id": f.id, "kind": kind(f.id),
+            "static": fixed(f.static_probability, 3),
                 "cells": reports.iter().map(|r| cell(r, f.id)).collect::<Vec<_>>()})).collect::<Vec<_>>(),
             "kl": reports.iter().map(|r| fixed(r.fit_flocks.kl_divergence, 4)).collect::<Vec<_>>(),
         }));
@@ -759,7 +780,8 @@ fn main() -> Result<()> {
     }
     let range = |k: usize, stepping: bool| {
         let v: Vec<f64> = bars.iter().map(|(_, r)| if stepping { r[k].1 } else { r[k].0 }).collect();
-        format!("{:.1}–{:.1}×", v.iter().copied().fold(f64::INFINITY, f64::min), v.iter().copied().fold(0.0, f64::max))
+        let (lo, hi) = (v.iter().copied().fold(f64::INFINITY, f64::min), v.iter().copied().fold(0.0, f64::max));
+        format!("{lo:.1}–{hi:.1}×")
     };
     let all = |f: fn(f64) -> bool| lead.iter().all(|&q| f(q));
     let lead = [
@@ -781,21 +803,28 @@ fn main() -> Result<()> {
             "r_l": step_label(dts[0]), "d_l": step_label(dts[1]), "steps": dts.map(step_label), "substeps": SUBSTEPS,
             "height": HEIGHT.to_string(), "friction": FRICTION.to_string(), "restitution": RESTITUTION.to_string(),
             "linear_damping": LINEAR_DAMPING.to_string(), "angular_damping": ANGULAR_DAMPING.to_string(),
-            "timeconst": MJ_TIMECONST.to_string(), "rest_tolerance": REST_TOLERANCE.to_string(), "max_time": reference.sim.numerics.max_time.to_string(),
+            "timeconst": MJ_TIMECONST.to_string(), "rest_tolerance": REST_TOLERANCE.to_string(),
+            "max_time": reference.sim.numerics.max_time.to_string(),
             "mj": {
                 "version": m.mujoco_version, "python": m.python_version, "numpy": m.numpy_version, "cone": m.cone,
-                "solref0": m.solref[0].to_string(), "solref1": fixed(m.solref[1], 4), "mj1_solref0": m1.solref[0].to_string(),
-                "mj1_solref1": fixed(m1.solref[1], 4), "e": fixed(m.ball_restitution, 3), "e_speeds": fixed(m.ball_restitution_speeds, 3),
+                "solref0": m.solref[0].to_string(), "solref1": fixed(m.solref[1], 4),
+                "mj1_solref0": m1.solref[0].to_string(),
+                "mj1_solref1": fixed(m1.solref[1], 4), "e": fixed(m.ball_restitution, 3),
+                "e_speeds": fixed(m.ball_restitution_speeds, 3),
                 "e1": fixed(m1.ball_restitution, 3), "e1_speeds": fixed(m1.ball_restitution_speeds, 3),
-                "recal_solref1": fixed(r.solref[1], 4), "recal_e": fixed(r.ball_restitution, 3), "solimp": format!("{:?}", m.solimp),
-                "integrator": m.integrator, "default_integrator": m.default_integrator.trim_start_matches("mjINT_").to_lowercase(),
+                "recal_solref1": fixed(r.solref[1], 4), "recal_e": fixed(r.ball_restitution, 3),
+                "solimp": format!("{:?}", m.solimp),
+                "integrator": m.integrator,
+                "default_integrator": m.default_integrator.trim_start_matches("mjINT_").to_lowercase(),
                 "solver": m.solver.trim_start_matches("mjSOL_").to_lowercase(), "iterations": m.iterations,
                 "tolerance": format!("{:e}", m.tolerance), "steps_per_tc": fixed(MJ_TIMECONST / dts[1], 1),
                 "depends": (m.ball_restitution - m1.ball_restitution).abs() > 0.02,
             },
-            "flat": flat.iter().map(|&(dt, r, m, ms)| json!({"step": step_label(dt), "r": fixed(r, 3), "m": fixed(m, 3), "ms": fixed(ms, 3)})).collect::<Vec<_>>(),
+            "flat": flat.iter().map(|&(dt, r, m, ms)| json!({"step": step_label(dt), "r": fixed(r, 3),
+            "m": fixed(m, 3), "ms": fixed(ms, 3)})).collect::<Vec<_>>(),
             "modes": modes.iter().map(|m| &m.name).collect::<Vec<_>>(), "bodies": ctx, "box": box_pairs,
-            "ranges": {"plain": range(0, false), "plain_stepping": range(0, true), "cert": range(2, false), "default": range(3, false), "same_step": range(4, false)},
+            "ranges": {"plain": range(0, false), "plain_stepping": range(0, true), "cert": range(2, false),
+            "default": range(3, false), "same_step": range(4, false)},
             "lead": lead, "longer": longer, "negative": negative, "mj_unsettled": mj_unsettled, "warned": totals[0],
             "recal_unsettled": totals[1], "mj_timed_unsettled": totals[2] > 0, "project_unsettled": totals[3] > 0,
             "worst": {"p": fixed(worst.0, 2), "short": worst.1}, "all_same": all_same,
