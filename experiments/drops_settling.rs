@@ -1,17 +1,12 @@
-//! Do drops settle? Every mesh of `data/meshes` and the bundled stone, thrown N times
-//! with the default preset (the calibrated `throw` on steel on wood) and **no certificate**: how
-//! many come to rest before the time cap, how long it takes, how many stop off their stable
-//! facet, and where the quasi-static descent puts them (no drop can land on a non-stable facet:
-//! outcomes are read by the static theory). The default step is the preset's longest stable one
-//! (1/120 s, measured on three bodies in `results/drops_dt/`); the same throws again at the
-//! reference step 1/240 s (`--reference`, `Preset::reference`) show that the longer step does not
-//! leave a mesh unsettled that the shorter one settles.
+//! Do drops settle? Every mesh of `data/meshes` and the bundled stone, thrown N times with the
+//! default preset and no certificate, at the default step and again at the reference step
+//! (`--reference`): settled fractions, times to rest, rests off the stable facet.
 //!
 //! Run: `cargo run --release --example drops_settling [-- N]` (N = 200) →
 //! `results/drops_settling/`; the README's prose is `experiments/readme/drops_settling.md`.
 
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader, Shard, FORMAT};
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::{certificate::CertificateMode, drops::params::DropParams, drops::params::Preset};
 use std::{fmt::Write as _, path::Path, time::Instant};
@@ -41,11 +36,7 @@ fn main() -> Result<()> {
     let (n, seed) = (args.n, args.common.seed_or(1));
     let out = Results::open("drops_settling", &args.common)?;
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
-    let mut meshes = Vec::new();
-    for e in std::fs::read_dir(data.join("meshes"))? {
-        meshes.extend(Some(e?.path()).filter(|p| rocking_stones::study::is_mesh_file(p)));
-    }
-    meshes.sort();
+    let mut meshes = rocking_stones::study::mesh_files(&data.join("meshes"))?;
     meshes.push(data.join("default_pebble.ply"));
     let p = DropParams::default();
     let mut reference = p.clone();
@@ -59,25 +50,13 @@ fn main() -> Result<()> {
     let t_all = Instant::now();
     for m in &meshes {
         let name = m.file_name().unwrap_or_default().to_string_lossy().into_owned();
-        let a = match Analysis::of_file(m, &Options::default()) {
-            Ok(a) => a,
-            Err(e) => {
-                eprintln!("{name}: {e}");
-                continue;
-            }
+        let Ok(a) = Analysis::of_file(m, &Options::default()).inspect_err(|e| eprintln!("{name}: {e}")) else {
+            continue;
         };
         let stone = Stone::new(&a, a.macro_nu(&Options::default()).0)?;
         let header = RunHeader {
-            format: FORMAT.into(),
-            mesh: name.clone(),
-            mesh_fingerprint: String::new(),
-            seed,
-            drops: n,
-            params: p.clone(),
-            certificate: CertificateMode::None,
             preset: Some("throw on steel-on-wood".into()),
-            center_of_mass: None,
-            shard: Shard::ALL,
+            ..RunHeader::of_params(name.clone(), seed, n, p.clone(), CertificateMode::None)
         };
         let t0 = Instant::now();
         let (r, outcomes) = run_and_summarize(&stone, &header);
@@ -89,29 +68,17 @@ fn main() -> Result<()> {
         let frac = [r.settled as f64 / r.drops as f64, rf.settled as f64 / rf.drops as f64];
         let max_t = outcomes.values().map(|o| o.time).fold(0.0, f64::max);
         let stable = stone.facet_equilibrium.iter().filter(|e| e.is_some()).count();
+        let (facets, flocks, [f0, f1]) = (stone.body.facet_normals.len(), stone.flock_kinds.len(), frac);
+        let (drops, settled, unsettled, off, mean) = (r.drops, r.settled, r.unsettled, r.off_equilibrium, r.mean_time);
+        let ref_unsettled = rf.unsettled;
         writeln!(
             csv,
-            "{name},{},{stable},{},{},{},{},{:.4},{},{:.2},{max_t:.2},{wall:.1},{:.4},{},{h_ref:.2e}",
-            stone.body.facet_normals.len(),
-            stone.flock_kinds.len(),
-            r.drops,
-            r.settled,
-            r.unsettled,
-            frac[0],
-            r.off_equilibrium,
-            r.mean_time,
-            frac[1],
-            rf.unsettled
+            "{name},{facets},{stable},{flocks},{drops},{settled},{unsettled},{f0:.4},{off},{mean:.2},{max_t:.2},{wall:.1},{f1:.4},{ref_unsettled},{h_ref:.2e}"
         )?;
         let h = if rf.unsettled == 0 { "—".to_string() } else { format!("{h_ref:.1e}") };
-        eprintln!(
-            "{name}: {}/{} settled, {} off, mean {:.2} s, {wall:.1} s wall",
-            r.settled, r.drops, r.off_equilibrium, r.mean_time
-        );
-        let (off, mean) = (r.off_equilibrium.to_string(), fixed(r.mean_time, 2));
-        let [s0, s1] = frac.map(|f| fixed(f, 3));
-        let [u0, u1] = [r.unsettled, rf.unsettled].map(|u| u.to_string());
-        rows.push((name.clone(), frac, [name, s0, u0, off, mean, s1, u1, h]));
+        eprintln!("{name}: {settled}/{drops} settled, {off} off, {wall:.1} s wall");
+        let (off, mean, [s0, s1]) = (off.to_string(), fixed(mean, 2), frac.map(|f| fixed(f, 3)));
+        rows.push((name.clone(), frac, [name, s0, unsettled.to_string(), off, mean, s1, ref_unsettled.to_string(), h]));
     }
     let total = t_all.elapsed().as_secs_f64();
     out.write("settling.csv", csv)?;
