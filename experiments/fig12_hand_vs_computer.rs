@@ -118,24 +118,29 @@ fn comparison(rows: &[Comparison], nu: f64, name: &str, what: &str) -> Value {
         "name": name,
         "what": what,
         "nu": format!("{nu:.2e}"),
-        "trends": trends.map(|(label, h, c)| json!({"label": label, "hand": describe(h), "sim": describe(c)})),
+        "trends": trends.map(|(label, h, c)| [label.to_string(), describe(h), describe(c)]),
         "rise": t.hand_es_cb.zip(t.sim_es_cb).map(|(h, c)| json!({
             "hand": f2(h.slope), "sim": f2(c.slope), "hand_r2": f2(h.r2), "sim_r2": f2(c.r2),
         })),
         "diff": diffs.collect::<Vec<_>>(),
-        "rows": rows.iter().map(|r| json!({
-            "id": r.id,
-            "cb": f2(r.hand_c_over_b),
-            "ca": f2(r.hand_c_over_a),
-            "hand": four(r.hand),
-            "sim": four(r.sim.as_array()),
-            "paper": r.paper_computer.map_or(String::new(), four),
-        })).collect::<Vec<_>>(),
+        "rows": rows.iter().map(|r| [
+            r.id.clone(),
+            f2(r.hand_c_over_b),
+            f2(r.hand_c_over_a),
+            four(r.hand),
+            four(r.sim.as_array()),
+            r.paper_computer.map_or(String::new(), four),
+        ]).collect::<Vec<_>>(),
     })
 }
 
 /// The dynamic experimenter on the scanned samples: `dynamic_experimenter.csv` and the README's rows.
-fn dynamic_experimenter(out: &Results, hand: &[HandSample], params: &PopulationParams, nu: f64) -> Result<Vec<Value>> {
+fn dynamic_experimenter(
+    out: &Results,
+    hand: &[HandSample],
+    params: &PopulationParams,
+    nu: f64,
+) -> Result<Vec<[String; 7]>> {
     let scanned: Vec<&HandSample> = hand.iter().filter(|h| h.computer.is_some()).collect();
     let targets: Vec<_> = scanned.iter().map(|h| h.target()).collect();
     let p = PopulationParams { count: 20, ..params.clone() };
@@ -151,18 +156,9 @@ fn dynamic_experimenter(out: &Results, hand: &[HandSample], params: &PopulationP
     let f4 = |x: Option<f64>| format!("{:.4}", x.unwrap_or(f64::NAN));
     out.csv(
         "dynamic_experimenter.csv",
-        &[
-            "sample",
-            "nu",
-            "hand_E_S",
-            "hand_sd_S",
-            "static_E_S",
-            "static_sd_S",
-            "trials",
-            "dyn_E_S",
-            "dyn_sd_S",
-            "dyn_rocking",
-        ],
+        &"sample nu hand_E_S hand_sd_S static_E_S static_sd_S trials dyn_E_S dyn_sd_S dyn_rocking"
+            .split(' ')
+            .collect::<Vec<_>>(),
         scanned.iter().flat_map(|h| {
             TRIALS.iter().enumerate().map(move |(k, trials)| {
                 let g = get(k, &h.id);
@@ -181,18 +177,16 @@ fn dynamic_experimenter(out: &Results, hand: &[HandSample], params: &PopulationP
             })
         }),
     )?;
-    let pm = |m: f64, s: f64| format!("{m:.2} ± {s:.2}");
+    // sample, hand, static, dynamic at each number of trials, rocking found at the most.
+    let pm = |m: f64, s: Option<f64>| format!("{m:.2} ± {:.2}", s.unwrap_or(f64::NAN));
+    let dynamic = |k: usize, id: &str| pm(get(k, id).dyn_es.unwrap_or(f64::NAN), get(k, id).dyn_sd_s);
     Ok(scanned
         .iter()
         .map(|h| {
-            let g = |k| get(k, &h.id);
-            json!({
-                "id": h.id,
-                "hand": pm(h.hand[0], h.hand[2]),
-                "static": pm(g(0).hand.es, g(0).hand.sd_s),
-                "dynamic": (0..TRIALS.len()).map(|k| pm(g(k).dyn_es.unwrap_or(f64::NAN), g(k).dyn_sd_s.unwrap_or(f64::NAN))).collect::<Vec<_>>(),
-                "rocking": format!("{:.2}", g(2).dyn_rocking.unwrap_or(f64::NAN)),
-            })
+            let rocking = format!("{:.2}", get(2, &h.id).dyn_rocking.unwrap_or(f64::NAN));
+            let (hand, stat) =
+                (pm(h.hand[0], Some(h.hand[2])), pm(get(0, &h.id).hand.es, Some(get(0, &h.id).hand.sd_s)));
+            [h.id.clone(), hand, stat, dynamic(0, &h.id), dynamic(1, &h.id), dynamic(2, &h.id), rocking]
         })
         .collect())
 }
@@ -213,12 +207,8 @@ fn field_study(out: &Results, root: &Path) -> Result<Value> {
     let meta_path = dir.join("metadata.csv");
     std::fs::write(&meta_path, &meta)?;
     let meta = Metadata::read(&meta_path)?;
-    let opts = StudyOptions {
-        analysis: Options::default(),
-        nu: PAPER_NU,
-        experimenter: Some(Experimenter::default()),
-        allow_unmatched: false,
-    };
+    let experimenter = Some(Experimenter::default());
+    let opts = StudyOptions { analysis: Options::default(), nu: PAPER_NU, experimenter, allow_unmatched: false };
     let t = std::time::Instant::now();
     let (mut study, _) = study::run_files(&files, Some(&meta), &opts, &|| {})?;
     eprintln!("field study: {:.1} s", t.elapsed().as_secs_f64());
