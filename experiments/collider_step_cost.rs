@@ -6,9 +6,10 @@
 //!
 //! Scenario per size and collider: the pebble is released just above a half-space ground in a
 //! tilted orientation, never allowed to sleep, and stepped at dt = 1/60 s; it rolls and rocks
-//! (small hulls come to rest within the run, the smooth large ones keep rolling). The mean wall time of `PhysicsPipeline::step` over the steps after a short
-//! warm-up is the figure (fastest of several repeats). The per-call cost of the three shape
-//! queries on the hot path (world AABB, support point, support feature) is timed separately.
+//! (small hulls come to rest within the run, the smooth large ones keep rolling). The mean wall
+//! time of `PhysicsPipeline::step` over the steps after a short warm-up is the figure (fastest
+//! of several repeats). The per-call cost of the three shape queries on the hot path (world
+//! AABB, support point, support feature) is timed separately.
 //!
 //! Run: `cargo run --release --example collider_step_cost` → `results/collider_step_cost/`
 //! (`step_cost.csv`, `README.md`, its prose `experiments/readme/collider_step_cost.md`).
@@ -172,31 +173,17 @@ fn main() -> Result<()> {
         let builds = [build_ours, build_parry];
         for (k, collider) in ["HullShape", "ConvexPolyhedron"].into_iter().enumerate() {
             let (step_us, queries_ns, build_ms) = (times[k], queries[k], builds[k]);
-            let row = Row { target, sizes, collider, step_us, last: last[k], queries_ns, build_ms };
-            println!(
-                "{:>6} corners  {collider:<16} {step_us:>8.2} µs/step  aabb {:>8.1} ns  support {:>8.1} ns  feature {:>8.1} ns",
-                sizes[0], queries_ns[0], queries_ns[1], queries_ns[2]
-            );
-            rows.push(row);
+            println!("{:>6} corners  {collider:<16} {step_us:>8.2} µs/step, queries {queries_ns:.1?} ns", sizes[0]);
+            rows.push(Row { target, sizes, collider, step_us, last: last[k], queries_ns, build_ms });
         }
     }
     let sizes = |r: &Row| r.sizes.map(|n| n.to_string());
     out.csv(
         "step_cost.csv",
-        &[
-            "target_points",
-            "hull_corners",
-            "hull_facets",
-            "parry_faces",
-            "collider",
-            "us_per_step",
-            "aabb_ns",
-            "support_point_ns",
-            "support_feature_ns",
-            "build_ms",
-            "final_speed",
-            "final_spin",
-        ],
+        &"target_points,hull_corners,hull_facets,parry_faces,collider,us_per_step,aabb_ns,support_point_ns,\
+          support_feature_ns,build_ms,final_speed,final_spin"
+            .split(',')
+            .collect::<Vec<_>>(),
         rows.iter().map(|r| {
             let mut v = vec![r.target.to_string()];
             v.extend(sizes(r));

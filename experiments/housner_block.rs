@@ -112,15 +112,9 @@ fn main() -> Result<()> {
     let f5 = |x: f64| fixed(x, 5);
     out.csv(
         "tipping.csv",
-        &[
-            "tan_alpha",
-            "setting",
-            "ramp_rate_g_per_s",
-            "measured_g",
-            "detection_lag_g",
-            "corrected_g",
-            "relative_error",
-        ],
+        &"tan_alpha,setting,ramp_rate_g_per_s,measured_g,detection_lag_g,corrected_g,relative_error"
+            .split(',')
+            .collect::<Vec<_>>(),
         tips.iter().map(|t| {
             [t.tan_a.to_string(), t.setting.into(), t.rate.to_string()]
                 .into_iter()
