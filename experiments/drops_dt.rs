@@ -24,9 +24,7 @@ use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::certificate::{CertificateMode, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
-use rocking_stones::dynamics::drops::montecarlo::{
-    run_drops_batched, summarize, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
-};
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, RunHeader, Shard, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
@@ -101,18 +99,8 @@ fn main() -> Result<()> {
             for (k, &dt) in DTS.iter().enumerate() {
                 let mut params = preset.params(Surface::SteelOnWood);
                 params.sim.numerics.dt = dt;
-                let header = RunHeader {
-                    format: FORMAT.into(),
-                    mesh: name.clone(),
-                    mesh_fingerprint: String::new(),
-                    seed: seed + k as u64,
-                    drops: n,
-                    params: params.clone(),
-                    certificate: CertificateMode::None,
-                    preset: Some(preset.name().into()),
-                    center_of_mass: None,
-                    shard: Shard::ALL,
-                };
+                let mut header = RunHeader::of_params(name, seed + k as u64, n, params.clone(), CertificateMode::None);
+                header.preset = Some(preset.name().into());
                 let (sink, t) = (Mutex::new(|_: &DropOutcome| {}), std::time::Instant::now());
                 let none = BTreeMap::new();
                 let outcomes = pool.install(|| {
