@@ -82,6 +82,8 @@ impl Axis {
     }
 
     fn tick_text(&self, v: f64) -> String {
+        // A tick at zero that the range arithmetic left at ±10⁻¹⁷ is written as zero.
+        let v = if v.abs() < 1e-9 * (self.hi - self.lo).abs() { 0.0 } else { v };
         match &self.format {
             Some(f) => f(v),
             None if self.log => log_tick(v),
@@ -460,6 +462,15 @@ where
 mod tests {
     use super::*;
     use crate::plot::colors;
+
+    #[test]
+    fn a_tick_at_zero_left_at_rounding_noise_reads_zero() {
+        let axis = Axis::linear("x", -0.3, 0.3);
+        assert_eq!(axis.tick_text(-2.78e-17), "0");
+        assert_eq!(axis.tick_text(0.1), "0.1");
+        // Small but real values are kept.
+        assert_eq!(Axis::linear("x", 0.0, 1e-6).tick_text(2e-7), "0.0000002");
+    }
 
     fn svg_of(figure: &Figure, size: (u32, u32)) -> String {
         super::super::init_fonts();
