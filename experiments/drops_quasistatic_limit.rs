@@ -12,7 +12,7 @@
 
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, Fit, RunHeader, Shard, FORMAT};
+use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, Fit, RunHeader};
 use rocking_stones::dynamics::drops::params::{DropParams, Launch};
 use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::stone::Stone;
@@ -41,18 +41,7 @@ struct Row {
 
 /// `drops` drops of `stone` from rest at `params`, certified per facet: the report and the wall time (s).
 fn run(stone: &Stone, mesh: &str, params: DropParams, seed: u64, drops: u64) -> (DropReport, f64) {
-    let header = RunHeader {
-        format: FORMAT.into(),
-        mesh: mesh.into(),
-        mesh_fingerprint: String::new(),
-        seed,
-        drops,
-        params,
-        certificate: CertificateMode::Facet,
-        preset: None,
-        center_of_mass: None,
-        shard: Shard::ALL,
-    };
+    let header = RunHeader::of_params(mesh, seed, drops, params, CertificateMode::Facet);
     let t = std::time::Instant::now();
     let (report, _) = run_and_summarize(stone, &header);
     (report, t.elapsed().as_secs_f64())
