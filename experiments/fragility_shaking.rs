@@ -10,113 +10,39 @@
 //! filtered noise, predominant period 0.4 s, 10 s; `ground_motion::synthetic::filtered_noise`),
 //! written to `motion.csv` and read back through the same reader as the CLI's `--motion`.
 //!
-//! Run: `cargo run --release --example fragility_shaking` → `results/fragility_shaking/`.
+//! Run: `cargo run --release --example fragility_shaking` → `results/fragility_shaking/`; the
+//! README's prose is `experiments/readme/fragility_shaking.md`.
 
-use plotters::style::RGBColor;
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::resting::outcome::{CurvePoint, Threshold};
+use rocking_stones::dynamics::resting::outcome::{Outcome, Threshold};
 use rocking_stones::dynamics::resting::{default_pair, RestingParams};
-use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig, ShakeReport};
-use rocking_stones::dynamics::stone::{Class, Stone};
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::generate;
+use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig};
+use rocking_stones::dynamics::{stone::Class, surface::Surface};
 use rocking_stones::ground_motion::read::{read_record, AccelUnit};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
-use rocking_stones::ground_motion::Record;
-use rocking_stones::report;
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use rocking_stones::{generate, plot::RGBColor, report::shake as report};
+use serde_json::json;
+
+#[path = "shared/harness.rs"]
+mod harness;
+#[path = "shared/rocks.rs"]
+mod rocks;
+use harness::{fixed, Common, Context, Parser, Result, Results};
 
 const TRIALS: u32 = 40;
-const SEED: u64 = 1963;
 const FREQUENCIES: [f64; 4] = [0.5, 1.0, 2.0, 4.0];
 /// R_max of the boulder (m): real and scaled time agree.
 const R_MAX_M: f64 = 1.0;
 /// The surface pair.
 const SURFACE: Surface = Surface::StoneOnStone;
 
-fn main() -> anyhow::Result<()> {
-    let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("results/fragility_shaking");
-    std::fs::create_dir_all(&out)?;
-    let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
-    let (seed, stone, regular, rocking) = (0..50u64)
-        .find_map(|seed| {
-            let (mesh, rep) = generate::pebble([1.0, 0.75, 0.5], 0.02, 600, seed).into_solid_boundary().ok()?;
-            let a = Analysis::of_solid(mesh, rep, &Options::default()).ok()?;
-            let (nu, _) = a.macro_nu(&Options::default());
-            let stone = Stone::new(&a, nu).ok()?;
-            let (reg, rock) = default_pair(&stone, &params);
-            let ok = rock.is_some_and(|r| stone.stable()[r].basin_exit.epsilon >= 1e-4) && reg.is_some();
-            ok.then(|| (seed, stone, reg.unwrap(), rock.unwrap()))
-        })
-        .expect("a pebble with a rocking equilibrium");
-    eprintln!("pebble seed {seed}: regular {regular}, rocking {rocking}");
-    let noise = Noise { duration: 10.0, period: 0.4, ..Noise::default() };
-    let record = filtered_noise(&noise, 1.0, SEED)?;
-    let csv = out.join("motion.csv");
-    report::shake::write_record(&csv, &record)?;
-    let dt = params.sim.numerics.dt * R_MAX_M.sqrt();
-    let mut motions: Vec<(String, Record)> = FREQUENCIES
-        .iter()
-        .map(|&f| Ok((format!("pulse_{f}Hz"), sine_pulse(1.0, f, 2.0, dt)?)))
-        .collect::<rocking_stones::Result<_>>()?;
-    let columns = "time_s,ax_g,ay_g,az_g".parse()?;
-    let mut read_back = read_record(&[csv.as_path()], &columns, AccelUnit::G)?;
-    read_back.name = format!("{}, read back from motion.csv", record.name);
-    motions.push(("record".into(), read_back));
-    let pgas: Vec<f64> = (1..=40).map(|i| 0.025 * i as f64).collect();
-    let mut runs: Vec<(String, ShakeReport)> = Vec::new();
-    for (name, motion) in motions {
-        let cfg = ShakeConfig {
-            params: params.clone(),
-            motion,
-            pgas: pgas.clone(),
-            trials: TRIALS,
-            seed: SEED,
-            azimuth: None,
-            r_max_m: R_MAX_M,
-        };
-        let t = std::time::Instant::now();
-        let r = shaking::sweep_fragility(&stone, &[regular, rocking], &cfg)?;
-        eprintln!("{name}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
-        eprint!("{}", report::shake::summary(&r, "pebble"));
-        let lines: Vec<(String, &[CurvePoint], RGBColor)> = r
-            .fragility
-            .iter()
-            .map(|f| {
-                let q = &f.equilibrium;
-                let (label, color) = match q.class {
-                    Class::Regular => ("regular", RGBColor(200, 60, 40)),
-                    Class::Rocking => ("rocking", RGBColor(40, 90, 200)),
-                };
-                (format!("{label}: eq {} ({} flock {})", q.index, q.flock_kind, q.flock), f.curve.as_slice(), color)
-            })
-            .collect();
-        let markers: Vec<(f64, String, RGBColor)> = r
-            .fragility
-            .iter()
-            .map(|f| {
-                let q = &f.equilibrium;
-                let color = match q.class {
-                    Class::Regular => RGBColor(230, 150, 130),
-                    Class::Rocking => RGBColor(130, 160, 230),
-                };
-                (q.uplift_acceleration, format!("static uplift, eq {}: {:.3} g", q.index, q.uplift_acceleration), color)
-            })
-            .collect();
-        report::shake::plot_fragility(
-            &out.join(format!("fragility_{name}.png")),
-            &format!("Fragility: {}", r.motion.name),
-            &lines,
-            &markers,
-        )?;
-        report::shake::write_fragility_csv(&out.join(format!("fragility_{name}.csv")), &r)?;
-        runs.push((name, r));
-    }
-    readme(&out.join("README.md"), seed, &stone, &runs)?;
-    Ok(())
+/// Fragility curves of the rocking and the regular equilibrium of a pebble.
+#[derive(Parser)]
+struct Args {
+    #[command(flatten)]
+    common: Common,
 }
 
+/// A PGA₅₀ as the README writes it: "≤ x", "x" or "> x" (g), "–" when there is none.
 fn th(t: &Option<Threshold>) -> String {
     match t {
         None => "–".into(),
@@ -126,89 +52,81 @@ fn th(t: &Option<Threshold>) -> String {
     }
 }
 
-fn readme(path: &Path, seed: u64, stone: &Stone, runs: &[(String, ShakeReport)]) -> anyhow::Result<()> {
-    let mut s = String::new();
-    let params = &runs[0].1.params;
-    writeln!(s, "# Fragility under ground shaking: rocking vs regular equilibrium\n")?;
-    writeln!(s, "Regenerate: `cargo run --release --example fragility_shaking`.\n")?;
-    writeln!(
-        s,
-        "Pebble `generate::pebble([1, 0.75, 0.5], 0.02, 600, seed {seed})` (the one of `fig11_rocking_vs_regular`), \
-         flocks at ν = {:.3e}. The ground is driven horizontally along a uniformly random azimuth per trial \
-         (trial k has the same azimuth at every PGA), {TRIALS} trials per PGA, PGA from 0.025 g to 1 g in steps of \
-         0.025 g, seed {SEED}. The stone is a boulder of R_max = {R_MAX_M} m on rock: the contact of every resting \
-         run ({SURFACE}: friction {}, restitution {}, rolling resistance δ = {:.1e} R_max through the contact, no \
-         global damping; 120 Hz contacts, dt 1/240 s scaled), rest by positions over 0.5 s windows. Outcome after \
-         the motion, once the stone rests relative to the ground: same micro-equilibrium, another of its flock, or \
-         toppled out of the flock (plotted).\n",
-        stone.nu, params.sim.contact.friction, params.sim.contact.restitution, params.sim.contact.rolling_resistance,
-    )?;
-    writeln!(
-        s,
-        "**Units.** Accelerations are in g and hold for any size. Times and frequencies scale with √(R_max/1 m) \
-         (Froude similarity; only the rolling-resistance length δ/R_max breaks it, and it is 10⁻⁴ here): a pulse \
-         of f Hz on this 1 m boulder is f/√L Hz for a stone of R_max = L m.\n"
-    )?;
-    writeln!(s, "| scaled (1 m) | 3 cm pebble | 10 cm cobble | 2 m boulder | 5 m rock |\n|---|---|---|---|---|")?;
-    for f in [0.5, 1.0, 2.0, 4.0] {
-        let real = |l: f64| f / l.sqrt();
-        writeln!(
-            s,
-            "| {f} Hz | {:.2} Hz | {:.2} Hz | {:.2} Hz | {:.2} Hz |",
-            real(0.03),
-            real(0.1),
-            real(2.0),
-            real(5.0)
-        )?;
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let shake_seed = args.common.seed_or(1963);
+    let out = Results::open("fragility_shaking", &args.common)?;
+    let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
+    let (seed, stone, regular, rocking) = (0..50u64)
+        .find_map(|seed| {
+            let stone = rocks::of_mesh(generate::pebble([1.0, 0.75, 0.5], 0.02, 600, seed), None).ok()?;
+            match default_pair(&stone, &params) {
+                (Some(g), Some(k)) if stone.stable()[k].basin_exit.epsilon >= 1e-4 => Some((seed, stone, g, k)),
+                _ => None,
+            }
+        })
+        .context("no pebble with a rocking equilibrium")?;
+    eprintln!("pebble seed {seed}: regular {regular}, rocking {rocking}");
+    let noise = Noise { duration: 10.0, period: 0.4, ..Noise::default() };
+    let record = filtered_noise(&noise, 1.0, shake_seed)?;
+    let csv = out.path("motion.csv");
+    report::write_record(&csv, &record)?;
+    let dt = params.sim.numerics.dt * R_MAX_M.sqrt();
+    let mut motions = Vec::new();
+    for f in FREQUENCIES {
+        motions.push((format!("pulse_{f}Hz"), sine_pulse(1.0, f, 2.0, dt)?));
     }
-    writeln!(s, "\n| motion | equilibrium | class | static uplift (g) | PGA₅₀ leave micro | PGA₅₀ topple | first topple (g) | trials below uplift: left micro / n |")?;
-    writeln!(s, "|---|---|---|---|---|---|---|---|")?;
-    for (name, r) in runs {
+    let mut read_back = read_record(&[csv.as_path()], &"time_s,ax_g,ay_g,az_g".parse()?, AccelUnit::G)?;
+    read_back.name = format!("{}, read back from motion.csv", record.name);
+    motions.push(("record".into(), read_back));
+    let pgas: Vec<f64> = (1..=40).map(|i| 0.025 * i as f64).collect();
+    let (mut rows, mut names, mut first) = (Vec::new(), Vec::new(), None);
+    for (name, motion) in motions {
+        let (trials, seed, azimuth, r_max_m) = (TRIALS, shake_seed, None, R_MAX_M);
+        let cfg = ShakeConfig { params: params.clone(), motion, pgas: pgas.clone(), trials, seed, azimuth, r_max_m };
+        let t = std::time::Instant::now();
+        let r = shaking::sweep_fragility(&stone, &[regular, rocking], &cfg)?;
+        eprintln!("{name}: {} trials in {:.1} s", r.trials.len(), t.elapsed().as_secs_f64());
+        eprint!("{}", report::summary(&r, "pebble"));
+        // Each equilibrium's curve and static uplift, in its class's colours (line, marker).
+        let mut lines = Vec::new();
+        let mut markers = Vec::new();
         for f in &r.fragility {
             let q = &f.equilibrium;
-            let below: Vec<_> = r
-                .trials
-                .iter()
-                .filter(|t| t.start == f.equilibrium_position(stone) && t.pga < q.uplift_acceleration)
-                .collect();
-            let left =
-                below.iter().filter(|t| t.outcome != rocking_stones::dynamics::resting::outcome::Outcome::Same).count();
-            writeln!(
-                s,
-                "| {name} | {} (facet {}) | {} | {:.3} | {} | {} | {} | {left} / {} |",
-                q.index,
-                q.facet,
-                q.class,
-                q.uplift_acceleration,
-                th(&f.pga50_micro),
-                th(&f.pga50_flock),
-                f.first_topple.map_or("–".into(), |x| format!("{x:.3}")),
-                below.len()
-            )?;
+            let (label, line, marker) = match q.class {
+                Class::Regular => ("regular", RGBColor(200, 60, 40), RGBColor(230, 150, 130)),
+                Class::Rocking => ("rocking", RGBColor(40, 90, 200), RGBColor(130, 160, 230)),
+            };
+            let uplift = q.uplift_acceleration;
+            lines.push((format!("{label}: eq {} ({} flock {})", q.index, q.flock_kind, q.flock), &f.curve[..], line));
+            markers.push((uplift, format!("static uplift, eq {}: {uplift:.3} g", q.index), marker));
+            // The trials below the static uplift, and those of them that left the micro-equilibrium.
+            let at = stone.position(q.index).context("a stable equilibrium")?;
+            let below: Vec<_> = r.trials.iter().filter(|t| t.start == at && t.pga < uplift).collect();
+            let left = below.iter().filter(|t| t.outcome != Outcome::Same).count();
+            rows.push(json!({
+                "motion": name, "index": q.index, "facet": q.facet, "class": q.class.to_string(),
+                "uplift": fixed(uplift, 3), "micro": th(&f.pga50_micro), "flock": th(&f.pga50_flock),
+                "first": f.first_topple.map_or("–".into(), |x| fixed(x, 3)), "left": left, "below": below.len(),
+            }));
         }
+        let title = format!("Fragility: {}", r.motion.name);
+        report::plot_fragility(&out.path(&format!("fragility_{name}.png")), &title, &lines, &markers)?;
+        report::write_fragility_csv(&out.path(&format!("fragility_{name}.csv")), &r)?;
+        first.get_or_insert(r.params);
+        names.push(name);
     }
-    writeln!(s)?;
-    for (name, _) in runs {
-        writeln!(s, "![{name}](fragility_{name}.png)\n")?;
-    }
-    writeln!(
-        s,
-        "Static uplift: the quasi-static horizontal acceleration that lifts the stone off its resting facet in the \
-         most fragile direction, (distance from the stable point to the nearest side of the facet) / R_F — Housner's \
-         tan α for a block. Below it a rigid stone on a rigid ground does not move at all.\n\nFiles: \
-         `fragility_<motion>.csv` (per PGA: counts, P(topple) with 95 % Wilson intervals), `motion.csv` (the \
-         accelerogram: time in s, acceleration in g; scaled to each PGA)."
-    )?;
-    std::fs::write(path, s)?;
-    Ok(())
-}
-
-trait Position {
-    fn equilibrium_position(&self, stone: &Stone) -> usize;
-}
-
-impl Position for shaking::Fragility {
-    fn equilibrium_position(&self, stone: &Stone) -> usize {
-        stone.position(self.equilibrium.index).expect("a stable equilibrium")
-    }
+    let contact = first.context("no motion was run")?.sim.contact;
+    let units = FREQUENCIES.map(|f| [0.03, 0.1, 2.0, 5.0].map(|l: f64| fixed(f / l.sqrt(), 2)));
+    out.readme(
+        "README.md",
+        include_str!("readme/fragility_shaking.md"),
+        json!({
+            "seed": seed, "nu": format!("{:.3e}", stone.nu), "trials": TRIALS, "shake_seed": shake_seed,
+            "r_max": R_MAX_M.to_string(), "surface": SURFACE.to_string(), "friction": contact.friction.to_string(),
+            "restitution": contact.restitution.to_string(), "delta": format!("{:.1e}", contact.rolling_resistance),
+            "units": FREQUENCIES.iter().zip(units).map(|(f, u)| json!({"f": f.to_string(), "real": u})).collect::<Vec<_>>(),
+            "rows": rows, "names": names,
+        }),
+    )
 }
