@@ -34,7 +34,7 @@ use std::time::Instant;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 
 /// Pebble generator point counts, chosen for ~10², 10³, 10⁴ and 3·10⁴ hull corners (all points are
 /// corners up to ~10³; the fraction drops for denser samplings of the rough surface).
@@ -119,17 +119,10 @@ struct Row {
     build_ms: f64,
 }
 
-/// The per-step cost of `HullShape` against parry's `ConvexPolyhedron`.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("collider_step_cost", &args.common)?;
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(args.common.seed_or(2024));
+    let common = harness::common_args("The per-step cost of `HullShape` against parry's `ConvexPolyhedron`.");
+    let out = Results::open("collider_step_cost", &common)?;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(common.seed_or(2024));
     let mut unit = || {
         let mut g = || rng.sample::<f64, _>(StandardNormal) as Real;
         Vector::new(g(), g(), g()).normalize()

@@ -17,7 +17,7 @@ use rocking_stones::{analysis::Analysis, analysis::Options, generate, rng::item_
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 
 const SUBSTEPS: [usize; 6] = [1, 2, 4, 8, 16, 32];
 const RESTITUTIONS: [f64; 2] = [0.2, 0.5];
@@ -27,13 +27,6 @@ const ORIENTATIONS: u64 = 40;
 /// Least height (R_max) of the second-lowest corner above the lowest at release: the impact is
 /// one corner's, as the closed forms assume.
 const SECOND_CORNER: f64 = 0.05;
-
-/// Where a box's corner impact lies between the closed forms, at solver sub-steps 1–32.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
 
 /// The stone's states just before and just after its first impact (the first step that turns it).
 fn first_impact(stone: &Stone, q: UnitQuaternion<f64>, e: f64, substeps: usize) -> Result<(BodyState, BodyState)> {
@@ -66,9 +59,10 @@ fn stats(mut v: Vec<f64>) -> [f64; 3] {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let seed = args.common.seed_or(3);
-    let out = Results::open("corner_impact", &args.common)?;
+    let common =
+        harness::common_args("Where a box's corner impact lies between the closed forms, at solver sub-steps 1–32.");
+    let seed = common.seed_or(3);
+    let out = Results::open("corner_impact", &common)?;
     let (mesh, rep) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary()?;
     let a = Analysis::of_solid(mesh, rep, &Options::default())?;
     let stone = Stone::new(&a, a.macro_nu(&Options::default()).0)?;

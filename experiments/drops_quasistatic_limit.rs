@@ -22,7 +22,7 @@ use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 
 const DROPS: u64 = 2000;
 const HEIGHTS: [f64; 6] = [0.002, 0.01, 0.03, 0.1, 0.3, 1.0];
@@ -62,17 +62,10 @@ fn num4(x: f64) -> String {
     }
 }
 
-/// Drops at vanishing energy against the quasi-static basins.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (seed, damping_seed) = (args.common.seed_or(2024), args.common.seed_or(2024) + 1);
-    let out = Results::open("drops_quasistatic_limit", &args.common)?;
+    let common = harness::common_args("Drops at vanishing energy against the quasi-static basins.");
+    let (seed, damping_seed) = (common.seed_or(2024), common.seed_or(2024) + 1);
+    let out = Results::open("drops_quasistatic_limit", &common)?;
     let meshes = [generate::cuboid(2.0, 1.4, 1.0), generate::pebble([1.0, 0.72, 0.5], 0.02, 1500, 3)];
     let mut rows = Vec::new();
     let mut stones = Vec::new();

@@ -13,18 +13,11 @@ use std::path::Path;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Parser, Result, Results};
-
-/// Separation of scales on three quarry stones and a synthetic pebble.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
+use harness::{Result, Results};
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("fig10", &args.common)?;
+    let common = harness::common_args("Separation of scales on three quarry stones and a synthetic pebble.");
+    let out = Results::open("fig10", &common)?;
     let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/meshes");
     let opts = Options::default();
     let mut runs = Vec::new();

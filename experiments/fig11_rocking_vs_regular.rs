@@ -25,7 +25,7 @@ use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Context, Parser, Result, Results};
+use harness::{Context, Result, Results};
 
 const TRIALS: u32 = 200;
 /// R_max of the pebble (m): a 10 cm pebble, the size of the paper's hand experiments.
@@ -33,17 +33,10 @@ const R_MAX_M: f64 = 0.05;
 /// The surface pair: a pebble on rock.
 const SURFACE: Surface = Surface::StoneOnStone;
 
-/// A regular and a rocking equilibrium of one pebble under pushes and spins.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("fig11_rocking_vs_regular", &args.common)?;
-    let trial_seed = args.common.seed_or(2011);
+    let common = harness::common_args("A regular and a rocking equilibrium of one pebble under pushes and spins.");
+    let out = Results::open("fig11_rocking_vs_regular", &common)?;
+    let trial_seed = common.seed_or(2011);
     let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
     let mut search = Vec::new();
     let (seed, analysis, stone, regular, rocking) = (0..50u64)

@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Parser, Result, Results};
+use harness::{Result, Results};
 
 /// The roughness amplitudes scanned; the synthetic pebbles use the one with the lowest χ² against
 /// the hand columns (the same rule and scan as `table2_fit_nu`, whose README shows how ν̂ depends
@@ -32,19 +32,12 @@ const ROUGHNESS_SCAN: [f64; 9] = [0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.4, 0.6, 0.8
 /// Set-downs per pebble of the dynamic experimenter.
 const TRIALS: [u64; 3] = [5, 20, 100];
 
-/// Hand experiments against synthetic populations and the dynamic experimenter.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let common = harness::common_args("Hand experiments against synthetic populations and the dynamic experimenter.");
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let out = Results::open("fig12_hand_vs_computer", &args.common)?;
+    let out = Results::open("fig12_hand_vs_computer", &common)?;
     let hand = study::read_table2(&root.join("data/table2_hand_experiments.csv"))?;
-    let base = PopulationParams { seed: args.common.seed_or(1), ..PopulationParams::default() };
+    let base = PopulationParams { seed: common.seed_or(1), ..PopulationParams::default() };
     let quick = FitOptions { bootstrap: 0, ..FitOptions::default() };
     let mut best = (f64::INFINITY, 0.0);
     for r in ROUGHNESS_SCAN {

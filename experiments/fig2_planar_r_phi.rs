@@ -14,22 +14,15 @@ use std::f64::consts::PI;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Context, Parser, Result, Results};
+use harness::{Context, Result, Results};
 
 const A: f64 = 1.2;
 const N: usize = 100;
 const SAMPLES: usize = 4000;
 
-/// R(φ) of the smooth and the discretised ellipse.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("planar", &args.common)?;
+    let common = harness::common_args("R(φ) of the smooth and the discretised ellipse.");
+    let out = Results::open("planar", &common)?;
     let poly = ellipse_polygon(A, N, Sampling::ArcLength)?;
     let an = PlanarAnalysis::new(poly, DEFAULT_DEGENERACY_TOL)?;
     let report = an.report(None);

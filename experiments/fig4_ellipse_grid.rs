@@ -10,21 +10,14 @@ use rocking_stones::plot::{colors, Axis, Chart, Figure, RGBColor};
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Context, Parser, Result, Results};
+use harness::{Context, Result, Results};
 
 const KS: [usize; 4] = [3, 6, 12, 50];
 const AS: [f64; 5] = [1.05, 1.1, 1.2, 1.5, 2.0];
 
-/// The grid of discretised ellipses.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("planar", &args.common)?;
+    let common = harness::common_args("The grid of discretised ellipses.");
+    let out = Results::open("planar", &common)?;
     let limit = |a: f64| table1(a).map(|t| t.total_stable).context("no limit for this a");
     let bare = |lo, hi| Axis::linear("", lo, hi).ticks(0).no_grid().space(0);
     let (mut csv, mut panels, mut rows) = (Vec::new(), Vec::new(), Vec::new());

@@ -14,22 +14,15 @@ use std::f64::consts::PI;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Context, Parser, Result, Results};
+use harness::{Context, Result, Results};
 
 const A: f64 = 1.2;
 const K: usize = 8;
 const BLACK: RGBColor = RGBColor(0, 0, 0);
 
-/// A stable, a rocking and an unstable equilibrium of the discretised ellipse.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("planar", &args.common)?;
+    let common = harness::common_args("A stable, a rocking and an unstable equilibrium of the discretised ellipse.");
+    let out = Results::open("planar", &common)?;
     let n = sides_for_k(K);
     let an = PlanarAnalysis::new(ellipse_polygon(A, n, Sampling::ArcLength)?, DEFAULT_DEGENERACY_TOL)?;
     let report = an.report(None);

@@ -21,7 +21,7 @@ use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 
 /// The blocks' slenderness tan α = b/h.
 const TAN_ALPHAS: [f64; 6] = [0.15, 0.25, 0.4, 0.5, 0.667, 0.8];
@@ -60,16 +60,9 @@ struct Decay {
     mean: Option<f64>,
 }
 
-/// Housner's rigid block in the engine: tipping thresholds and impact ratios.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("housner_block", &args.common)?;
+    let common = harness::common_args("Housner's rigid block in the engine: tipping thresholds and impact ratios.");
+    let out = Results::open("housner_block", &common)?;
     let (mut tips, mut decays) = (Vec::new(), Vec::new());
     for &tan_a in &TAN_ALPHAS {
         let (mesh, rep) = generate::cuboid(2.0 * tan_a, 2.0 * DEPTH, 2.0).into_solid_boundary()?;

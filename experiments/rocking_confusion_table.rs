@@ -17,7 +17,7 @@
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::pushes::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
 use rocking_stones::dynamics::resting::outcome::Threshold;
@@ -71,17 +71,10 @@ fn inputs() -> Result<Vec<(String, &'static str, Analysis)>> {
     Ok(inputs)
 }
 
-/// Static class against dynamic robustness over many stones.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let seed = args.common.seed_or(77);
-    let out = Results::open("rocking_confusion_table", &args.common)?;
+    let common = harness::common_args("Static class against dynamic robustness over many stones.");
+    let seed = common.seed_or(77);
+    let out = Results::open("rocking_confusion_table", &common)?;
     let mut runs = Vec::new();
     for (name, kind, a) in inputs()? {
         let stone = Stone::new(&a, a.macro_nu(&Options::default()).0)?;

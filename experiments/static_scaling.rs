@@ -22,16 +22,9 @@ use std::time::Instant;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Parser, Result, Results};
+use harness::{Result, Results};
 
 const STAGES: [&str; 9] = ["read", "check", "mass", "hull", "facets", "equilibria", "graph", "hierarchy", "total"];
-
-/// Time per stage of the static analysis against the mesh size.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
 
 struct Row {
     name: String,
@@ -102,9 +95,9 @@ fn measure(name: &str, path: &Path, reps: usize) -> Result<Row> {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("static_scaling", &args.common)?;
-    let seed = args.common.seed_or(1);
+    let common = harness::common_args("Time per stage of the static analysis against the mesh size.");
+    let out = Results::open("static_scaling", &common)?;
+    let seed = common.seed_or(1);
     let tmp = tempfile::tempdir()?;
     let mut rows = Vec::new();
     for n in [1_000usize, 3_000, 10_000, 30_000, 100_000, 300_000, 1_000_000] {

@@ -14,20 +14,13 @@ use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Context, Parser, Result, Results};
+use harness::{Context, Result, Results};
 
 const A_GRID: [f64; 8] = [1.02, 1.05, 1.1, 1.2, 1.3, 1.5, 2.0, 3.0];
 /// The grid of k; its last, k = 1000, stands for the limit in the README.
 const K_GRID: [usize; 11] = [2, 3, 5, 10, 20, 30, 50, 100, 200, 500, 1000];
 const K_SCAN: usize = 2000;
 const SQRT2_K: [usize; 12] = [5, 10, 50, 100, 200, 300, 400, 500, 600, 700, 1000, 2000];
-
-/// Flock contents of the discretised ellipse against Table 1's formula.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
 
 /// The report of the ellipse 1 : a with N = 4k − 2 sides, discretised in arc length.
 fn measure(a: f64, k: usize) -> Result<PlanarReport> {
@@ -57,8 +50,8 @@ struct Ratio {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("planar", &args.common)?;
+    let common = harness::common_args("Flock contents of the discretised ellipse against Table 1's formula.");
+    let out = Results::open("planar", &common)?;
     let mut ratios = Vec::new();
     for a in A_GRID {
         let t = table1(a).context("a > 1")?;

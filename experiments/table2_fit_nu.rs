@@ -17,17 +17,10 @@ use std::fmt::Display;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 
 /// The roughness amplitudes scanned (the generator allows < 1).
 const ROUGHNESS: [f64; 9] = [0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.4, 0.6, 0.8];
-
-/// The fit of ν to Table 2 and its sensitivity to the synthetic pebbles.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
 
 /// One fit: its group and case, the population, the hand samples fitted, the fit, its seconds.
 struct Run {
@@ -50,12 +43,12 @@ fn cell(x: f64, prec: usize, e: bool) -> String {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let out = Results::open("table2_fit_nu", &args.common)?;
+    let common = harness::common_args("The fit of ν to Table 2 and its sensitivity to the synthetic pebbles.");
+    let out = Results::open("table2_fit_nu", &common)?;
     let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/table2_hand_experiments.csv");
     let hand = study::read_table2(&data)?;
     let scanned: Vec<HandSample> = hand.iter().filter(|h| h.computer.is_some()).cloned().collect();
-    let (opts, seed) = (FitOptions::default(), args.common.seed_or(1));
+    let (opts, seed) = (FitOptions::default(), common.seed_or(1));
     let s_only = FitOptions { statistics: [true, false, true, false], ..opts.clone() };
     let base = PopulationParams { spread: 0.08, points: 2000, count: 50, seed, calibrate: true, roughness: 0.0 };
     let fit =

@@ -9,6 +9,7 @@
 #![allow(dead_code)] // each experiment uses the part of the harness it needs
 
 pub use anyhow::{Context, Result};
+#[allow(unused_imports)] // the experiments with arguments of their own derive it; the others use common_args
 pub use clap::Parser;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -31,6 +32,14 @@ impl Common {
     pub fn seed_or(&self, default: u64) -> u64 {
         self.seed.unwrap_or(default)
     }
+}
+
+/// The command line of an experiment that has no arguments of its own: [`Common`], its `--help`
+/// saying `about`.
+pub fn common_args(about: &str) -> Common {
+    use clap::{Args, FromArgMatches};
+    let command = Common::augment_args(clap::Command::new(env!("CARGO_CRATE_NAME"))).about(about.to_owned());
+    Common::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit())
 }
 
 /// The results folder of one experiment.
