@@ -10,8 +10,9 @@
 # A failed experiment is reported and the others still run; the script exits non-zero if any
 # failed. Timings go to results/regenerate.log. results/report_html/ is CI's screenshot
 # (.ci/report_html.sh), results/one_physics/ a hand-written comparison: neither is regenerated here.
-# drops_vs_mujoco needs MuJoCo's Python bindings (`pip install mujoco`; ROCKING_PYTHON names the
-# interpreter, default python3): without them it says so and fails, and the others still run.
+# drops_vs_mujoco and drops_solver_substeps need MuJoCo's Python bindings (`pip install mujoco`;
+# ROCKING_PYTHON names the interpreter, default python3): without them each says so and fails, and
+# the others still run.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,7 +22,7 @@ ALL=(
   static_scaling fig10_separation_of_scales fuzz_mutations table2_fit_nu fig12_hand_vs_computer
   housner_block corner_impact collider_step_cost drops_quasistatic_limit presets_flocks thick_coin cuboid_dice
   drops_settling drops_dt drops_certificate_speed certificate_margin drops_impacts drops_offfacet
-  certificate_decisions drops_vs_mujoco printed_shapes
+  certificate_decisions drops_vs_mujoco drops_solver_substeps printed_shapes
   fig11_rocking_vs_regular fragility_shaking fragility_surface ensemble_fragility rocking_confusion_table
 )
 # Seconds, not minutes: the static experiments (the smoke test of --quick).

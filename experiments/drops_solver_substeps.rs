@@ -1,0 +1,105 @@
+//! Rapier's solver sub-steps (its solver iterations per step) against MuJoCo, drop by drop: the
+//! project's flock-certified + batched drops at the reference step 1/240 s with 2 to 32 solver
+//! iterations, on the releases and physics of `drops_vs_mujoco` (the MuJoCo side both share is
+//! `shared/mujoco.rs`), each compared with MuJoCo's drops at 1/240 s and with the finest count by
+//! the paired Stuart–Maxwell test. Is the default of 4 converged, and does any count agree better
+//! with MuJoCo? Untimed: the drops/s it prints are indicative.
+//!
+//! Run: `cargo run --release --example drops_solver_substeps [-- N]` (10 × N releases per body and
+//! count, N = 300; `--seed` the releases' seed, default 7) → `results/drops_solver_substeps/`; the
+//! README's prose is `experiments/readme/drops_solver_substeps.md`. Needs MuJoCo's Python bindings
+//! (`pip install mujoco`) in `python3` or in the interpreter named by `ROCKING_PYTHON`.
+
+#[path = "shared/benchmark_bodies.rs"]
+mod benchmark_bodies;
+#[path = "shared/cpu_time.rs"]
+mod cpu_time;
+#[path = "shared/harness.rs"]
+mod harness;
+#[path = "shared/mujoco.rs"]
+mod mujoco;
+use harness::{fixed, Common, Parser, Result, Results};
+use mujoco::*;
+use rocking_stones::dynamics::drops::montecarlo::RunHeader;
+use rocking_stones::dynamics::engine::params::REFERENCE_DT;
+use rocking_stones::dynamics::stone::Stone;
+use serde_json::{json, Value};
+
+/// Rapier solver iterations (its sub-steps per step) of the convergence check; the project's
+/// default is 4 (`DropParams::solver_iterations`), the last is the reference.
+const SUBSTEPS: [usize; 5] = [2, 4, 8, 16, 32];
+
+/// The untimed convergence check of one body: its `drops` releases in mode `m` at each of
+/// [`SUBSTEPS`] solver iterations, compared drop by drop with MuJoCo's outcomes `mj` and with
+/// the finest.
+fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj: &Outcomes) -> Value {
+    let runs: Vec<Run> = SUBSTEPS
+        .iter()
+        .map(|&k| {
+            eprintln!("  {}: {k} solver iterations (untimed)", h.mesh);
+            let mut h = h.clone();
+            h.params.sim.numerics.solver_iterations = k;
+            timed(pool, stone, &h, m.batch)
+        })
+        .collect();
+    let finest = &runs[runs.len() - 1];
+    let shown: Vec<usize> = (0..stone.flock_kinds.len())
+        .filter(|&k| finest.report.flocks.iter().any(|f| f.id == k && f.count > 0))
+        .collect();
+    let mut mj_counts = vec![0u64; stone.flock_kinds.len()];
+    for k in mj.values().filter(|o| o.settled).filter_map(|o| flock_of(stone, o)) {
+        mj_counts[k] += 1;
+    }
+    let settled = mj_counts.iter().sum::<u64>().max(1) as f64;
+    let vs: Vec<(Chi, Chi)> = runs
+        .iter()
+        .map(|r| (drop_by_drop(stone, &r.outcomes, mj), drop_by_drop(stone, &r.outcomes, &finest.outcomes)))
+        .collect();
+    // Is the default converged, and from how many sub-steps on are the statistics those of the finest?
+    let last = SUBSTEPS.len() - 1;
+    let default = SUBSTEPS.iter().position(|&k| k == 4).expect("the default is in SUBSTEPS");
+    let converged = (0..last).find(|&i| vs[i..last].iter().all(|v| v.1.p >= 0.05)).map(|i| SUBSTEPS[i]);
+    json!({
+        "shown": shown,
+        "rows": SUBSTEPS.iter().zip(&runs).zip(&vs).map(|((k, r), (a, b))| json!({
+            "k": k, "rate": fixed(h.drops as f64 / r.seconds, 0), "mj": a.json(), "fine": b.json(),
+            "fr": shown.iter().map(|&f| fixed(fraction(&r.report, f), 4)).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "mj": shown.iter().map(|&f| fixed(mj_counts[f] as f64 / settled, 4)).collect::<Vec<_>>(),
+        "default_ok": vs[default].1.p >= 0.05, "p_default": fixed(vs[default].1.p, 3), "converged": converged,
+        "agree": SUBSTEPS.iter().zip(&vs).filter(|(_, v)| v.0.p >= 0.05).map(|(k, _)| k).collect::<Vec<_>>(),
+    })
+}
+
+/// Rapier's solver sub-steps against MuJoCo.
+#[derive(Parser)]
+struct Args {
+    /// The samples have ten times N releases per body (N as in `drops_vs_mujoco`)
+    #[arg(default_value_t = 300)]
+    n: u64,
+    #[command(flatten)]
+    common: Common,
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let (n, seed, mode) = (args.n, args.common.seed_or(7), modes()[2].clone());
+    let big = n * SAMPLE_FACTOR;
+    let bench = Bench::new("drops_solver_substeps", seed, n, big)?;
+    let out = Results::open("drops_solver_substeps", &args.common)?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    // MuJoCo at the reference step, its damping ratio calibrated there (as in `drops_vs_mujoco`).
+    eprintln!("MuJoCo at dt {} ({} {})", step_label(REFERENCE_DT), bench.python, bench.script.display());
+    let mj = bench.run(big, REFERENCE_DT, None)?;
+    let mut bodies = Vec::new();
+    for (b, ((name, _), stone)) in bench.bodies.iter().zip(&bench.stones).enumerate() {
+        let side = MjSide::of(stone, name, &[&mj], b, REFERENCE_DT, seed);
+        let sub = substeps(&pool, stone, header(name, big, &mode, seed), &mode, &side.big_outcomes);
+        bodies.push(json!({"name": name, "sub": sub}));
+    }
+    let context = json!({
+        "n": n, "factor": SAMPLE_FACTOR, "r_l": step_label(REFERENCE_DT), "substeps": SUBSTEPS,
+        "mjs": mj.settings(), "bodies": bodies,
+    });
+    out.readme("README.md", include_str!("readme/drops_solver_substeps.md"), context)
+}

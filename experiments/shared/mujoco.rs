@@ -1,0 +1,491 @@
+//! The MuJoCo side of the experiments that drop the benchmark bodies in both engines
+//! (`drops_vs_mujoco`, `drops_solver_substeps`): the physics matched in both, the project's modes
+//! and parameters, MuJoCo's run through `shared/mujoco_drops.py` (its output, its drops
+//! classified by the project's rule) and the drop-by-drop comparison of two runs of the same
+//! releases. Included with `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`,
+//! `cpu_time` and `benchmark_bodies`.
+#![allow(dead_code)] // each experiment uses the part it needs
+
+use super::benchmark_bodies::benchmark_bodies;
+use super::cpu_time::thread_cpu_seconds;
+use super::harness::{fixed, Context, Result};
+use nalgebra::UnitQuaternion;
+use rocking_stones::analysis::{Analysis, Options};
+use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
+use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
+use rocking_stones::dynamics::drops::montecarlo::{
+    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
+};
+use rocking_stones::dynamics::drops::params::{DropParams, Preset};
+use rocking_stones::dynamics::engine::params::REFERENCE_DT;
+use rocking_stones::dynamics::engine::simulation::Simulation;
+use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::surface::Surface;
+use rocking_stones::rng::item_rng;
+use rocking_stones::stats::stuart_maxwell;
+use rocking_stones::Vec3;
+use serde::Deserialize;
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+
+/// The physics both engines run (scaled frame).
+pub const HEIGHT: f64 = 0.5;
+pub const FRICTION: f64 = 0.6;
+pub const RESTITUTION: f64 = 0.2;
+pub const LINEAR_DAMPING: f64 = 0.1;
+pub const ANGULAR_DAMPING: f64 = 1.0;
+/// The untimed samples for the statistics have this many times N drops per engine (their first N
+/// are the timed drops).
+pub const SAMPLE_FACTOR: u64 = 10;
+
+pub type Outcomes = BTreeMap<u64, DropOutcome>;
+
+/// The project's default drop step, `Preset::largest_stable_dt` (1/120 s).
+pub fn fast_dt() -> f64 {
+    Preset::Drop.largest_stable_dt()
+}
+
+/// The steps MuJoCo runs at: the reference step (the benchmark protocol) and the project's default step.
+pub fn mj_dts() -> [f64; 2] {
+    [REFERENCE_DT, fast_dt()]
+}
+
+/// "1/240 s" for dt = 1/240 s.
+pub fn step_label(dt: f64) -> String {
+    format!("1/{:.0} s", 1.0 / dt)
+}
+
+/// A mode of the project: stones per world, certificate, and the step it runs ([`REFERENCE_DT`]
+/// for the reference modes, the preset's default step for the default numerics).
+#[derive(Clone)]
+pub struct Mode {
+    pub name: String,
+    pub short: String,
+    pub batch: usize,
+    pub cert: CertificateMode,
+    pub dt: f64,
+}
+
+/// The project's modes: three at the reference step (MuJoCo's step of the benchmark protocol) and
+/// the default numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
+pub fn modes() -> [Mode; 4] {
+    let mode = |name: String, short: String, batch, cert, dt| Mode { name, short, batch, cert, dt };
+    let (b, f, d) = (DEFAULT_BATCH, CertificateMode::Flock, step_label(fast_dt()));
+    [
+        mode("plain".into(), "plain".into(), 1, CertificateMode::None, REFERENCE_DT),
+        mode("batched".into(), "batched".into(), b, CertificateMode::None, REFERENCE_DT),
+        mode("flock-certified + batched".into(), "flock-cert. + batched".into(), b, f, REFERENCE_DT),
+        mode(
+            format!("flock-certified + batched, default numerics (dt {d})"),
+            format!("flock-cert. + batched, default numerics (dt {d})"),
+            b,
+            f,
+            fast_dt(),
+        ),
+    ]
+}
+
+/// The project's parameters at step `dt`: the `drop` preset on steel on wood (its numerics:
+/// exact landings and sub-stepped impacts, which damp the free flight exactly), with the matched
+/// physics overriding it, no rolling resistance or torsional friction (MuJoCo's condim 3 has
+/// neither).
+pub fn params(dt: f64) -> DropParams {
+    let mut p = Preset::Drop.params(Surface::SteelOnWood);
+    p.launch.height = HEIGHT;
+    let c = &mut p.sim.contact;
+    (c.friction, c.restitution, c.linear_damping, c.angular_damping) =
+        (FRICTION, RESTITUTION, LINEAR_DAMPING, ANGULAR_DAMPING);
+    (c.rolling_resistance, c.torsional_friction) = (0.0, 0.0);
+    p.sim.numerics.dt = dt;
+    p
+}
+
+pub fn header(name: &str, n: u64, m: &Mode, seed: u64) -> RunHeader {
+    RunHeader {
+        format: FORMAT.into(),
+        mesh: name.into(),
+        mesh_fingerprint: String::new(),
+        seed,
+        drops: n,
+        params: params(m.dt),
+        certificate: m.cert,
+        preset: Some(Preset::Drop.name().into()),
+        center_of_mass: None,
+        shard: Shard::ALL,
+    }
+}
+
+/// A run of the project: its summary, outcomes by drop index, CPU seconds.
+pub struct Run {
+    pub report: DropReport,
+    pub outcomes: Outcomes,
+    pub seconds: f64,
+}
+
+/// Every drop of `h` with `batch` stones per world on the one-thread `pool`, timed by the worker
+/// thread's CPU time.
+pub fn timed(pool: &rayon::ThreadPool, stone: &Stone, h: &RunHeader, batch: usize) -> Run {
+    pool.install(|| {
+        let sink = Mutex::new(|_: &DropOutcome| {});
+        let cert = certificate(stone, h.certificate);
+        let t = thread_cpu_seconds();
+        let out = run_drops_batched(stone, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink);
+        let seconds = thread_cpu_seconds() - t;
+        let outcomes: Outcomes = out.into_iter().map(|o| (o.index, o)).collect();
+        Run { report: summarize(&stone.model(), h, &outcomes), outcomes, seconds }
+    })
+}
+
+/// What `shared/mujoco_drops.py` writes.
+#[derive(Deserialize)]
+pub struct MjOut {
+    pub mujoco_version: String,
+    pub numpy_version: String,
+    pub python_version: String,
+    pub integrator: String,
+    pub default_integrator: String,
+    pub cone: String,
+    pub solver: String,
+    pub iterations: u32,
+    pub tolerance: f64,
+    pub solref: [f64; 2],
+    pub solimp: Vec<f64>,
+    pub ball_restitution: f64,
+    pub ball_restitution_speeds: f64,
+    pub bodies: Vec<MjBody>,
+}
+
+#[derive(Deserialize)]
+pub struct MjBody {
+    pub placement_error: f64,
+    pub mesh_vertices: usize,
+    pub flat_restitution: Option<[f64; 2]>,
+    pub drops: Vec<MjDrop>,
+    pub sample_drops: Vec<MjDrop>,
+    pub loop_cpu_s: Vec<f64>,
+    pub replay_cpu_s: Vec<f64>,
+    pub replay_identical: bool,
+    /// Every release's initial down direction in the project's body frame, as MuJoCo placed it.
+    pub release_downs: Vec<[f64; 3]>,
+}
+
+#[derive(Deserialize)]
+pub struct MjDrop {
+    pub down: [f64; 3],
+    pub steps: u64,
+    pub settled: bool,
+    /// Warnings MuJoCo raised during the drop (bad qpos/qvel/qacc: an instability, after which it
+    /// resets the state).
+    #[serde(default)]
+    pub warnings: u64,
+}
+
+/// MuJoCo's drops at step `dt` classified by the project's rule ([`Stone::rest`] of the final
+/// down direction), as outcomes of a plain run, and their summary. A drop that ended with a
+/// non-finite down direction or after a MuJoCo warning counts as not settled.
+pub fn classify(stone: &Stone, name: &str, drops: &[MjDrop], dt: f64, seed: u64) -> (DropReport, Outcomes) {
+    let mut outcomes = Outcomes::new();
+    for (i, d) in drops.iter().enumerate() {
+        let down = Vec3::from(d.down);
+        let sane = down.iter().all(|x| x.is_finite()) && down.norm() > 0.5 && d.warnings == 0;
+        let rest = sane.then(|| stone.rest(&down));
+        let o = DropOutcome {
+            index: i as u64,
+            settled: d.settled && sane,
+            facet: rest.as_ref().map(|r| r.facet),
+            flock: None,
+            time: d.steps as f64 * dt,
+            certified: false,
+            height_above: rest.as_ref().map(|r| r.height_above),
+            deepest_penetration: 0.0,
+        };
+        outcomes.insert(i as u64, o);
+    }
+    let mode = Mode { dt, ..modes()[0].clone() };
+    (summarize(&stone.model(), &header(name, drops.len() as u64, &mode, seed), &outcomes), outcomes)
+}
+
+/// The Python interpreter (`ROCKING_PYTHON`, default `python3`), if it can import mujoco.
+pub fn python_with_mujoco(experiment: &str) -> Result<String> {
+    let python = std::env::var("ROCKING_PYTHON").unwrap_or_else(|_| "python3".into());
+    let mut check = Command::new(&python);
+    let ok = check.args(["-c", "import mujoco, numpy"]).stdout(Stdio::null()).stderr(Stdio::null()).status();
+    anyhow::ensure!(
+        ok.is_ok_and(|s| s.success()),
+        "{experiment} needs MuJoCo's Python bindings, but `{python} -c 'import mujoco, numpy'` failed.\n\
+         Install them with `{python} -m pip install mujoco` (it brings numpy), or point ROCKING_PYTHON at an \
+         interpreter that has them, e.g.\n  python3 -m venv target/mujoco-venv && target/mujoco-venv/bin/pip \
+         install mujoco\n  ROCKING_PYTHON=target/mujoco-venv/bin/python cargo run --release --example \
+         {experiment}"
+    );
+    Ok(python)
+}
+
+/// The fraction of a report's settled drops in flock `k`.
+pub fn fraction(r: &DropReport, k: usize) -> f64 {
+    r.flocks.iter().find(|f| f.id == k).map_or(0.0, |f| f.fraction)
+}
+
+/// Two runs of the same releases compared drop by drop: the Stuart–Maxwell test of marginal
+/// homogeneity of their per-flock counts (`stats::stuart_maxwell`, which uses the pairing), and
+/// how many of the drops settled in both end in the same flock.
+pub struct Chi {
+    pub chi2: f64,
+    pub dof: usize,
+    pub p: f64,
+    pub same: usize,
+    pub both: usize,
+}
+
+impl Chi {
+    pub fn json(&self) -> Value {
+        let (chi2, p) = (fixed(self.chi2, 1), fixed(self.p, 3));
+        json!({"same": self.same, "both": self.both, "chi2": chi2, "dof": self.dof, "p": p})
+    }
+}
+
+/// The flock a drop ended in (the certificate's, or that of its rest facet).
+pub fn flock_of(stone: &Stone, o: &DropOutcome) -> Option<usize> {
+    o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
+}
+
+/// [`Chi`] of the runs `a` and `b` (outcomes by drop index) on the drops settled in both.
+pub fn drop_by_drop(stone: &Stone, a: &Outcomes, b: &Outcomes) -> Chi {
+    let k = stone.flock_kinds.len();
+    let mut table = vec![vec![0u64; k]; k];
+    let (mut same, mut both) = (0, 0);
+    for (i, x) in a {
+        let Some(y) = b.get(i) else { continue };
+        if let (true, true, Some(fx), Some(fy)) = (x.settled, y.settled, flock_of(stone, x), flock_of(stone, y)) {
+            table[fx][fy] += 1;
+            both += 1;
+            same += usize::from(fx == fy);
+        }
+    }
+    let (chi2, dof, p) = stuart_maxwell(&table);
+    Chi { chi2, dof, p, same, both }
+}
+
+/// Median and largest `height_above` (h(final down) − R_F, R_max) of the settled outcomes: how
+/// far off its stable facet's normal a drop ended (0 when flat on it); `{:.1e}` each.
+pub fn rise(outcomes: &Outcomes) -> [String; 2] {
+    let mut h: Vec<f64> = outcomes.values().filter(|o| o.settled).filter_map(|o| o.height_above).collect();
+    h.sort_by(f64::total_cmp);
+    let at = |i: Option<usize>| i.and_then(|i| h.get(i)).map_or(f64::NAN, |x| *x);
+    [at(Some(h.len() / 2)), at(h.len().checked_sub(1))].map(|x| format!("{x:.1e}"))
+}
+
+/// Restitution of a flat landing in rapier (the project's world and contact, no damping) at step
+/// `dt`: the body dropped from rest with its facet of outward normal `normal` (body frame) facing
+/// down, `HEIGHT` above the ground; e = √(rebound height / drop height) of G above its height at
+/// rest on the facet, as the Python side measures MuJoCo's. The rebound is found by the velocity
+/// (from the step where G first moves up to the step where it moves down again), not by the
+/// contact impulse, which a sub-stepped impact (`dynamics::engine::impact`) leaves at zero after the step.
+pub fn rapier_flat_restitution(stone: &Stone, normal: &Vec3, dt: f64) -> f64 {
+    let mut p = params(dt);
+    (p.sim.contact.linear_damping, p.sim.contact.angular_damping) = (0.0, 0.0);
+    let q = UnitQuaternion::rotation_between(normal, &-Vec3::z()).unwrap_or_else(UnitQuaternion::identity);
+    let h = stone.body.support(normal);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &q, HEIGHT + h, &Vec3::zeros(), &Vec3::zeros());
+    let (mut rising, mut apex) = (false, f64::NEG_INFINITY);
+    for _ in 0..(10.0 / p.sim.numerics.dt) as usize {
+        sim.step();
+        let s = sim.state();
+        rising |= s.linvel.z > 0.0;
+        if rising {
+            if s.linvel.z <= 0.0 {
+                return ((apex - h).max(0.0) / HEIGHT).sqrt();
+            }
+            apex = apex.max(s.z);
+        }
+    }
+    0.0
+}
+
+/// Per-flock counts of a report, by flock id.
+pub fn counts(stone: &Stone, r: &DropReport) -> Vec<u64> {
+    (0..stone.flock_kinds.len()).map(|k| r.flocks.iter().find(|f| f.id == k).map_or(0, |f| f.count)).collect()
+}
+
+/// Flock `k`'s fraction of a report with its 95 % interval, "—" if it has no such flock.
+pub fn cell(r: &DropReport, k: usize) -> String {
+    let f = r.flocks.iter().find(|g| g.id == k);
+    f.map_or("—".into(), |g| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1))
+}
+
+/// Each category's share (%) of Pearson's χ² statistic of homogeneity of the counts `a` and `b`.
+pub fn chi_shares(a: &[u64], b: &[u64]) -> Vec<f64> {
+    let (na, nb) = (a.iter().sum::<u64>() as f64, b.iter().sum::<u64>() as f64);
+    let chi: Vec<f64> = a
+        .iter()
+        .zip(b)
+        .map(|(&x, &y)| {
+            let col = (x + y) as f64;
+            let term = |o: f64, row: f64| (o - row * col / (na + nb)).powi(2) / (row * col / (na + nb));
+            if col == 0.0 {
+                0.0
+            } else {
+                term(x as f64, na) + term(y as f64, nb)
+            }
+        })
+        .collect();
+    let total = chi.iter().sum::<f64>().max(f64::MIN_POSITIVE);
+    chi.iter().map(|c| 100.0 * c / total).collect()
+}
+
+/// MuJoCo at one step, for one body: the timed drops, the larger sample (which holds them), the
+/// fastest round's CPU s of the loop and of the stepping alone, the timed drops' steps, and the
+/// sample's drops with a MuJoCo warning.
+pub struct MjSide {
+    pub report: DropReport,
+    pub outcomes: Outcomes,
+    pub big: DropReport,
+    pub big_outcomes: Outcomes,
+    pub loop_s: f64,
+    pub step_s: f64,
+    pub steps: f64,
+    pub warned: usize,
+}
+
+impl MjSide {
+    /// Body `b` of MuJoCo's `runs` at step `dt` (one per round, the first holding the sample),
+    /// classified by the project's rule; the fastest round's CPU seconds.
+    pub fn of(stone: &Stone, name: &str, runs: &[&MjOut], b: usize, dt: f64, seed: u64) -> MjSide {
+        let fastest = |f: fn(&MjBody) -> &Vec<f64>| {
+            runs.iter().flat_map(|r| f(&r.bodies[b]).iter().copied()).fold(f64::INFINITY, f64::min)
+        };
+        let mb = &runs[0].bodies[b];
+        let ((report, outcomes), (big, big_outcomes)) =
+            (classify(stone, name, &mb.drops, dt, seed), classify(stone, name, &mb.sample_drops, dt, seed));
+        let (loop_s, step_s) = (fastest(|x| &x.loop_cpu_s), fastest(|x| &x.replay_cpu_s));
+        let steps = mb.drops.iter().map(|d| d.steps).sum::<u64>() as f64;
+        let warned = mb.sample_drops.iter().filter(|d| d.warnings > 0).count();
+        MjSide { report, outcomes, big, big_outcomes, loop_s, step_s, steps, warned }
+    }
+}
+
+/// The checks of MuJoCo's side for body `b`, from its `rounds` (each at both steps, the first
+/// holding the samples), its classified drops `mj` and the project's plain drops: MuJoCo's
+/// releases are the project's (the largest angle between the two engines' initial down
+/// directions, body frame, over every drop of the sample, at both steps), its mesh and placement,
+/// its replays and rounds bit for bit the same, its warnings, and how far off its facet each
+/// engine's drops came to rest.
+pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], plain: &Outcomes) -> Value {
+    let first = &rounds[0];
+    let downs = || first.iter().flat_map(|r| r.bodies[b].release_downs.iter().enumerate());
+    let release_angle = downs()
+        .map(|(i, d)| {
+            let (own, d) = (bench.release(i as u64).inverse() * -Vec3::z(), Vec3::from(*d));
+            own.cross(&d).norm().atan2(own.dot(&d))
+        })
+        .fold(0.0f64, f64::max);
+    let same_rounds = |s: usize| {
+        rounds.iter().all(|r| {
+            let (x, y) = (&r[s].bodies[b].drops, &first[s].bodies[b].drops);
+            x.iter().zip(y).all(|(x, y)| x.down == y.down && x.steps == y.steps)
+        })
+    };
+    let e1 = |x: f64| format!("{x:.1e}");
+    json!({
+        "releases": downs().count(), "angle": e1(release_angle), "vertices": first[0].bodies[b].mesh_vertices,
+        "corners": bench.stones[b].body.corners.len(), "placement": e1(first[0].bodies[b].placement_error),
+        "replay": ([0, 1].map(|s| rounds.iter().all(|r| r[s].bodies[b].replay_identical))),
+        "rounds": ([0, 1].map(same_rounds)), "warned": [mj[0].warned, mj[1].warned],
+        "rises": [rise(&mj[0].outcomes), rise(&mj[1].outcomes)], "plain_rise": rise(plain),
+    })
+}
+
+impl MjOut {
+    /// MuJoCo's settings that do not depend on the step, for a README.
+    pub fn settings(&self) -> Value {
+        json!({
+            "version": self.mujoco_version, "python": self.python_version, "numpy": self.numpy_version,
+            "cone": self.cone, "solimp": format!("{:?}", self.solimp), "integrator": self.integrator,
+            "default_integrator": self.default_integrator.trim_start_matches("mjINT_").to_lowercase(),
+            "solver": self.solver.trim_start_matches("mjSOL_").to_lowercase(), "iterations": self.iterations,
+            "tolerance": format!("{:e}", self.tolerance),
+        })
+    }
+}
+
+/// The facet normal (body frame) of the box's flat landing, whose restitution MuJoCo measures.
+pub fn box_normal() -> Vec3 {
+    -Vec3::z()
+}
+
+/// The benchmark bodies, their stones, and MuJoCo's input for them: `n` timed drops and a sample
+/// of `big` (the timed ones first), released as the project releases the same drop indices.
+pub struct Bench {
+    pub bodies: Vec<(String, Analysis)>,
+    pub stones: Vec<Stone>,
+    /// The project's parameters at the reference step.
+    pub reference: DropParams,
+    pub seed: u64,
+    pub python: String,
+    pub script: PathBuf,
+    experiment: &'static str,
+    input: Value,
+}
+
+impl Bench {
+    /// The bodies of `experiment` (which names its error message and temporary folder), after
+    /// checking that the Python interpreter has MuJoCo.
+    pub fn new(experiment: &'static str, seed: u64, n: u64, big: u64) -> Result<Bench> {
+        let python = python_with_mujoco(experiment)?;
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let bodies = benchmark_bodies(root, true)?;
+        let stones: Vec<Stone> =
+            bodies.iter().map(|(_, a)| Stone::new(a, a.macro_nu(&Options::default()).0)).collect::<Result<_, _>>()?;
+        let (reference, box_normal) = (params(REFERENCE_DT), box_normal());
+        let release = |i: u64| launch(&mut item_rng(seed, i), &reference).orientation;
+        let (c, num, rest) = (&reference.sim.contact, &reference.sim.numerics, &reference.sim.rest);
+        let input = json!({
+            "drops": n, "sample_drops": big, "repeats": 1,
+            "orientations": (0..big).map(|i| { let q = release(i); [q.w, q.i, q.j, q.k] }).collect::<Vec<_>>(),
+            "height": reference.launch.height, "friction": c.friction, "restitution": c.restitution,
+            "linear_damping": c.linear_damping, "angular_damping": c.angular_damping, "dt": num.dt,
+            "max_time": num.max_time,
+            "rest_linear_speed": rest.rest_linear_speed, "rest_angular_speed": rest.rest_angular_speed,
+            "rest_time": rest.rest_time,
+            "bodies": bodies.iter().zip(&stones).enumerate().map(|(k, ((name, _), s))| json!({
+                "name": name,
+                "corners": s.body.corners.iter().map(|c| [c.x, c.y, c.z]).collect::<Vec<_>>(),
+                "inertia": (0..3).map(|i| [0, 1, 2].map(|j| s.body.inertia[(i, j)])).collect::<Vec<_>>(),
+                "flat_normal": (k == 2).then_some([box_normal.x, box_normal.y, box_normal.z]),
+            })).collect::<Vec<_>>(),
+        });
+        let script = root.join("experiments/shared/mujoco_drops.py");
+        Ok(Bench { bodies, stones, reference, seed, python, script, experiment, input })
+    }
+
+    /// The release orientation (body → world) of drop `i`.
+    pub fn release(&self, i: u64) -> UnitQuaternion<f64> {
+        launch(&mut item_rng(self.seed, i), &self.reference).orientation
+    }
+
+    /// One run of MuJoCo at step `dt` (one process, one thread): the timed drops and a sample of
+    /// `sample` drops (the timed ones first), with `solref` when given, else the damping ratio
+    /// calibrated on the ball at this step.
+    pub fn run(&self, sample: u64, dt: f64, solref: Option<[f64; 2]>) -> Result<MjOut> {
+        let tmp = std::env::temp_dir().join(format!("{}_{}", self.experiment, std::process::id()));
+        std::fs::create_dir_all(&tmp)?;
+        let mut input = self.input.clone();
+        (input["sample_drops"], input["dt"], input["solref"]) = (json!(sample), json!(dt), json!(solref));
+        let (in_path, out_path) = (tmp.join("in.json"), tmp.join("out.json"));
+        std::fs::write(&in_path, serde_json::to_string(&input)?)?;
+        let mut command = Command::new(&self.python);
+        command.arg(&self.script).arg(&in_path).arg(&out_path);
+        for var in ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"] {
+            command.env(var, "1");
+        }
+        let status = command.status().with_context(|| format!("cannot run {}", self.python))?;
+        anyhow::ensure!(status.success(), "{} failed ({status})", self.script.display());
+        let mj: MjOut = serde_json::from_str(&std::fs::read_to_string(&out_path)?)?;
+        std::fs::remove_dir_all(&tmp)?;
+        anyhow::ensure!(mj.bodies.len() == self.bodies.len(), "MuJoCo returned {} bodies", mj.bodies.len());
+        Ok(mj)
+    }
+}
