@@ -103,7 +103,6 @@ pub fn draw_svg(
     .map_err(|e| crate::Error::Plot { path: path.to_path_buf(), what: e.to_string() })
 }
 
-
 /// The house style of every plot the project draws (library reports and experiments): one place
 /// for font sizes, line widths and colours, so that all figures read alike. Sizes are in pixels
 /// of a figure about 900 px wide, which keeps a 1 : 1 scale for a journal column (8–9 cm) at
