@@ -201,6 +201,19 @@ pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
 
 /// Write one row per equilibrium: static barriers, dynamic thresholds, classes.
 pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
+    let th = |t: &Option<Threshold>| match t {
+        None => (String::new(), String::new()),
+        Some(t) => (
+            format!("{:.6e}", t.value()),
+            match t {
+                Threshold::Below(_) => "below",
+                Threshold::At(_) => "at",
+                Threshold::Above(_) => "above",
+            }
+            .into(),
+        ),
+    };
+    let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
     crate::report::write_csv(
         path,
         &[
@@ -226,49 +239,34 @@ pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()>
             "uplift_acceleration_g",
             "dynamic_class",
         ],
-        {
-            let th = |t: &Option<Threshold>| match t {
-                None => (String::new(), String::new()),
-                Some(t) => (
-                    format!("{:.6e}", t.value()),
-                    match t {
-                        Threshold::Below(_) => "below",
-                        Threshold::At(_) => "at",
-                        Threshold::Above(_) => "above",
-                    }
-                    .into(),
-                ),
-            };
-            let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
-            r.equilibria.iter().map(move |e| {
-                let q = &e.equilibrium;
-                let (m, mk) = th(&e.eps50_micro);
-                let (f, fk) = th(&e.eps50_flock);
-                [
-                    q.index.to_string(),
-                    q.facet.to_string(),
-                    format!("{:.6}", q.r_normalised),
-                    q.flock.to_string(),
-                    q.flock_kind.name().to_string(),
-                    q.class.name().to_string(),
-                    e.rest.stays.to_string(),
-                    format!("{:.6e}", q.basin_exit.epsilon),
-                    q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
-                    format!("{:.6e}", q.flock_exit.epsilon),
-                    q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
-                    m,
-                    mk,
-                    f,
-                    fk,
-                    opt(e.first_leave),
-                    opt(e.first_topple),
-                    opt(e.ratio_micro),
-                    opt(e.ratio_flock),
-                    format!("{:.6e}", q.uplift_acceleration),
-                    e.dynamic_class.map_or(String::new(), |c| c.name().to_string()),
-                ]
-            })
-        },
+        r.equilibria.iter().map(|e| {
+            let q = &e.equilibrium;
+            let (m, mk) = th(&e.eps50_micro);
+            let (f, fk) = th(&e.eps50_flock);
+            [
+                q.index.to_string(),
+                q.facet.to_string(),
+                format!("{:.6}", q.r_normalised),
+                q.flock.to_string(),
+                q.flock_kind.name().to_string(),
+                q.class.name().to_string(),
+                e.rest.stays.to_string(),
+                format!("{:.6e}", q.basin_exit.epsilon),
+                q.basin_exit.equilibrium.map_or(String::new(), |x| x.to_string()),
+                format!("{:.6e}", q.flock_exit.epsilon),
+                q.flock_exit.flock.map_or(String::new(), |x| x.to_string()),
+                m,
+                mk,
+                f,
+                fk,
+                opt(e.first_leave),
+                opt(e.first_topple),
+                opt(e.ratio_micro),
+                opt(e.ratio_flock),
+                format!("{:.6e}", q.uplift_acceleration),
+                e.dynamic_class.map_or(String::new(), |c| c.name().to_string()),
+            ]
+        }),
     )
 }
 
