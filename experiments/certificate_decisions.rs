@@ -15,7 +15,7 @@
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Common, Context, Parser, Result, Results};
+use harness::{Context, Result, Results};
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::{
@@ -145,20 +145,14 @@ fn meshes(root: &Path) -> Result<Vec<(String, Analysis)>> {
     Ok(out)
 }
 
-/// Does the energy certificate ever decide wrongly?
-#[derive(Parser)]
-struct Args {
-    /// Drops per mesh, preset and numerics
-    #[arg(default_value_t = 300)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(17));
-    let out = Results::open("certificate_decisions", &args.common)?;
+    let (n, common) = harness::count_args(
+        "Does the energy certificate ever decide wrongly?",
+        "Drops per mesh, preset and numerics",
+        300,
+    );
+    let seed = common.seed_or(17);
+    let out = Results::open("certificate_decisions", &common)?;
     let clock = std::time::Instant::now();
     let stones: Vec<(String, Stone)> = (meshes(Path::new(env!("CARGO_MANIFEST_DIR")))?.iter())
         .map(|(name, a)| Ok((name.clone(), Stone::new(a, a.macro_nu(&Options::default()).0)?)))

@@ -14,7 +14,7 @@ mod benchmark_bodies;
 #[path = "shared/harness.rs"]
 mod harness;
 use benchmark_bodies::benchmark_bodies;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 use rayon::prelude::*;
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::certificate::{
@@ -121,20 +121,14 @@ fn summarise(obs: &[Observed], lvl: usize, k: usize, dt: f64) -> Row {
     }
 }
 
-/// Decisions and simulated time against the certificate's margin.
-#[derive(Parser)]
-struct Args {
-    /// Drops per body and preset
-    #[arg(default_value_t = 1000)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(11));
-    let out = Results::open("certificate_margin", &args.common)?;
+    let (n, common) = harness::count_args(
+        "Decisions and simulated time against the certificate's margin.",
+        "Drops per body and preset",
+        1000,
+    );
+    let seed = common.seed_or(11);
+    let out = Results::open("certificate_margin", &common)?;
     let bodies = benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), false)?;
     let mut csv = String::from(
         "body,preset,level,margin_rmax,drops,decided,wrong,mean_time_every_step_s,mean_time_every_k_s,mean_time_to_rest_s\n",

@@ -18,12 +18,12 @@ mod cpu_time;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use cpu_time::thread_cpu_seconds;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
 use rocking_stones::dynamics::drops::launch::DropOutcome;
 use rocking_stones::dynamics::drops::montecarlo::{
-    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
+    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH,
 };
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
@@ -86,18 +86,8 @@ fn header(name: &str, n: u64, seed: u64, preset: Preset, m: &Mode) -> RunHeader 
     if !m.default_step {
         params.sim.numerics.dt = REFERENCE_DT;
     }
-    RunHeader {
-        format: FORMAT.into(),
-        mesh: name.into(),
-        mesh_fingerprint: String::new(),
-        seed,
-        drops: n,
-        params,
-        certificate: m.cert,
-        preset: Some(preset.name().into()),
-        center_of_mass: None,
-        shard: Shard::ALL,
-    }
+    let header = RunHeader::of_params(name, seed, n, params, m.cert);
+    RunHeader { preset: Some(preset.name().into()), ..header }
 }
 
 /// Run every drop of `h` with `batch` stones per world on the current (one-thread) pool; the
@@ -112,20 +102,14 @@ fn timed(stone: &Stone, h: &RunHeader, batch: usize) -> ModeRun {
     ModeRun { report: summarize(&stone.model(), h, &outcomes), outcomes, seconds }
 }
 
-/// Drops per second per core, plain, batched and certified.
-#[derive(Parser)]
-struct Args {
-    /// Drops per body, preset and mode
-    #[arg(default_value_t = 1000)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(7));
-    let out = Results::open("drops_certificate", &args.common)?;
+    let (n, common) = harness::count_args(
+        "Drops per second per core, plain, batched and certified.",
+        "Drops per body, preset and mode",
+        1000,
+    );
+    let seed = common.seed_or(7);
+    let out = Results::open("drops_certificate", &common)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let bodies = benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), true)?;
     let mut csv = String::from(

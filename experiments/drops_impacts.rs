@@ -12,7 +12,7 @@ mod cpu_time;
 #[path = "shared/harness.rs"]
 mod harness;
 use benchmark_bodies::benchmark_bodies;
-use harness::{Common, Parser, Result, Results};
+use harness::{Result, Results};
 use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::launch, params::DropParams, params::Preset};
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
 use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, params::Flight, run::NoCertificate};
@@ -25,16 +25,6 @@ use std::{fmt::Write as _, path::Path};
 /// The presets and steps (1/s) of the comparison.
 const PRESETS: [Preset; 2] = [Preset::Drop, Preset::Throw];
 const STEPS: [f64; 2] = [240.0, 120.0];
-
-/// How deep drops enter the ground with rapier's flight and with exact landings.
-#[derive(Parser)]
-struct Args {
-    /// Drops per body, preset, step and flight (a third of them per launch beyond the presets)
-    #[arg(default_value_t = 300)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
 
 /// One body, preset, dt and flight: the largest and 99th-percentile depth over the drops, the
 /// drops deeper than the bound, drops/s, settled drops and flock counts.
@@ -67,9 +57,13 @@ fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed, beyond_seed) = (args.n, args.common.seed_or(1), args.common.seed_or(3));
-    let out = Results::open("drops_impacts", &args.common)?;
+    let (n, common) = harness::count_args(
+        "How deep drops enter the ground with rapier's flight and with exact landings.",
+        "Drops per body, preset, step and flight (a third of them per launch beyond the presets)",
+        300,
+    );
+    let (seed, beyond_seed) = (common.seed_or(1), common.seed_or(3));
+    let out = Results::open("drops_impacts", &common)?;
     let mut csv =
         String::from("body,preset,steps_per_s,flight,drops,settled,max_depth,p99_depth,drops_per_s,chi2_p_vs_rapier\n");
     let (mut table, mut extreme) = (String::new(), String::new());

@@ -11,7 +11,7 @@ mod benchmark_bodies;
 #[path = "shared/harness.rs"]
 mod harness;
 use benchmark_bodies::benchmark_bodies;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 use rocking_stones::dynamics::drops::{launch::launch, launch::release_height, params::Preset};
 use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use rocking_stones::dynamics::engine::{rest::RestKind, simulation::Simulation};
@@ -20,20 +20,14 @@ use rocking_stones::plot::{colors, series_color, Axis, Chart, Mark, Marker};
 use rocking_stones::rng::item_rng;
 use std::{fmt::Write as _, path::Path};
 
-/// Quasi-static drops that stop above their facet, continued until they are on it.
-#[derive(Parser)]
-struct Args {
-    /// Drops per body
-    #[arg(default_value_t = 400)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(1));
-    let out = Results::open("drops_offfacet", &args.common)?;
+    let (n, common) = harness::count_args(
+        "Quasi-static drops that stop above their facet, continued until they are on it.",
+        "Drops per body",
+        400,
+    );
+    let seed = common.seed_or(1);
+    let out = Results::open("drops_offfacet", &common)?;
     let mut csv = String::from("body,drop,height_above,speed,spin,same_facet,seconds_more,height_after\n");
     let p = Preset::QuasiStatic.params(Surface::SteelOnWood);
     // Per body: its table row, and the heights above the facet when stopped and after going on.

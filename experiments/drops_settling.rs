@@ -13,17 +13,7 @@ use std::{fmt::Write as _, path::Path, time::Instant};
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Parser, Result, Results};
-
-/// Do throws settle on every mesh, at the default and the reference step?
-#[derive(Parser)]
-struct Args {
-    /// Throws per mesh
-    #[arg(default_value_t = 200)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
+use harness::{fixed, Result, Results};
 
 /// Median of `h` (NaN when empty).
 fn median(mut h: Vec<f64>) -> f64 {
@@ -32,9 +22,13 @@ fn median(mut h: Vec<f64>) -> f64 {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(1));
-    let out = Results::open("drops_settling", &args.common)?;
+    let (n, common) = harness::count_args(
+        "Do throws settle on every mesh, at the default and the reference step?",
+        "Throws per mesh",
+        200,
+    );
+    let seed = common.seed_or(1);
+    let out = Results::open("drops_settling", &common)?;
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
     let mut meshes = rocking_stones::study::mesh_files(&data.join("meshes"))?;
     meshes.push(data.join("default_pebble.ply"));

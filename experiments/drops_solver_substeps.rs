@@ -18,7 +18,7 @@ mod cpu_time;
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::montecarlo::RunHeader;
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
@@ -71,22 +71,16 @@ fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj:
     })
 }
 
-/// Rapier's solver sub-steps against MuJoCo.
-#[derive(Parser)]
-struct Args {
-    /// The samples have ten times N releases per body (N as in `drops_vs_mujoco`)
-    #[arg(default_value_t = 300)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed, mode) = (args.n, args.common.seed_or(7), modes()[2].clone());
+    let (n, common) = harness::count_args(
+        "Rapier's solver sub-steps against MuJoCo.",
+        "The samples have ten times N releases per body (N as in `drops_vs_mujoco`)",
+        300,
+    );
+    let (seed, mode) = (common.seed_or(7), modes()[2].clone());
     let big = n * SAMPLE_FACTOR;
     let bench = Bench::new("drops_solver_substeps", seed, n, big)?;
-    let out = Results::open("drops_solver_substeps", &args.common)?;
+    let out = Results::open("drops_solver_substeps", &common)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     // MuJoCo at the reference step, its damping ratio calibrated there (as in `drops_vs_mujoco`).
     eprintln!("MuJoCo at dt {} ({} {})", step_label(REFERENCE_DT), bench.python, bench.script.display());

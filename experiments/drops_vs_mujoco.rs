@@ -22,7 +22,7 @@ mod cpu_time;
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::launch::DropOutcome;
 use rocking_stones::dynamics::drops::montecarlo::{DropReport, DEFAULT_BATCH};
@@ -39,22 +39,16 @@ const REPEATS: usize = 3;
 const MJ_TIMECONST: f64 = 0.02;
 const BLACK: RGBColor = RGBColor(0, 0, 0);
 
-/// Drops per second of the project against MuJoCo.
-#[derive(Parser)]
-struct Args {
-    /// Drops per body and mode (the untimed samples have ten times as many)
-    #[arg(default_value_t = 300)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed, modes, dts) = (args.n, args.common.seed_or(7), modes(), mj_dts());
+    let (n, common) = harness::count_args(
+        "Drops per second of the project against MuJoCo.",
+        "Drops per body and mode (the untimed samples have ten times as many)",
+        300,
+    );
+    let (seed, modes, dts) = (common.seed_or(7), modes(), mj_dts());
     let (nd, big) = (n as f64, n * SAMPLE_FACTOR);
     let bench = Bench::new("drops_vs_mujoco", seed, n, big)?;
-    let out = Results::open("drops_vs_mujoco", &args.common)?;
+    let out = Results::open("drops_vs_mujoco", &common)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let (bodies, stones, reference) = (&bench.bodies, &bench.stones, &bench.reference);
     let (python, script) = (&bench.python, bench.script.display());

@@ -21,7 +21,7 @@ mod calibration;
 mod harness;
 #[path = "shared/rocks.rs"]
 mod rocks;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 use rocks::{row, Block};
 
 /// Members of a block's forecast ensemble, and Housner rocks drawn as its truth.
@@ -187,17 +187,11 @@ fn run_stone(seed: u64) -> Result<(Vec<Case>, String, f64, String)> {
     Ok((cases.collect(), format!("{pose}"), t0.elapsed().as_secs_f64(), inputs))
 }
 
-/// Ensemble fragility of blocks and of the quarry stone, scored on simulated truths.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
-
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let seed = args.common.seed_or(24);
-    let out = Results::open("ensemble_fragility", &args.common)?;
+    let common =
+        harness::common_args("Ensemble fragility of blocks and of the quarry stone, scored on simulated truths.");
+    let seed = common.seed_or(24);
+    let out = Results::open("ensemble_fragility", &common)?;
     // One-component records scaled to PGA 1 g: filtered noise (4 periods × 2 seeds), pulses.
     let mut records = rocks::noise_records(&[0.2, 0.5, 1.0, 2.0], &[1, 2], 1, |t, s| format!("noise_T{t}_s{s}"))?;
     for tp in [0.5, 1.0, 2.0, 4.0] {

@@ -26,7 +26,7 @@ use serde_json::json;
 mod harness;
 #[path = "shared/rocks.rs"]
 mod rocks;
-use harness::{fixed, Common, Context, Parser, Result, Results};
+use harness::{fixed, Context, Result, Results};
 
 const TRIALS: u32 = 40;
 const FREQUENCIES: [f64; 4] = [0.5, 1.0, 2.0, 4.0];
@@ -34,13 +34,6 @@ const FREQUENCIES: [f64; 4] = [0.5, 1.0, 2.0, 4.0];
 const R_MAX_M: f64 = 1.0;
 /// The surface pair.
 const SURFACE: Surface = Surface::StoneOnStone;
-
-/// Fragility curves of the rocking and the regular equilibrium of a pebble.
-#[derive(Parser)]
-struct Args {
-    #[command(flatten)]
-    common: Common,
-}
 
 /// A PGA₅₀ as the README writes it: "≤ x", "x" or "> x" (g), "–" when there is none.
 fn th(t: &Option<Threshold>) -> String {
@@ -53,9 +46,9 @@ fn th(t: &Option<Threshold>) -> String {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let shake_seed = args.common.seed_or(1963);
-    let out = Results::open("fragility_shaking", &args.common)?;
+    let common = harness::common_args("Fragility curves of the rocking and the regular equilibrium of a pebble.");
+    let shake_seed = common.seed_or(1963);
+    let out = Results::open("fragility_shaking", &common)?;
     let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
     let (seed, stone, regular, rocking) = (0..50u64)
         .find_map(|seed| {

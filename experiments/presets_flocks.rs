@@ -19,17 +19,7 @@ use std::path::Path;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Parser, Result, Results};
-
-/// Flock distributions under the three launch presets.
-#[derive(Parser)]
-struct Args {
-    /// Drops per preset
-    #[arg(default_value_t = 1000)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
+use harness::{fixed, Result, Results};
 
 /// The row of flock `id` in a run's report, if any drop rested in it.
 fn share(r: &DropReport, id: usize) -> Option<&FlockRow> {
@@ -41,9 +31,10 @@ fn lower(x: impl std::fmt::Debug) -> String {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(1));
-    let out = Results::open("presets_flocks", &args.common)?;
+    let (n, common) =
+        harness::count_args("Flock distributions under the three launch presets.", "Drops per preset", 1000);
+    let seed = common.seed_or(1);
+    let out = Results::open("presets_flocks", &common)?;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let (mut csv, mut meshes) = (Vec::new(), Vec::new());
     for (name, path) in [

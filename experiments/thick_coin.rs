@@ -26,7 +26,7 @@ use rocking_stones::Point3;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{fixed, Result, Results};
 
 const SIDES: usize = 32;
 
@@ -60,16 +60,6 @@ fn p_edge(stone: &Stone, p: DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
     (edge().map(|f| f.count).sum(), r.facet_drops, edge().map(|f| f.static_probability).sum())
 }
 
-/// P(edge) of the thick coin against h/d.
-#[derive(Parser)]
-struct Args {
-    /// Drops per point and preset
-    #[arg(default_value_t = 300)]
-    n: u64,
-    #[command(flatten)]
-    common: Common,
-}
-
 /// One h/d: the basin probability, then each preset's P(edge) with its 95 % Wilson interval.
 struct Row {
     hd: f64,
@@ -79,9 +69,9 @@ struct Row {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
-    let (n, seed) = (args.n, args.common.seed_or(5));
-    let out = Results::open("thick_coin", &args.common)?;
+    let (n, common) = harness::count_args("P(edge) of the thick coin against h/d.", "Drops per point and preset", 300);
+    let seed = common.seed_or(5);
+    let out = Results::open("thick_coin", &common)?;
     let ratios = [0.1, 0.2, 0.3, 0.354, 0.45, 0.577, 0.7, 0.85, 1.0];
     let mut rows = Vec::new();
     for &hd in &ratios {

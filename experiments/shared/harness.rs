@@ -42,6 +42,17 @@ pub fn common_args(about: &str) -> Common {
     Common::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit())
 }
 
+/// The command line of an experiment whose one argument of its own is a count: `[N]`, its help
+/// `count` and its default `default`, then [`Common`]; `--help` says `about`.
+pub fn count_args(about: &str, count: &str, default: u64) -> (u64, Common) {
+    use clap::{Arg, Args, FromArgMatches};
+    let n = Arg::new("n").value_name("N").help(count.to_owned()).default_value(default.to_string());
+    let command = Common::augment_args(clap::Command::new(env!("CARGO_CRATE_NAME")));
+    let matches = command.arg(n.value_parser(clap::value_parser!(u64))).about(about.to_owned()).get_matches();
+    let common = Common::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    (matches.get_one::<u64>("n").copied().unwrap_or(default), common)
+}
+
 /// The results folder of one experiment.
 pub struct Results {
     dir: PathBuf,

@@ -14,7 +14,7 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
 use rocking_stones::dynamics::drops::montecarlo::{
-    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH, FORMAT,
+    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH,
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
@@ -104,18 +104,8 @@ pub fn params(dt: f64) -> DropParams {
 }
 
 pub fn header(name: &str, n: u64, m: &Mode, seed: u64) -> RunHeader {
-    RunHeader {
-        format: FORMAT.into(),
-        mesh: name.into(),
-        mesh_fingerprint: String::new(),
-        seed,
-        drops: n,
-        params: params(m.dt),
-        certificate: m.cert,
-        preset: Some(Preset::Drop.name().into()),
-        center_of_mass: None,
-        shard: Shard::ALL,
-    }
+    let header = RunHeader::of_params(name, seed, n, params(m.dt), m.cert);
+    RunHeader { preset: Some(Preset::Drop.name().into()), ..header }
 }
 
 /// A run of the project: its summary, outcomes by drop index, CPU seconds.
