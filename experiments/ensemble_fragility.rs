@@ -56,7 +56,7 @@ impl Block {
     }
     /// The range of p·PGV/PGA the block's records cover.
     fn taus(&self, r: &BlockResult) -> (f64, f64) {
-        rocks::range(r.cases.iter().map(|c| self.p() * c.run.pgv_over_pga_s))
+        rocks::range(r.cases.iter().map(|c| self.p() * c.run.motion.pgv_over_pga_s))
     }
     /// PGA₅₀/(g tan α) of surface `s` at p·PGV/PGA = `tau`.
     fn pga50(&self, s: Option<&FragilitySurface>, tau: f64) -> Option<f64> {
@@ -103,7 +103,7 @@ impl Case {
 
 /// Whether two runs are of the same record × scale.
 fn same_case(a: &RecordRun, b: &RecordRun) -> bool {
-    a.record == b.record && a.scale.to_bits() == b.scale.to_bits()
+    a.motion.record == b.motion.record && a.motion.scale.to_bits() == b.motion.scale.to_bits()
 }
 
 /// A block's cases, surfaces fitted to the simulation and to Housner's equation, runs, seconds.
@@ -132,15 +132,16 @@ fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
     let (mut cases, mut ode_points) = (Vec::new(), Vec::new());
     for d in &single.runs {
         let members: Vec<&RecordRun> = ensemble.runs.iter().filter(|r| same_case(r, d)).collect();
-        let record = records.iter().find(|r| r.name == d.record).expect("a record of the batch");
+        let record = records.iter().find(|r| r.name == d.motion.record).expect("a record of the batch");
         // Housner's equation on draws: the record's component in the rocking plane.
         let housner = |draws: Vec<Draw>| -> Vec<bool> {
-            let ks: Vec<f64> = draws.iter().map(|t| d.scale * t.sign * t.azimuth_deg.to_radians().cos()).collect();
+            let ks: Vec<f64> =
+                draws.iter().map(|t| d.motion.scale * t.sign * t.azimuth_deg.to_radians().cos()).collect();
             ks.par_iter().map(|&k| b.overturns(&|s: f64| k * record.at(s)[0], record.duration())).collect()
         };
         let same = housner(members.iter().map(|m| m.member.expect("an ensemble run")).collect());
         let truths = housner((0..BLOCK_TRUTHS).map(|k| draw(&uncertainty, &setup, seed, TRUTH_OFFSET + k)).collect());
-        let (pga_g, pgv_over_pga_s) = (d.pga_g, d.pgv_over_pga_s);
+        let (pga_g, pgv_over_pga_s) = (d.motion.pga_g, d.motion.pgv_over_pga_s);
         ode_points.extend(same.iter().map(|&overturned| Run { pga_g, pgv_over_pga_s, overturned }));
         let ode = Some(same.iter().filter(|&&o| o).count() as f64 / same.len() as f64);
         cases.push(Case { ode, ..Case::of(b.name(), d, &nominal.runs, &members, truths) });
@@ -207,7 +208,7 @@ fn main() -> Result<()> {
         let (ode, p, n, k) = (c.ode.map_or(String::new(), |p| fixed(p, 4)), c.p(), c.truths.len(), c.yes());
         row(format!(
             "{rock},{},{},{:.5},{:.5},{settled},{overturned},{p:.4},{ode},{},{n},{k},{nominal}",
-            d.record, d.scale, d.pga_g, d.pgv_over_pga_s, d.rock.overturned
+            d.motion.record, d.motion.scale, d.motion.pga_g, d.motion.pgv_over_pga_s, d.rock.overturned
         ))
     });
     out.csv("cases.csv", &header.split(',').collect::<Vec<_>>(), cases)?;
@@ -286,7 +287,7 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
         // The form's crossing of g tan α, ln(PGV/PGA) = (−β₀ − β₁ ln tan α)/β₂; the weakest overturning.
         let cross = b.p() * ((-s.beta[0] - s.beta[1] * b.tan_alpha.ln()) / s.beta[2]).exp();
         let overturning = r.cases.iter().filter(|c| c.overturned > 0);
-        let lowest = overturning.map(|c| c.run.pga_g / b.tan_alpha).fold(f64::INFINITY, f64::min);
+        let lowest = overturning.map(|c| c.run.motion.pga_g / b.tan_alpha).fold(f64::INFINITY, f64::min);
         floor.push(format!(
             "{}: data up to τ = {hi:.2}, crossing at τ = {cross:.1}, lowest overturning PGA {lowest:.2} g tan α",
             b.name()

@@ -507,7 +507,7 @@ fn a_rock_under_a_two_g_record_stays_within_the_depth_bound() {
     for id in [3, 10] {
         let setup = RockSetup::new(&s, Pose::Facet { id }, 1e-3, Surface::RockOnConcrete, 0.4).unwrap();
         let run = run_record(&s, &setup, &record, 1.0).unwrap();
-        assert!(run.pga_g > 2.0, "the record's PGA: {} g", run.pga_g);
+        assert!(run.motion.pga_g > 2.0, "the record's PGA: {} g", run.motion.pga_g);
         let d = run.rock.deepest_penetration;
         assert!(d < DEPTH_BOUND, "{d} R_max deep on equilibrium {id}");
         // Not vacuous: the rock is loaded on the ground (its contact sinks) and moves.

@@ -320,7 +320,7 @@ fn a_record_as_at2_and_as_csv_gives_identical_runs() {
     let a = run_record(&s, &setup, &from_at2, 1.5).unwrap();
     let b = run_record(&s, &setup, &from_csv, 1.5).unwrap();
     assert!(a.rock.max_tilt_deg > 0.1, "the record should rock the block ({}°)", a.rock.max_tilt_deg);
-    assert_eq!((a.pga_g, a.pgv_m_s, &a.rock), (b.pga_g, b.pgv_m_s, &b.rock));
+    assert_eq!((a.motion.pga_g, a.motion.pgv_m_s, &a.rock), (b.motion.pga_g, b.motion.pgv_m_s, &b.rock));
 }
 
 /// A batch of records × scales gives the same runs, in the same order, on one and on two threads.

@@ -59,6 +59,32 @@ pub struct Measures {
     pub duration_s: f64,
 }
 
+/// A record × scale factor and the intensity measures of the scaled record: what one field-rock
+/// run or ensemble was shaken with.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+pub struct ScaledRecord {
+    /// Name of the record.
+    pub record: String,
+    /// Scale factor applied to the record.
+    pub scale: f64,
+    /// Peak horizontal ground acceleration of the scaled record (g).
+    pub pga_g: f64,
+    /// Peak horizontal ground velocity of the scaled record (m/s).
+    pub pgv_m_s: f64,
+    /// PGV/PGA (s).
+    pub pgv_over_pga_s: f64,
+    /// Peak vertical ground acceleration (g).
+    pub pga_vertical_g: f64,
+}
+
+impl ScaledRecord {
+    /// `record` × `scale`, its scaled record's measures `m`.
+    pub fn of(record: &Record, scale: f64, m: &Measures) -> ScaledRecord {
+        let (pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g) = (m.pga_g, m.pgv_m_s, m.pgv_over_pga_s, m.pga_vertical_g);
+        ScaledRecord { record: record.name.clone(), scale, pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g }
+    }
+}
+
 impl Record {
     /// A record from its samples; refuses fewer than two samples, a non-positive or non-finite
     /// interval and non-finite values (naming the sample).

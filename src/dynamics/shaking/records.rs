@@ -9,25 +9,16 @@ use crate::dynamics::shaking::ensemble::{
 use crate::dynamics::shaking::rock::{place, scaled_motion, shake_record, RockRun, RockSetup};
 use crate::dynamics::stone::Stone;
 use crate::ground_motion::fragility::{self, FragilitySurface};
-use crate::ground_motion::{Measures, Record};
+use crate::ground_motion::{Measures, Record, ScaledRecord};
 use crate::{Error, Result};
 use serde::Serialize;
 
 /// One record × scale factor on a field rock: the record's intensity measures and the outcome.
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct RecordRun {
-    /// Name of the record.
-    pub record: String,
-    /// Scale factor applied to the record.
-    pub scale: f64,
-    /// Peak horizontal ground acceleration of the scaled record (g).
-    pub pga_g: f64,
-    /// Peak horizontal ground velocity of the scaled record (m/s).
-    pub pgv_m_s: f64,
-    /// PGV/PGA (s).
-    pub pgv_over_pga_s: f64,
-    /// Peak vertical ground acceleration (g).
-    pub pga_vertical_g: f64,
+    /// The record × scale factor and its intensity measures.
+    #[serde(flatten)]
+    pub motion: ScaledRecord,
     /// In an ensemble ([`crate::dynamics::shaking::ensemble`]): the member's inputs; none for the rock as given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub member: Option<Draw>,
@@ -65,16 +56,7 @@ pub fn run_record_member(
 impl RecordRun {
     /// The run of `record` × `scale` (measures `m`) that ended in `rock`.
     fn of(record: &Record, scale: f64, m: &Measures, member: Option<Draw>, rock: RockRun) -> RecordRun {
-        RecordRun {
-            record: record.name.clone(),
-            scale,
-            pga_g: m.pga_g,
-            pgv_m_s: m.pgv_m_s,
-            pgv_over_pga_s: m.pgv_over_pga_s,
-            pga_vertical_g: m.pga_vertical_g,
-            member,
-            rock,
-        }
+        RecordRun { motion: ScaledRecord::of(record, scale, m), member, rock }
     }
 }
 
@@ -120,7 +102,11 @@ pub fn fit_surface(runs: &[RecordRun]) -> (Option<fragility::FragilitySurface>, 
     let points: Vec<fragility::Run> = runs
         .iter()
         .filter(|r| r.rock.settled)
-        .map(|r| fragility::Run { pga_g: r.pga_g, pgv_over_pga_s: r.pgv_over_pga_s, overturned: r.rock.overturned })
+        .map(|r| fragility::Run {
+            pga_g: r.motion.pga_g,
+            pgv_over_pga_s: r.motion.pgv_over_pga_s,
+            overturned: r.rock.overturned,
+        })
         .collect();
     match fragility::FragilitySurface::fit(&points) {
         Ok(s) => (Some(s), None, unsettled),
@@ -170,7 +156,9 @@ pub fn run_batch(
         .par_iter()
         .map(|&(r, k, m)| {
             let same = |p: &&RecordRun| {
-                p.record == records[r].name && p.scale.to_bits() == k.to_bits() && p.member.map(|d| d.member) == m
+                p.motion.record == records[r].name
+                    && p.motion.scale.to_bits() == k.to_bits()
+                    && p.member.map(|d| d.member) == m
             };
             if let Some(p) = previous.iter().find(same) {
                 return Ok(p.clone());
@@ -227,14 +215,16 @@ pub struct EnsembleSummary {
 /// The summaries of every record × scale of an ensemble batch's `runs`, in their order.
 pub fn summaries(e: &EnsembleSpec, runs: &[RecordRun]) -> Vec<EnsembleSummary> {
     let mut out: Vec<EnsembleSummary> = Vec::new();
-    for group in runs.chunk_by(|a, b| a.record == b.record && a.scale.to_bits() == b.scale.to_bits()) {
+    for group in
+        runs.chunk_by(|a, b| a.motion.record == b.motion.record && a.motion.scale.to_bits() == b.motion.scale.to_bits())
+    {
         let members: Vec<Member> =
             group.iter().filter_map(|r| r.member.map(|draw| Member { draw, run: r.rock.clone() })).collect();
         out.push(EnsembleSummary {
-            record: group[0].record.clone(),
-            scale: group[0].scale,
-            pga_g: group[0].pga_g,
-            pgv_over_pga_s: group[0].pgv_over_pga_s,
+            record: group[0].motion.record.clone(),
+            scale: group[0].motion.scale,
+            pga_g: group[0].motion.pga_g,
+            pgv_over_pga_s: group[0].motion.pgv_over_pga_s,
             probability: Probability::of(group.iter().map(|r| &r.rock)),
             sensitivity: sensitivities(&e.uncertainty, &members),
         });
@@ -260,7 +250,7 @@ pub struct Contour {
 /// The contours P = 0.1, 0.5 and 0.9 of `surface` at nine PGV/PGA log-spaced over the range of
 /// `runs`.
 pub fn contours(surface: &FragilitySurface, runs: &[RecordRun]) -> Vec<Contour> {
-    let ratios = runs.iter().map(|r| r.pgv_over_pga_s).filter(|r| *r > 0.0 && r.is_finite());
+    let ratios = runs.iter().map(|r| r.motion.pgv_over_pga_s).filter(|r| *r > 0.0 && r.is_finite());
     let (lo, hi) = ratios.fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(r), b.max(r)));
     if !(lo <= hi) {
         return Vec::new();
@@ -288,12 +278,14 @@ mod tests {
 
     fn run(pga_g: f64, ratio: f64, overturned: bool, settled: bool) -> RecordRun {
         RecordRun {
-            record: format!("r{pga_g}-{ratio}"),
-            scale: 1.0,
-            pga_g,
-            pgv_m_s: pga_g * ratio * 9.81,
-            pgv_over_pga_s: ratio,
-            pga_vertical_g: 0.0,
+            motion: ScaledRecord {
+                record: format!("r{pga_g}-{ratio}"),
+                scale: 1.0,
+                pga_g,
+                pgv_m_s: pga_g * ratio * 9.81,
+                pgv_over_pga_s: ratio,
+                pga_vertical_g: 0.0,
+            },
             member: None,
             rock: RockRun {
                 overturned,

@@ -74,13 +74,13 @@ where
 {
     let font = crate::plot::FONT_FAMILY;
     let err = |x: DrawingAreaErrorKind<_>| format!("{x:?}");
-    let pts: Vec<&RecordRun> = runs.iter().filter(|r| r.pga_g > 0.0 && r.pgv_over_pga_s > 0.0).collect();
+    let pts: Vec<&RecordRun> = runs.iter().filter(|r| r.motion.pga_g > 0.0 && r.motion.pgv_over_pga_s > 0.0).collect();
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for r in &pts {
-        x0 = x0.min(r.pga_g);
-        x1 = x1.max(r.pga_g);
-        y0 = y0.min(r.pgv_over_pga_s);
-        y1 = y1.max(r.pgv_over_pga_s);
+        x0 = x0.min(r.motion.pga_g);
+        x1 = x1.max(r.motion.pga_g);
+        y0 = y0.min(r.motion.pgv_over_pga_s);
+        y1 = y1.max(r.motion.pgv_over_pga_s);
     }
     if pts.is_empty() {
         (x0, x1, y0, y1) = (0.01, 10.0, 0.01, 1.0);
@@ -118,14 +118,16 @@ where
         .map_err(err)?;
     chart
         .draw_series(
-            pts.iter().filter(|r| r.rock.overturned).map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, red.filled())),
+            pts.iter()
+                .filter(|r| r.rock.overturned)
+                .map(|r| Circle::new((r.motion.pga_g, r.motion.pgv_over_pga_s), 4, red.filled())),
         )
         .map_err(err)?;
     chart
         .draw_series(
             pts.iter()
                 .filter(|r| !r.rock.overturned)
-                .map(|r| Circle::new((r.pga_g, r.pgv_over_pga_s), 4, blue.stroke_width(2))),
+                .map(|r| Circle::new((r.motion.pga_g, r.motion.pgv_over_pga_s), 4, blue.stroke_width(2))),
         )
         .map_err(err)?;
     if let (Some(f), true) = (surface, bands) {

@@ -16,11 +16,11 @@ pub fn ensemble_summary(e: &Ensemble, mesh: &str) -> String {
         "{} under {} × {}: PGA {:.3} g, PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
          P(overturn) = {:.3} (95 % interval {:.3}–{:.3}): {} of {} settled members overturned",
         short_name(mesh),
-        e.record,
-        e.scale,
-        e.pga_g,
-        e.pgv_m_s,
-        e.pgv_over_pga_s,
+        e.motion.record,
+        e.motion.scale,
+        e.motion.pga_g,
+        e.motion.pgv_m_s,
+        e.motion.pgv_over_pga_s,
         p.p_overturn,
         p.interval95[0],
         p.interval95[1],
@@ -40,16 +40,7 @@ pub fn ensemble_summary(e: &Ensemble, mesh: &str) -> String {
 pub fn ensemble_runs(e: &Ensemble) -> Vec<RecordRun> {
     e.members
         .iter()
-        .map(|m| RecordRun {
-            record: e.record.clone(),
-            scale: e.scale,
-            pga_g: e.pga_g,
-            pgv_m_s: e.pgv_m_s,
-            pgv_over_pga_s: e.pgv_over_pga_s,
-            pga_vertical_g: e.pga_vertical_g,
-            member: Some(m.draw),
-            rock: m.run.clone(),
-        })
+        .map(|m| RecordRun { motion: e.motion.clone(), member: Some(m.draw), rock: m.run.clone() })
         .collect()
 }
 

@@ -49,7 +49,7 @@ pub use uncertainty::{draw, Draw, Uncertainty};
 
 use crate::dynamics::shaking::rock::{place, shake_record, RockRun, RockSetup};
 use crate::dynamics::stone::Stone;
-use crate::ground_motion::Record;
+use crate::ground_motion::{Record, ScaledRecord};
 use crate::monitor::{self, Monitor};
 use crate::tipping::{TippingPolar, TippingSummary};
 use crate::{Error, Point3, Result, Vec3};
@@ -128,18 +128,9 @@ pub fn run_member(
 /// One record × scale factor under an ensemble.
 #[derive(Clone, Debug, Serialize)]
 pub struct Ensemble {
-    /// Name of the record.
-    pub record: String,
-    /// Scale factor applied to it.
-    pub scale: f64,
-    /// Peak horizontal ground acceleration of the scaled record (g).
-    pub pga_g: f64,
-    /// Peak horizontal ground velocity (m/s).
-    pub pgv_m_s: f64,
-    /// PGV/PGA (s).
-    pub pgv_over_pga_s: f64,
-    /// Peak vertical ground acceleration (g).
-    pub pga_vertical_g: f64,
+    /// The record × scale factor and its intensity measures.
+    #[serde(flatten)]
+    pub motion: ScaledRecord,
     /// Whether the rock's size was assumed ([`RockSetup::size_assumed`]; each member's run says
     /// its R_max).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -181,12 +172,7 @@ pub fn run_ensemble(
         .collect();
     let members: Vec<Member> = monitor::all(members)?.into_iter().collect::<Result<_>>()?;
     Ok(Ensemble {
-        record: record.name.clone(),
-        scale,
-        pga_g: m.pga_g,
-        pgv_m_s: m.pgv_m_s,
-        pgv_over_pga_s: m.pgv_over_pga_s,
-        pga_vertical_g: m.pga_vertical_g,
+        motion: ScaledRecord::of(record, scale, &m),
         size_assumed: setup.size_assumed,
         seed,
         uncertainty: u.clone(),
