@@ -21,7 +21,7 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::{
     CertificateMode, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
-use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::drops::launch::launch;
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::params::Flight;
@@ -77,7 +77,7 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std:
         let mut trace = Trace { decided: Vec::new(), levels: Vec::new() };
         let mut step = 0u64;
         let mut rest = None;
-        simulate_batch_observed(
+        simulate_batch(
             stone,
             &p,
             &NoCertificate,

@@ -7,9 +7,7 @@
 //! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`.
 
 use nalgebra::{Matrix3, UnitQuaternion};
-use rocking_stones::dynamics::drops::{
-    batch::simulate_batch_observed, launch::launch, launch::Release, params::Preset,
-};
+use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::launch, launch::Release, params::Preset};
 use rocking_stones::dynamics::engine::{params::Flight, run::NoCertificate, world::BodyState};
 use rocking_stones::dynamics::{stone::Stone, surface::Surface};
 use rocking_stones::plot::{colors, Axis, Chart, Mark};
@@ -43,7 +41,7 @@ fn first_impact(stone: &Stone, q: UnitQuaternion<f64>, e: f64, substeps: usize) 
         _ => {}
     };
     let mut queue = std::iter::once((0, release));
-    simulate_batch_observed(stone, &p, &NoCertificate, 1, &mut queue, &mut |_| {}, &mut observe);
+    simulate_batch(stone, &p, &NoCertificate, 1, &mut queue, &mut |_| {}, &mut observe);
     Ok((before.context("no fall before the impact")?, after.context("no impact")?))
 }
 

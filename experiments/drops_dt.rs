@@ -22,7 +22,7 @@ use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Common, Parser, Result, Results};
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::certificate::{CertificateMode, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
-use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
 use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, RunHeader, Shard, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
@@ -52,7 +52,7 @@ fn observe(stone: &Stone, p: &DropParams, seed: u64, i: u64) -> [f64; 3] {
     let (mut compression, mut low, mut rise) = (0.0f64, f64::INFINITY, 0.0f64);
     let mut last = None;
     // The run's own numerics (exact landings and sub-stepped impacts by default), one stone.
-    simulate_batch_observed(stone, p, &NoCertificate, 1, &mut std::iter::once((i, r)), &mut |_| {}, &mut |_, s| {
+    simulate_batch(stone, p, &NoCertificate, 1, &mut std::iter::once((i, r)), &mut |_| {}, &mut |_, s| {
         let c = stone.body.support(&s.down) - s.z;
         compression = compression.max(c);
         if c <= CERTIFICATE_MAX_COMPRESSION && s.level <= 1.0 {

@@ -13,7 +13,9 @@ mod cpu_time;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{Result, Results};
-use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::launch, params::DropParams, params::Preset};
+use rocking_stones::dynamics::drops::{
+    batch::simulate_batch, launch::launch, launch::DropOutcome, params::DropParams, params::Preset,
+};
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
 use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, params::Flight, run::NoCertificate};
 use rocking_stones::dynamics::{stone::Stone, surface::Surface};
@@ -42,13 +44,14 @@ fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
     let (mut flocks, mut settled) = (vec![0u64; stone.flock_kinds.len()], 0);
     let mut queue = (0..n).map(|i| (i, launch(&mut item_rng(seed, i), p)));
     let clock = cpu_time::thread_cpu_seconds();
-    simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut |o| {
+    let mut finished = |o: DropOutcome| {
         settled += u64::from(o.settled);
         deepest[o.index as usize] = o.deepest_penetration;
         if let Some(k) = o.facet.and_then(|f| stone.facet_flock[f as usize]) {
             flocks[k] += 1;
         }
-    });
+    };
+    simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut finished, &mut |_, _| {});
     let per_s = n as f64 / (cpu_time::thread_cpu_seconds() - clock);
     let over = deepest.iter().filter(|&&d| d > DEPTH_BOUND).count();
     deepest.sort_by(f64::total_cmp);

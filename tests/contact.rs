@@ -176,14 +176,14 @@ fn a_broad_patch_spins_down_at_the_larger_of_twist_and_torsional_friction() {
 /// L at any state where the certificate may be asked (relaxed contact, L ≤ 1 R_max), the number
 /// of such states. Every throw must settle.
 fn later_rise_above_level(stone: &Stone, p: &DropParams, n: u64) -> (f64, usize) {
-    use rocking_stones::dynamics::drops::batch::simulate_batch_observed;
+    use rocking_stones::dynamics::drops::batch::simulate_batch;
     let (mut worst, mut asked) = (f64::NEG_INFINITY, 0usize);
     for i in 0..n {
         let r = launch(&mut item_rng(5, i), p);
         // (L where the certificate may be asked, else None; h(down)) after every step.
         let mut trace: Vec<(Option<f64>, f64)> = Vec::new();
         let mut settled = false;
-        simulate_batch_observed(
+        simulate_batch(
             stone,
             p,
             &rocking_stones::dynamics::engine::run::NoCertificate,

@@ -66,24 +66,13 @@ struct Slot {
 
 /// Simulate the drops of `queue` (drop index and release, in the order given) with at most
 /// `capacity` stones in one world at a time, calling `on_done` with each outcome as its drop
-/// finishes (in the order they finish). Every outcome equals that of [`crate::dynamics::drops::simulate::simulate`]
+/// finishes (in the order they finish), and showing `observe` every stone's state after every
+/// step (its drop index and state, e.g. to measure the contact's compression; `&mut |_, _| {}`
+/// to observe nothing). Every outcome equals that of [`crate::dynamics::drops::simulate::simulate`]
 /// for the same drop (module docs). With [`crate::dynamics::engine::params::Flight::Free`] a stone clear of the
 /// ground leaves the world and flies outside rapier ([`crate::dynamics::engine::flight`]) until it is about to
 /// land.
 pub fn simulate_batch(
-    stone: &Stone,
-    p: &DropParams,
-    cert: &dyn Certificate,
-    capacity: usize,
-    queue: &mut dyn Iterator<Item = (u64, Release)>,
-    on_done: &mut dyn FnMut(DropOutcome),
-) {
-    simulate_batch_observed(stone, p, cert, capacity, queue, on_done, &mut |_, _| {})
-}
-
-/// [`simulate_batch`], with `observe` shown every stone's state after every step (its drop
-/// index and state), e.g. to measure the contact's compression.
-pub fn simulate_batch_observed(
     stone: &Stone,
     p: &DropParams,
     cert: &dyn Certificate,

@@ -23,6 +23,7 @@ pub fn simulate(stone: &Stone, p: &DropParams, release: &Release, index: u64, ce
             1,
             &mut std::iter::once((index, *release)),
             &mut |o| out = Some(o),
+            &mut |_, _| {},
         );
         return out.expect("a batch of one drop finishes it");
     }

@@ -118,10 +118,11 @@ fn run_pending(
                     todo.get(next.fetch_add(1, Ordering::Relaxed))
                 })
                 .map(|&i| (i, release(i)));
-                simulate_batch(stone, &header.params, cert, batch, &mut queue, &mut |o| {
+                let mut finished = |o: DropOutcome| {
                     record(&o);
                     outcomes.push(o);
-                });
+                };
+                simulate_batch(stone, &header.params, cert, batch, &mut queue, &mut finished, &mut |_, _| {});
                 outcomes
             })
             .collect();
