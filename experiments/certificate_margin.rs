@@ -192,7 +192,6 @@ fn main() -> Result<()> {
         })
         .collect();
     out.readme(
-        "README.md",
         include_str!("readme/certificate_margin.md"),
         serde_json::json!({
             "n": n,

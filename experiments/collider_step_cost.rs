@@ -190,7 +190,6 @@ fn main() -> Result<()> {
     let (first, last, pfirst, plast) = (ours[0], ours[ours.len() - 1], theirs[0], theirs[theirs.len() - 1]);
     let f2 = |x: f64| fixed(x, 2);
     out.readme(
-        "README.md",
         include_str!("readme/collider_step_cost.md"),
         json!({
             "timed_steps": TIMED_STEPS, "warmup_steps": WARMUP_STEPS, "repeats": REPEATS,

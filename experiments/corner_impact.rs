@@ -125,7 +125,6 @@ fn main() -> Result<()> {
     });
     let f2 = |x: Option<f64>| x.map(|x| fixed(x, 2));
     out.readme(
-        "README.md",
         include_str!("readme/corner_impact.md"),
         serde_json::json!({
             "height": HEIGHT.to_string(), "orientations": sticking + sliding + two_corners, "seed": seed,

@@ -220,9 +220,7 @@ fn main() -> Result<()> {
     // The fitted throw for a real die of y = 16 mm (R_max ≈ 1.1–1.9 cm): Froude scaling.
     let r_m = 0.5 * 3f64.sqrt() * DIE_Y_M; // a cube of side y
     let outlier = dice.iter().zip(&rows).find(|(d, _)| (d.x - 0.75).abs() < 1e-9);
-    out.readme(
-        "README.md",
-        include_str!("readme/cuboid_dice.md"),
+    out.readme(include_str!("readme/cuboid_dice.md"),
         json!({
             "n": n, "n4": 4 * n, "n28": 28 * n, "seed": seed, "inv_dt": fixed(1.0 / default_dt, 0),
             "heights": format!("{:?}", args.heights), "spins": format!("{:?}", args.spins),

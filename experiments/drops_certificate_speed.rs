@@ -235,7 +235,6 @@ fn main() -> Result<()> {
         })
         .collect();
     out.readme(
-        "README.md",
         include_str!("readme/drops_certificate_speed.md"),
         json!({
             "n": n, "seed": seed, "batch": DEFAULT_BATCH, "rows": rows, "sweep": sweep, "speedups": speedups,

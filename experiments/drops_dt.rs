@@ -164,7 +164,6 @@ fn main() -> Result<()> {
     let ((time_lo, time_hi), (rate_lo, rate_hi)) = (range(&time_ratios, 2), range(&rate_ratios, 1));
     let side = |x: f64, bound: f64| if x < bound { "under" } else { "not under" };
     out.readme(
-        "README.md",
         include_str!("readme/drops_dt.md"),
         json!({
             "n": n, "m": m, "seed": seed, "batch": DEFAULT_BATCH,

@@ -140,7 +140,6 @@ fn main() -> Result<()> {
     plot(&out, &bodies.iter().map(|b| b.0.as_str()).collect::<Vec<_>>(), &bars)?;
     let under = |d: f64| if d <= DEPTH_BOUND { "under" } else { "over" };
     out.readme(
-        "README.md",
         include_str!("readme/drops_impacts.md"),
         serde_json::json!({
             "n": n, "seed": seed, "beyond_seed": beyond_seed, "landing": CONTACT_CLEARANCE.to_string(),

@@ -82,7 +82,6 @@ fn main() -> Result<()> {
     out.write("offfacet.csv", csv)?;
     plot(&out, &hist)?;
     out.readme(
-        "README.md",
         include_str!("readme/drops_offfacet.md"),
         serde_json::json!({
             "n": n, "inv_dt": fixed(1.0 / p.sim.numerics.dt, 0), "tolerance": REST_TOLERANCE.to_string(),

@@ -146,7 +146,6 @@ fn main() -> Result<()> {
     plot(&out, &rows)?;
     let facets_kl = |r: &DropReport| r.fit_facets.as_ref().map_or("–".into(), |f| num4(f.kl_divergence));
     out.readme(
-        "README.md",
         include_str!("readme/drops_quasistatic_limit.md"),
         json!({
             "drops": DROPS, "seed": seed, "damping_seed": damping_seed,

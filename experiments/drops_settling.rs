@@ -87,7 +87,6 @@ fn main() -> Result<()> {
     };
     let (l, c, s) = (&p.launch, &p.sim.contact, &p.sim);
     out.readme(
-        "README.md",
         include_str!("readme/drops_settling.md"),
         serde_json::json!({
             "meshes": rows.len(), "n": n,

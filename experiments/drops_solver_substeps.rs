@@ -95,5 +95,5 @@ fn main() -> Result<()> {
         "n": n, "factor": SAMPLE_FACTOR, "r_l": step_label(REFERENCE_DT), "substeps": SUBSTEPS,
         "mjs": mj.settings(), "bodies": bodies,
     });
-    out.readme("README.md", include_str!("readme/drops_solver_substeps.md"), context)
+    out.readme(include_str!("readme/drops_solver_substeps.md"), context)
 }

@@ -305,7 +305,6 @@ fn main() -> Result<()> {
         [std::cmp::Ordering::Greater, std::cmp::Ordering::Less].iter().position(|o| longer.iter().all(|x| x == o));
     let (m, m1, r) = (&mj0[0], &mj0[1], &recal);
     out.readme(
-        "README.md",
         include_str!("readme/drops_vs_mujoco.md"),
         json!({
             "n": n, "big": big, "factor": SAMPLE_FACTOR, "repeats": REPEATS, "batch": DEFAULT_BATCH, "seed": seed,

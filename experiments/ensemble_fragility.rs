@@ -230,7 +230,6 @@ fn main() -> Result<()> {
 
     let truths = |cases: &[&Case]| cases.iter().map(|c| c.truths.len()).sum::<usize>();
     out.readme(
-        "README.md",
         include_str!("readme/ensemble_fragility.md"),
         json!({
             "minutes": fixed((blocks.iter().map(|b| b.seconds).sum::<f64>() + stone_seconds) / 60.0, 0),

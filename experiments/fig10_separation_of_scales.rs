@@ -50,5 +50,5 @@ fn main() -> Result<()> {
         }));
     }
     chart.save(&out.path("n_nu_all.png"), (1000, 600))?;
-    out.readme("README.md", include_str!("readme/fig10_separation_of_scales.md"), serde_json::json!({ "rows": rows }))
+    out.readme(include_str!("readme/fig10_separation_of_scales.md"), serde_json::json!({ "rows": rows }))
 }

@@ -167,7 +167,6 @@ fn main() -> Result<()> {
     let (e2, f1) = (|x: f64| format!("{x:.2e}"), |x: f64| format!("{x:.1}"));
     let p = &reports[0].params.sim;
     out.readme(
-        "README.md",
         include_str!("readme/fig11_rocking_vs_regular.md"),
         json!({
             "seed": seed,

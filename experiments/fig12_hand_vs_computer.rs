@@ -68,7 +68,6 @@ fn main() -> Result<()> {
     let dynamic = dynamic_experimenter(&out, &hand, &params, fit.nu)?;
     let field = field_study(&out, root)?;
     out.readme(
-        "README.md",
         include_str!("readme/fig12_hand_vs_computer.md"),
         json!({
             "count": params.count,

@@ -65,7 +65,7 @@ fn main() -> Result<()> {
     let contents = FlockContents::of(&report.flocks);
     let p = report.plateau.context("n(ν) has no plateau")?;
     let e3 = |x: f64| format!("{x:.3e}");
-    out.readme(
+    out.page(
         "fig2.md",
         include_str!("readme/fig2_planar_r_phi.md"),
         serde_json::json!({

@@ -50,7 +50,7 @@ fn main() -> Result<()> {
     Figure::new(title, AS.len(), panels).save(&out.path("fig4_grid.png"), (1720, 1010))?;
     let limits = AS.iter().map(|&a| limit(a)).collect::<Result<Vec<_>>>()?;
     let as_ = AS.map(|a| a.to_string());
-    out.readme(
+    out.page(
         "fig4.md",
         include_str!("readme/fig4_ellipse_grid.md"),
         serde_json::json!({ "as": as_, "rows": rows, "limits": limits }),

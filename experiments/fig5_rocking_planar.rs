@@ -120,7 +120,7 @@ fn main() -> Result<()> {
     let title = format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable");
     Figure::new(title, 3, panels).save(&out.path("fig5_rocking.png"), (1500, 560))?;
     let c = FlockContents::of(&report.flocks);
-    out.readme(
+    out.page(
         "fig5.md",
         include_str!("readme/fig5_rocking_planar.md"),
         serde_json::json!({

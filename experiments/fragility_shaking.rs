@@ -111,9 +111,7 @@ fn main() -> Result<()> {
     }
     let contact = first.context("no motion was run")?.sim.contact;
     let units = FREQUENCIES.map(|f| [0.03, 0.1, 2.0, 5.0].map(|l: f64| fixed(f / l.sqrt(), 2)));
-    out.readme(
-        "README.md",
-        include_str!("readme/fragility_shaking.md"),
+    out.readme(include_str!("readme/fragility_shaking.md"),
         json!({
             "seed": seed, "nu": format!("{:.3e}", stone.nu), "trials": TRIALS, "shake_seed": shake_seed,
             "r_max": R_MAX_M.to_string(), "surface": SURFACE.to_string(), "friction": contact.friction.to_string(),

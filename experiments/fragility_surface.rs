@@ -81,7 +81,7 @@ fn main() -> Result<()> {
         "d": part_d(&out, &args, &records)?,
         "periods": format!("{PERIODS:?}"), "seeds": format!("{SEEDS:?}"), "scales": format!("{SCALES:?}"),
     });
-    out.readme("README.md", include_str!("readme/fragility_surface.md"), context)
+    out.readme(include_str!("readme/fragility_surface.md"), context)
 }
 
 fn part_a(out: &Results) -> Result<Value> {

@@ -133,9 +133,7 @@ fn main() -> Result<()> {
     out.write("failures.csv", failures)?;
     out.csv("outcomes.csv", &["outcome", "cases"], by_outcome.iter().map(|(o, n)| [o.to_string(), n.to_string()]))?;
     out.write("self_intersection_timing.csv", timing)?;
-    out.readme(
-        "README.md",
-        include_str!("readme/fuzz_mutations.md"),
+    out.readme(include_str!("readme/fuzz_mutations.md"),
         serde_json::json!({
             "cases": CASES, "seed": seed, "seconds": fixed(seconds, 0), "n_fail": n_fail, "timing": rows,
             "sources": sources.iter().map(|(n, _)| n).collect::<Vec<_>>(), "outcomes": by_outcome.iter().collect::<Vec<_>>(),

@@ -129,7 +129,6 @@ fn main() -> Result<()> {
     let slow: Vec<&Tip> = tips.iter().filter(|t| t.rate == 0.01).collect();
     let f4 = |x: f64| fixed(x, 4);
     out.readme(
-        "README.md",
         include_str!("readme/housner_block.md"),
         json!({
             "tips": slow.iter().map(|t| json!({

@@ -74,7 +74,7 @@ fn main() -> Result<()> {
         plot(&out, name, &reports)?;
     }
     out.csv("flocks.csv", &["mesh", "flock", "type", "static", "quasi_static", "drop", "throw"], csv)?;
-    out.readme("README.md", include_str!("readme/presets_flocks.md"), json!({ "n": n, "seed": seed, "meshes": meshes }))
+    out.readme(include_str!("readme/presets_flocks.md"), json!({ "n": n, "seed": seed, "meshes": meshes }))
 }
 
 /// Bars per flock: the exact basin probability, then each preset's fraction with its 95 % interval.

@@ -334,7 +334,7 @@ fn main() -> Result<()> {
         "bootstrap": BOOTSTRAP, "elapsed": fixed(elapsed, 0), "means": means,
         "shapes": results.iter().map(|r| &r.2).collect::<Vec<_>>(),
     });
-    out.readme("README.md", include_str!("readme/printed_shapes.md"), context)
+    out.readme(include_str!("readme/printed_shapes.md"), context)
 }
 
 /// `tv.png`: per die, the measured frequencies (95 % Wilson intervals) and each predictor's bars

@@ -119,7 +119,7 @@ fn main() -> Result<()> {
         let title = format!("All stones, {what}: ε₅₀ vs static barrier");
         plot_thresholds(&out.path(&format!("thresholds_vs_barriers_{family}.png")), &title, &points)?;
     }
-    out.readme("README.md", include_str!("readme/rocking_confusion_table.md"), context(&runs, seed))
+    out.readme(include_str!("readme/rocking_confusion_table.md"), context(&runs, seed))
 }
 
 /// ε₅₀(flock) as a sortable number (a bound for censored values; ∞ above the grid).

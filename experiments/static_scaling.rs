@@ -141,7 +141,6 @@ fn main() -> Result<()> {
     let (first, big) = (&rows[0], peb[peb.len() - 1]);
     let per_vertex = |r: &Row| r.seconds[8] / r.vertices as f64;
     out.readme(
-        "README.md",
         include_str!("readme/static_scaling.md"),
         json!({
             "rows": rows.iter().map(|r| {

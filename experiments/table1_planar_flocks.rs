@@ -133,7 +133,7 @@ fn main() -> Result<()> {
     )?;
     plot(&out, &ratios)?;
 
-    out.readme(
+    out.page(
         "table1.md",
         include_str!("readme/table1_planar_flocks.md"),
         json!({

@@ -196,7 +196,7 @@ fn main() -> Result<()> {
         "chi_sd": cell(sample_sd(&chis), 0, false), "s_only": cell(s_only, 2, true),
         "points_range": range(with_base("points")), "spread_range": range(with_base("spread")),
     });
-    out.readme("README.md", include_str!("readme/table2_fit_nu.md"), context)
+    out.readme(include_str!("readme/table2_fit_nu.md"), context)
 }
 
 /// χ²(ν) curves of several fits (log–log), the fitted ν̂ marked on each, the paper's ν dashed:

@@ -111,9 +111,7 @@ fn main() -> Result<()> {
     let (thin_lo, thin_hi) =
         (thin.iter().copied().fold(f64::INFINITY, f64::min), thin.iter().copied().fold(0.0, f64::max));
     let f3 = |x: f64| fixed(x, 3);
-    out.readme(
-        "README.md",
-        include_str!("readme/thick_coin.md"),
+    out.readme(include_str!("readme/thick_coin.md"),
         serde_json::json!({
             "sides": SIDES,
             "n": n,

@@ -97,9 +97,14 @@ impl Results {
     }
 
     /// Render `template` (an `experiments/readme/*.md`, included with `include_str!`) with the
-    /// run's values `context` and write it as `file` (usually `README.md`). A value the
-    /// template names but the context lacks is an error, not an empty string.
-    pub fn readme(&self, file: &str, template: &str, context: impl Serialize) -> Result<()> {
+    /// run's values `context` and write it as the folder's `README.md`. A value the template
+    /// names but the context lacks is an error, not an empty string.
+    pub fn readme(&self, template: &str, context: impl Serialize) -> Result<()> {
+        self.page("README.md", template, context)
+    }
+
+    /// [`Results::readme`] written as `file`: one page of a folder that several experiments share.
+    pub fn page(&self, file: &str, template: &str, context: impl Serialize) -> Result<()> {
         let text = render(template, context)?;
         self.write(file, text)
     }
