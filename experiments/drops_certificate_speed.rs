@@ -22,9 +22,7 @@ use harness::{fixed, Result, Results};
 use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
 use rocking_stones::dynamics::drops::launch::DropOutcome;
-use rocking_stones::dynamics::drops::montecarlo::{
-    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH,
-};
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, DropReport, RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
@@ -96,7 +94,7 @@ fn timed(stone: &Stone, h: &RunHeader, batch: usize) -> ModeRun {
     let sink = Mutex::new(|_: &DropOutcome| {});
     let cert = certificate(stone, h.certificate);
     let t = thread_cpu_seconds();
-    let out = run_drops_batched(stone, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink);
+    let out = run_drops_batched(stone, h, &BTreeMap::new(), cert.as_ref(), batch, &sink);
     let seconds = thread_cpu_seconds() - t;
     let outcomes: BTreeMap<u64, DropOutcome> = out.into_iter().map(|o| (o.index, o)).collect();
     ModeRun { report: summarize(&stone.model(), h, &outcomes), outcomes, seconds }

@@ -24,7 +24,7 @@ use rocking_stones::analysis::Options;
 use rocking_stones::dynamics::certificate::{CertificateMode, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
-use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, RunHeader, Shard, DEFAULT_BATCH};
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::{Stone, REST_TOLERANCE};
@@ -103,9 +103,8 @@ fn main() -> Result<()> {
                 header.preset = Some(preset.name().into());
                 let (sink, t) = (Mutex::new(|_: &DropOutcome| {}), std::time::Instant::now());
                 let none = BTreeMap::new();
-                let outcomes = pool.install(|| {
-                    run_drops_batched(&stone, &header, Shard::ALL, &none, &NoCertificate, DEFAULT_BATCH, &sink)
-                });
+                let outcomes =
+                    pool.install(|| run_drops_batched(&stone, &header, &none, &NoCertificate, DEFAULT_BATCH, &sink));
                 let rate = n as f64 / t.elapsed().as_secs_f64();
                 let outcomes: BTreeMap<u64, DropOutcome> = outcomes.into_iter().map(|o| (o.index, o)).collect();
                 let report = summarize(&stone.model(), &header, &outcomes);

@@ -47,7 +47,9 @@ fn batched(s: &Stone, h: &RunHeader, batch: usize, threads: usize, shard: Shard)
     let finished = Mutex::new(Vec::new());
     let out = {
         let sink = Mutex::new(|o: &DropOutcome| finished.lock().unwrap().push(o.index));
-        pool.install(|| run_drops_batched(s, h, shard, &BTreeMap::new(), cert.as_ref(), batch, &sink))
+        pool.install(|| {
+            run_drops_batched(s, &RunHeader { shard, ..h.clone() }, &BTreeMap::new(), cert.as_ref(), batch, &sink)
+        })
     };
     // Every drop is reported to the checkpoint exactly once.
     let mut seen = finished.into_inner().unwrap();

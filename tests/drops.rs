@@ -42,7 +42,7 @@ fn header(drops: u64, seed: u64, certificate: CertificateMode) -> RunHeader {
 fn run_all(s: &Stone, h: &RunHeader, shard: Shard) -> Vec<DropOutcome> {
     let sink = Mutex::new(|_: &DropOutcome| {});
     let cert = rocking_stones::dynamics::certificate::certificate(s, h.certificate);
-    run_drops(s, h, shard, &BTreeMap::new(), cert.as_ref(), &sink)
+    run_drops(s, &RunHeader { shard, ..h.clone() }, &BTreeMap::new(), cert.as_ref(), &sink)
 }
 
 #[test]
@@ -92,7 +92,8 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
         let cert = rocking_stones::dynamics::certificate::certificate(&s, h.certificate);
-        run_drops(&s, &h, Shard { index: 0, count: 2 }, &BTreeMap::new(), cert.as_ref(), &sink);
+        let first = RunHeader { shard: Shard { index: 0, count: 2 }, ..h.clone() };
+        run_drops(&s, &first, &BTreeMap::new(), cert.as_ref(), &sink);
     }
     std::fs::write(&path, std::fs::read_to_string(&path).unwrap() + "{\"index\": 1, \"sett").unwrap();
     assert!(Checkpoint::open(&path, &h, false).is_err(), "an existing checkpoint must not be overwritten");
@@ -110,7 +111,7 @@ fn an_interrupted_checkpointed_run_resumes_to_the_same_result() {
         let c = Mutex::new(c);
         let sink = Mutex::new(|o: &DropOutcome| c.lock().unwrap().record(o).unwrap());
         let cert = rocking_stones::dynamics::certificate::certificate(&s, h.certificate);
-        let rest = run_drops(&s, &h, Shard::ALL, &done, cert.as_ref(), &sink);
+        let rest = run_drops(&s, &h, &done, cert.as_ref(), &sink);
         assert_eq!(rest.len(), 15);
     }
     let (_, all) = read_partial(&path).unwrap();

@@ -51,7 +51,7 @@ fn run(s: &Stone, h: &RunHeader, batch: usize, threads: usize) -> Vec<DropOutcom
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     let cert = certificate(s, h.certificate);
     let sink = Mutex::new(|_: &DropOutcome| {});
-    pool.install(|| run_drops_batched(s, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink))
+    pool.install(|| run_drops_batched(s, h, &BTreeMap::new(), cert.as_ref(), batch, &sink))
 }
 
 #[test]

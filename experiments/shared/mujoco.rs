@@ -13,9 +13,7 @@ use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
 use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
-use rocking_stones::dynamics::drops::montecarlo::{
-    run_drops_batched, summarize, DropReport, RunHeader, Shard, DEFAULT_BATCH,
-};
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, DropReport, RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::engine::simulation::Simulation;
@@ -122,7 +120,7 @@ pub fn timed(pool: &rayon::ThreadPool, stone: &Stone, h: &RunHeader, batch: usiz
         let sink = Mutex::new(|_: &DropOutcome| {});
         let cert = certificate(stone, h.certificate);
         let t = thread_cpu_seconds();
-        let out = run_drops_batched(stone, h, Shard::ALL, &BTreeMap::new(), cert.as_ref(), batch, &sink);
+        let out = run_drops_batched(stone, h, &BTreeMap::new(), cert.as_ref(), batch, &sink);
         let seconds = thread_cpu_seconds() - t;
         let outcomes: Outcomes = out.into_iter().map(|o| (o.index, o)).collect();
         Run { report: summarize(&stone.model(), h, &outcomes), outcomes, seconds }

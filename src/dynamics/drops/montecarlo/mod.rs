@@ -44,18 +44,17 @@ use std::sync::Mutex;
 /// stones per world (1.6–2.3× on throws) and falls beyond 64.
 pub const DEFAULT_BATCH: usize = 32;
 
-/// Run the drops of `shard` that are not in `done`, in parallel, [`DEFAULT_BATCH`] stones per
-/// world, calling `on_done` (under a lock) as each finishes. Returns the new outcomes sorted by
-/// index.
+/// Run the drops of the header's shard ([`RunHeader::shard`]) that are not in `done`, in
+/// parallel, [`DEFAULT_BATCH`] stones per world, calling `on_done` (under a lock) as each
+/// finishes. Returns the new outcomes sorted by index.
 pub fn run_drops(
     stone: &Stone,
     header: &RunHeader,
-    shard: Shard,
     done: &BTreeMap<u64, DropOutcome>,
     cert: &dyn Certificate,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
 ) -> Vec<DropOutcome> {
-    run_drops_batched(stone, header, shard, done, cert, DEFAULT_BATCH, on_done)
+    run_drops_batched(stone, header, done, cert, DEFAULT_BATCH, on_done)
 }
 
 /// [`run_drops`] with `batch` stones per rapier world ([`crate::dynamics::drops::batch`]); 1: every drop
@@ -65,29 +64,26 @@ pub fn run_drops(
 pub fn run_drops_batched(
     stone: &Stone,
     header: &RunHeader,
-    shard: Shard,
     done: &BTreeMap<u64, DropOutcome>,
     cert: &dyn Certificate,
     batch: usize,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
 ) -> Vec<DropOutcome> {
-    run_pending(stone, header, shard, done, cert, batch, on_done, &|| false)
+    run_pending(stone, header, done, cert, batch, on_done, &|| false)
 }
 
 /// [`run_drops_batched`], starting no drop once `stopped()` is true (the drops already in a world
 /// run to their end).
-#[allow(clippy::too_many_arguments)]
 fn run_pending(
     stone: &Stone,
     header: &RunHeader,
-    shard: Shard,
     done: &BTreeMap<u64, DropOutcome>,
     cert: &dyn Certificate,
     batch: usize,
     on_done: &Mutex<dyn FnMut(&DropOutcome) + Send + '_>,
     stopped: &(dyn Fn() -> bool + Sync),
 ) -> Vec<DropOutcome> {
-    let todo: Vec<u64> = shard.indices(header.drops).filter(|i| !done.contains_key(i)).collect();
+    let todo: Vec<u64> = header.shard.indices(header.drops).filter(|i| !done.contains_key(i)).collect();
     let release = |i: u64| launch(&mut item_rng(header.seed, i), &header.params);
     let record = |o: &DropOutcome| (on_done.lock().expect("no panic while holding the lock"))(o);
     let mut out: Vec<DropOutcome> = if batch <= 1 {
@@ -185,7 +181,7 @@ impl<'a> DropRun<'a> {
                 monitor.finished();
             });
             let cert = certificate(stone, header.certificate);
-            run_pending(stone, header, header.shard, &done, cert.as_ref(), batch, &sink, &|| monitor.stopped())
+            run_pending(stone, header, &done, cert.as_ref(), batch, &sink, &|| monitor.stopped())
         };
         if let (Some(error), Some(path)) = (write_error, path) {
             return Err(Error::Io { path, error });
@@ -199,16 +195,13 @@ impl<'a> DropRun<'a> {
     }
 }
 
-/// Run every drop of `header` in memory (no checkpoint, no progress) and summarise them; for
-/// experiments and tests. Returns the report and the outcomes by index.
+/// Run the drops of `header` (its shard: every drop of a whole run) in memory (no checkpoint,
+/// no progress) and summarise them; for experiments and tests. Returns the report and the outcomes by index.
 pub fn run_and_summarize(stone: &Stone, header: &RunHeader) -> (DropReport, BTreeMap<u64, DropOutcome>) {
     let sink = Mutex::new(|_: &DropOutcome| {});
     let cert = certificate(stone, header.certificate);
     let outcomes: BTreeMap<u64, DropOutcome> =
-        run_drops(stone, header, Shard::ALL, &BTreeMap::new(), cert.as_ref(), &sink)
-            .into_iter()
-            .map(|o| (o.index, o))
-            .collect();
+        run_drops(stone, header, &BTreeMap::new(), cert.as_ref(), &sink).into_iter().map(|o| (o.index, o)).collect();
     (summarize(&stone.model(), header, &outcomes), outcomes)
 }
 
