@@ -10,14 +10,14 @@
 //! shape and predictor, seed 1; DATA_DIR = `data/printed_shapes`) → `results/printed_shapes/`;
 //! the README's prose is `experiments/readme/printed_shapes.md`.
 
-use anyhow::{bail, ensure};
-use rand_distr::{Binomial, Distribution};
+use anyhow::ensure;
 use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::drops::{montecarlo::run_and_summarize, montecarlo::RunHeader, params::Preset};
 use rocking_stones::dynamics::{certificate::CertificateMode, engine::params::Flight, stone::Stone, surface::Surface};
 use rocking_stones::plot::{colors::GREY, series_color, Axis, Chart, Figure, Mark, OKABE_ITO};
-use rocking_stones::stats::{chi_square, chi_square_homogeneity, mean, wilson};
-use rocking_stones::{rng::item_rng, rng::Stream, Point3, Vec3};
+use rocking_stones::stats::{chi_square_homogeneity, mean, wilson};
+use rocking_stones::study::outcomes::{frequencies, score, total_variation, Score, ThrownShape};
+use rocking_stones::{tipping::TippingPolar, Vec3};
 use serde_json::{json, Value};
 use std::{collections::BTreeMap, path::Path, path::PathBuf, time::Instant};
 
@@ -52,113 +52,47 @@ struct Args {
     common: Common,
 }
 
-/// One printed die: its hull, centre of mass, measured outcomes (ids, the outward normals of their
-/// hull facets, main first, and counts) and throws `n`.
+/// One printed die: its name and its folder's hull, centre of mass and measured outcomes.
 struct Shape {
     name: &'static str,
-    obj: PathBuf,
-    com: Point3,
-    ids: Vec<String>,
-    normals: Vec<Vec<Vec3>>,
-    counts: Vec<u64>,
-    n: u64,
+    die: ThrownShape,
 }
 
 /// One predictor on one die: frequencies, simulated counts, their total, the run's unsettled drops
-/// and seconds (none: the exact basins), TV, noise TV (mean, 95th percentile), its tv.csv row.
+/// and seconds (none: the exact basins), its score, its tv.csv row and its README values.
 struct Pred {
     p: Vec<f64>,
     sim: Option<(Vec<u64>, u64, (u64, f64))>,
-    tv: f64,
-    noise: (f64, f64),
+    score: Score,
     csv: Vec<String>,
     readme: Value,
 }
 
-fn parse_vec3(text: &str, what: &str) -> Result<Vec3> {
-    let v: Vec<f64> = text.split_whitespace().map(str::parse).collect::<Result<_, _>>().context(what.to_string())?;
-    ensure!(v.len() == 3 && v.iter().all(|x| x.is_finite()), "{what}: {text:?} is not three finite numbers");
-    Ok(Vec3::new(v[0], v[1], v[2]))
-}
-
-/// A die's folder: its one `.obj` hull, `center_of_mass.txt` and `outcomes.csv` (outcome,
-/// resting_facet_normals `x y z;…`, measured_count, n_throws, measured_freq), checked.
-fn read_shape(data: &Path, name: &'static str) -> Result<Shape> {
-    let dir = data.join(name);
-    let is_obj = |p: &PathBuf| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    let objs: Vec<PathBuf> = std::fs::read_dir(&dir)?.filter_map(|e| Some(e.ok()?.path())).filter(is_obj).collect();
-    let [obj] = objs.as_slice() else { bail!("{}: expected one .obj hull, found {objs:?}", dir.display()) };
-    let read = |file: &str| std::fs::read_to_string(dir.join(file)).with_context(|| format!("{name}/{file}"));
-    let com = Point3::from(parse_vec3(read("center_of_mass.txt")?.trim(), &format!("{name}: centre of mass"))?);
-    let path = dir.join("outcomes.csv");
-    let (mut records, mut n_all) = (Vec::new(), None);
-    for (i, record) in csv::ReaderBuilder::new().trim(csv::Trim::All).from_path(&path)?.deserialize().enumerate() {
-        let at = format!("{} record {}", path.display(), i + 1);
-        let (id, normals, count, n, freq): (String, String, u64, u64, f64) = record.with_context(|| at.clone())?;
-        let normals = normals.split(';').map(|s| parse_vec3(s, &at)).collect::<Result<Vec<_>>>()?;
-        ensure!(normals.iter().all(|v| (v.norm() - 1.0).abs() < 1e-3), "{at}: a normal is not a unit vector");
-        ensure!(n > 0 && count <= n && *n_all.get_or_insert(n) == n, "{at}: {count} of {n} throws, after {n_all:?}");
-        ensure!((freq - count as f64 / n as f64).abs() < 5e-4, "{at}: measured_freq is not count / n");
-        records.push((id, (normals.iter().map(|v| v.normalize()).collect(), count)));
-    }
-    let n = n_all.with_context(|| format!("{}: no outcomes", path.display()))?;
-    let (ids, (normals, counts)): (_, (_, Vec<u64>)) = records.into_iter().unzip();
-    ensure!(counts.iter().sum::<u64>() == n, "{}: the counts do not add up", path.display());
-    Ok(Shape { name, obj: obj.clone(), com, ids, normals, counts, n })
-}
-
-/// The total variation distance; frequencies of counts; a number with 3 decimals.
-fn tv(p: &[f64], q: &[f64]) -> f64 {
-    0.5 * p.iter().zip(q).map(|(a, b)| (a - b).abs()).sum::<f64>()
-}
-fn freq(c: &[u64], n: u64) -> Vec<f64> {
-    c.iter().map(|&k| k as f64 / n as f64).collect()
-}
 fn f3(x: f64) -> String {
     fixed(x, 3)
-}
-
-/// A multinomial draw of `n` over `p` (conditional binomials).
-fn multinomial(rng: &mut Stream, n: u64, p: &[f64]) -> Vec<u64> {
-    let (mut left, mut mass, mut out) = (n, 1.0, Vec::with_capacity(p.len()));
-    for (i, &q) in p.iter().enumerate() {
-        let last = i + 1 == p.len() || left == 0;
-        let k = if last { left } else { Binomial::new(left, (q / mass).clamp(0.0, 1.0)).expect("p").sample(rng) };
-        (left, mass) = (left - k, mass - q);
-        out.push(k);
-    }
-    out
 }
 
 /// Score the frequencies `p` of predictor `j` (`sim` as in [`Pred`]) against the measurement; the
 /// noise TV: a measurement of the same N drawn from `p` (and a simulation's N) from `stream`.
 fn judge(shape: &Shape, j: usize, p: Vec<f64>, sim: Option<(Vec<u64>, u64, (u64, f64))>, stream: (u64, u64)) -> Pred {
-    let mut tvs: Vec<f64> = (0..BOOTSTRAP)
-        .map(|b| {
-            let mut rng = item_rng(stream.0 ^ (stream.1 << 32), b);
-            let meas = freq(&multinomial(&mut rng, shape.n, &p), shape.n);
-            sim.as_ref().map_or(tv(&meas, &p), |&(_, m, _)| tv(&meas, &freq(&multinomial(&mut rng, m, &p), m)))
-        })
-        .collect();
-    tvs.sort_by(f64::total_cmp);
-    let (q95, noise) = (tvs[((0.95 * tvs.len() as f64) as usize).min(tvs.len() - 1)], mean(&tvs));
-    let d = tv(&p, &freq(&shape.counts, shape.n));
-    // χ² cannot be computed if an outcome was measured that the predictor never gives: p = 0.
-    let impossible = p.iter().zip(&shape.counts).any(|(&p, &k)| p == 0.0 && k > 0);
-    let (chi2, dof, p_value) = chi_square(&shape.counts, &p);
-    let p_value = if impossible { 0.0 } else { p_value };
-    let p_hom = sim.as_ref().map(|(c, _, _)| chi_square_homogeneity(&shape.counts, c).2);
+    let simulated = sim.as_ref().map(|s| &s.0[..]);
+    let s = score(&shape.die.outcomes, &p, simulated, BOOTSTRAP, stream.0 ^ (stream.1 << 32));
     let run = sim.as_ref().map(|s| s.2);
     let (opt, e3) = (|x: Option<String>| x.unwrap_or_default(), |x: f64| format!("{x:.3e}"));
-    let csv = [shape.name, KEYS[j]].map(String::from).into_iter().chain([d, noise, q95].map(|x| fixed(x, 4)));
-    let csv = csv.chain([fixed(chi2, 2), dof.to_string(), e3(p_value)]);
-    let csv = csv.chain([p_hom.map(e3), run.map(|r| r.0.to_string()), run.map(|r| fixed(r.1, 1))].map(opt)).collect();
+    let csv = [shape.name, KEYS[j]]
+        .map(String::from)
+        .into_iter()
+        .chain([s.tv, s.noise_mean, s.noise_q95].map(|x| fixed(x, 4)));
+    let csv = csv.chain([fixed(s.chi2, 2), s.dof.to_string(), e3(s.p_value)]);
+    let csv = csv
+        .chain([s.p_homogeneity.map(e3), run.map(|r| r.0.to_string()), run.map(|r| fixed(r.1, 1))].map(opt))
+        .collect();
     let readme = json!({
-        "label": LABELS[j], "tv": f3(d), "beyond": d > q95, "within": d <= q95, "noise_mean": f3(noise),
-        "noise_q95": f3(q95), "impossible": impossible, "chi2": fixed(chi2, 1), "dof": dof, "p": p_text(p_value),
-        "p_hom": p_hom.map_or("—".into(), p_text),
+        "label": LABELS[j], "tv": f3(s.tv), "beyond": s.tv > s.noise_q95, "within": s.tv <= s.noise_q95,
+        "noise_mean": f3(s.noise_mean), "noise_q95": f3(s.noise_q95), "impossible": s.impossible,
+        "chi2": fixed(s.chi2, 1), "dof": s.dof, "p": p_text(s.p_value), "p_hom": s.p_homogeneity.map_or("—".into(), p_text),
     });
-    Pred { tv: d, noise: (noise, q95), csv, readme, sim, p }
+    Pred { score: s, csv, readme, sim, p }
 }
 
 /// Weights over the stable facets `(facet, outcome, matches no listed normal)` (probabilities or
@@ -190,30 +124,23 @@ fn p_text(p: f64) -> String {
 /// One die: its predictions, its rows of `outcomes.csv` and its part of the README.
 fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<Pred>, Vec<Vec<String>>, Value)> {
     eprintln!("{}", shape.name);
-    let opts = Options { center_of_mass: Some(shape.com), ..Options::default() };
-    let analysis = Analysis::of_file(&shape.obj, &opts)?;
-    let stone = Stone::new(&analysis, analysis.macro_nu(&opts).0).with_context(|| shape.obj.display().to_string())?;
-    let report = analysis.report(&shape.obj.display().to_string(), &opts);
-    let (r_max, k, facets) = (analysis.equilibria.r_max, shape.ids.len(), &report.stable_facets);
+    let (m, opts) =
+        (&shape.die.outcomes, Options { center_of_mass: Some(shape.die.center_of_mass), ..Options::default() });
+    let analysis = Analysis::of_file(&shape.die.mesh, &opts)?;
+    let stone =
+        Stone::new(&analysis, analysis.macro_nu(&opts).0).with_context(|| shape.die.mesh.display().to_string())?;
+    let report = analysis.report(&shape.die.mesh.display().to_string(), &opts);
+    let (r_max, k, facets) = (analysis.equilibria.r_max, m.ids.len(), &report.stable_facets);
     let r_max_m = r_max * METRES_PER_UNIT;
     let angle_deg = |a: &Vec3, b: &Vec3| a.dot(b).clamp(-1.0, 1.0).acos().to_degrees();
     // The tilt (degrees) that brings G's vertical over the nearest edge of facet `f` (toppling).
-    let topple_tilt = |f: u32| {
-        let (facet, g) = (&analysis.hull.facets[f as usize], analysis.mass.center_of_mass.coords);
-        let (n, height) = (facet.normal, facet.offset - facet.normal.dot(&g));
-        let corner = |i: usize| analysis.hull.vertices[facet.vertices[i % facet.vertices.len()] as usize].coords;
-        let margins = (0..facet.vertices.len())
-            .map(|i| (g + height * n - corner(i)).dot(&n.cross(&(corner(i + 1) - corner(i))).normalize()));
-        margins.fold(f64::INFINITY, f64::min).atan2(height).to_degrees()
+    let topple_tilt = |f: u32| -> Result<f64> {
+        let (normal, g) = (&analysis.hull.facets[f as usize].normal, &analysis.mass.center_of_mass);
+        Ok(TippingPolar::new(&analysis.hull.vertices, g, normal, 0.0)?.minimum().0.atan().to_degrees())
     };
     let vec3 = |v: &Vec3, d: usize| format!("({:+.d$}, {:+.d$}, {:+.d$})", v.x, v.y, v.z);
-    // Stable facets → the outcome with the nearest listed normal (largest dot product), the angle.
-    let nearest = |n: &Vec3| {
-        let normals = shape.normals.iter().enumerate().flat_map(|(k, ns)| ns.iter().map(move |m| (k, m)));
-        let (k, m) = normals.max_by(|a, b| a.1.dot(n).total_cmp(&b.1.dot(n))).expect("an outcome");
-        (k, angle_deg(m, n))
-    };
-    let angles: Vec<(usize, f64)> = facets.iter().map(|s| nearest(&s.normal)).collect();
+    let angles: Vec<(usize, f64)> = facets.iter().map(|s| m.nearest(&s.normal)).collect();
+    let tilts: Vec<f64> = facets.iter().map(|s| topple_tilt(s.facet)).collect::<Result<_>>()?;
     let mapped: Vec<_> = facets.iter().zip(&angles).map(|(s, &(k, a))| (s.facet, k, a > POOR_MATCH_DEG)).collect();
     let stable: BTreeMap<u32, usize> = mapped.iter().map(|m| (m.0, m.1)).collect();
     let basin: BTreeMap<u32, f64> = facets.iter().map(|s| (s.facet, s.basin_probability)).collect();
@@ -226,7 +153,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         let (preset, surface) = (if j == 3 { Preset::Drop } else { Preset::Throw }, Surface::SteelOnWood);
         let mut params = preset.params_at_size(surface, r_max_m * factor)?;
         params.sim.flight.mode = [Flight::Free, Flight::Rapier].get(j - 1).copied().unwrap_or(params.sim.flight.mode);
-        let (c, name) = (shape.com, shape.obj.display().to_string());
+        let (c, name) = (shape.die.center_of_mass, shape.die.mesh.display().to_string());
         let header = RunHeader::new(name, &analysis.mesh, seed, n, params, CertificateMode::Facet, (preset, surface));
         let t = Instant::now();
         let (r, _) = run_and_summarize(&stone, &RunHeader { center_of_mass: Some([c.x, c.y, c.z]), ..header });
@@ -250,7 +177,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         runs.push(counts);
         info.push((r.unsettled, seconds, run));
     }
-    let p_meas = freq(&shape.counts, shape.n);
+    let p_meas = m.frequencies();
     let (mut preds, mut unlisted) = (Vec::new(), Vec::new());
     for (j, weight) in runs.iter().take(4).enumerate() {
         let (p, share, listed_only) = by_outcome(&mapped, k, weight);
@@ -258,16 +185,16 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         weight.iter().for_each(|(f, c)| counts[stable[f]] += *c as u64);
         let sim = (j > 0).then(|| (counts.clone(), counts.iter().sum(), (info[j - 1].0, info[j - 1].1)));
         let pred = judge(shape, j, p, sim, (seed, (index * 8 + j) as u64));
-        let tv_listed = listed_only.map_or("—".into(), |q| f3(tv(&q, &p_meas)));
-        unlisted.push(json!({"label": LABELS[j], "share": f3(share), "tv": f3(pred.tv), "tv_listed": tv_listed}));
+        let tv_listed = listed_only.map_or("—".into(), |q| f3(total_variation(&q, &p_meas)));
+        unlisted.push(json!({"label": LABELS[j], "share": f3(share), "tv": f3(pred.score.tv), "tv_listed": tv_listed}));
         preds.push(pred);
     }
     // outcomes.csv, long format: one row per outcome and source (the measurement, each predictor).
     let (mut rows, mut freqs) = (Vec::new(), Vec::new());
-    for (i, (id, &count)) in shape.ids.iter().zip(&shape.counts).enumerate() {
+    for (i, (id, &count)) in m.ids.iter().zip(&m.counts).enumerate() {
         let sources = preds.iter().zip(KEYS).map(|(p, key)| (key, p.sim.as_ref().map(|s| (s.0[i], s.1)), p.p[i]));
         let mut cells = Vec::new();
-        for (source, counts, p) in std::iter::once(("measured", Some((count, shape.n)), p_meas[i])).chain(sources) {
+        for (source, counts, p) in std::iter::once(("measured", Some((count, m.throws)), p_meas[i])).chain(sources) {
             let (c, n) = counts.map_or(Default::default(), |(c, n)| (c.to_string(), n.to_string()));
             let ci = counts.map(|(c, n)| wilson(c, n, 1.96));
             let (lo, hi) = ci.map_or(Default::default(), |(lo, hi)| (fixed(lo, 5), fixed(hi, 5)));
@@ -277,10 +204,14 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         }
         freqs.push(json!({"id": id, "cells": cells}));
     }
-    let size_tv = |i: usize| f3(tv(&by_outcome(&mapped, k, &runs[i]).0, &p_meas));
+    let size_tv = |i: usize| f3(total_variation(&by_outcome(&mapped, k, &runs[i]).0, &p_meas));
     let (a, b) = (&preds[1].sim.as_ref().expect("simulated").0, &preds[2].sim.as_ref().expect("simulated").0);
     let (chi2, _, p) = chi_square_homogeneity(a, b);
-    let numerics = [f3(tv(&freq(a, a.iter().sum()), &freq(b, b.iter().sum()))), fixed(chi2, 1), p_text(p)];
+    let numerics = [
+        f3(total_variation(&frequencies(a, a.iter().sum()), &frequencies(b, b.iter().sum()))),
+        fixed(chi2, 1),
+        p_text(p),
+    ];
     let extent = [0, 1, 2].map(|i| {
         let x = || analysis.mesh.vertices.iter().map(|v| v[i]);
         fixed(x().fold(f64::NEG_INFINITY, f64::max) - x().fold(f64::INFINITY, f64::min), 2)
@@ -288,23 +219,23 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
     let far = |nm: &&Vec3| facets.iter().all(|s| angle_deg(&s.normal, nm) >= POOR_MATCH_DEG);
     let (qs, th) = (&preds[0], &preds[1]);
     let readme = json!({
-        "name": shape.name, "n": shape.n, "extent": extent, "r_max": f3(r_max), "r_max_mm": fixed(r_max_m * 1e3, 1),
+        "name": shape.name, "n": m.throws, "extent": extent, "r_max": f3(r_max), "r_max_mm": fixed(r_max_m * 1e3, 1),
         "delta": fixed(Surface::SteelOnWood.contact().rolling_resistance_m / r_max_m, 4),
         "hull_facets": analysis.hull.facets.len(), "stable": facets.len(),
         "degenerate": analysis.equilibria.degenerate_decisions,
-        "mapped": facets.iter().zip(&angles).map(|(s, &(k, angle))| json!({
+        "mapped": facets.iter().zip(&angles).zip(&tilts).map(|((s, &(k, angle)), tilt)| json!({
             "facet": s.facet, "normal": vec3(&s.normal, 4), "r": f3(s.r / r_max),
-            "tilt": fixed(topple_tilt(s.facet), 2), "basin": fixed(s.basin_probability, 4),
-            "outcome": shape.ids[k], "angle": fixed(angle, 2), "away": fixed(angle, 0), "poor": angle > POOR_MATCH_DEG,
+            "tilt": fixed(*tilt, 2), "basin": fixed(s.basin_probability, 4),
+            "outcome": m.ids[k], "angle": fixed(angle, 2), "away": fixed(angle, 0), "poor": angle > POOR_MATCH_DEG,
         })).collect::<Vec<_>>(),
-        "empty": (0..k).filter(|i| !stable.values().any(|x| x == i)).map(|i| &shape.ids[i]).collect::<Vec<_>>(),
-        "unmatched": shape.ids.iter().zip(&shape.normals)
+        "empty": (0..k).filter(|i| !stable.values().any(|x| x == i)).map(|i| &m.ids[i]).collect::<Vec<_>>(),
+        "unmatched": m.ids.iter().zip(&m.normals)
             .flat_map(|(id, ns)| ns.iter().filter(far).map(move |nm| json!({"id": id, "normal": vec3(nm, 3)})))
             .collect::<Vec<_>>(),
         "poor": mapped.iter().any(|m| m.2), "unlisted": unlisted, "freqs": freqs,
         "scores": preds.iter().map(|p| &p.readme).collect::<Vec<_>>(),
-        "closer": th.tv + 0.5 * th.noise.0 < qs.tv, "further": qs.tv + 0.5 * qs.noise.0 < th.tv,
-        "size": [size_tv(4), f3(th.tv), size_tv(5)], "numerics": numerics,
+        "closer": th.score.tv + 0.5 * th.score.noise_mean < qs.score.tv, "further": qs.score.tv + 0.5 * qs.score.noise_mean < th.score.tv,
+        "size": [size_tv(4), f3(th.score.tv), size_tv(5)], "numerics": numerics,
         "runs": info.iter().take(3).map(|i| &i.2).collect::<Vec<_>>(),
     });
     Ok((preds, rows, readme))
@@ -317,7 +248,10 @@ fn main() -> Result<()> {
     let out = Results::open("printed_shapes", &args.common)?;
     let t0 = Instant::now();
     // Every input is read and checked before the first throw.
-    let shapes: Vec<Shape> = SHAPES.into_iter().map(|name| read_shape(&data, name)).collect::<Result<_>>()?;
+    let shapes: Vec<Shape> = SHAPES
+        .into_iter()
+        .map(|name| Ok(Shape { name, die: ThrownShape::read(&data.join(name))? }))
+        .collect::<Result<_>>()?;
     let results: Vec<_> = shapes.iter().enumerate().map(|(i, s)| run_shape(s, (n, seed), i)).collect::<Result<_>>()?;
     let preds: Vec<&Vec<Pred>> = results.iter().map(|r| &r.0).collect();
     let elapsed = t0.elapsed().as_secs_f64();
@@ -327,7 +261,7 @@ fn main() -> Result<()> {
     let tv_rows = preds.iter().flat_map(|p| p.iter().map(|p| &p.csv));
     out.csv("tv.csv", &[&header[..], &["p_homogeneity", "unsettled", "seconds"]].concat(), tv_rows)?;
     plot(&out, &shapes, &preds)?;
-    let mean_tv = |j: usize| f3(mean(&preds.iter().map(|p| p[j].tv).collect::<Vec<_>>()));
+    let mean_tv = |j: usize| f3(mean(&preds.iter().map(|p| p[j].score.tv).collect::<Vec<_>>()));
     let means: Vec<_> = LABELS.iter().enumerate().map(|(j, label)| json!({"label": label, "tv": mean_tv(j)})).collect();
     let context = json!({
         "n": n, "seed": seed, "mm_per_unit": fixed(METRES_PER_UNIT * 1e3, 0), "poor_deg": POOR_MATCH_DEG.to_string(),
@@ -361,11 +295,11 @@ fn plot(out: &Results, shapes: &[Shape], preds: &[&Vec<Pred>]) -> Result<()> {
     };
     let mut panels = Vec::new();
     for (s, preds) in shapes.iter().zip(preds) {
-        let (measured, k) = (whiskers(0, &s.counts, s.n), s.ids.len());
+        let (measured, k) = (whiskers(0, &s.die.outcomes.counts, s.die.outcomes.throws), s.die.outcomes.ids.len());
         let top = measured.iter().map(|m| m.2).chain(preds.iter().flat_map(|p| p.p.clone())).fold(0.0, f64::max);
         let y = Axis::linear("frequency", 0.0, ((top * 1.1) * 10.0).ceil() / 10.0);
-        let x = categories("outcome (id of outcomes.csv)", s.ids.clone());
-        let mut chart = Chart::new(x, y).title(format!("{} (N = {} hand throws)", s.name, s.n));
+        let x = categories("outcome (id of outcomes.csv)", s.die.outcomes.ids.clone());
+        let mut chart = Chart::new(x, y).title(format!("{} (N = {} hand throws)", s.name, s.die.outcomes.throws));
         for (slot, pred) in preds.iter().enumerate() {
             let boxes: Vec<_> = (0..k).map(|i| bar(at(5, slot + 1, i), 0.072, pred.p[i])).collect();
             chart = chart.boxes(&boxes, series_color(slot), 0.85);
@@ -373,18 +307,20 @@ fn plot(out: &Results, shapes: &[Shape], preds: &[&Vec<Pred>]) -> Result<()> {
                 chart = chart.y_bars(&whiskers(slot + 1, counts, *total), GREY);
             }
         }
-        let dots: Vec<_> = freq(&s.counts, s.n).into_iter().enumerate().map(|(i, p)| (at(5, 0, i), p)).collect();
+        let dots: Vec<_> =
+            s.die.outcomes.frequencies().into_iter().enumerate().map(|(i, p)| (at(5, 0, i), p)).collect();
         panels.push(chart.y_bars(&measured, black).dots(&dots, black));
     }
     // Last panel: TV per shape and predictor, with the noise level.
-    let top = preds.iter().flat_map(|p| p.iter()).map(|p| p.tv.max(p.noise.1)).fold(0.0f64, f64::max);
+    let top = preds.iter().flat_map(|p| p.iter()).map(|p| p.score.tv.max(p.score.noise_q95)).fold(0.0f64, f64::max);
     let y = Axis::linear("TV = ½ Σ |p_pred − p_meas|", 0.0, ((top * 1.15) * 20.0).ceil() / 20.0);
     let mut chart = Chart::new(categories("die", shapes.iter().map(|s| s.name.to_string()).collect()), y)
         .title("total variation distance to the measurement");
     for slot in 0..4 {
-        let boxes: Vec<_> = preds.iter().enumerate().map(|(i, p)| bar(at(4, slot, i), 0.09, p[slot].tv)).collect();
+        let boxes: Vec<_> =
+            preds.iter().enumerate().map(|(i, p)| bar(at(4, slot, i), 0.09, p[slot].score.tv)).collect();
         chart = chart.boxes(&boxes, series_color(slot), 0.85);
-        for (i, q) in preds.iter().map(|p| p[slot].noise.1).enumerate() {
+        for (i, q) in preds.iter().map(|p| p[slot].score.noise_q95).enumerate() {
             chart = chart.line(&[(at(4, slot, i) - 0.1, q), (at(4, slot, i) + 0.1, q)], black);
         }
     }

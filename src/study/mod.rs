@@ -24,6 +24,9 @@
 //! * **Fitting ν** ([`fit_nu()`], [`mod@fit_nu`]): the ν at which synthetic populations with the
 //!   axis ratios of the paper's Table 2 samples reproduce the hand columns E(S), E(U), σ(S), σ(U)
 //!   best.
+//! * **Hand throws against predictions** ([`outcomes`]): the measured outcome counts of a die or
+//!   stone thrown by hand, read from its folder, and the score of predicted frequencies against
+//!   them (total variation distance against its sampling-noise level, χ²).
 //! * The metadata CSV is read by [`metadata`]; everything written or drawn (CSV, tables, plots)
 //!   is in [`crate::report::study`].
 //!
@@ -47,6 +50,7 @@ pub mod experimenter;
 pub mod field;
 pub mod fit_nu;
 pub mod metadata;
+pub mod outcomes;
 pub mod synthetic;
 
 pub use experimenter::*;
