@@ -17,19 +17,10 @@
 mod harness;
 use harness::{Context, Result, Results};
 use rayon::prelude::*;
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::{
-    CertificateMode, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
-};
+use rocking_stones::dynamics::certificate::{EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::batch::simulate_batch;
-use rocking_stones::dynamics::drops::launch::launch;
-use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::engine::params::Flight;
 use rocking_stones::dynamics::engine::run::{Certificate as _, Decided, NoCertificate, CERTIFICATE_EVERY};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{series_color, Axis, Chart, Mark, RGBColor};
-use rocking_stones::rng::item_rng;
+use rocking_stones::prelude::*;
 use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

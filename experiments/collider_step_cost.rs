@@ -25,8 +25,8 @@ use rapier3d::prelude::{
     SoftBodySet,
 };
 use rocking_stones::dynamics::engine::hull_shape::HullShape;
-use rocking_stones::generate;
 use rocking_stones::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
+use rocking_stones::prelude::*;
 use rocking_stones::solid;
 use serde_json::json;
 use std::hint::black_box;

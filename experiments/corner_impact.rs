@@ -7,11 +7,9 @@
 //! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`.
 
 use nalgebra::{Matrix3, UnitQuaternion};
-use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::launch, launch::Release, params::Preset};
-use rocking_stones::dynamics::engine::{params::Flight, run::NoCertificate, world::BodyState};
-use rocking_stones::dynamics::{stone::Stone, surface::Surface};
-use rocking_stones::plot::{colors, Axis, Chart, Mark};
-use rocking_stones::{analysis::Analysis, analysis::Options, generate, rng::item_rng, Vec3};
+use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::Release};
+use rocking_stones::dynamics::engine::{run::NoCertificate, world::BodyState};
+use rocking_stones::prelude::*;
 
 #[path = "shared/harness.rs"]
 mod harness;

@@ -16,15 +16,8 @@
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Common, Context, Parser, Result, Results};
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
-use rocking_stones::dynamics::drops::params::{DropParams, Preset, THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
-use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::generate;
-use rocking_stones::plot::{colors, Axis, Chart, Mark, RGBColor};
+use rocking_stones::dynamics::drops::params::{THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::{chi_square_homogeneity, wilson};
 use serde_json::json;
 use statrs::distribution::{ChiSquared, ContinuousCDF};

@@ -10,14 +10,11 @@
 //! Run: `cargo run --release --example drops_quasistatic_limit` → `results/drops_quasistatic_limit/`;
 //! the README's prose is `experiments/readme/drops_quasistatic_limit.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, Fit, RunHeader};
-use rocking_stones::dynamics::drops::params::{DropParams, Launch};
+use rocking_stones::dynamics::drops::montecarlo::Fit;
+use rocking_stones::dynamics::drops::params::Launch;
 use rocking_stones::dynamics::resting::RestingParams;
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::generate;
-use rocking_stones::plot::{series_color, style, Axis, Chart, Mark, RGBColor};
+use rocking_stones::plot::style;
+use rocking_stones::prelude::*;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]

@@ -5,10 +5,7 @@
 //! Run: `cargo run --release --example drops_settling [-- N]` (N = 200) →
 //! `results/drops_settling/`; the README's prose is `experiments/readme/drops_settling.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::{certificate::CertificateMode, drops::params::DropParams, drops::params::Preset};
+use rocking_stones::prelude::*;
 use std::{fmt::Write as _, path::Path, time::Instant};
 
 #[path = "shared/harness.rs"]

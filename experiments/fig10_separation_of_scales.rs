@@ -5,9 +5,7 @@
 //! Run: `cargo run --release --example fig10_separation_of_scales` → `results/fig10/`; the
 //! README's prose is `experiments/readme/fig10_separation_of_scales.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::generate;
-use rocking_stones::plot::{series_color, Axis, Chart, Mark};
+use rocking_stones::prelude::*;
 use rocking_stones::report::analysis::write_files;
 use std::path::Path;
 

@@ -11,16 +11,14 @@
 //! Run: `cargo run --release --example fig11_rocking_vs_regular` → `results/fig11_rocking_vs_regular/`;
 //! the README's prose is `experiments/readme/fig11_rocking_vs_regular.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::pushes::{self, Family, PerturbConfig};
 use rocking_stones::dynamics::resting::outcome::Threshold;
 use rocking_stones::dynamics::resting::{default_pair, RestingParams};
-use rocking_stones::dynamics::stone::{resting_orientation, Class, Stone};
-use rocking_stones::dynamics::surface::Surface;
+use rocking_stones::dynamics::stone::{resting_orientation, Class};
 use rocking_stones::planar::{self, Point2};
-use rocking_stones::plot::{Axis, Chart, Figure, Marker, RGBColor};
+use rocking_stones::prelude::*;
+use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
-use rocking_stones::{generate, report, Vec3};
 use serde_json::json;
 
 #[path = "shared/harness.rs"]

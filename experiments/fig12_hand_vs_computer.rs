@@ -12,7 +12,8 @@
 //! Run: `cargo run --release --example fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`;
 //! the README's prose is `experiments/readme/fig12_hand_vs_computer.md`.
 
-use rocking_stones::analysis::{Options, PAPER_NU};
+use rocking_stones::analysis::PAPER_NU;
+use rocking_stones::prelude::*;
 use rocking_stones::report;
 use rocking_stones::study::{
     self, Comparison, Experimenter, FitOptions, HandSample, Metadata, PopulationParams, StudyOptions,

@@ -9,7 +9,8 @@ use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{
     ellipse_polygon, ellipse_radius, FlockContents, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{colors, plain, Axis, Chart, Figure, Mark, Marker, OKABE_ITO};
+use rocking_stones::plot::{plain, OKABE_ITO};
+use rocking_stones::prelude::*;
 use std::f64::consts::PI;
 
 #[path = "shared/harness.rs"]

@@ -6,7 +6,7 @@
 
 use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{ellipse_polygon, sides_for_k, table1, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL};
-use rocking_stones::plot::{colors, Axis, Chart, Figure, RGBColor};
+use rocking_stones::prelude::*;
 
 #[path = "shared/harness.rs"]
 mod harness;

@@ -9,7 +9,7 @@ use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, FlockContents, PlanarAnalysis, PlanarSite, Point2, Sampling, DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{colors, Axis, Chart, Figure, Marker, RGBColor};
+use rocking_stones::prelude::*;
 use std::f64::consts::PI;
 
 #[path = "shared/harness.rs"]

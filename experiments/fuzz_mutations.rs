@@ -9,10 +9,9 @@
 //! `results/fuzz_mutations/`; the README's prose is `experiments/readme/fuzz_mutations.md`.
 
 use rayon::prelude::*;
-use rocking_stones::analysis::Options;
-use rocking_stones::generate;
 use rocking_stones::mesh::{intersect, io, TriMesh};
 use rocking_stones::mutation::{self, Outcome};
+use rocking_stones::prelude::*;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;

@@ -10,13 +10,10 @@
 //! Run: `cargo run --release --example housner_block` → `results/housner_block/`; the README's
 //! prose is `experiments/readme/housner_block.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{Axis, Chart, Figure, Mark, Marker, RGBColor};
-use rocking_stones::{generate, GRAVITY};
+use rocking_stones::prelude::*;
+use rocking_stones::GRAVITY;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]

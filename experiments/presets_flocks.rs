@@ -6,14 +6,9 @@
 //! Run: `cargo run --release --example presets_flocks [-- N]` (N = 1000) →
 //! `results/presets_flocks/`; the README's prose is `experiments/readme/presets_flocks.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, DropReport, FlockRow, RunHeader};
-use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
+use rocking_stones::dynamics::drops::montecarlo::FlockRow;
 use rocking_stones::plot::colors::{BLUE, GREEN, ORANGE, SKY};
-use rocking_stones::plot::{Axis, Chart, Mark, RGBColor};
+use rocking_stones::prelude::*;
 use serde_json::json;
 use std::path::Path;
 

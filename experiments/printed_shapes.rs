@@ -11,13 +11,11 @@
 //! the README's prose is `experiments/readme/printed_shapes.md`.
 
 use anyhow::ensure;
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::drops::{montecarlo::run_and_summarize, montecarlo::RunHeader, params::Preset};
-use rocking_stones::dynamics::{certificate::CertificateMode, engine::params::Flight, stone::Stone, surface::Surface};
-use rocking_stones::plot::{colors::GREY, series_color, Axis, Chart, Figure, Mark, OKABE_ITO};
+use rocking_stones::plot::{colors::GREY, OKABE_ITO};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::{chi_square_homogeneity, mean, wilson};
 use rocking_stones::study::outcomes::{frequencies, score, total_variation, Score, ThrownShape};
-use rocking_stones::{tipping::TippingPolar, Vec3};
+use rocking_stones::tipping::TippingPolar;
 use serde_json::{json, Value};
 use std::{collections::BTreeMap, path::Path, path::PathBuf, time::Instant};
 

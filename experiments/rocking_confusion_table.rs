@@ -18,13 +18,11 @@
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Context, Result, Results};
-use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::pushes::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
 use rocking_stones::dynamics::resting::outcome::Threshold;
 use rocking_stones::dynamics::resting::RestingParams;
-use rocking_stones::dynamics::stone::{Class, Stone};
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::generate;
+use rocking_stones::dynamics::stone::Class;
+use rocking_stones::prelude::*;
 use rocking_stones::report::perturb::{plot_thresholds, threshold_points};
 use rocking_stones::stats::{log_grid, GridSize};
 use serde_json::{json, Value};

@@ -8,12 +8,12 @@
 //! prose is `experiments/readme/static_scaling.md`.
 
 use rocking_stones::equilibria::{Equilibria, Signs, DEFAULT_DEGENERACY_TOL};
-use rocking_stones::generate;
 use rocking_stones::hierarchy::cancellation_hierarchy;
 use rocking_stones::hull::{convex_hull, Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::mesh::io;
 use rocking_stones::morse_smale::MorseSmaleGraph;
-use rocking_stones::plot::{colors, series_color, style, Axis, Chart, Mark};
+use rocking_stones::plot::style;
+use rocking_stones::prelude::*;
 use rocking_stones::solid::MassProperties;
 use rocking_stones::stats::log_fit;
 use serde_json::json;

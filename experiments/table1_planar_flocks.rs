@@ -9,7 +9,7 @@
 use rocking_stones::planar::{
     ellipse_polygon, sides_for_k, table1, PlanarAnalysis, PlanarReport, Sampling, Table1, DEFAULT_DEGENERACY_TOL,
 };
-use rocking_stones::plot::{series_color, Axis, Chart, Mark};
+use rocking_stones::prelude::*;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]

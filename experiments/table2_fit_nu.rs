@@ -9,7 +9,8 @@
 //! prose is `experiments/readme/table2_fit_nu.md`.
 
 use rocking_stones::analysis::PAPER_NU;
-use rocking_stones::plot::{colors, log_tick, series_color, style, Axis, Chart, Mark, Marker};
+use rocking_stones::plot::{log_tick, style};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::sample_sd;
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
 use serde_json::json;

@@ -13,16 +13,9 @@
 //! Run: `cargo run --release --example thick_coin [-- N]` (N = 300 per point and preset) →
 //! `results/thick_coin/`; the README's prose is `experiments/readme/thick_coin.md`.
 
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
-use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::mesh::TriMesh;
-use rocking_stones::plot::{colors, Axis, Chart, Mark};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::wilson;
-use rocking_stones::Point3;
 
 #[path = "shared/harness.rs"]
 mod harness;

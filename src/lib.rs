@@ -39,6 +39,7 @@
 //!   run loop), the prepared stone and its rest rule, the energy certificate; drops (one, a
 //!   batch, Monte Carlo runs with shards and checkpoints), pushes, ground shaking.
 //! * [`study`] — field studies and synthetic hand experiments.
+//! * [`prelude`] — the names a program over the library uses most, in one `use`.
 //! * [`report`] — everything a person reads: summaries, CSV and JSON files, plots (through
 //!   [`plot`], the one place that picks PNG or SVG); computation modules return data.
 //!
@@ -72,6 +73,7 @@ pub mod morse_smale;
 pub mod mutation;
 pub mod planar;
 pub mod plot;
+pub mod prelude;
 pub mod report;
 pub mod rng;
 pub mod shape;
