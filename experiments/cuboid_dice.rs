@@ -105,12 +105,9 @@ fn main() -> Result<()> {
     let (n, seed) = (args.n, args.common.seed_or(1));
     let out = Results::open("cuboid_dice", &args.common)?;
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/data/cuboid_dice_throws.csv");
-    let text = std::fs::read_to_string(data).with_context(|| format!("cannot read {data}"))?;
-    let dice: Vec<Die> = (text.lines().skip(1).filter(|l| !l.trim().is_empty()))
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.trim().parse()).collect::<Result<_, _>>()?;
-            Ok(Die { x: v[0], p: v[1], n: v[2] as u64 })
-        })
+    let rows = csv::ReaderBuilder::new().trim(csv::Trim::All).from_path(data).with_context(|| data.to_string())?;
+    let dice: Vec<Die> = (rows.into_deserialize::<(f64, f64, u64)>().enumerate())
+        .map(|(i, row)| row.map(|(x, p, n)| Die { x, p, n }).with_context(|| format!("{data}, record {}", i + 1)))
         .collect::<Result<_>>()?;
     let stones: Vec<(Stone, f64)> = dice.iter().map(|d| die(d.x)).collect::<Result<_>>()?;
     let t0 = Instant::now();

@@ -19,7 +19,7 @@ use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Result, Results};
+use harness::{cell, fixed, Result, Results};
 
 const DROPS: u64 = 2000;
 const HEIGHTS: [f64; 6] = [0.002, 0.01, 0.03, 0.1, 0.3, 1.0];
@@ -47,16 +47,6 @@ fn run(stone: &Stone, mesh: &str, params: DropParams, seed: u64, drops: u64) -> 
 /// The damped drop from rest at `height` (restitution 0 unless changed).
 fn at_rest(height: f64) -> DropParams {
     DropParams { launch: Launch::at_rest(height), sim: RestingParams::damped().sim }
-}
-
-/// A table cell of 4 decimals, "∞" or "–" where the number is infinite or undefined.
-fn num4(x: f64) -> String {
-    match x {
-        _ if x.is_nan() => "–".into(),
-        f64::INFINITY => "∞".into(),
-        f64::NEG_INFINITY => "−∞".into(),
-        _ => fixed(x, 4),
-    }
 }
 
 fn main() -> Result<()> {
@@ -141,20 +131,21 @@ fn main() -> Result<()> {
         }),
     )?;
     plot(&out, &rows)?;
-    let facets_kl = |r: &DropReport| r.fit_facets.as_ref().map_or("–".into(), |f| num4(f.kl_divergence));
+    let cell4 = |x: f64| cell(x, 4, false);
+    let facets_kl = |r: &DropReport| r.fit_facets.as_ref().map_or("–".into(), |f| cell4(f.kl_divergence));
     out.readme(
         include_str!("readme/drops_quasistatic_limit.md"),
         json!({
             "drops": DROPS, "seed": seed, "damping_seed": damping_seed,
             "rows": rows.iter().map(|r| json!({
                 "body": BODIES[r.body].0, "restitution": r.restitution.to_string(), "height": r.height.to_string(),
-                "settled": r.report.settled, "kl": num4(r.report.fit_flocks.kl_divergence),
+                "settled": r.report.settled, "kl": cell4(r.report.fit_flocks.kl_divergence),
                 "chi2": fixed(r.report.fit_flocks.chi_square, 1), "p": fixed(r.report.fit_flocks.p_value, 3),
                 "kl_facets": facets_kl(&r.report), "seconds": fixed(r.seconds, 1),
             })).collect::<Vec<_>>(),
             "damping": damping.iter().map(|(d, r)| json!({
                 "damping": d.to_string(), "settled": r.settled, "off": r.off_equilibrium, "moving": r.unsettled,
-                "kl": num4(r.fit_flocks.kl_divergence), "kl_facets": facets_kl(r),
+                "kl": cell4(r.fit_flocks.kl_divergence), "kl_facets": facets_kl(r),
             })).collect::<Vec<_>>(),
         }),
     )

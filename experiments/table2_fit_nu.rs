@@ -18,7 +18,7 @@ use std::fmt::Display;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Result, Results};
+use harness::{cell, fixed, Result, Results};
 
 /// The roughness amplitudes scanned (the generator allows < 1).
 const ROUGHNESS: [f64; 9] = [0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.4, 0.6, 0.8];
@@ -31,16 +31,6 @@ struct Run {
     samples: usize,
     fit: NuFit,
     seconds: f64,
-}
-
-/// A table cell `{:.prec$e}` (`e`) or `{:.prec$}`; "∞" / "–" where infinite or undefined.
-fn cell(x: f64, prec: usize, e: bool) -> String {
-    match x {
-        x if x.is_nan() => "–".into(),
-        x if x.is_infinite() => if x > 0.0 { "∞" } else { "−∞" }.into(),
-        x if e => format!("{x:.prec$e}"),
-        x => fixed(x, prec),
-    }
 }
 
 fn main() -> Result<()> {

@@ -131,3 +131,14 @@ pub fn render(template: &str, context: impl Serialize) -> Result<String> {
 pub fn fixed(x: f64, digits: usize) -> String {
     format!("{x:.digits$}")
 }
+
+/// A table cell: `{:.prec$e}` if `e`, else `prec` decimals; "∞", "−∞" or "–" where the number
+/// is infinite or undefined.
+pub fn cell(x: f64, prec: usize, e: bool) -> String {
+    match x {
+        x if x.is_nan() => "–".into(),
+        x if x.is_infinite() => if x > 0.0 { "∞" } else { "−∞" }.into(),
+        x if e => format!("{x:.prec$e}"),
+        x => fixed(x, prec),
+    }
+}
