@@ -2,8 +2,8 @@
 //! (`drops_vs_mujoco`, `drops_solver_substeps`): the physics matched in both, the project's modes
 //! and parameters, MuJoCo's run through `shared/mujoco_drops.py` (its output, its drops
 //! classified by the project's rule) and the drop-by-drop comparison of two runs of the same
-//! releases (`dynamics::drops::compare`) for a README. Included with `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`,
-//! `cpu_time` and `benchmark_bodies`.
+//! releases (`dynamics::drops::compare`) for a README. Included with
+//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`, `cpu_time` and `benchmark_bodies`.
 #![allow(dead_code)] // each experiment uses the part it needs
 
 use super::benchmark_bodies::benchmark_bodies;
@@ -178,8 +178,9 @@ pub fn python_with_mujoco(experiment: &str) -> Result<String> {
     Ok(python)
 }
 
-/// An [`Agreement`] of two runs of the same releases (`dynamics::drops::compare`) for a README: drops in the same flock of those settled in both, χ² (one
-/// decimal), its degrees of freedom, p (three decimals).
+/// An [`Agreement`] of two runs of the same releases (`dynamics::drops::compare`) for a README:
+/// drops in the same flock of those settled in both, χ² (one decimal), its degrees of freedom, p
+/// (three decimals).
 pub fn agreement_json(c: &Agreement) -> Value {
     let (chi2, p) = (fixed(c.chi2, 1), fixed(c.p, 3));
     json!({"same": c.same, "both": c.both, "chi2": chi2, "dof": c.dof, "p": p})

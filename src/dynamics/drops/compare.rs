@@ -118,8 +118,9 @@ mod tests {
         let mut pairs = vec![((true, 0), (true, 0)); 5];
         pairs.extend([((true, 0), (true, 1)); 3]);
         pairs.extend([((true, 1), (true, 0)); 1]);
-        pairs.extend([((true, 2), (true, 1)); 7]); // facets 1 and 2 are both flock 1
-                                                   // Left out: unsettled in one run, and a drop missing from the second run.
+        // Facets 1 and 2 are both flock 1.
+        pairs.extend([((true, 2), (true, 1)); 7]);
+        // Left out: unsettled in one run, and a drop missing from the second run.
         pairs.extend([((false, 0), (true, 1)), ((true, 1), (false, 0))]);
         let (mut a, b) =
             (run(&pairs.iter().map(|p| p.0).collect::<Vec<_>>()), run(&pairs.iter().map(|p| p.1).collect::<Vec<_>>()));
