@@ -17,12 +17,11 @@ mod cpu_time;
 #[path = "shared/harness.rs"]
 mod harness;
 use benchmark_bodies::benchmark_bodies;
-use cpu_time::thread_cpu_seconds;
+use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
-use rocking_stones::dynamics::drops::launch::DropOutcome;
-use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, DropReport, RunHeader, DEFAULT_BATCH};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::montecarlo::{RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::Preset;
 use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
 use rocking_stones::dynamics::stone::Stone;
@@ -30,10 +29,8 @@ use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::plot::{series_color, Axis, Chart, Mark, RGBColor};
 use rocking_stones::stats::chi_square_homogeneity;
 use serde_json::json;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
-use std::sync::Mutex;
 
 /// One mode: stones per world (1 = plain), certificate, flight, and whether it runs the
 /// preset's default step (its longest stable one, 1/120 s, `Preset::largest_stable_dt`) rather
@@ -72,12 +69,6 @@ const MODES: [Mode; 9] = [
 /// settling with free flight are in the table).
 const PLOTTED: [usize; 5] = [1, 2, 4, 7, 8];
 
-struct ModeRun {
-    report: DropReport,
-    outcomes: BTreeMap<u64, DropOutcome>,
-    seconds: f64,
-}
-
 fn header(name: &str, n: u64, seed: u64, preset: Preset, m: &Mode) -> RunHeader {
     let mut params = preset.params(Surface::SteelOnWood);
     params.sim.flight.mode = m.flight;
@@ -86,18 +77,6 @@ fn header(name: &str, n: u64, seed: u64, preset: Preset, m: &Mode) -> RunHeader 
     }
     let header = RunHeader::of_params(name, seed, n, params, m.cert);
     RunHeader { preset: Some(preset.name().into()), ..header }
-}
-
-/// Run every drop of `h` with `batch` stones per world on the current (one-thread) pool; the
-/// time is the worker thread's CPU time.
-fn timed(stone: &Stone, h: &RunHeader, batch: usize) -> ModeRun {
-    let sink = Mutex::new(|_: &DropOutcome| {});
-    let cert = certificate(stone, h.certificate);
-    let t = thread_cpu_seconds();
-    let out = run_drops_batched(stone, h, &BTreeMap::new(), cert.as_ref(), batch, &sink);
-    let seconds = thread_cpu_seconds() - t;
-    let outcomes: BTreeMap<u64, DropOutcome> = out.into_iter().map(|o| (o.index, o)).collect();
-    ModeRun { report: summarize(&stone.model(), h, &outcomes), outcomes, seconds }
 }
 
 fn main() -> Result<()> {
@@ -118,7 +97,7 @@ fn main() -> Result<()> {
     for (name, a) in &bodies {
         let stone = Stone::new(a, a.macro_nu(&Options::default()).0)?;
         for preset in [Preset::Drop, Preset::Throw] {
-            let run = |m: &Mode| pool.install(|| timed(&stone, &header(name, n, seed, preset, m), m.batch));
+            let run = |m: &Mode| timed(&pool, &stone, &header(name, n, seed, preset, m), m.batch);
             // Plain is timed before and after the other modes, each other mode twice; the faster
             // run counts.
             let plain_first = run(&MODES[0]);
@@ -133,15 +112,10 @@ fn main() -> Result<()> {
             let (first_rate, again_rate) = (n as f64 / plain_first.seconds, n as f64 / plain_again.seconds);
             eprintln!("{name} {preset} plain: {first_rate:.1} / {again_rate:.1} drops/s");
             let seconds = plain_first.seconds.min(plain_again.seconds);
-            runs.insert(0, ModeRun { seconds, ..plain_first });
+            runs.insert(0, Run { seconds, ..plain_first });
             let plain = &runs[0];
-            let flock_of = |x: &DropOutcome| {
-                x.flock.map(|k| k as usize).or_else(|| x.facet.and_then(|f| stone.facet_flock[f as usize]))
-            };
-            let counts = |run: &ModeRun| -> Vec<u64> {
-                let count = |id| run.report.flocks.iter().find(|g| g.id == id).map_or(0, |g| g.count);
-                plain.report.flocks.iter().map(|f| count(f.id)).collect()
-            };
+            let counts =
+                |r: &Run| -> Vec<u64> { plain.report.flocks.iter().map(|f| r.report.flock_count(f.id)).collect() };
             let mut speedups = Vec::new();
             for (m, r) in MODES.iter().zip(&runs) {
                 let same = r
@@ -153,7 +127,7 @@ fn main() -> Result<()> {
                             // the reference numerics: bit for bit
                             CertificateMode::None if m.flight == Flight::Rapier && !m.default_step => o == &p,
                             CertificateMode::None | CertificateMode::Facet => o.facet == p.facet,
-                            CertificateMode::Flock => flock_of(o) == flock_of(p),
+                            CertificateMode::Flock => o.flock_in(&stone.facet_flock) == p.flock_in(&stone.facet_flock),
                         }
                     })
                     .count();
@@ -186,10 +160,7 @@ fn main() -> Result<()> {
             bars.push((format!("{}, {preset}", ["stone", "pebble", "box"][bars.len() / 2]), speedups));
             let table: Vec<_> = (plain.report.flocks.iter())
                 .map(|f| {
-                    let cell = |r: &ModeRun| {
-                        let g = r.report.flocks.iter().find(|g| g.id == f.id);
-                        g.map_or("—".into(), |g| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1))
-                    };
+                    let cell = |r: &Run| r.report.flock(f.id).map_or("—".into(), |g| g.fraction_with_ci(3));
                     json!({
                         "id": f.id, "kind": format!("{:?}", f.kind).to_lowercase(),
                         "static": fixed(f.static_probability, 3), "cells": runs.iter().map(cell).collect::<Vec<_>>(),
@@ -205,7 +176,7 @@ fn main() -> Result<()> {
     let mut sweep = Vec::new();
     let mut base = None;
     for batch in [1, 4, 8, 16, 32, 64, 128] {
-        let r = pool.install(|| timed(&stone, &header(name, n, seed, Preset::Throw, &MODES[1]), batch));
+        let r = timed(&pool, &stone, &header(name, n, seed, Preset::Throw, &MODES[1]), batch);
         let b = *base.get_or_insert(r.seconds);
         let (rate, speedup) = (n as f64 / r.seconds, b / r.seconds);
         sweep.push(json!({ "batch": batch, "rate": fixed(rate, 1), "speedup": fixed(speedup, 2) }));

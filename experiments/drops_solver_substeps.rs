@@ -18,8 +18,10 @@ mod cpu_time;
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
+use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
+use rocking_stones::dynamics::drops::compare::{agreement, Agreement};
 use rocking_stones::dynamics::drops::montecarlo::RunHeader;
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::stone::Stone;
@@ -30,9 +32,9 @@ use serde_json::{json, Value};
 const SUBSTEPS: [usize; 5] = [2, 4, 8, 16, 32];
 
 /// The untimed convergence check of one body: its `drops` releases in mode `m` at each of
-/// [`SUBSTEPS`] solver iterations, compared drop by drop with MuJoCo's outcomes `mj` and with
-/// the finest.
-fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj: &Outcomes) -> Value {
+/// [`SUBSTEPS`] solver iterations, compared drop by drop with MuJoCo's sample `mj` and with the
+/// finest.
+fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj: &MjSide) -> Value {
     let runs: Vec<Run> = SUBSTEPS
         .iter()
         .map(|&k| {
@@ -43,29 +45,21 @@ fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj:
         })
         .collect();
     let finest = &runs[runs.len() - 1];
-    let shown: Vec<usize> = (0..stone.flock_kinds.len())
-        .filter(|&k| finest.report.flocks.iter().any(|f| f.id == k && f.count > 0))
-        .collect();
-    let mut mj_counts = vec![0u64; stone.flock_kinds.len()];
-    for k in mj.values().filter(|o| o.settled).filter_map(|o| flock_of(stone, o)) {
-        mj_counts[k] += 1;
-    }
-    let settled = mj_counts.iter().sum::<u64>().max(1) as f64;
-    let vs: Vec<(Chi, Chi)> = runs
-        .iter()
-        .map(|r| (drop_by_drop(stone, &r.outcomes, mj), drop_by_drop(stone, &r.outcomes, &finest.outcomes)))
-        .collect();
+    let shown: Vec<usize> = (0..stone.flock_kinds.len()).filter(|&k| finest.report.flock_count(k) > 0).collect();
+    let versus = |a: &Outcomes, b: &Outcomes| agreement(&stone.facet_flock, a, b);
+    let vs: Vec<(Agreement, Agreement)> =
+        runs.iter().map(|r| (versus(&r.outcomes, &mj.big_outcomes), versus(&r.outcomes, &finest.outcomes))).collect();
     // Is the default converged, and from how many sub-steps on are the statistics those of the finest?
     let last = SUBSTEPS.len() - 1;
-    let default = SUBSTEPS.iter().position(|&k| k == 4).expect("the default is in SUBSTEPS");
+    let default = SUBSTEPS.iter().position(|&k| k == h.params.sim.numerics.solver_iterations).expect("in SUBSTEPS");
     let converged = (0..last).find(|&i| vs[i..last].iter().all(|v| v.1.p >= 0.05)).map(|i| SUBSTEPS[i]);
     json!({
         "shown": shown,
         "rows": SUBSTEPS.iter().zip(&runs).zip(&vs).map(|((k, r), (a, b))| json!({
-            "k": k, "rate": fixed(h.drops as f64 / r.seconds, 0), "mj": a.json(), "fine": b.json(),
-            "fr": shown.iter().map(|&f| fixed(fraction(&r.report, f), 4)).collect::<Vec<_>>(),
+            "k": k, "rate": fixed(h.drops as f64 / r.seconds, 0), "mj": agreement_json(a), "fine": agreement_json(b),
+            "fr": shown.iter().map(|&f| fixed(r.report.flock_fraction(f), 4)).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
-        "mj": shown.iter().map(|&f| fixed(mj_counts[f] as f64 / settled, 4)).collect::<Vec<_>>(),
+        "mj": shown.iter().map(|&f| fixed(mj.big.flock_fraction(f), 4)).collect::<Vec<_>>(),
         "default_ok": vs[default].1.p >= 0.05, "p_default": fixed(vs[default].1.p, 3), "converged": converged,
         "agree": SUBSTEPS.iter().zip(&vs).filter(|(_, v)| v.0.p >= 0.05).map(|(k, _)| k).collect::<Vec<_>>(),
     })
@@ -88,7 +82,7 @@ fn main() -> Result<()> {
     let mut bodies = Vec::new();
     for (b, ((name, _), stone)) in bench.bodies.iter().zip(&bench.stones).enumerate() {
         let side = MjSide::of(stone, name, &[&mj], b, REFERENCE_DT, seed);
-        let sub = substeps(&pool, stone, header(name, big, &mode, seed), &mode, &side.big_outcomes);
+        let sub = substeps(&pool, stone, header(name, big, &mode, seed), &mode, &side);
         bodies.push(json!({"name": name, "sub": sub}));
     }
     let context = json!({

@@ -22,10 +22,12 @@ mod cpu_time;
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
+use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
-use rocking_stones::dynamics::drops::launch::DropOutcome;
+use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares};
 use rocking_stones::dynamics::drops::montecarlo::{DropReport, DEFAULT_BATCH};
+use rocking_stones::dynamics::drops::simulate::flat_restitution;
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::plot::{series_color, Axis, Chart, Mark, RGBColor};
@@ -111,7 +113,7 @@ fn main() -> Result<()> {
         if is_box {
             for (s, &dt) in dts.iter().enumerate() {
                 let [m, ms] = mj0[s].bodies[b].flat_restitution.unwrap_or([f64::NAN; 2]);
-                flat.push((dt, rapier_flat_restitution(stone, &box_normal(), dt), m, ms));
+                flat.push((dt, flat_restitution(stone, &params(dt).sim, &box_normal(), HEIGHT), m, ms));
             }
         }
         // The project's modes, their fastest round.
@@ -121,35 +123,32 @@ fn main() -> Result<()> {
         // the plain drops), the default numerics, and MuJoCo at both steps.
         let project = timed(&pool, stone, &header(name, big, &modes[1], seed), DEFAULT_BATCH);
         let fast = timed(&pool, stone, &header(name, big, &modes[3], seed), modes[3].batch);
+        let versus = |a: &Outcomes, b: &Outcomes| agreement(&stone.facet_flock, a, b);
         // The two steps of one engine start from the same orientations: drops that end in the
         // same flock at both steps.
-        let paired = |a: &Outcomes, b: &Outcomes| {
-            let same =
-                |i, o| b.get(i).is_some_and(|p: &DropOutcome| p.settled && flock_of(stone, p) == flock_of(stone, o));
-            a.iter().filter(|(i, o)| o.settled && same(*i, *o)).count()
-        };
         let (same_mj, same_project) =
-            (paired(&mj[0].big_outcomes, &mj[1].big_outcomes), paired(&project.outcomes, &fast.outcomes));
-        let versus = |a: &Outcomes, b: &Outcomes| drop_by_drop(stone, a, b);
+            (versus(&mj[0].big_outcomes, &mj[1].big_outcomes).same, versus(&project.outcomes, &fast.outcomes).same);
         let big_ref = versus(&project.outcomes, &mj[0].big_outcomes);
         let big_mj_steps = versus(&mj[1].big_outcomes, &mj[0].big_outcomes);
         let big_fast_same = versus(&fast.outcomes, &mj[1].big_outcomes);
         let big_fast_ref = versus(&fast.outcomes, &mj[0].big_outcomes);
         let big_steps = versus(&fast.outcomes, &project.outcomes);
         let (pb, fb) = (&project.report, &fast.report);
-        let shares = chi_shares(&counts(stone, pb), &counts(stone, &mj[0].big));
-        let shares_mj = chi_shares(&counts(stone, &mj[1].big), &counts(stone, &mj[0].big));
+        let counts = |r: &DropReport| r.flock_counts(stone.flock_kinds.len());
+        let shares = chi_square_shares(&counts(pb), &counts(&mj[0].big));
+        let shares_mj = chi_square_shares(&counts(&mj[1].big), &counts(&mj[0].big));
         let kind = |k: usize| format!("{:?}", stone.flock_kinds[k]).to_lowercase();
         // The flock with the largest share of χ² between two samples, its fraction in each.
         let widest = |v: &[f64], a: &DropReport, b: &DropReport| {
             let k = (0..v.len()).max_by(|&x, &y| v[x].total_cmp(&v[y])).expect("a flock");
-            json!({"k": k, "kind": kind(k), "a": fixed(fraction(a, k), 3), "b": fixed(fraction(b, k), 3)})
+            json!({"k": k, "kind": kind(k), "a": fixed(a.flock_fraction(k), 3), "b": fixed(b.flock_fraction(k), 3)})
         };
-        let fast_shares = chi_shares(&counts(stone, fb), &counts(stone, &mj[1].big));
+        let fast_shares = chi_square_shares(&counts(fb), &counts(&mj[1].big));
         let sample = json!({
             "unsettled": [pb.unsettled, fb.unsettled, mj[0].big.unsettled, mj[1].big.unsettled],
-            "ref": big_ref.json(), "mj_steps": big_mj_steps.json(), "fast_same": big_fast_same.json(),
-            "fast_ref": big_fast_ref.json(), "steps": big_steps.json(), "same_mj": same_mj,
+            "ref": agreement_json(&big_ref), "mj_steps": agreement_json(&big_mj_steps),
+            "fast_same": agreement_json(&big_fast_same), "fast_ref": agreement_json(&big_fast_ref),
+            "steps": agreement_json(&big_steps), "same_mj": same_mj,
             "same_project": same_project,
             "flocks": pb.flocks.iter().map(|f| json!({
                 "id": f.id, "kind": kind(f.id), "static": fixed(f.static_probability, 3),
@@ -173,7 +172,7 @@ fn main() -> Result<()> {
             // MuJoCo − project per face at the reference step, the two faces of each pair side by side.
             let mut diffs = [Vec::new(), Vec::new(), Vec::new()];
             for f in &pb.flocks {
-                diffs[axis_of(f.id)].push(format!("{:+.3}", fraction(&mj[0].big, f.id) - f.fraction));
+                diffs[axis_of(f.id)].push(format!("{:+.3}", mj[0].big.flock_fraction(f.id) - f.fraction));
             }
             box_pairs = json!({
                 "pooled": [pooled(pb, false), pooled(&mj[0].big, false), pooled(fb, false), pooled(&mj[1].big, false),
@@ -201,8 +200,8 @@ fn main() -> Result<()> {
             if p < worst.0 {
                 worst = (p, short);
             }
-            let same =
-                r.outcomes.iter().filter(|(i, o)| flock_of(stone, o) == flock_of(stone, &rows[0].outcomes[*i])).count();
+            let ff = &stone.facet_flock;
+            let same = r.outcomes.iter().filter(|(i, o)| o.flock_in(ff) == rows[0].outcomes[*i].flock_in(ff)).count();
             same_modes.push(same);
             let rep = &r.report;
             table.push(json!({

@@ -2,32 +2,29 @@
 //! (`drops_vs_mujoco`, `drops_solver_substeps`): the physics matched in both, the project's modes
 //! and parameters, MuJoCo's run through `shared/mujoco_drops.py` (its output, its drops
 //! classified by the project's rule) and the drop-by-drop comparison of two runs of the same
-//! releases. Included with `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`,
-//! `cpu_time` and `benchmark_bodies`.
+//! releases (`dynamics::drops::compare`) for a README. Included with
+//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`, `cpu_time` and `benchmark_bodies`.
 #![allow(dead_code)] // each experiment uses the part it needs
 
 use super::benchmark_bodies::benchmark_bodies;
-use super::cpu_time::thread_cpu_seconds;
 use super::harness::{fixed, Context, Result};
 use nalgebra::UnitQuaternion;
 use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::dynamics::certificate::{certificate, CertificateMode};
-use rocking_stones::dynamics::drops::launch::{launch, DropOutcome};
-use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, DropReport, RunHeader, DEFAULT_BATCH};
+use rocking_stones::dynamics::certificate::CertificateMode;
+use rocking_stones::dynamics::drops::compare::Agreement;
+use rocking_stones::dynamics::drops::launch::{launch, outcome_at, DropOutcome};
+use rocking_stones::dynamics::drops::montecarlo::{summarize, DropReport, RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::REFERENCE_DT;
-use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::rng::item_rng;
-use rocking_stones::stats::stuart_maxwell;
 use rocking_stones::Vec3;
 use serde::Deserialize;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::sync::Mutex;
 
 /// The physics both engines run (scaled frame).
 pub const HEIGHT: f64 = 0.5;
@@ -106,27 +103,6 @@ pub fn header(name: &str, n: u64, m: &Mode, seed: u64) -> RunHeader {
     RunHeader { preset: Some(Preset::Drop.name().into()), ..header }
 }
 
-/// A run of the project: its summary, outcomes by drop index, CPU seconds.
-pub struct Run {
-    pub report: DropReport,
-    pub outcomes: Outcomes,
-    pub seconds: f64,
-}
-
-/// Every drop of `h` with `batch` stones per world on the one-thread `pool`, timed by the worker
-/// thread's CPU time.
-pub fn timed(pool: &rayon::ThreadPool, stone: &Stone, h: &RunHeader, batch: usize) -> Run {
-    pool.install(|| {
-        let sink = Mutex::new(|_: &DropOutcome| {});
-        let cert = certificate(stone, h.certificate);
-        let t = thread_cpu_seconds();
-        let out = run_drops_batched(stone, h, &BTreeMap::new(), cert.as_ref(), batch, &sink);
-        let seconds = thread_cpu_seconds() - t;
-        let outcomes: Outcomes = out.into_iter().map(|o| (o.index, o)).collect();
-        Run { report: summarize(&stone.model(), h, &outcomes), outcomes, seconds }
-    })
-}
-
 /// What `shared/mujoco_drops.py` writes.
 #[derive(Deserialize)]
 pub struct MjOut {
@@ -179,18 +155,8 @@ pub fn classify(stone: &Stone, name: &str, drops: &[MjDrop], dt: f64, seed: u64)
     for (i, d) in drops.iter().enumerate() {
         let down = Vec3::from(d.down);
         let sane = down.iter().all(|x| x.is_finite()) && down.norm() > 0.5 && d.warnings == 0;
-        let rest = sane.then(|| stone.rest(&down));
-        let o = DropOutcome {
-            index: i as u64,
-            settled: d.settled && sane,
-            facet: rest.as_ref().map(|r| r.facet),
-            flock: None,
-            time: d.steps as f64 * dt,
-            certified: false,
-            height_above: rest.as_ref().map(|r| r.height_above),
-            deepest_penetration: 0.0,
-        };
-        outcomes.insert(i as u64, o);
+        let time = d.steps as f64 * dt;
+        outcomes.insert(i as u64, outcome_at(stone, i as u64, sane.then_some(&down), d.settled, time));
     }
     let mode = Mode { dt, ..modes()[0].clone() };
     (summarize(&stone.model(), &header(name, drops.len() as u64, &mode, seed), &outcomes), outcomes)
@@ -212,49 +178,12 @@ pub fn python_with_mujoco(experiment: &str) -> Result<String> {
     Ok(python)
 }
 
-/// The fraction of a report's settled drops in flock `k`.
-pub fn fraction(r: &DropReport, k: usize) -> f64 {
-    r.flocks.iter().find(|f| f.id == k).map_or(0.0, |f| f.fraction)
-}
-
-/// Two runs of the same releases compared drop by drop: the Stuart–Maxwell test of marginal
-/// homogeneity of their per-flock counts (`stats::stuart_maxwell`, which uses the pairing), and
-/// how many of the drops settled in both end in the same flock.
-pub struct Chi {
-    pub chi2: f64,
-    pub dof: usize,
-    pub p: f64,
-    pub same: usize,
-    pub both: usize,
-}
-
-impl Chi {
-    pub fn json(&self) -> Value {
-        let (chi2, p) = (fixed(self.chi2, 1), fixed(self.p, 3));
-        json!({"same": self.same, "both": self.both, "chi2": chi2, "dof": self.dof, "p": p})
-    }
-}
-
-/// The flock a drop ended in (the certificate's, or that of its rest facet).
-pub fn flock_of(stone: &Stone, o: &DropOutcome) -> Option<usize> {
-    o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]))
-}
-
-/// [`Chi`] of the runs `a` and `b` (outcomes by drop index) on the drops settled in both.
-pub fn drop_by_drop(stone: &Stone, a: &Outcomes, b: &Outcomes) -> Chi {
-    let k = stone.flock_kinds.len();
-    let mut table = vec![vec![0u64; k]; k];
-    let (mut same, mut both) = (0, 0);
-    for (i, x) in a {
-        let Some(y) = b.get(i) else { continue };
-        if let (true, true, Some(fx), Some(fy)) = (x.settled, y.settled, flock_of(stone, x), flock_of(stone, y)) {
-            table[fx][fy] += 1;
-            both += 1;
-            same += usize::from(fx == fy);
-        }
-    }
-    let (chi2, dof, p) = stuart_maxwell(&table);
-    Chi { chi2, dof, p, same, both }
+/// An [`Agreement`] of two runs of the same releases (`dynamics::drops::compare`) for a README:
+/// drops in the same flock of those settled in both, χ² (one decimal), its degrees of freedom, p
+/// (three decimals).
+pub fn agreement_json(c: &Agreement) -> Value {
+    let (chi2, p) = (fixed(c.chi2, 1), fixed(c.p, 3));
+    json!({"same": c.same, "both": c.both, "chi2": chi2, "dof": c.dof, "p": p})
 }
 
 /// Median and largest `height_above` (h(final down) − R_F, R_max) of the settled outcomes: how
@@ -266,62 +195,9 @@ pub fn rise(outcomes: &Outcomes) -> [String; 2] {
     [at(Some(h.len() / 2)), at(h.len().checked_sub(1))].map(|x| format!("{x:.1e}"))
 }
 
-/// Restitution of a flat landing in rapier (the project's world and contact, no damping) at step
-/// `dt`: the body dropped from rest with its facet of outward normal `normal` (body frame) facing
-/// down, `HEIGHT` above the ground; e = √(rebound height / drop height) of G above its height at
-/// rest on the facet, as the Python side measures MuJoCo's. The rebound is found by the velocity
-/// (from the step where G first moves up to the step where it moves down again), not by the
-/// contact impulse, which a sub-stepped impact (`dynamics::engine::impact`) leaves at zero after the step.
-pub fn rapier_flat_restitution(stone: &Stone, normal: &Vec3, dt: f64) -> f64 {
-    let mut p = params(dt);
-    (p.sim.contact.linear_damping, p.sim.contact.angular_damping) = (0.0, 0.0);
-    let q = UnitQuaternion::rotation_between(normal, &-Vec3::z()).unwrap_or_else(UnitQuaternion::identity);
-    let h = stone.body.support(normal);
-    let mut sim = Simulation::new(&stone.body, &p.sim, &q, HEIGHT + h, &Vec3::zeros(), &Vec3::zeros());
-    let (mut rising, mut apex) = (false, f64::NEG_INFINITY);
-    for _ in 0..(10.0 / p.sim.numerics.dt) as usize {
-        sim.step();
-        let s = sim.state();
-        rising |= s.linvel.z > 0.0;
-        if rising {
-            if s.linvel.z <= 0.0 {
-                return ((apex - h).max(0.0) / HEIGHT).sqrt();
-            }
-            apex = apex.max(s.z);
-        }
-    }
-    0.0
-}
-
-/// Per-flock counts of a report, by flock id.
-pub fn counts(stone: &Stone, r: &DropReport) -> Vec<u64> {
-    (0..stone.flock_kinds.len()).map(|k| r.flocks.iter().find(|f| f.id == k).map_or(0, |f| f.count)).collect()
-}
-
 /// Flock `k`'s fraction of a report with its 95 % interval, "—" if it has no such flock.
 pub fn cell(r: &DropReport, k: usize) -> String {
-    let f = r.flocks.iter().find(|g| g.id == k);
-    f.map_or("—".into(), |g| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1))
-}
-
-/// Each category's share (%) of Pearson's χ² statistic of homogeneity of the counts `a` and `b`.
-pub fn chi_shares(a: &[u64], b: &[u64]) -> Vec<f64> {
-    let (na, nb) = (a.iter().sum::<u64>() as f64, b.iter().sum::<u64>() as f64);
-    let chi: Vec<f64> = a
-        .iter()
-        .zip(b)
-        .map(|(&x, &y)| {
-            let col = (x + y) as f64;
-            let term = |o: f64, row: f64| (o - row * col / (na + nb)).powi(2) / (row * col / (na + nb));
-            if col == 0.0 {
-                0.0
-            } else {
-                term(x as f64, na) + term(y as f64, nb)
-            }
-        })
-        .collect();
-    let total = chi.iter().sum::<f64>().max(f64::MIN_POSITIVE);
-    chi.iter().map(|c| 100.0 * c / total).collect()
+    r.flock(k).map_or("—".into(), |g| g.fraction_with_ci(3))
 }
 
 /// MuJoCo at one step, for one body: the timed drops, the larger sample (which holds them), the

@@ -49,6 +49,31 @@ impl DropOutcome {
     pub fn off_equilibrium(&self) -> bool {
         self.settled && self.height_above.is_some_and(|h| h > crate::dynamics::stone::REST_TOLERANCE)
     }
+
+    /// The flock the drop ended in: the one a flock-level certificate decided, else the flock of
+    /// its facet in `facet_flock` (facet index → flock id, as [`Stone::facet_flock`]); None when
+    /// neither is known.
+    pub fn flock_in(&self, facet_flock: &[Option<usize>]) -> Option<usize> {
+        self.flock.map(|k| k as usize).or_else(|| self.facet.and_then(|f| facet_flock[f as usize]))
+    }
+}
+
+/// The outcome of drop `index` run elsewhere (another engine, another model) that ended after
+/// `time` s with down direction `down` (body frame), `settled` if it had come to rest there, as
+/// the project's rule reads it: where it rests by [`Stone::rest`] (not certified). None for
+/// `down` (an end the caller cannot use, e.g. non-finite) gives a drop not settled, on no facet.
+pub fn outcome_at(stone: &Stone, index: u64, down: Option<&Vec3>, settled: bool, time: f64) -> DropOutcome {
+    let rest = down.map(|d| stone.rest(d));
+    DropOutcome {
+        index,
+        settled: settled && rest.is_some(),
+        facet: rest.as_ref().map(|r| r.facet),
+        flock: None,
+        time,
+        certified: false,
+        height_above: rest.as_ref().map(|r| r.height_above),
+        deepest_penetration: 0.0,
+    }
 }
 
 /// Initial state of a drop: orientation (body → world), velocity and angular velocity (world).
@@ -105,5 +130,38 @@ pub fn outcome(stone: &Stone, p: &DropParams, end: &RunEnd, index: u64) -> DropO
             let rest = stone.rest(&end.state.down);
             outcome(Some(rest.facet), None, Some(rest.height_above))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Analysis, Options};
+
+    #[test]
+    fn an_end_elsewhere_rests_where_the_static_theory_puts_it() {
+        let (mesh, repairs) = crate::generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
+        let a = Analysis::of_solid(mesh, repairs, &Options::default()).unwrap();
+        let stone = Stone::new(&a, a.macro_nu(&Options::default()).0).unwrap();
+        // Ending with a face's normal straight down: at rest flat on that face.
+        for n in [Vec3::x(), -Vec3::y(), -Vec3::z()] {
+            let o = outcome_at(&stone, 3, Some(&n), true, 1.5);
+            let facet = o.facet.expect("a facet") as usize;
+            assert!((stone.body.facet_normals[facet] - n).norm() < 1e-9, "{n:?}: facet {facet}");
+            assert!(o.height_above.is_some_and(|h| h.abs() < 1e-9) && o.settled && !o.off_equilibrium());
+            assert_eq!((o.index, o.time, o.certified, o.flock), (3, 1.5, false, None));
+        }
+        // Tilted θ = 0.2 rad towards +x off the bottom face (within its basin: the box tips over
+        // only at atan(0.5 / 0.25)): back on it, off its equilibrium by the support of the tilted
+        // direction, that of the corner (0.5, ·, −0.25), less the face's distance 0.25, over
+        // R_max = |(0.5, 0.4, 0.25)|.
+        let t = 0.2f64;
+        let o = outcome_at(&stone, 0, Some(&Vec3::new(t.sin(), 0.0, -t.cos())), true, 1.0);
+        assert!((stone.body.facet_normals[o.facet.unwrap() as usize] + Vec3::z()).norm() < 1e-9);
+        let rise = (0.5 * t.sin() + 0.25 * t.cos() - 0.25) / 0.4725f64.sqrt();
+        assert!((o.height_above.unwrap() - rise).abs() < 1e-9 && o.off_equilibrium(), "{o:?}");
+        // An end the caller cannot use: not settled, on no facet.
+        let lost = outcome_at(&stone, 1, None, true, 60.0);
+        assert!(!lost.settled && lost.facet.is_none() && lost.height_above.is_none());
     }
 }

@@ -12,8 +12,10 @@
 //! * [`simulate`] — one drop, alone in its world.
 //! * [`batch`] — many independent drops in one rapier world (the same outcomes, drop by drop).
 //! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
+//! * [`compare`] — two runs of the same releases compared drop by drop (two numerics, two engines).
 
 pub mod batch;
+pub mod compare;
 pub mod launch;
 pub mod montecarlo;
 pub mod params;

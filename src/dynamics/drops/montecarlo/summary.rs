@@ -124,6 +124,40 @@ pub struct DropReport {
     pub fit_flocks: Fit,
 }
 
+impl DropReport {
+    /// The row of flock `id`; None when the report has none (no drop settled in it and its
+    /// static probability is 0).
+    pub fn flock(&self, id: usize) -> Option<&FlockRow> {
+        self.flocks.iter().find(|f| f.id == id)
+    }
+
+    /// The fraction of the settled drops (with a known flock) that ended in flock `id`; 0 when
+    /// the report has no row for it.
+    pub fn flock_fraction(&self, id: usize) -> f64 {
+        self.flock(id).map_or(0.0, |f| f.fraction)
+    }
+
+    /// The settled drops that ended in flock `id`; 0 when the report has no row for it.
+    pub fn flock_count(&self, id: usize) -> u64 {
+        self.flock(id).map_or(0, |f| f.count)
+    }
+
+    /// The per-flock counts of flocks 0..`flocks` (by id), as the stone's `flock_kinds.len()`
+    /// numbers them: the sample that two runs' homogeneity tests compare.
+    pub fn flock_counts(&self, flocks: usize) -> Vec<u64> {
+        (0..flocks).map(|k| self.flock_count(k)).collect()
+    }
+}
+
+impl FlockRow {
+    /// "fraction [low, high]" of the flock's fraction and its 95 % interval, each with `digits`
+    /// decimals, as tables print it.
+    pub fn fraction_with_ci(&self, digits: usize) -> String {
+        let (f, (lo, hi)) = (self.fraction, self.ci95);
+        format!("{f:.digits$} [{lo:.digits$}, {hi:.digits$}]")
+    }
+}
+
 /// Summarise the outcomes of a run (or a merged set of partial runs).
 pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u64, DropOutcome>) -> DropReport {
     let nf = model.facet_normals.len();
@@ -152,8 +186,7 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         if let Some(f) = o.facet {
             facet_counts[f as usize] += 1;
         }
-        let flock = o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| model.facet_flock[f as usize]));
-        if let Some(k) = flock {
+        if let Some(k) = o.flock_in(&model.facet_flock) {
             flock_counts[k] += 1;
         }
     }
@@ -224,5 +257,47 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         flocks,
         fit_facets,
         fit_flocks: fit(&flock_counts, &flock_probability),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::drops::params::Preset;
+    use crate::dynamics::surface::Surface;
+
+    /// Three facets: 0 and 1 stable in flocks 0 and 1, 2 not stable; flock 2 unreachable.
+    fn model() -> StaticModel {
+        StaticModel {
+            facet_normals: vec![Vec3::x(), Vec3::y(), Vec3::z()],
+            facet_equilibrium: vec![Some(0), Some(1), None],
+            facet_flock: vec![Some(0), Some(1), None],
+            flock_kinds: vec![Kind::Stable; 3],
+            facet_probability: vec![0.6, 0.4, 0.0],
+            nu: 0.0,
+        }
+    }
+
+    fn drop(index: u64, settled: bool, facet: u32) -> DropOutcome {
+        let (flock, time, certified, height_above, deepest_penetration) = (None, 1.0, false, Some(0.0), 0.0);
+        DropOutcome { index, settled, facet: Some(facet), flock, time, certified, height_above, deepest_penetration }
+    }
+
+    #[test]
+    fn a_report_reads_its_flocks_by_id() {
+        // Three settled drops on facet 0, one on facet 1, one unsettled (left out).
+        let outcomes: BTreeMap<u64, DropOutcome> =
+            [(0, true, 0), (1, true, 0), (2, true, 1), (3, true, 0), (4, false, 1)]
+                .map(|(i, s, f)| (i, drop(i, s, f)))
+                .into();
+        let params = Preset::Drop.params(Surface::SteelOnWood);
+        let header = RunHeader::of_params("test", 1, 5, params, CertificateMode::None);
+        let r = summarize(&model(), &header, &outcomes);
+        assert_eq!((r.flock_count(0), r.flock_count(1), r.flock_count(2)), (3, 1, 0));
+        assert_eq!((r.flock_fraction(0), r.flock_fraction(1), r.flock_fraction(2)), (0.75, 0.25, 0.0));
+        assert!(r.flock(2).is_none() && r.flock(1).is_some_and(|f| f.id == 1));
+        assert_eq!(r.flock_counts(3), vec![3, 1, 0]);
+        let row = FlockRow { fraction: 0.25, ci95: (0.0456, 0.6994), ..r.flocks[1].clone() };
+        assert_eq!(row.fraction_with_ci(3), "0.250 [0.046, 0.699]");
     }
 }
