@@ -16,21 +16,14 @@ mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Context, Result, Results};
 use rayon::prelude::*;
-use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::certificate::{
-    CertificateMode, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
-};
-use rocking_stones::dynamics::drops::launch::{launch, release_height};
-use rocking_stones::dynamics::drops::params::{DropParams, Preset};
+use rocking_stones::dynamics::certificate::{EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::drops::launch::release_height;
 use rocking_stones::dynamics::engine::rest::RestKind;
 use rocking_stones::dynamics::engine::run::{
     run_to_end as run_one, Certificate, Decided, NoCertificate, Passive, CERTIFICATE_EVERY,
 };
 use rocking_stones::dynamics::engine::simulation::Simulation;
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{series_color, Axis, Chart, Mark, Marker};
-use rocking_stones::rng::item_rng;
+use rocking_stones::prelude::*;
 use std::path::Path;
 
 /// The margins swept (R_max), the default last.

@@ -19,14 +19,7 @@ mod harness;
 use benchmark_bodies::benchmark_bodies;
 use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
-use rocking_stones::analysis::Options;
-use rocking_stones::dynamics::certificate::CertificateMode;
-use rocking_stones::dynamics::drops::montecarlo::{RunHeader, DEFAULT_BATCH};
-use rocking_stones::dynamics::drops::params::Preset;
-use rocking_stones::dynamics::engine::params::{Flight, REFERENCE_DT};
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
-use rocking_stones::plot::{series_color, Axis, Chart, Mark, RGBColor};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::chi_square_homogeneity;
 use serde_json::json;
 use std::fmt::Write as _;
@@ -144,7 +137,7 @@ fn main() -> Result<()> {
                 }));
                 writeln!(
                     csv,
-                    "\"{name}\",{preset},{},{},{},{},{},{n},{:.3},{rate:.2},{speedup:.3},{:.4},{},{},{same},{p_value:.4},{:.5}",
+                    "\"{name}\",{preset},\"{}\",{},{},{},{},{n},{:.3},{rate:.2},{speedup:.3},{:.4},{},{},{same},{p_value:.4},{:.5}",
                     m.name,
                     m.batch,
                     m.cert.name(),

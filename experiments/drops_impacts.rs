@@ -13,15 +13,11 @@ mod cpu_time;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{Result, Results};
-use rocking_stones::dynamics::drops::{
-    batch::simulate_batch, launch::launch, launch::DropOutcome, params::DropParams, params::Preset,
-};
+use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
-use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, params::Flight, run::NoCertificate};
-use rocking_stones::dynamics::{stone::Stone, surface::Surface};
-use rocking_stones::plot::{colors, series_color, Axis, Chart, Figure, Mark};
+use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, run::NoCertificate};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::chi_square_homogeneity;
-use rocking_stones::{analysis::Analysis, analysis::Options, generate, rng::item_rng};
 use std::{fmt::Write as _, path::Path};
 
 /// The presets and steps (1/s) of the comparison.

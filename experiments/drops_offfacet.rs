@@ -12,12 +12,11 @@ mod benchmark_bodies;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Result, Results};
-use rocking_stones::dynamics::drops::{launch::launch, launch::release_height, params::Preset};
+use rocking_stones::dynamics::drops::launch::release_height;
 use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use rocking_stones::dynamics::engine::{rest::RestKind, simulation::Simulation};
-use rocking_stones::dynamics::{stone::Stone, stone::REST_TOLERANCE, surface::Surface};
-use rocking_stones::plot::{colors, series_color, Axis, Chart, Mark, Marker};
-use rocking_stones::rng::item_rng;
+use rocking_stones::dynamics::stone::REST_TOLERANCE;
+use rocking_stones::prelude::*;
 use std::{fmt::Write as _, path::Path};
 
 fn main() -> Result<()> {

@@ -22,9 +22,7 @@ use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::compare::{agreement, Agreement};
-use rocking_stones::dynamics::drops::montecarlo::RunHeader;
-use rocking_stones::dynamics::engine::params::REFERENCE_DT;
-use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::prelude::*;
 use serde_json::{json, Value};
 
 /// Rapier solver iterations (its sub-steps per step) of the convergence check; the project's

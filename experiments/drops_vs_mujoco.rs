@@ -26,11 +26,9 @@ use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares};
-use rocking_stones::dynamics::drops::montecarlo::{DropReport, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::simulate::flat_restitution;
-use rocking_stones::dynamics::engine::params::REFERENCE_DT;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
-use rocking_stones::plot::{series_color, Axis, Chart, Mark, RGBColor};
+use rocking_stones::prelude::*;
 use serde_json::{json, Value};
 use std::path::Path;
 

@@ -2,8 +2,7 @@
 //! `drops_dt` and `certificate_margin`: the bundled stone, a ≈500-hull-vertex synthetic pebble
 //! and a box 1 × 0.8 × 0.5, each analysed with the default options.
 
-use rocking_stones::analysis::{Analysis, Options};
-use rocking_stones::generate;
+use rocking_stones::prelude::*;
 use std::path::Path;
 
 /// The benchmark bodies with their names (`long`: with the hull size and proportions, as the

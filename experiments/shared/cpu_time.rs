@@ -3,9 +3,8 @@
 #![allow(dead_code)] // `drops_impacts` uses the clock alone
 
 use rocking_stones::dynamics::certificate::certificate;
-use rocking_stones::dynamics::drops::launch::DropOutcome;
-use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize, DropReport, RunHeader};
-use rocking_stones::dynamics::stone::Stone;
+use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize};
+use rocking_stones::prelude::*;
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
