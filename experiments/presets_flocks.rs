@@ -6,7 +6,6 @@
 //! Run: `cargo run --release --example presets_flocks [-- N]` (N = 1000) →
 //! `results/presets_flocks/`; the README's prose is `experiments/readme/presets_flocks.md`.
 
-use rocking_stones::dynamics::drops::montecarlo::FlockRow;
 use rocking_stones::plot::colors::{BLUE, GREEN, ORANGE, SKY};
 use rocking_stones::prelude::*;
 use serde_json::json;
@@ -15,11 +14,6 @@ use std::path::Path;
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Result, Results};
-
-/// The row of flock `id` in a run's report, if any drop rested in it.
-fn share(r: &DropReport, id: usize) -> Option<&FlockRow> {
-    r.flocks.iter().find(|g| g.id == id)
-}
 
 fn lower(x: impl std::fmt::Debug) -> String {
     format!("{x:?}").to_lowercase()
@@ -56,12 +50,12 @@ fn main() -> Result<()> {
             reports.push(r);
         }
         let mut flocks = Vec::new();
-        let cell = |g: &FlockRow| format!("{:.3} [{:.3}, {:.3}]", g.fraction, g.ci95.0, g.ci95.1);
         for f in &reports[0].flocks {
             let mut row = vec![name.into(), f.id.to_string(), lower(f.kind), fixed(f.static_probability, 4)];
-            row.extend(reports.iter().map(|r| fixed(share(r, f.id).map_or(0.0, |g| g.fraction), 4)));
+            row.extend(reports.iter().map(|r| fixed(r.flock_fraction(f.id), 4)));
             csv.push(row);
-            let cells: Vec<_> = reports.iter().map(|r| share(r, f.id).map_or("0".into(), cell)).collect();
+            let cells: Vec<_> =
+                reports.iter().map(|r| r.flock(f.id).map_or("0".into(), |g| g.fraction_with_ci(3))).collect();
             let p = fixed(f.static_probability, 3);
             flocks.push(json!({ "id": f.id, "kind": lower(f.kind), "static": p, "cells": cells }));
         }
@@ -95,7 +89,7 @@ fn plot(out: &Results, name: &str, reports: &[DropReport]) -> Result<()> {
     let w = 0.8 / 4.0;
     for (s, (label, colour)) in series.into_iter().enumerate() {
         let x0 = |k: usize| k as f64 - 0.4 + s as f64 * w;
-        let row = |k: usize| reports.get(s.wrapping_sub(1)).and_then(|r| share(r, flocks[k].id));
+        let row = |k: usize| reports.get(s.wrapping_sub(1)).and_then(|r| r.flock(flocks[k].id));
         let value = |k: usize| if s == 0 { flocks[k].static_probability } else { row(k).map_or(0.0, |g| g.fraction) };
         let bars: Vec<_> = (0..flocks.len()).map(|k| (x0(k), 0.0, x0(k) + w * 0.9, value(k))).collect();
         let ci: Vec<_> =

@@ -85,8 +85,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
     for o in outcomes.values().filter(|o| o.settled) {
         settled += 1;
         // Facets of outcomes are stable facets (the rule of `Stone::rest`).
-        let flock = o.flock.map(|k| k as usize).or_else(|| o.facet.and_then(|f| stone.facet_flock[f as usize]));
-        if let Some(k) = flock {
+        if let Some(k) = o.flock_in(&stone.facet_flock) {
             found.insert(k);
         }
     }
