@@ -6,23 +6,24 @@
 
 use rayon::prelude::*;
 use rocking_stones::dynamics::shaking::ensemble::{draw, Draw};
+use rocking_stones::dynamics::shaking::housner::HousnerBlock as Block;
 use rocking_stones::dynamics::shaking::{rock_params, run_batch, EnsembleSpec, Pose};
 use rocking_stones::dynamics::shaking::{RecordRun, RockSetup, Uncertainty};
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run};
-use rocking_stones::ground_motion::{synthetic::one_sine_pulse, Record};
-use rocking_stones::plot::{colors::GREY, series_color, Axis, Chart, Mark, RGBColor};
-use rocking_stones::{dynamics::surface::Surface, generate};
+use rocking_stones::ground_motion::synthetic::{noise_family, one_sine_pulse, Noise};
+use rocking_stones::ground_motion::Record;
+use rocking_stones::plot::{colors::GREY, reliability_diagram, series_color, Axis, Chart, Mark, RGBColor};
+use rocking_stones::stats::{ensemble_brier, forecast_scores, oracle_brier};
+use rocking_stones::{dynamics::surface::Surface, generate, Vec3};
 use serde_json::{json, Value};
 use std::time::Instant;
 
-#[path = "shared/calibration.rs"]
-mod calibration;
 #[path = "shared/harness.rs"]
 mod harness;
 #[path = "shared/rocks.rs"]
 mod rocks;
 use harness::{fixed, Context, Result, Results};
-use rocks::{row, Block};
+use rocks::row;
 
 /// Members of a block's forecast ensemble, and Housner rocks drawn as its truth.
 const BLOCK_MEMBERS: u64 = 16;
@@ -50,18 +51,16 @@ const BLOCKS: [Block; 5] = [
     Block { tan_alpha: 0.25, r_m: 2.0 },
 ];
 
-impl Block {
-    fn name(&self) -> String {
-        format!("tan{:.2}_R{}", self.tan_alpha, self.r_m)
-    }
-    /// The range of p·PGV/PGA the block's records cover.
-    fn taus(&self, r: &BlockResult) -> (f64, f64) {
-        rocks::range(r.cases.iter().map(|c| self.p() * c.run.motion.pgv_over_pga_s))
-    }
-    /// PGA₅₀/(g tan α) of surface `s` at p·PGV/PGA = `tau`.
-    fn pga50(&self, s: Option<&FragilitySurface>, tau: f64) -> Option<f64> {
-        s?.pga_at(0.5, tau / self.p()).map(|pga| pga / self.tan_alpha)
-    }
+fn block_name(b: &Block) -> String {
+    format!("tan{:.2}_R{}", b.tan_alpha, b.r_m)
+}
+/// The range of p·PGV/PGA block `b`'s records cover.
+fn taus(b: &Block, r: &BlockResult) -> (f64, f64) {
+    rocks::range(r.cases.iter().map(|c| b.p() * c.run.motion.pgv_over_pga_s))
+}
+/// PGA₅₀/(g tan α) of block `b`'s surface `s` at p·PGV/PGA = `tau`.
+fn pga50(b: &Block, s: Option<&FragilitySurface>, tau: f64) -> Option<f64> {
+    s?.pga_at(0.5, tau / b.p()).map(|pga| pga / b.tan_alpha)
 }
 
 /// One record × scale of a rock: as-given run, forecast members, Housner's P, nominal run, truths.
@@ -118,7 +117,9 @@ struct BlockResult {
 fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
     let t0 = Instant::now();
     let stone = rocks::of_mesh(generate::cuboid(2.0 * b.tan_alpha, 2.0 * DEPTH, 2.0), Some(0.01))?;
-    let bottom = rocks::bottom_face(&stone).with_context(|| format!("block {}", b.name()))?;
+    let bottom =
+        stone.stable_facing(&-Vec3::z()).with_context(|| format!("block {}: no bottom face", block_name(b)))?;
+    let bottom = bottom.index;
     // Mesh: h = 1, rocking semi-diagonal √(tan²α + 1) mesh units = R metres.
     let unit = b.r_m / (b.tan_alpha * b.tan_alpha + 1.0).sqrt();
     let mut params = rock_params(Surface::RockOnConcrete, stone.body.r_max * unit)?;
@@ -144,7 +145,7 @@ fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
         let (pga_g, pgv_over_pga_s) = (d.motion.pga_g, d.motion.pgv_over_pga_s);
         ode_points.extend(same.iter().map(|&overturned| Run { pga_g, pgv_over_pga_s, overturned }));
         let ode = Some(same.iter().filter(|&&o| o).count() as f64 / same.len() as f64);
-        cases.push(Case { ode, ..Case::of(b.name(), d, &nominal.runs, &members, truths) });
+        cases.push(Case { ode, ..Case::of(block_name(b), d, &nominal.runs, &members, truths) });
     }
     let r = BlockResult {
         cases,
@@ -153,7 +154,7 @@ fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
         runs: ensemble.runs.len() + single.runs.len() + nominal.runs.len(),
         seconds: t0.elapsed().as_secs_f64(),
     };
-    eprintln!("block {}: {} runs in {:.1} s", b.name(), r.runs, r.seconds);
+    eprintln!("block {}: {} runs in {:.1} s", block_name(b), r.runs, r.seconds);
     Ok(r)
 }
 
@@ -170,7 +171,10 @@ fn run_stone(seed: u64) -> Result<(Vec<Case>, String, f64, String)> {
     let given = Uncertainty { contact_tolerance_m, azimuth_deg, random_sign: true, ..Uncertainty::default() };
     let uncertainty = Uncertainty::stated(&given, Surface::RockOnConcrete, 1.0, [false; 3]);
     let spec = EnsembleSpec { uncertainty, seed, members: STONE_MEMBERS + STONE_TRUTHS };
-    let records = rocks::noise_records(&[0.2, 0.5, 1.0, 2.0], &[1], 2, |t, _| format!("noise2_T{t}"))?;
+    let records =
+        noise_family(&Noise { components: 2, ..Noise::default() }, 1.0, &[0.2, 0.5, 1.0, 2.0], &[1], |t, _| {
+            format!("noise2_T{t}")
+        })?;
     let scales = [0.04, 0.06, 0.08, 0.11, 0.15, 0.2];
     let batch = |spec: Option<&EnsembleSpec>| run_batch(&stone, &setup, &records, &scales, spec, &[], &|_| {});
     let nominal_spec = spec.nominal(&setup);
@@ -194,7 +198,8 @@ fn main() -> Result<()> {
     let seed = common.seed_or(24);
     let out = Results::open("ensemble_fragility", &common)?;
     // One-component records scaled to PGA 1 g: filtered noise (4 periods × 2 seeds), pulses.
-    let mut records = rocks::noise_records(&[0.2, 0.5, 1.0, 2.0], &[1, 2], 1, |t, s| format!("noise_T{t}_s{s}"))?;
+    let mut records =
+        noise_family(&Noise::default(), 1.0, &[0.2, 0.5, 1.0, 2.0], &[1, 2], |t, s| format!("noise_T{t}_s{s}"))?;
     for tp in [0.5, 1.0, 2.0, 4.0] {
         records.push(Record { name: format!("pulse_T{tp}"), ..one_sine_pulse(1.0, tp, tp / 1000.0)? });
     }
@@ -226,7 +231,7 @@ fn main() -> Result<()> {
         (format!("{name}, truth: {truth}"), cases.iter().map(|c| (c.p(), &c.truths[..])).collect())
     });
     let title = "Reliability: forecast P(overturn) against the truth's frequency";
-    calibration::reliability(title, &reliability).save(&out.path("reliability.png"), (760, 700))?;
+    reliability_diagram(title, &reliability).save(&out.path("reliability.png"), (760, 700))?;
 
     let truths = |cases: &[&Case]| cases.iter().map(|c| c.truths.len()).sum::<usize>();
     out.readme(
@@ -258,27 +263,27 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
         };
         let mut cells = Vec::new();
         for &tau in &TAU_GRID {
-            let (sim, ode) = (b.pga50(r.surface.as_ref(), tau), b.pga50(r.ode_surface.as_ref(), tau));
+            let (sim, ode) = (pga50(b, r.surface.as_ref(), tau), pga50(b, r.ode_surface.as_ref(), tau));
             let f = |x: Option<f64>| x.map_or("-".to_string(), |v| fixed(v, 2));
             cells.push(format!("{} / {}", f(sim), f(ode)));
             for (source, s, x) in [("simulation", &r.surface, sim), ("housner", &r.ode_surface, ode)] {
                 let Some(s) = s else { continue };
                 let mut fields =
-                    vec![b.name(), b.tan_alpha.to_string(), b.r_m.to_string(), fixed(b.p(), 4), source.into()];
+                    vec![block_name(b), b.tan_alpha.to_string(), b.r_m.to_string(), fixed(b.p(), 4), source.into()];
                 fields.extend(s.beta.iter().chain(&s.std_err).map(|&v| fixed(v, 4)));
                 fields.extend([tau.to_string(), x.map_or(String::new(), |v| fixed(v, 4))]);
                 csv.push(fields);
             }
         }
         rows.push(json!({
-            "name": b.name(), "tan_alpha": b.tan_alpha.to_string(), "r": b.r_m.to_string(), "p": fixed(b.p(), 2),
+            "name": block_name(b), "tan_alpha": b.tan_alpha.to_string(), "r": b.r_m.to_string(), "p": fixed(b.p(), 2),
             "runs": r.runs, "b1": beta(&r.surface, 1, true), "b2": beta(&r.surface, 2, true),
             "h1": beta(&r.ode_surface, 1, false), "h2": beta(&r.ode_surface, 2, false),
             "cells": cells.join(" · "), "seconds": fixed(r.seconds, 0),
         }));
         // Contour agreement inside the records' p·PGV/PGA; β in the simulation's standard errors.
         let (Some(s), Some(h)) = (&r.surface, &r.ode_surface) else { continue };
-        let (lo, hi) = b.taus(r);
+        let (lo, hi) = taus(b, r);
         let ratios = (0..=20).map(|k| lo * (hi / lo).powf(k as f64 / 20.0) / b.p());
         let ratios = ratios.filter_map(|t| Some(s.pga_at(0.5, t)? / h.pga_at(0.5, t)?));
         worst = ratios.fold(worst, |w, x| w.max((x - 1.0).abs()));
@@ -289,7 +294,7 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
         let lowest = overturning.map(|c| c.run.motion.pga_g / b.tan_alpha).fold(f64::INFINITY, f64::min);
         floor.push(format!(
             "{}: data up to τ = {hi:.2}, crossing at τ = {cross:.1}, lowest overturning PGA {lowest:.2} g tan α",
-            b.name()
+            block_name(b)
         ));
     }
     let header = "block,tan_alpha,r_m,p,source,beta0,beta1,beta2,se0,se1,se2,tau,pga50_over_g_tan_alpha";
@@ -308,12 +313,12 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
     let spread = |ode: bool| {
         [0.3, 1.0, 3.0].map(|tau| {
             let s = |r: &BlockResult| if ode { r.ode_surface } else { r.surface };
-            let (lo, hi) = rocks::range(BLOCKS.iter().zip(blocks).filter_map(|(b, r)| b.pga50(s(r).as_ref(), tau)));
+            let (lo, hi) = rocks::range(BLOCKS.iter().zip(blocks).filter_map(|(b, r)| pga50(b, s(r).as_ref(), tau)));
             format!("{lo:.2}–{hi:.2}")
         })
     };
     let beta2 =
-        BLOCKS.iter().zip(blocks).filter_map(|(b, r)| Some(format!("{:.2} ({})", r.surface?.beta[2], b.name())));
+        BLOCKS.iter().zip(blocks).filter_map(|(b, r)| Some(format!("{:.2} ({})", r.surface?.beta[2], block_name(b))));
     Ok(json!({
         "rows": rows, "cases": diffs.len(), "mean_diff": fixed(diffs.iter().sum::<f64>() / n, 3), "agree": agree,
         "agree_pct": fixed(100.0 * agree as f64 / n, 0), "beta2": beta2.collect::<Vec<_>>().join(", "),
@@ -322,7 +327,7 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
     }))
 }
 
-/// One set's scores ([`calibration::score`], ε = 1/(2n)): `scores.csv` rows to `csv`, README values.
+/// One set's scores ([`forecast_scores`], ε = 1/(2n)): `scores.csv` rows to `csv`, README values.
 fn score_set(&(name, truth, cases, n): &(&str, &str, &[&Case], u64), csv: &mut Vec<Vec<String>>) -> Value {
     type Forecast = fn(&Case) -> f64; // a case's probability of overturning
     let forecasts: [(String, Forecast); 5] = [
@@ -336,14 +341,15 @@ fn score_set(&(name, truth, cases, n): &(&str, &str, &[&Case], u64), csv: &mut V
     let mut scores = Vec::new();
     for (label, f) in forecasts.iter().filter(|(l, _)| name == "blocks" || !l.starts_with("Housner")) {
         let each: Vec<_> = cases.iter().map(|c| (f(c), &c.truths[..])).collect();
-        let (s, k) = calibration::score(&each, 0.5 / n as f64);
+        let s = forecast_scores(&each, 0.5 / n as f64);
+        let (s, k) = ([s.brier, s.log_loss, s.accuracy], s.truths);
         // Its mean P: the share of cases a yes/no says overturn.
         let share = cases.iter().map(|c| f(c)).sum::<f64>() / cases.len() as f64;
         csv.push(row(format!("{name},{label},{:.5},{:.5},{:.4},{k},{truth},{share:.4}", s[0], s[1], s[2])));
         scores.push((label.clone(), s, share));
     }
     let truths: Vec<&[bool]> = cases.iter().map(|c| &c.truths[..]).collect();
-    let (oracle, perfect) = calibration::bounds(&truths, n);
+    let (oracle, perfect) = (oracle_brier(&truths), ensemble_brier(&truths, n));
     let truth_share = cases.iter().map(|c| c.yes()).sum::<usize>() as f64 / truths.concat().len() as f64;
     csv.push(row(format!("{name},perfect {n}-member ensemble (expected),{perfect:.5},,,,{truth},")));
     csv.push(row(format!("{name},oracle,{oracle:.5},,,,{truth},{truth_share:.4}")));
@@ -368,11 +374,11 @@ fn score_set(&(name, truth, cases, n): &(&str, &str, &[&Case], u64), csv: &mut V
 /// 95 % band shaded, Housner's dashed, both over the p·PGV/PGA its records cover.
 fn contours(mut chart: Chart, colour: RGBColor, b: &Block, r: &BlockResult) -> Chart {
     chart = chart.legend(Mark::Line(colour), format!("tan α = {}, R = {} m", b.tan_alpha, b.r_m));
-    let (lo, hi) = b.taus(r);
+    let (lo, hi) = taus(b, r);
     let (lo, hi) = (lo.max(TAU_AXIS[0]), hi.min(TAU_AXIS[1]));
     let grid: Vec<f64> = (0..=60).map(|k| lo * (hi / lo).powf(k as f64 / 60.0)).collect();
     let contour = |s: &FragilitySurface| -> Vec<(f64, f64)> {
-        grid.iter().filter_map(|&t| Some((t, b.pga50(Some(s), t)?))).collect()
+        grid.iter().filter_map(|&t| Some((t, pga50(b, Some(s), t)?))).collect()
     };
     if let Some(s) = &r.surface {
         // The 95 % band: its lower edge, then its upper edge backwards.

@@ -15,23 +15,20 @@
 use anyhow::Context as _;
 use rand::RngExt;
 use rayon::prelude::*;
-use rocking_stones::dynamics::shaking::housner::housner_overturns;
+use rocking_stones::dynamics::shaking::housner::{housner_overturns, HousnerBlock};
 use rocking_stones::dynamics::shaking::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
-use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun};
-use rocking_stones::ground_motion::synthetic::{filtered_noise, one_sine_pulse, Noise};
+use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun, Target};
+use rocking_stones::ground_motion::synthetic::{filtered_noise, noise_family, one_sine_pulse, Noise};
 use rocking_stones::plot::{Axis, Chart, Mark, RGBColor};
 use rocking_stones::{analysis::Analysis, dynamics::stone::Stone, dynamics::surface::Surface, generate};
-use rocking_stones::{ground_motion::Record, rng::item_rng, GRAVITY as G};
+use rocking_stones::{ground_motion::Record, rng::item_rng, stats::wilson, Vec3, GRAVITY as G};
 use serde_json::{json, Value};
 use std::time::Instant;
 
-#[path = "shared/calibration.rs"]
-mod calibration;
 #[path = "shared/harness.rs"]
 mod harness;
 #[path = "shared/rocks.rs"]
 mod rocks;
-use calibration::{clustered, logistic, rate, Target};
 use harness::{fixed, Common, Parser, Result, Results};
 use rocks::row;
 
@@ -50,7 +47,7 @@ const SYNTH_POINT: (f64, f64) = (0.35, 0.1);
 /// Part D2: members per study; the block (tan α, R in m) and PGA/(g tan α) of its runs; the
 /// contours whose bands are checked (the batch's).
 const STUDY_MEMBERS: u64 = 16;
-const BLOCK: rocks::Block = rocks::Block { tan_alpha: 0.25, r_m: 1.0 };
+const BLOCK: HousnerBlock = HousnerBlock { tan_alpha: 0.25, r_m: 1.0 };
 const BLOCK_X: [f64; 8] = [0.8, 1.0, 1.25, 1.6, 2.0, 2.5, 3.2, 4.0];
 const CONTOURS: [f64; 3] = [0.1, 0.5, 0.9];
 const QUARRY: &str = "data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply";
@@ -75,7 +72,8 @@ fn main() -> Result<()> {
     let args = Args::parse();
     let out = Results::open("fragility_surface", &args.common)?;
     let quarry = rocks::of_file(QUARRY)?;
-    let records = rocks::noise_records(&PERIODS, &SEEDS, 2, |t, s| format!("noise_T{t}_s{s}"))?;
+    let noise = Noise { components: 2, ..Noise::default() };
+    let records = noise_family(&noise, 1.0, &PERIODS, &SEEDS, |t, s| format!("noise_T{t}_s{s}"))?;
     let context = json!({
         "a": part_a(&out)?, "c": part_c(&quarry)?, "b": part_b(&out, &quarry.1, &records)?,
         "d": part_d(&out, &args, &records)?,
@@ -90,7 +88,7 @@ fn part_a(out: &Results) -> Result<Value> {
     let r_max_m = stone.body.r_max; // length unit: metres
     let (big_r, alpha) = ((b * b + h * h).sqrt(), (b / h).atan());
     let (p, r) = ((3.0 * G / (4.0 * big_r)).sqrt(), 1.0 - 1.5 * alpha.sin().powi(2));
-    let bottom = rocks::bottom_face(&stone)?;
+    let bottom = stone.stable_facing(&-Vec3::z()).context("the block has no stable bottom face")?.index;
     let concrete = rock_params(Surface::RockOnConcrete, r_max_m)?;
     let mut ideal = concrete.clone();
     (ideal.sim.contact.friction, ideal.sim.contact.restitution) = (1.0, 0.0);
@@ -231,22 +229,22 @@ fn timed<T>(f: impl FnOnce() -> rocking_stones::Result<T>) -> (rocking_stones::R
     (f(), t0.elapsed().as_secs_f64())
 }
 
-/// Part D1: runs drawn from the surface `beta` in the design of the unit test of
-/// `ground_motion::fragility` (12 PGA × 8 PGV/PGA cells, 2 independent runs each), stream `seed`.
-fn synthetic_runs(beta: [f64; 3], seed: u64) -> Vec<SurfaceRun> {
-    let mut rng = item_rng(seed, 0);
-    let mut runs = Vec::new();
-    for i in 0..12 {
-        for j in 0..8 {
-            let (pga, ratio) = (0.05 * 1.3f64.powi(i), 0.02 * 1.4f64.powi(j));
-            let p = logistic(beta[0] + beta[1] * pga.ln() + beta[2] * ratio.ln());
-            for _ in 0..2 {
-                let u: f64 = rng.random();
-                runs.push(SurfaceRun { pga_g: pga, pgv_over_pga_s: ratio, overturned: u < p });
-            }
+/// Measured coverage: k of n, with its Wilson 95 % interval.
+fn rate(k: u64, n: u64) -> (f64, f64, f64) {
+    let (lo, hi) = wilson(k, n, 1.96);
+    (k as f64 / n as f64, lo, hi)
+}
+
+/// A target's name, and its columns of a coverage CSV: what, p, PGA (g), PGV/PGA (s).
+fn target_name(target: &Target) -> (String, String) {
+    match *target {
+        Target::Point(pga, r) => {
+            (format!("P at PGA {pga:.3} g and PGV/PGA {r:.3} s"), format!("P at a point,,{pga:.4},{r:.4}"))
+        }
+        Target::Contour(p, r) => {
+            (format!("PGA of P = {p} at PGV/PGA {r:.3} s"), format!("PGA of a contour,{p},,{r:.4}"))
         }
     }
-    runs
 }
 
 const PRODUCT: &str = "model-based (the product's)";
@@ -259,20 +257,15 @@ fn part_d(out: &Results, args: &Args, records: &[Record]) -> Result<Value> {
     let mut rows = Vec::new();
     // D1: a known logistic surface, independent runs.
     let t0 = Instant::now();
-    let zero = [0.0; 3];
-    let truth = FragilitySurface {
-        beta: SYNTH_BETA,
-        std_err: zero,
-        covariance: [zero; 3],
-        runs: 0,
-        overturned: 0,
-        converged: true,
-    };
+    // The design of the unit test of `ground_motion::fragility`: 12 PGA × 8 PGV/PGA cells, 2 runs each.
+    let truth = FragilitySurface::exact(SYNTH_BETA);
+    let pgas: Vec<f64> = (0..12).map(|i| 0.05 * 1.3f64.powi(i)).collect();
+    let ratios: Vec<f64> = (0..8).map(|j| 0.02 * 1.4f64.powi(j)).collect();
     let d1 = [Target::Point(SYNTH_POINT.0, SYNTH_POINT.1), Target::Contour(0.5, SYNTH_POINT.1)];
     let synth: Vec<Vec<bool>> = (0..synth_studies)
         .into_par_iter()
         .map(|s| {
-            let fit = FragilitySurface::fit(&synthetic_runs(SYNTH_BETA, seed + s))?;
+            let fit = FragilitySurface::fit(&truth.draw_runs(&pgas, &ratios, 2, seed + s))?;
             Ok(d1.iter().map(|t| t.covered(&fit, &truth)).collect())
         })
         .collect::<Result<_>>()?;
@@ -334,7 +327,7 @@ fn part_d(out: &Results, args: &Args, records: &[Record]) -> Result<Value> {
         .map(|s| {
             let (runs, cluster) = runs_of(s * STUDY_MEMBERS, (s + 1) * STUDY_MEMBERS);
             let fit = FragilitySurface::fit(&runs)?;
-            let robust = clustered(&fit, &runs, &cluster);
+            let robust = fit.cluster_robust(&runs, &cluster);
             Ok([fit, robust].map(|f| d2.iter().map(|t| t.covered(&f, &reference)).collect()))
         })
         .collect::<Result<_>>()?;
@@ -351,7 +344,7 @@ fn part_d(out: &Results, args: &Args, records: &[Record]) -> Result<Value> {
             .collect::<Vec<_>>(),
         rows.iter().map(|&(kind, target, band, n, k)| {
             let (c, lo, hi) = rate(k, n);
-            row(format!("{kind},{},{band},{n},{k},{c:.4},{lo:.4},{hi:.4}", target.name().1))
+            row(format!("{kind},{},{band},{n},{k},{c:.4},{lo:.4},{hi:.4}", target_name(&target).1))
         }),
     )?;
     // The reading, computed: the range of each set's rates, and the mean over the D2 targets.
@@ -370,7 +363,7 @@ fn part_d(out: &Results, args: &Args, records: &[Record]) -> Result<Value> {
         let (c, lo, hi) = rate(k, n);
         [
             kind.into(),
-            target.name().0,
+            target_name(&target).0,
             band.into(),
             n.to_string(),
             k.to_string(),

@@ -361,6 +361,13 @@ impl Stone {
         self.stable().iter().position(|s| s.index == index)
     }
 
+    /// The first stable micro-equilibrium whose resting facet faces `normal` (a unit vector in
+    /// the body frame): its outward facet normal n has n · `normal` > 0.999 (within 2.6°). With
+    /// `normal` = −z, the rest of a block generated standing on its bottom face.
+    pub fn stable_facing(&self, normal: &Vec3) -> Option<&StableEquilibrium> {
+        self.stable().iter().find(|e| self.body.facet_normals[e.facet as usize].dot(normal) > 0.999)
+    }
+
     fn stable_equilibria(&self) -> Vec<StableEquilibrium> {
         let eq = &self.equilibria;
         let r_max = eq.r_max;
@@ -442,4 +449,31 @@ impl Stone {
 pub fn resting_orientation(n: &Vec3) -> UnitQuaternion<f64> {
     UnitQuaternion::rotation_between(n, &-Vec3::z())
         .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vec3::x_axis(), std::f64::consts::PI))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Options;
+
+    #[test]
+    fn a_box_rests_on_each_of_its_faces() {
+        // A 2 × 3 × 4 box: its six faces are its stable rests, one facing each of ±x, ±y, ±z.
+        let (mesh, rep) = crate::generate::cuboid(2.0, 3.0, 4.0).into_solid_boundary().unwrap();
+        let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
+        let stone = Stone::new(&a, 0.01).unwrap();
+        let mut found = Vec::new();
+        for axis in [Vec3::x(), Vec3::y(), Vec3::z()] {
+            for normal in [axis, -axis] {
+                let e = stone.stable_facing(&normal).expect("a face");
+                assert!((stone.body.facet_normals[e.facet as usize] - normal).norm() < 1e-9);
+                found.push(e.index);
+            }
+        }
+        found.sort();
+        found.dedup();
+        assert_eq!(found.len(), 6);
+        // Between two faces there is none.
+        assert!(stone.stable_facing(&Vec3::new(1.0, 1.0, 0.0).normalize()).is_none());
+    }
 }

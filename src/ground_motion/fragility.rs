@@ -18,8 +18,11 @@
 //! Three parameters need no optimisation library: the Newton iteration on a 3 × 3 system is a
 //! dozen lines, and is checked against the exact score equations and simulated data.
 
+use crate::rng::item_rng;
+use crate::stats::logistic;
 use crate::{Error, Result};
 use nalgebra::{Matrix3, Vector3};
+use rand::RngExt;
 use serde::Serialize;
 
 /// One ground motion and what it did to the rock.
@@ -107,6 +110,30 @@ impl FragilitySurface {
         })
     }
 
+    /// The surface of coefficients `beta`, known exactly: no runs behind it, zero covariance
+    /// (a truth to check fits against).
+    pub fn exact(beta: [f64; 3]) -> FragilitySurface {
+        FragilitySurface { beta, std_err: [0.0; 3], covariance: [[0.0; 3]; 3], runs: 0, overturned: 0, converged: true }
+    }
+
+    /// Runs drawn from this surface: `per_cell` independent runs at each PGA of `pgas` (g) ×
+    /// PGV/PGA of `ratios` (s) (the ratios inner), each overturned with its P(overturn), from
+    /// stream `seed` ([`item_rng`]; one uniform draw u per run, overturned when u < P).
+    pub fn draw_runs(&self, pgas: &[f64], ratios: &[f64], per_cell: usize, seed: u64) -> Vec<Run> {
+        let mut rng = item_rng(seed, 0);
+        let mut runs = Vec::new();
+        for &pga in pgas {
+            for &ratio in ratios {
+                let p = self.probability(pga, ratio);
+                for _ in 0..per_cell {
+                    let u: f64 = rng.random();
+                    runs.push(Run { pga_g: pga, pgv_over_pga_s: ratio, overturned: u < p });
+                }
+            }
+        }
+        runs
+    }
+
     /// P(overturn) of a motion of peak `pga_g` (g) and ratio `pgv_over_pga_s` (s).
     pub fn probability(&self, pga_g: f64, pgv_over_pga_s: f64) -> f64 {
         let [b0, b1, b2] = self.beta;
@@ -161,11 +188,63 @@ impl FragilitySurface {
         let first = |edge: usize| grid.iter().map(|l| l.exp()).find(|&a| self.band(a, pgv_over_pga_s, z)[edge] >= p);
         Some([first(2), Some(centre), first(0)])
     }
+
+    /// The fit with the covariance of its coefficients made robust to runs that are grouped in
+    /// clusters (an ensemble's members, each shaken by every record × scale, so its runs are not
+    /// independent): the sandwich Σ = I⁻¹ (Σ_c s_c s_cᵀ) I⁻¹ · C/(C − 1) of Liang & Zeger (1986),
+    /// s_c = Σ x (y − P) the score of cluster c's runs at the fitted β, x = (1, ln PGA,
+    /// ln PGV/PGA), I⁻¹ the model-based [`FragilitySurface::covariance`] and C/(C − 1) the
+    /// small-sample factor of C clusters. `clusters[k]` is the cluster of `runs[k]`; β is kept,
+    /// the covariance and standard errors replaced. `runs` are the runs the fit was made on.
+    pub fn cluster_robust(&self, runs: &[Run], clusters: &[u64]) -> FragilitySurface {
+        let b = Vector3::from(self.beta);
+        let inv_info = Matrix3::from_fn(|i, j| self.covariance[i][j]);
+        let mut scores: std::collections::BTreeMap<u64, Vector3<f64>> = Default::default();
+        for (r, &c) in runs.iter().zip(clusters) {
+            let x = Vector3::new(1.0, r.pga_g.ln(), r.pgv_over_pga_s.ln());
+            *scores.entry(c).or_insert_with(Vector3::zeros) += x * (r.overturned as u8 as f64 - logistic(x.dot(&b)));
+        }
+        let n = scores.len() as f64;
+        let meat: Matrix3<f64> = scores.values().map(|s| s * s.transpose()).sum::<Matrix3<f64>>() * (n / (n - 1.0));
+        let v = inv_info * meat * inv_info;
+        FragilitySurface {
+            covariance: std::array::from_fn(|i| std::array::from_fn(|j| v[(i, j)])),
+            std_err: std::array::from_fn(|i| v[(i, i)].sqrt()),
+            ..*self
+        }
+    }
 }
 
-/// 1 / (1 + e^(−η)).
-fn logistic(eta: f64) -> f64 {
-    1.0 / (1.0 + (-eta).exp())
+/// What the 95 % band of a fitted surface is checked on, against the surface it estimates.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum Target {
+    /// P(overturn) at a point: PGA (g) and PGV/PGA (s).
+    Point(f64, f64),
+    /// The PGA (g) of the contour P = p at a PGV/PGA (s): (p, PGV/PGA).
+    Contour(f64, f64),
+}
+
+impl Target {
+    /// Whether the 95 % band (z = 1.96) of `fit` contains `truth`'s value of the target: its P
+    /// inside [`FragilitySurface::band`] at the point, or the PGA of its contour inside
+    /// [`FragilitySurface::pga_band_at`], an edge of which that does not reach p leaving that side
+    /// open (no band at all, a fit whose contour is undefined, covers nothing). Panics if the
+    /// truth's contour is undefined (β₁ ≤ 0 or p ∉ (0, 1)).
+    pub fn covered(&self, fit: &FragilitySurface, truth: &FragilitySurface) -> bool {
+        match *self {
+            Target::Point(pga, r) => {
+                let [lo, _, hi] = fit.band(pga, r, 1.96);
+                (lo..=hi).contains(&truth.probability(pga, r))
+            }
+            Target::Contour(p, r) => {
+                let x = truth.pga_at(p, r).expect("the truth rises with PGA");
+                match fit.pga_band_at(p, r, 1.96) {
+                    Some([lo, _, hi]) => lo.is_none_or(|a| a <= x) && hi.is_none_or(|b| x <= b),
+                    None => false,
+                }
+            }
+        }
+    }
 }
 
 /// Firth's modified score and the Fisher information XᵀWX at `beta`.
@@ -187,30 +266,12 @@ fn firth_score(x: &[Vector3<f64>], y: &[f64], beta: &Vector3<f64>) -> (Vector3<f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::item_rng;
-    use rand::RngExt;
 
-    /// The surface with coefficients `beta`, known exactly (no fit behind it).
-    fn known(beta: [f64; 3]) -> FragilitySurface {
-        FragilitySurface { beta, std_err: [0.0; 3], covariance: [[0.0; 3]; 3], runs: 0, overturned: 0, converged: true }
-    }
-
-    /// Runs drawn from a known surface on a grid of PGA and PGV/PGA.
+    /// Runs drawn from a known surface on a grid of 12 PGA × 8 PGV/PGA.
     fn simulated(beta: [f64; 3], per_cell: usize, seed: u64) -> Vec<Run> {
-        let truth = known(beta);
-        let mut rng = item_rng(seed, 0);
-        let mut runs = Vec::new();
-        for i in 0..12 {
-            for j in 0..8 {
-                let pga = 0.05 * 1.3f64.powi(i);
-                let ratio = 0.02 * 1.4f64.powi(j);
-                for _ in 0..per_cell {
-                    let u: f64 = rng.random();
-                    runs.push(Run { pga_g: pga, pgv_over_pga_s: ratio, overturned: u < truth.probability(pga, ratio) });
-                }
-            }
-        }
-        runs
+        let pgas: Vec<f64> = (0..12).map(|i| 0.05 * 1.3f64.powi(i)).collect();
+        let ratios: Vec<f64> = (0..8).map(|j| 0.02 * 1.4f64.powi(j)).collect();
+        FragilitySurface::exact(beta).draw_runs(&pgas, &ratios, per_cell, seed)
     }
 
     #[test]
@@ -273,7 +334,7 @@ mod tests {
         const STUDIES: u64 = 1000;
         let beta = [4.0, 3.0, 1.5];
         let (pga, ratio) = (0.35, 0.1);
-        let truth = known(beta);
+        let truth = FragilitySurface::exact(beta);
         let (p_true, pga50_true) = (truth.probability(pga, ratio), truth.pga_at(0.5, ratio).unwrap());
         let (mut covered, mut contour_covered) = (0, 0);
         for seed in 0..STUDIES {
@@ -302,5 +363,71 @@ mod tests {
         let e = FragilitySurface::fit(&[r(0.1, false), r(0.2, false), r(0.3, false)]).unwrap_err().to_string();
         assert!(e.contains("standing"), "{e}");
         assert!(FragilitySurface::fit(&[r(0.0, false), r(0.2, true), r(0.3, false)]).is_err());
+    }
+
+    #[test]
+    fn with_one_run_per_cluster_the_robust_covariance_is_the_hc0_sandwich() {
+        // Independent runs, each its own cluster: Σ = I⁻¹ (Σ_k x_k x_kᵀ (y_k − P_k)²) I⁻¹ · n/(n − 1),
+        // White's HC0 sandwich, here with I rebuilt from XᵀWX rather than taken from the fit.
+        let runs = simulated([2.0, 2.0, 1.0], 1, 5);
+        let fit = FragilitySurface::fit(&runs).unwrap();
+        let robust = fit.cluster_robust(&runs, &(0..runs.len() as u64).rev().collect::<Vec<_>>());
+        let (mut info, mut meat) = (Matrix3::<f64>::zeros(), Matrix3::<f64>::zeros());
+        for r in &runs {
+            let x = Vector3::new(1.0, r.pga_g.ln(), r.pgv_over_pga_s.ln());
+            let p = fit.probability(r.pga_g, r.pgv_over_pga_s);
+            info += x * x.transpose() * (p * (1.0 - p));
+            meat += x * x.transpose() * (r.overturned as u8 as f64 - p).powi(2);
+        }
+        let n = runs.len() as f64;
+        let inv = info.try_inverse().unwrap();
+        let hc0 = inv * meat * inv * (n / (n - 1.0));
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((robust.covariance[i][j] - hc0[(i, j)]).abs() < 1e-6 * hc0[(i, i)], "{i}{j}: {robust:?}");
+            }
+            assert!((robust.std_err[i] - hc0[(i, i)].sqrt()).abs() < 1e-6 * robust.std_err[i]);
+        }
+        assert_eq!(robust.beta, fit.beta);
+        // Runs duplicated within their cluster: each cluster's score doubles, the covariance
+        // of the same fit fourfold.
+        let twice: Vec<Run> = runs.iter().flat_map(|&r| [r, r]).collect();
+        let clusters: Vec<u64> = (0..runs.len() as u64).flat_map(|c| [c, c]).collect();
+        let doubled = fit.cluster_robust(&twice, &clusters);
+        assert!((doubled.covariance[1][1] / robust.covariance[1][1] - 4.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_target_is_covered_when_the_truth_is_inside_the_band() {
+        // A fit with variance s² on β₀ alone: σ(η) = s everywhere, so the band at a point is
+        // logistic(η ± 1.96 s) and the contour's band is ln PGA ± 1.96 s/β₁. A truth whose β₀
+        // is off by 1.9 s is inside both; off by 2.0 s, outside both.
+        let (beta, s) = ([1.0, 2.0, 0.5], 0.5);
+        let fit =
+            FragilitySurface { covariance: [[s * s, 0.0, 0.0], [0.0; 3], [0.0; 3]], ..FragilitySurface::exact(beta) };
+        let shifted = |d: f64| FragilitySurface::exact([beta[0] + d * s, beta[1], beta[2]]);
+        for target in [Target::Point(0.3, 0.1), Target::Contour(0.5, 0.1), Target::Contour(0.9, 0.3)] {
+            for sign in [-1.0, 1.0] {
+                assert!(target.covered(&fit, &shifted(sign * 1.9)), "{target:?} {sign}");
+                assert!(!target.covered(&fit, &shifted(sign * 2.0)), "{target:?} {sign}");
+            }
+        }
+        // A fit with no contour (β₁ ≤ 0) covers no contour.
+        assert!(!Target::Contour(0.5, 0.1).covered(&FragilitySurface::exact([1.0, -1.0, 0.0]), &fit));
+    }
+
+    #[test]
+    fn drawn_runs_overturn_at_the_surface_s_rate() {
+        // P = logistic(0) = ½ at PGA 1 g, PGV/PGA 1 s (ln 1 = 0); logistic(±ln 3) = ¾, ¼ at PGA 3 g, ⅓ g.
+        let truth = FragilitySurface::exact([0.0, 1.0, 0.0]);
+        let runs = truth.draw_runs(&[1.0 / 3.0, 1.0, 3.0], &[1.0], 4000, 9);
+        assert_eq!(runs.len(), 12_000);
+        for (k, expected) in [0.25, 0.5, 0.75].iter().enumerate() {
+            let cell = &runs[4000 * k..4000 * (k + 1)];
+            let rate = cell.iter().filter(|r| r.overturned).count() as f64 / 4000.0;
+            // 4 binomial standard errors, √(p(1 − p)/4000) ≤ 0.0079.
+            assert!((rate - expected).abs() < 0.032, "cell {k}: {rate} vs {expected}");
+        }
+        assert_eq!(runs, truth.draw_runs(&[1.0 / 3.0, 1.0, 3.0], &[1.0], 4000, 9));
     }
 }

@@ -134,6 +134,27 @@ fn kanai_tajimi_clough_penzien(n: usize, dt: f64, wg: f64, zg: f64, rng: &mut cr
     out
 }
 
+/// A family of [`filtered_noise`] records: `noise` at each predominant period of `periods` ×
+/// each stream of `seeds` (the seeds inner), every one scaled to PGA `pga_g` (g) and named
+/// `name(period, seed)`.
+pub fn noise_family(
+    noise: &Noise,
+    pga_g: f64,
+    periods: &[f64],
+    seeds: &[u64],
+    name: impl Fn(f64, u64) -> String,
+) -> Result<Vec<Record>> {
+    let mut records = Vec::new();
+    for &period in periods {
+        for &seed in seeds {
+            let mut r = filtered_noise(&Noise { period, ..*noise }, pga_g, seed)?;
+            r.name = name(period, seed);
+            records.push(r);
+        }
+    }
+    Ok(records)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -209,5 +230,20 @@ mod tests {
         assert!(slow.measures().pgv_over_pga_s > 1.5 * a.measures().pgv_over_pga_s);
         let three = filtered_noise(&Noise { components: 3, ..noise }, 0.3, 7).unwrap();
         assert!(three.accel.iter().any(|x| x[1] != 0.0) && three.accel.iter().any(|x| x[2] != 0.0));
+    }
+
+    #[test]
+    fn a_noise_family_has_every_period_and_seed_at_its_pga() {
+        let noise = Noise { duration: 4.0, components: 2, ..Noise::default() };
+        let family = noise_family(&noise, 0.3, &[0.2, 1.0], &[7, 8, 9], |t, s| format!("T{t}_s{s}")).unwrap();
+        let names: Vec<&str> = family.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names, ["T0.2_s7", "T0.2_s8", "T0.2_s9", "T1_s7", "T1_s8", "T1_s9"]);
+        for r in &family {
+            assert!((r.measures().pga_g - 0.3).abs() < 1e-9, "{}: {:?}", r.name, r.measures());
+            assert!(r.accel.iter().any(|a| a[1] != 0.0) && r.accel.iter().all(|a| a[2] == 0.0));
+        }
+        // Different streams are different records; the same period and stream, the same.
+        assert_ne!(family[0].accel, family[1].accel);
+        assert_eq!(family[4].accel, filtered_noise(&Noise { period: 1.0, ..noise }, 0.3, 8).unwrap().accel);
     }
 }

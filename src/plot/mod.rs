@@ -8,10 +8,12 @@
 //! path, PNG otherwise) and turns plotters' errors into [`crate::Error::Plot`].
 
 mod chart;
+mod reliability;
 pub use chart::{Axis, Chart, Figure, Marker};
 /// The colour of every series (`RGBColor(r, g, b)`), so that a program drawing through [`Chart`]
 /// can name its own colour without depending on plotters.
 pub use plotters::style::RGBColor;
+pub use reliability::{reliability_bins, reliability_diagram};
 
 use std::sync::Once;
 
