@@ -12,9 +12,9 @@ use rocking_stones::dynamics::shaking::{RecordRun, RockSetup, Uncertainty};
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run};
 use rocking_stones::ground_motion::synthetic::{noise_family, one_sine_pulse, Noise};
 use rocking_stones::ground_motion::Record;
-use rocking_stones::plot::{colors::GREY, reliability_diagram, series_color, Axis, Chart, Mark, RGBColor};
+use rocking_stones::plot::{colors::GREY, reliability_diagram};
+use rocking_stones::prelude::*;
 use rocking_stones::stats::{ensemble_brier, forecast_scores, oracle_brier};
-use rocking_stones::{dynamics::surface::Surface, generate, Vec3};
 use serde_json::{json, Value};
 use std::time::Instant;
 

@@ -16,10 +16,11 @@
 use rocking_stones::dynamics::resting::outcome::{Outcome, Threshold};
 use rocking_stones::dynamics::resting::{default_pair, RestingParams};
 use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig};
-use rocking_stones::dynamics::{stone::Class, surface::Surface};
+use rocking_stones::dynamics::stone::Class;
 use rocking_stones::ground_motion::read::{read_record, AccelUnit};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
-use rocking_stones::{generate, plot::RGBColor, report::shake as report};
+use rocking_stones::prelude::*;
+use rocking_stones::report::shake as report;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]

@@ -19,9 +19,8 @@ use rocking_stones::dynamics::shaking::housner::{housner_overturns, HousnerBlock
 use rocking_stones::dynamics::shaking::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun, Target};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, noise_family, one_sine_pulse, Noise};
-use rocking_stones::plot::{Axis, Chart, Mark, RGBColor};
-use rocking_stones::{analysis::Analysis, dynamics::stone::Stone, dynamics::surface::Surface, generate};
-use rocking_stones::{ground_motion::Record, rng::item_rng, stats::wilson, Vec3, GRAVITY as G};
+use rocking_stones::prelude::*;
+use rocking_stones::{ground_motion::Record, stats::wilson, GRAVITY as G};
 use serde_json::{json, Value};
 use std::time::Instant;
 

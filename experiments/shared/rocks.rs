@@ -4,13 +4,11 @@
 #![allow(dead_code)] // each experiment uses the part it needs
 
 use anyhow::Result;
-use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::resting::default_pair;
 use rocking_stones::dynamics::shaking::rock_params;
-use rocking_stones::dynamics::stone::Stone;
-use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::ground_motion::fragility::FragilitySurface;
 use rocking_stones::mesh::TriMesh;
+use rocking_stones::prelude::*;
 use std::path::Path;
 
 /// The stone of `a` with its flocks at `nu`, or at its macro ν.
