@@ -6,9 +6,7 @@
 //! Run: `cargo run --release --example fig2_planar_r_phi`.
 
 use rocking_stones::hierarchy::Kind;
-use rocking_stones::planar::{
-    ellipse_polygon, ellipse_radius, FlockContents, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL,
-};
+use rocking_stones::planar::{ellipse_radius, FlockContents, PlanarAnalysis, Sampling};
 use rocking_stones::plot::{plain, OKABE_ITO};
 use rocking_stones::prelude::*;
 use std::f64::consts::PI;
@@ -24,8 +22,7 @@ const SAMPLES: usize = 4000;
 fn main() -> Result<()> {
     let common = harness::common_args("R(φ) of the smooth and the discretised ellipse.");
     let out = Results::open("planar", &common)?;
-    let poly = ellipse_polygon(A, N, Sampling::ArcLength)?;
-    let an = PlanarAnalysis::new(poly, DEFAULT_DEGENERACY_TOL)?;
+    let an = PlanarAnalysis::of_ellipse(A, N, Sampling::ArcLength)?;
     let report = an.report(None);
     let flocks = an.flocks_at(report.nu);
     // G of the polygon is the origin up to rounding (the polygon is symmetric).
@@ -49,11 +46,11 @@ fn main() -> Result<()> {
     let eqs: Vec<(f64, f64, Kind, usize, Kind)> = (an.equilibria.points.iter().enumerate())
         .map(|(i, p)| (wrap(p.phi), p.r, p.kind, flocks.membership[i], flocks.flocks[flocks.membership[i]].kind))
         .collect();
-    let lower = |k: Kind| format!("{k:?}").to_lowercase();
+    let name = |k: Kind| k.name().to_string();
     out.csv(
         "fig2_equilibria.csv",
         &["phi", "R", "kind", "flock", "flock_type"],
-        (eqs.iter()).map(|e| [format!("{:.8}", e.0), format!("{:.12}", e.1), lower(e.2), e.3.to_string(), lower(e.4)]),
+        (eqs.iter()).map(|e| [format!("{:.8}", e.0), format!("{:.12}", e.1), name(e.2), e.3.to_string(), name(e.4)]),
     )?;
     let title_b = format!(
         "B. N = {N} (arc length): S = {}, U = {}, {} flocks",

@@ -5,7 +5,7 @@
 //! fig4_grid.png, fig4.md); the README's prose is `experiments/readme/fig4_ellipse_grid.md`.
 
 use rocking_stones::hierarchy::Kind;
-use rocking_stones::planar::{ellipse_polygon, sides_for_k, table1, PlanarAnalysis, Sampling, DEFAULT_DEGENERACY_TOL};
+use rocking_stones::planar::{sides_for_k, table1, PlanarAnalysis, Sampling};
 use rocking_stones::prelude::*;
 
 #[path = "shared/harness.rs"]
@@ -25,7 +25,7 @@ fn main() -> Result<()> {
         let n = sides_for_k(k);
         let mut row = Vec::new();
         for a in AS {
-            let an = PlanarAnalysis::new(ellipse_polygon(a, n, Sampling::ArcLength)?, DEFAULT_DEGENERACY_TOL)?;
+            let an = PlanarAnalysis::of_ellipse(a, n, Sampling::ArcLength)?;
             let r = an.report(None);
             let (s, u, (ms, mu)) = (r.stable, r.unstable, (r.macro_counts.stable, r.macro_counts.unstable));
             let t = |v: usize| v.to_string();

@@ -6,11 +6,8 @@
 //! `experiments/readme/fig5_rocking_planar.md`.
 
 use rocking_stones::hierarchy::Kind;
-use rocking_stones::planar::{
-    ellipse_polygon, sides_for_k, FlockContents, PlanarAnalysis, PlanarSite, Point2, Sampling, DEFAULT_DEGENERACY_TOL,
-};
+use rocking_stones::planar::{sides_for_k, FlockContents, PlanarAnalysis, PlanarSite, Point2, Sampling};
 use rocking_stones::prelude::*;
-use std::f64::consts::PI;
 
 #[path = "shared/harness.rs"]
 mod harness;
@@ -24,18 +21,14 @@ fn main() -> Result<()> {
     let common = harness::common_args("A stable, a rocking and an unstable equilibrium of the discretised ellipse.");
     let out = Results::open("planar", &common)?;
     let n = sides_for_k(K);
-    let an = PlanarAnalysis::new(ellipse_polygon(A, n, Sampling::ArcLength)?, DEFAULT_DEGENERACY_TOL)?;
+    let an = PlanarAnalysis::of_ellipse(A, n, Sampling::ArcLength)?;
     let report = an.report(None);
     let flocks = an.flocks_at(report.nu);
     let eq = &an.equilibria.points;
     let m = eq.len();
     let flock_kind = |i: usize| flocks.flocks[flocks.membership[i]].kind;
-    // Depth of the potential well of a stable point: the lower of its two neighbouring maxima
-    // (in G(0)) above it, normalised by R_max.
-    let depth = |i: usize| {
-        let (p, q) = (eq[(i + m - 1) % m].r, eq[(i + 1) % m].r);
-        (p.min(q) - eq[i].r) / an.equilibria.r_max
-    };
+    // Depth of the potential well of a stable point (over R_max; only stable points have one).
+    let depth = |i: usize| an.equilibria.well_depth(i).unwrap_or(f64::NAN);
     // The three: the regular stable point at the bottom of a stable flock (smallest R), a
     // rocking one (stable in an unstable flock, the deepest such well), the unstable point at the
     // top of an unstable flock (largest R).
@@ -48,7 +41,6 @@ fn main() -> Result<()> {
     let rocking = pick(&rocks, &depth).context("no rocking equilibrium: choose a < √2 and k large enough")?;
     let unstable = pick(&|i| eq[i].kind == Kind::Unstable, &|i| eq[i].r).context("no unstable point")?;
 
-    let lower = |x: Kind| format!("{x:?}").to_lowercase();
     let mut csv = String::from("index,kind,site,site_index,phi,R,flock,flock_type,well_depth_over_Rmax,role\n");
     for (i, e) in eq.iter().enumerate() {
         let role = match i {
@@ -63,7 +55,7 @@ fn main() -> Result<()> {
             PlanarSite::Vertex(v) => ("vertex", v),
         };
         let d = if e.kind == Kind::Stable { format!("{:.4e}", depth(i)) } else { String::new() };
-        let (kind, flock, fk) = (lower(e.kind), flocks.membership[i], lower(flock_kind(i)));
+        let (kind, flock, fk) = (e.kind.name(), flocks.membership[i], flock_kind(i).name());
         csv += &format!("{i},{kind},{site},{si},{:.8},{:.12},{flock},{fk},{d},{role}\n", e.phi, e.r);
     }
     out.write("fig5_equilibria.csv", csv)?;
@@ -71,7 +63,6 @@ fn main() -> Result<()> {
     // Each one drawn resting on its contact point (G vertically above it) on the ground, with G,
     // the vertical through G, and the micro-equilibria: stable in stable flocks vermillion,
     // rocking orange, unstable blue.
-    let g = an.polygon.centroid;
     let bare = |lo, hi| Axis::linear("", lo, hi).ticks(0).no_grid().space(0);
     let dot = |j: usize| match (eq[j].kind, rocks(j)) {
         (Kind::Stable, false) => colors::VERMILLION,
@@ -79,13 +70,9 @@ fn main() -> Result<()> {
         _ => colors::BLUE,
     };
     let resting = |i: usize, title: &str| {
-        let u = eq[i].point - g;
-        let (s, c) = (-PI / 2.0 - u.y.atan2(u.x)).sin_cos();
-        let gy = u.norm();
-        let place = |p: &Point2| {
-            let d = p - g;
-            (c * d.x - s * d.y, gy + s * d.x + c * d.y)
-        };
+        let rest = an.polygon.resting_on(eq[i].point);
+        let place = |p: &Point2| (rest(p).x, rest(p).y);
+        let gy = rest(&an.polygon.centroid).y;
         let mut v: Vec<(f64, f64)> = an.polygon.vertices.iter().map(place).collect();
         let mut chart = Chart::new(bare(-1.6, 1.6), bare(-0.25, 2.55))
             .title(title)

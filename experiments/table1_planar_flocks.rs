@@ -6,15 +6,13 @@
 //! table1_convergence.png and table1.md (its prose is `experiments/readme/table1_planar_flocks.md`).
 //! Run: `cargo run --release --example table1_planar_flocks`.
 
-use rocking_stones::planar::{
-    ellipse_polygon, sides_for_k, table1, PlanarAnalysis, PlanarReport, Sampling, Table1, DEFAULT_DEGENERACY_TOL,
-};
+use rocking_stones::planar::{sides_for_k, table1_scan, PlanarAnalysis, PlanarReport, Sampling, Table1Scan};
 use rocking_stones::prelude::*;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{Context, Result, Results};
+use harness::{Result, Results};
 
 const A_GRID: [f64; 8] = [1.02, 1.05, 1.1, 1.2, 1.3, 1.5, 2.0, 3.0];
 /// The grid of k; its last, k = 1000, stands for the limit in the README.
@@ -24,29 +22,18 @@ const SQRT2_K: [usize; 12] = [5, 10, 50, 100, 200, 300, 400, 500, 600, 700, 1000
 
 /// The report of the ellipse 1 : a with N = 4k − 2 sides, discretised in arc length.
 fn measure(a: f64, k: usize) -> Result<PlanarReport> {
-    let an = PlanarAnalysis::new(ellipse_polygon(a, sides_for_k(k), Sampling::ArcLength)?, DEFAULT_DEGENERACY_TOL)?;
-    Ok(an.report(None))
-}
-
-fn matches(m: &PlanarReport, t: &Table1) -> bool {
-    m.flock_contents.stable_flocks == vec![t.stable_flock; 2]
-        && m.flock_contents.unstable_flocks == vec![t.unstable_flock; 2]
-        && m.stable == t.total_stable
+    Ok(PlanarAnalysis::of_ellipse(a, sides_for_k(k), Sampling::ArcLength)?.report(None))
 }
 
 fn fmt_flocks(v: &[(usize, usize)]) -> String {
     v.iter().map(|(s, u)| format!("{s}+{u}")).collect::<Vec<_>>().join(" ")
 }
 
-/// One axis ratio: the formula, the grid's measurements (with their match), S(k) for every k up
-/// to K_SCAN, and k* with the number of mismatches below it.
+/// One axis ratio: the grid's measurements (with their match) and the scan of every k up to K_SCAN.
 struct Ratio {
     a: f64,
-    t: Table1,
-    grid: Vec<(usize, PlanarReport, bool)>,
-    s_of_k: Vec<(f64, f64)>,
-    last_bad: usize,
-    bad: usize,
+    grid: Vec<(usize, bool, PlanarReport)>,
+    scan: Table1Scan,
 }
 
 fn main() -> Result<()> {
@@ -54,24 +41,11 @@ fn main() -> Result<()> {
     let out = Results::open("planar", &common)?;
     let mut ratios = Vec::new();
     for a in A_GRID {
-        let t = table1(a).context("a > 1")?;
-        let mut grid = Vec::new();
-        for k in K_GRID {
-            let m = measure(a, k)?;
-            let ok = matches(&m, &t);
-            grid.push((k, m, ok));
-        }
-        // Convergence: smallest k* with a match for every k in [k*, K_SCAN].
-        let (mut last_bad, mut bad, mut s_of_k) = (0, 0, Vec::new());
-        for k in 2..=K_SCAN {
-            let m = measure(a, k)?;
-            if !matches(&m, &t) {
-                (last_bad, bad) = (k, bad + 1);
-            }
-            s_of_k.push((k as f64, m.stable as f64));
-        }
-        eprintln!("a = {a}: k* = {}", last_bad + 1);
-        ratios.push(Ratio { a, t, grid, s_of_k, last_bad, bad });
+        let scan = table1_scan(a, K_SCAN)?;
+        let grid = K_GRID.iter().map(|&k| measure(a, k).map(|m| (k, scan.table.matches(&m), m)));
+        let grid = grid.collect::<Result<_>>()?;
+        eprintln!("a = {a}: k* = {}", scan.k_star());
+        ratios.push(Ratio { a, grid, scan });
     }
     let pair = |p: (usize, usize)| format!("{}+{}", p.0, p.1);
     out.csv(
@@ -81,7 +55,7 @@ fn main() -> Result<()> {
             .split_whitespace()
             .collect::<Vec<_>>(),
         ratios.iter().flat_map(|r| {
-            r.grid.iter().map(move |(k, m, ok)| {
+            r.grid.iter().map(move |(k, ok, m)| {
                 [
                     format!("{}", r.a),
                     k.to_string(),
@@ -92,10 +66,10 @@ fn main() -> Result<()> {
                     format!("{:.4e}", m.nu),
                     fmt_flocks(&m.flock_contents.stable_flocks),
                     fmt_flocks(&m.flock_contents.unstable_flocks),
-                    r.t.m.to_string(),
-                    pair(r.t.stable_flock),
-                    pair(r.t.unstable_flock),
-                    r.t.total_stable.to_string(),
+                    r.scan.table.m.to_string(),
+                    pair(r.scan.table.stable_flock),
+                    pair(r.scan.table.unstable_flock),
+                    r.scan.table.total_stable.to_string(),
                     ok.to_string(),
                 ]
             })
@@ -107,11 +81,11 @@ fn main() -> Result<()> {
         ratios.iter().map(|r| {
             [
                 format!("{}", r.a),
-                r.t.m.to_string(),
-                r.t.total_stable.to_string(),
-                (r.last_bad + 1).to_string(),
-                if r.last_bad > 0 { r.last_bad.to_string() } else { "-".into() },
-                r.bad.to_string(),
+                r.scan.table.m.to_string(),
+                r.scan.table.total_stable.to_string(),
+                r.scan.k_star().to_string(),
+                if r.scan.last_mismatch > 0 { r.scan.last_mismatch.to_string() } else { "-".into() },
+                r.scan.mismatches.to_string(),
             ]
         }),
     )?;
@@ -139,20 +113,20 @@ fn main() -> Result<()> {
         json!({
             "k_scan": K_SCAN,
             "k_grid": K_GRID,
-            "ratios": ratios.iter().map(|r| (r, &r.grid[K_GRID.len() - 1].1)).map(|(r, limit)| json!({
+            "ratios": ratios.iter().map(|r| (r, &r.scan.table, &r.grid[K_GRID.len() - 1].2)).map(|(r, t, limit)| json!({
                 "limit": [
                     format!("{}", r.a),
                     format!("{:.4}", r.a * r.a / (2.0 * (r.a * r.a - 1.0))),
-                    r.t.m.to_string(),
-                    format!("{} / {}", pair(r.t.stable_flock), fmt_flocks(&limit.flock_contents.stable_flocks)),
-                    format!("{} / {}", pair(r.t.unstable_flock), fmt_flocks(&limit.flock_contents.unstable_flocks)),
-                    format!("{} / {}", r.t.total_stable, limit.stable),
-                    (r.last_bad + 1).to_string(),
-                    r.bad.to_string(),
+                    t.m.to_string(),
+                    format!("{} / {}", pair(t.stable_flock), fmt_flocks(&limit.flock_contents.stable_flocks)),
+                    format!("{} / {}", pair(t.unstable_flock), fmt_flocks(&limit.flock_contents.unstable_flocks)),
+                    format!("{} / {}", t.total_stable, limit.stable),
+                    r.scan.k_star().to_string(),
+                    r.scan.mismatches.to_string(),
                 ],
                 "a": format!("{}", r.a),
-                "cells": r.grid.iter().map(|(_, m, ok)| format!("{}{}", m.stable, if *ok { " ✓" } else { "" })).collect::<Vec<_>>(),
-                "s": r.t.total_stable,
+                "cells": r.grid.iter().map(|(_, ok, m)| format!("{}{}", m.stable, if *ok { " ✓" } else { "" })).collect::<Vec<_>>(),
+                "s": t.total_stable,
             })).collect::<Vec<_>>(),
             "jump": jump,
         }),
@@ -163,14 +137,17 @@ fn main() -> Result<()> {
 
 /// S against k for each a (log–log), each with its limit 8m + 2 dashed in the same colour.
 fn plot(out: &Results, ratios: &[Ratio]) -> Result<()> {
-    let ymax = ratios.iter().flat_map(|r| r.s_of_k.iter().map(|p| p.1)).fold(0.0, f64::max);
+    let s_of_k = |r: &Ratio| -> Vec<(f64, f64)> {
+        r.scan.stable.iter().enumerate().map(|(i, &s)| ((i + 2) as f64, s as f64)).collect()
+    };
+    let ymax = ratios.iter().flat_map(|r| r.scan.stable.iter().map(|&s| s as f64)).fold(0.0, f64::max);
     let mut chart = Chart::new(Axis::log("k", 2.0, K_SCAN as f64), Axis::log("S (micro)", 1.0, ymax * 1.2))
         .title("Discretised ellipse: total S against k (N = 4k − 2); dashed: 8⌊a²/(2(a²−1))⌋ + 2");
     for (i, r) in ratios.iter().enumerate() {
-        let lim = r.t.total_stable as f64;
+        let lim = r.scan.table.total_stable as f64;
         chart = chart
             .legend(Mark::Line(series_color(i)), format!("a = {}", r.a))
-            .line(&r.s_of_k, series_color(i))
+            .line(&s_of_k(r), series_color(i))
             .dashed(&[(2.0, lim), (K_SCAN as f64, lim)], series_color(i));
     }
     chart.save(&out.path("table1_convergence.png"), (1000, 680))?;

@@ -1,7 +1,10 @@
 //! The planar pipeline in one call: polygon → micro-equilibria → checked hierarchy → flocks at
 //! the macro scale ν, with the serialisable report (flock contents and rocking sides).
 
-use super::{hierarchy, PlanarEquilibria, PlanarEquilibrium, PlanarSite, Point2, Polygon};
+use super::{
+    ellipse_polygon, hierarchy, PlanarEquilibria, PlanarEquilibrium, PlanarSite, Point2, Polygon, Sampling,
+    DEFAULT_DEGENERACY_TOL,
+};
 use crate::hierarchy::{Counts, Flock, Flocks, Hierarchy, Kind, NuSource, Plateau, Step};
 use crate::Result;
 use serde::Serialize;
@@ -125,6 +128,12 @@ impl PlanarAnalysis {
         let hierarchy = hierarchy(&equilibria);
         hierarchy.check()?;
         Ok(PlanarAnalysis { polygon, equilibria, hierarchy })
+    }
+
+    /// The analysis of the ellipse 1 : a discretised into `sides` sides by `sampling`
+    /// ([`ellipse_polygon`]), signs decided with the default tolerance [`DEFAULT_DEGENERACY_TOL`].
+    pub fn of_ellipse(a: f64, sides: usize, sampling: Sampling) -> Result<Self> {
+        PlanarAnalysis::new(ellipse_polygon(a, sides, sampling)?, DEFAULT_DEGENERACY_TOL)
     }
 
     /// The ν of the macro scale, by the rule of the 3D case ([`crate::hierarchy::macro_nu`]):

@@ -2,7 +2,7 @@
 //! Gauss–Legendre quadrature and its inverse, the vertices of the ellipse polygon for each
 //! sampling, the smooth ellipse's R(φ), and the k → ∞ flock contents of Table 1.
 
-use super::{Point2, Polygon};
+use super::{PlanarAnalysis, PlanarReport, Point2, Polygon};
 use crate::{Error, Result};
 use rand::{RngExt, SeedableRng};
 use serde::Serialize;
@@ -231,9 +231,87 @@ pub fn table1(a: f64) -> Option<Table1> {
     })
 }
 
+impl Table1 {
+    /// Whether the measured report has exactly the formula's contents: two stable flocks of
+    /// (2m + 1, 2m), two unstable flocks of (2m, 2m + 1) and S = 8m + 2 micro-stable points.
+    pub fn matches(&self, r: &PlanarReport) -> bool {
+        r.flock_contents.stable_flocks == vec![self.stable_flock; 2]
+            && r.flock_contents.unstable_flocks == vec![self.unstable_flock; 2]
+            && r.stable == self.total_stable
+    }
+}
+
+/// The convergence of the arc-length discretised ellipse 1 : a with N = 4k − 2 sides to
+/// Table 1, for every k from 2 to a largest k.
+#[derive(Clone, Debug, Serialize)]
+pub struct Table1Scan {
+    /// The formula.
+    pub table: Table1,
+    /// S for k = 2, 3, …, the largest k.
+    pub stable: Vec<usize>,
+    /// The largest k whose contents differ from the formula (0 if none).
+    pub last_mismatch: usize,
+    /// How many k differ from the formula.
+    pub mismatches: usize,
+}
+
+impl Table1Scan {
+    /// k*: the smallest k from which every scanned k matches the formula (1 if all do).
+    pub fn k_star(&self) -> usize {
+        self.last_mismatch + 1
+    }
+}
+
+/// Measure the arc-length discretised ellipse 1 : a (a > 1) at every k in 2..=`k_max` (macro
+/// scale chosen automatically) against [`table1`], with [`Table1::matches`].
+pub fn table1_scan(a: f64, k_max: usize) -> Result<Table1Scan> {
+    let table = table1(a).ok_or_else(|| Error::parameter("a", a, "> 1 (the circle has no limit)"))?;
+    let mut scan = Table1Scan { table, stable: Vec::new(), last_mismatch: 0, mismatches: 0 };
+    for k in 2..=k_max {
+        let r = PlanarAnalysis::of_ellipse(a, sides_for_k(k), Sampling::ArcLength)?.report(None);
+        if !table.matches(&r) {
+            (scan.last_mismatch, scan.mismatches) = (k, scan.mismatches + 1);
+        }
+        scan.stable.push(r.stable);
+    }
+    Ok(scan)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn table1_closed_form() {
+        // a = 1.2: a²/(2(a² − 1)) = 1.44/0.88 ≈ 1.64, m = 1, S = 10; a = √2 sits on the jump to m = 1.
+        let t = table1(1.2).unwrap();
+        assert_eq!((t.m, t.stable_flock, t.unstable_flock, t.total_stable, t.on_jump), (1, (3, 2), (2, 3), 10, false));
+        assert!(table1(std::f64::consts::SQRT_2).unwrap().on_jump);
+        assert_eq!(table1(1.0), None);
+    }
+
+    #[test]
+    fn fine_ellipse_matches_table1_and_a_hexagon_does_not() {
+        let t = table1(1.2).unwrap();
+        let report = |k| PlanarAnalysis::of_ellipse(1.2, sides_for_k(k), Sampling::ArcLength).unwrap().report(None);
+        assert!(t.matches(&report(50)));
+        // The hexagon (k = 2) has at most 3 stable sides, never 8m + 2 = 10.
+        assert!(!t.matches(&report(2)));
+    }
+
+    #[test]
+    fn table1_scan_of_a_wide_ellipse() {
+        // a = 2: m = ⌊4/6⌋ = 0, so every N = 4k − 2 polygon should rest only on its two sides at
+        // the ends of the minor axis: S = 2 for every k and k* = 1.
+        let scan = table1_scan(2.0, 30).unwrap();
+        assert_eq!((scan.k_star(), scan.mismatches), (1, 0));
+        assert_eq!(scan.stable, vec![2; 29]);
+        // a = 1.2 reaches S = 8m + 2 = 10 by k = 30, with the mismatches all below k*.
+        let scan = table1_scan(1.2, 30).unwrap();
+        assert_eq!(scan.stable.last(), Some(&10));
+        assert!(scan.k_star() <= 30 && scan.mismatches < scan.k_star());
+        assert!(table1_scan(1.0, 5).is_err());
+    }
 
     #[test]
     fn gauss_legendre_is_exact_for_polynomials() {

@@ -112,6 +112,18 @@ impl PlanarEquilibria {
         let r_min = points.iter().filter(|p| p.kind == Kind::Stable).map(|p| p.r).fold(f64::INFINITY, f64::min);
         Ok(PlanarEquilibria { points, stable, unstable, r_max: poly.r_max(), r_min, degenerate_decisions: degenerate })
     }
+
+    /// The depth of the potential well of the stable point `i` (`None` for an unstable one):
+    /// the rise of R from it to the lower of its two neighbouring maxima on the cycle,
+    /// normalised by R_max, (min(R_{i−1}, R_{i+1}) − R_i) / R_max.
+    pub fn well_depth(&self, i: usize) -> Option<f64> {
+        let (eq, m) = (&self.points, self.points.len());
+        if eq[i].kind != Kind::Stable {
+            return None;
+        }
+        let (p, q) = (eq[(i + m - 1) % m].r, eq[(i + 1) % m].r);
+        Some((p.min(q) - eq[i].r) / self.r_max)
+    }
 }
 
 #[cfg(test)]
@@ -124,5 +136,23 @@ mod tests {
         let sq = Polygon::regular(4, 1.0, 0.3).unwrap();
         let e = PlanarEquilibria::new(&sq, DEFAULT_DEGENERACY_TOL).unwrap();
         assert_eq!((e.stable, e.unstable, e.degenerate_decisions), (4, 4, 0));
+    }
+
+    #[test]
+    fn well_depths_of_a_rectangle() {
+        // The 2 × 1 rectangle: long sides at R = 1/2, short sides at R = 1, corners at √5/2.
+        let rect = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let e = PlanarEquilibria::new(&Polygon::new(rect.to_vec()).unwrap(), DEFAULT_DEGENERACY_TOL).unwrap();
+        let corner = 5f64.sqrt() / 2.0;
+        for (i, p) in e.points.iter().enumerate() {
+            match (p.site, e.well_depth(i)) {
+                (PlanarSite::Vertex(_), d) => assert_eq!(d, None),
+                (PlanarSite::Side(s), Some(d)) => {
+                    let r = if s % 2 == 0 { 0.5 } else { 1.0 };
+                    assert!((d - (corner - r) / corner).abs() < 1e-15, "side {s}: {d}");
+                }
+                other => panic!("{other:?}"),
+            }
+        }
     }
 }

@@ -64,8 +64,8 @@ mod polygon;
 pub use analysis::{FlockContents, PlanarAnalysis, PlanarReport, RockingSide};
 pub use cycle::hierarchy;
 pub use ellipse::{
-    ellipse_polygon, ellipse_radius, ellipse_vertices, gauss_legendre, sides_for_k, table1, EllipseArc, Sampling,
-    Table1,
+    ellipse_polygon, ellipse_radius, ellipse_vertices, gauss_legendre, sides_for_k, table1, table1_scan, EllipseArc,
+    Sampling, Table1, Table1Scan,
 };
 pub use equilibria::{PlanarEquilibria, PlanarEquilibrium, PlanarSite};
 pub use polygon::Polygon;

@@ -159,4 +159,40 @@ impl Polygon {
     pub fn placed(&self, angle: f64, g: Point2) -> Vec<Point2> {
         self.vertices.iter().map(|p| g + (p - self.centroid).rotate_by(angle)).collect()
     }
+
+    /// The rigid motion that rests the plate on the boundary point `contact` on the ground
+    /// y = 0: with u = contact − G, a rotation about G by θ = −π/2 − atan2(u_y, u_x) turns u
+    /// straight down, then a translation puts G at (0, |u|), so the contact goes to the origin.
+    /// Returns the map p ↦ (cos θ d_x − sin θ d_y, |u| + sin θ d_x + cos θ d_y), d = p − G.
+    pub fn resting_on(&self, contact: Point2) -> impl Fn(&Point2) -> Point2 + '_ {
+        let u = contact - self.centroid;
+        let (s, c) = (-PI / 2.0 - u.y.atan2(u.x)).sin_cos();
+        let height = u.norm();
+        move |p| {
+            let d = p - self.centroid;
+            Point2::new(c * d.x - s * d.y, height + s * d.x + c * d.y)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resting_on_a_side_puts_the_plate_above_the_ground() {
+        // The 2 × 1 rectangle centred at (1, 0.5), rested on the foot of G on its right side.
+        let rect = [(0.0, 0.0), (2.0, 0.0), (2.0, 1.0), (0.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+        let poly = Polygon::new(rect.to_vec()).unwrap();
+        let place = poly.resting_on(Point2::new(2.0, 0.5));
+        let (contact, g) = (place(&Point2::new(2.0, 0.5)), place(&poly.centroid));
+        assert!(contact.coords.norm() < 1e-15, "{contact}");
+        assert!(g.x.abs() < 1e-15 && (g.y - 1.0).abs() < 1e-15, "{g}");
+        // The right side lies on the ground, the left one at height 2; distances are kept.
+        let v: Vec<Point2> = rect.iter().map(&place).collect();
+        for (p, y) in v.iter().zip([2.0, 0.0, 0.0, 2.0]) {
+            assert!((p.y - y).abs() < 1e-14, "{p}");
+        }
+        assert!(((v[0] - v[1]).norm() - 2.0).abs() < 1e-14);
+    }
 }
