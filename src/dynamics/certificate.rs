@@ -152,10 +152,52 @@ impl Certificate for EnergyCertificate<'_> {
     }
 }
 
+/// What [`CERTIFICATE_MARGIN`] must cover, along one run: given per step the energy level L(t)
+/// where the certificate may be asked (`Some`: contact relaxed, L ≤ 1 R_max; `None` elsewhere)
+/// and the support height h(down(t)) (both R_max), the number of such steps and
+/// max over them of (max over t' ≥ t of h(t')) − L(t), the largest later rise of h above a level
+/// read (−∞ when no step may be asked). One backward pass: the running maximum of h from the end.
+pub fn largest_later_rise(steps: &[(Option<f64>, f64)]) -> (u64, f64) {
+    let (mut asked, mut rise, mut future_h) = (0, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for &(level, h) in steps.iter().rev() {
+        future_h = future_h.max(h);
+        if let Some(l) = level {
+            asked += 1;
+            rise = rise.max(future_h - l);
+        }
+    }
+    (asked, rise)
+}
+
 /// The certificate of `mode` on `stone` (a no-op for [`CertificateMode::None`]).
 pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate + '_> {
     match EnergyCertificate::new(stone, mode) {
         Some(c) => Box::new(c),
         None => Box::new(NoCertificate),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_later_rise_by_hand_and_by_every_pair() {
+        // Asked at steps 0 and 2: h rises to 0.7 after step 0 (0.7 − 0.5) and to 0.55 after step 2.
+        let steps = [(Some(0.5), 0.4), (None, 0.7), (Some(0.6), 0.55), (None, 0.3)];
+        let (asked, rise) = largest_later_rise(&steps);
+        assert_eq!(asked, 2);
+        assert!((rise - 0.2).abs() < 1e-15, "{rise}");
+        assert_eq!(largest_later_rise(&[(None, 1.0)]), (0, f64::NEG_INFINITY));
+        // Against the definition over every pair t ≤ t' of a pseudo-random run.
+        let steps: Vec<(Option<f64>, f64)> = (0..60u32)
+            .map(|k| ((k % 3 != 1).then_some((k * 37 % 11) as f64 / 11.0), (k * 53 % 17) as f64 / 17.0))
+            .collect();
+        let pairs = (0..steps.len()).filter_map(|t| {
+            let later = steps[t..].iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
+            steps[t].0.map(|l| later - l)
+        });
+        let want = pairs.fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!(largest_later_rise(&steps), (40, want));
     }
 }
