@@ -18,7 +18,7 @@ mod harness;
 use harness::{Context, Result, Results};
 use rayon::prelude::*;
 use rocking_stones::dynamics::certificate::{
-    largest_later_rise, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
+    largest_later_rise, DecisionScore, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
 use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::engine::run::{Certificate as _, Decided, NoCertificate, CERTIFICATE_EVERY};
@@ -91,17 +91,10 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std:
         let truth = [Some(facet), stone.flock_of(facet).map(|k| k as u32)];
         tally.drops += 1;
         for l in 0..2 {
-            let mut first = true;
-            for d in trace.decided.iter().filter_map(|d| d[l]) {
-                let wrong = Some(d) != truth[l];
-                tally.decisions[l] += 1;
-                tally.wrong[l] += u64::from(wrong);
-                if first {
-                    tally.first[l] += 1;
-                    tally.first_wrong[l] += u64::from(wrong);
-                    first = false;
-                }
-            }
+            let s = DecisionScore::of(trace.decided.iter().filter_map(|d| d[l]), truth[l]);
+            (tally.decisions[l], tally.wrong[l]) = (tally.decisions[l] + s.decisions, tally.wrong[l] + s.wrong);
+            tally.first[l] += u64::from(s.first_wrong.is_some());
+            tally.first_wrong[l] += u64::from(s.first_wrong == Some(true));
         }
         let (asked, excess) = largest_later_rise(&trace.levels);
         (tally.asked, tally.excess) = (tally.asked + asked, tally.excess.max(excess));

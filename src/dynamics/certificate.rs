@@ -169,6 +169,32 @@ pub fn largest_later_rise(steps: &[(Option<f64>, f64)]) -> (u64, f64) {
     (asked, rise)
 }
 
+/// How the decisions a certificate makes along one run score against where the run ends.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DecisionScore {
+    /// Decisions made (states where the certificate decided).
+    pub decisions: u64,
+    /// Of those, the ones that name another outcome than the run's end.
+    pub wrong: u64,
+    /// Whether the first decision, the one a certified run would act on, was wrong (None: no
+    /// decision).
+    pub first_wrong: Option<bool>,
+}
+
+impl DecisionScore {
+    /// The score of the decisions `decided` (in the order they were made, facets or flocks)
+    /// against the run's end `truth`: a decision is wrong when it is not `truth`.
+    pub fn of(decided: impl IntoIterator<Item = u32>, truth: Option<u32>) -> Self {
+        let mut score = DecisionScore::default();
+        for d in decided {
+            let wrong = Some(d) != truth;
+            (score.decisions, score.wrong) = (score.decisions + 1, score.wrong + u64::from(wrong));
+            score.first_wrong.get_or_insert(wrong);
+        }
+        score
+    }
+}
+
 /// The certificate of `mode` on `stone` (a no-op for [`CertificateMode::None`]).
 pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate + '_> {
     match EnergyCertificate::new(stone, mode) {
@@ -180,6 +206,17 @@ pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn decisions_score_against_the_end() {
+        // Ends on 3: one wrong decision (5) of four, and the first (3) right.
+        let s = DecisionScore::of([3, 5, 3, 3], Some(3));
+        assert_eq!(s, DecisionScore { decisions: 4, wrong: 1, first_wrong: Some(false) });
+        // A first decision that is wrong; an end outside any flock makes every decision wrong.
+        assert_eq!(DecisionScore::of([5, 3], Some(3)).first_wrong, Some(true));
+        assert_eq!(DecisionScore::of([2, 2], None), DecisionScore { decisions: 2, wrong: 2, first_wrong: Some(true) });
+        assert_eq!(DecisionScore::of([], Some(1)), DecisionScore::default());
+    }
 
     #[test]
     fn the_later_rise_by_hand_and_by_every_pair() {
