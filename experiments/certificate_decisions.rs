@@ -17,7 +17,9 @@
 mod harness;
 use harness::{Context, Result, Results};
 use rayon::prelude::*;
-use rocking_stones::dynamics::certificate::{EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::certificate::{
+    largest_later_rise, DecisionScore, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
+};
 use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::engine::run::{Certificate as _, Decided, NoCertificate, CERTIFICATE_EVERY};
 use rocking_stones::prelude::*;
@@ -78,45 +80,24 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std:
             &mut |_, s| {
                 step += 1;
                 let h = stone.body.support_climb(&s.down);
-                let relaxed = h - s.z <= CERTIFICATE_MAX_COMPRESSION;
-                trace.levels.push(((relaxed && s.level <= 1.0).then_some(s.level), h));
+                trace.levels.push(((facet_cert.relaxed(s) && s.level <= 1.0).then_some(s.level), h));
                 if step % CERTIFICATE_EVERY == 0 {
-                    let facet = match facet_cert.decided(s) {
-                        Some(Decided::Facet(f)) => Some(f),
-                        _ => None,
-                    };
-                    let flock = match flock_cert.decided(s) {
-                        Some(Decided::Flock(k)) => Some(k),
-                        _ => None,
-                    };
-                    trace.decided.push([facet, flock]);
+                    let [facet, flock] = [&facet_cert, &flock_cert].map(|c| c.decided(s));
+                    trace.decided.push([facet.and_then(Decided::facet), flock.and_then(Decided::flock)]);
                 }
             },
         );
         let facet = rest.context("full settling decides the facet")?;
-        let truth = [Some(facet), stone.facet_flock[facet as usize].map(|k| k as u32)];
+        let truth = [Some(facet), stone.flock_of(facet).map(|k| k as u32)];
         tally.drops += 1;
         for l in 0..2 {
-            let mut first = true;
-            for d in trace.decided.iter().filter_map(|d| d[l]) {
-                let wrong = Some(d) != truth[l];
-                tally.decisions[l] += 1;
-                tally.wrong[l] += u64::from(wrong);
-                if first {
-                    tally.first[l] += 1;
-                    tally.first_wrong[l] += u64::from(wrong);
-                    first = false;
-                }
-            }
+            let s = DecisionScore::of(trace.decided.iter().filter_map(|d| d[l]), truth[l]);
+            (tally.decisions[l], tally.wrong[l]) = (tally.decisions[l] + s.decisions, tally.wrong[l] + s.wrong);
+            tally.first[l] += u64::from(s.first_wrong.is_some());
+            tally.first_wrong[l] += u64::from(s.first_wrong == Some(true));
         }
-        let mut future_h = f64::NEG_INFINITY;
-        for &(level, h) in trace.levels.iter().rev() {
-            future_h = future_h.max(h);
-            if let Some(l) = level {
-                tally.asked += 1;
-                tally.excess = tally.excess.max(future_h - l);
-            }
-        }
+        let (asked, excess) = largest_later_rise(&trace.levels);
+        (tally.asked, tally.excess) = (tally.asked + asked, tally.excess.max(excess));
     }
     Ok(tally)
 }

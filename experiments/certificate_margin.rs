@@ -20,7 +20,7 @@ use rocking_stones::dynamics::certificate::{EnergyCertificate, CERTIFICATE_MARGI
 use rocking_stones::dynamics::drops::launch::release_height;
 use rocking_stones::dynamics::engine::rest::RestKind;
 use rocking_stones::dynamics::engine::run::{
-    run_to_end as run_one, Certificate, Decided, NoCertificate, Passive, CERTIFICATE_EVERY,
+    run_to_end as run_one, Certificate, NoCertificate, Passive, CERTIFICATE_EVERY,
 };
 use rocking_stones::dynamics::engine::simulation::Simulation;
 use rocking_stones::prelude::*;
@@ -76,11 +76,7 @@ fn observe(stone: &Stone, certs: &Certificates, p: &DropParams, seed: u64, i: u6
                 if f.every_k.is_some() {
                     continue;
                 }
-                let d = match cert.decided(s) {
-                    Some(Decided::Facet(f)) => f as usize,
-                    Some(Decided::Flock(k)) => k as usize,
-                    None => continue,
-                };
+                let Some(d) = cert.decided(s).map(|d| d.id() as usize) else { continue };
                 f.every_step.get_or_insert((step, d));
                 if step % CERTIFICATE_EVERY == 0 {
                     f.every_k = Some((step, d));
@@ -88,8 +84,8 @@ fn observe(stone: &Stone, certs: &Certificates, p: &DropParams, seed: u64, i: u6
             }
         }
     });
-    let facet = stone.rest(&end.state.down).facet as usize;
-    Observed { truth: [Some(facet), stone.facet_flock.get(facet).copied().flatten()], steps: end.steps, first }
+    let facet = stone.rest(&end.state.down).facet;
+    Observed { truth: [Some(facet as usize), stone.flock_of(facet)], steps: end.steps, first }
 }
 
 /// One row: a margin's decisions on one body, preset and level (mean simulated s per drop

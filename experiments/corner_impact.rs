@@ -2,13 +2,14 @@
 //! 1–32: a box 1 × 0.8 × 0.5 released at rest in random orientations lands on one corner, and
 //! the spin after the impact is placed by its slip fraction φ between Newton's law with sticking
 //! friction (φ = 0) and a sticking compression followed by a frictionless restitution (φ = 1),
-//! the contact law's two stages (the closed forms and φ: `experiments/readme/corner_impact.md`).
+//! the contact law's two stages (the closed forms: `dynamics::engine::impulse`; φ:
+//! `experiments/readme/corner_impact.md`).
 //!
 //! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`.
 
-use nalgebra::{Matrix3, UnitQuaternion};
+use nalgebra::UnitQuaternion;
 use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::Release};
-use rocking_stones::dynamics::engine::{run::NoCertificate, world::BodyState};
+use rocking_stones::dynamics::engine::{impulse::PointImpact, run::NoCertificate, world::BodyState};
 use rocking_stones::prelude::*;
 
 #[path = "shared/harness.rs"]
@@ -75,24 +76,19 @@ fn main() -> Result<()> {
             two_corners += 1;
             continue;
         }
-        let r = q * corners[0];
-        let inv = stone.body.world_inertia(&q).try_inverse().context("a singular inertia")?;
-        let k = Matrix3::identity() - r.cross_matrix() * inv * r.cross_matrix();
-        let k_inv = k.try_inverse().context("a singular impact matrix")?;
-        let spin_of = |p: Vec3| inv * r.cross(&p);
+        let impact = PointImpact::new(&stone.body.world_inertia(&q), &(q * corners[0])).context("a singular impact")?;
         for e in RESTITUTIONS {
             let mut rows = Vec::new();
             for substeps in SUBSTEPS {
                 // The closed forms need only the approach speed, read off the last state before it.
                 let (before, after) = first_impact(&stone, q, e, substeps)?;
                 let u = -before.linvel.z;
-                let newton = k_inv * Vec3::new(0.0, 0.0, (1.0 + e) * u);
+                let newton = impact.sticking(e, u);
                 if newton.xy().norm() > FRICTION * newton.z {
                     sliding += 1;
                     continue 'orientations;
                 }
-                let frictionless = k_inv * Vec3::new(0.0, 0.0, u) + Vec3::z() * (e * u / k[(2, 2)]);
-                let (w_n, w_f) = (spin_of(newton), spin_of(frictionless));
+                let (w_n, w_f) = (impact.spin(&newton), impact.spin(&impact.frictionless_restitution(e, u)));
                 let slip = (after.angvel - w_n).dot(&(w_f - w_n)) / (w_f - w_n).norm_squared();
                 rows.push((e, substeps, (after.angvel - w_n).norm() / w_n.norm(), slip));
             }

@@ -22,15 +22,12 @@ use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Common, Parser, Result, Results};
 use rocking_stones::dynamics::certificate::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::batch::simulate_batch;
-use rocking_stones::dynamics::drops::montecarlo::{run_drops_batched, summarize};
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::prelude::*;
 use rocking_stones::stats::chi_square_homogeneity;
 use serde_json::json;
 use statrs::distribution::{Binomial, DiscreteCDF};
-use std::collections::BTreeMap;
-use std::sync::Mutex;
 
 const DTS: [f64; 7] = [1.0 / 480.0, 1.0 / 240.0, 1.0 / 180.0, 1.0 / 150.0, 1.0 / 120.0, 1.0 / 100.0, 1.0 / 80.0];
 const REFERENCE: usize = 1;
@@ -89,6 +86,7 @@ fn main() -> Result<()> {
     let (mut time_ratios, mut rate_ratios) = (Vec::new(), Vec::new());
     for (name, a) in &bodies {
         let stone = Stone::new(a, a.macro_nu(&Options::default()).0)?;
+        stone.quasi_static(); // the basin probabilities of the summaries, computed before any clock starts
         for preset in PRESETS {
             let mut runs = Vec::new();
             for (k, &dt) in DTS.iter().enumerate() {
@@ -96,17 +94,10 @@ fn main() -> Result<()> {
                 params.sim.numerics.dt = dt;
                 let mut header = RunHeader::of_params(name, seed + k as u64, n, params.clone(), CertificateMode::None);
                 header.preset = Some(preset.name().into());
-                let (sink, t) = (Mutex::new(|_: &DropOutcome| {}), std::time::Instant::now());
-                let none = BTreeMap::new();
-                let outcomes =
-                    pool.install(|| run_drops_batched(&stone, &header, &none, &NoCertificate, DEFAULT_BATCH, &sink));
+                let t = std::time::Instant::now();
+                let (report, _) = pool.install(|| run_and_summarize(&stone, &header));
                 let rate = n as f64 / t.elapsed().as_secs_f64();
-                let outcomes: BTreeMap<u64, DropOutcome> = outcomes.into_iter().map(|o| (o.index, o)).collect();
-                let report = summarize(&stone.model(), &header, &outcomes);
-                let mut counts = vec![0u64; stone.flock_kinds.len()];
-                for f in &report.flocks {
-                    counts[f.id] = f.count;
-                }
+                let counts = report.flock_counts(stone.flock_kinds.len());
                 let obs: Vec<[f64; 3]> =
                     pool.install(|| (0..m).map(|i| observe(&stone, &params, seed + k as u64, i)).collect());
                 let obs: [f64; 3] = std::array::from_fn(|j| obs.iter().map(|o| o[j]).fold(f64::NEG_INFINITY, f64::max));

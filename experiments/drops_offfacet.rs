@@ -46,12 +46,11 @@ fn main() -> Result<()> {
             if first.on_equilibrium() {
                 continue;
             }
-            let (steps_max, mut k, mut now) = ((30.0 / p.sim.numerics.dt) as u64, 0, first);
-            while k < steps_max && !now.on_equilibrium() {
-                sim.step();
-                k += 1;
-                now = stone.rest(&sim.state().down);
-            }
+            let mut now = first;
+            let k = sim.step_until((30.0 / p.sim.numerics.dt) as u64, &mut |s| {
+                now = stone.rest(&s.down);
+                now.on_equilibrium()
+            });
             let (v, w, more) = (end.state.linvel.norm(), end.state.angvel.norm(), k as f64 * p.sim.numerics.dt);
             let same = now.facet == first.facet;
             writeln!(csv, "{name},{i},{:e},{v:e},{w:e},{same},{more:.3},{:e}", first.height_above, now.height_above)?;

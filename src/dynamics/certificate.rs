@@ -152,10 +152,89 @@ impl Certificate for EnergyCertificate<'_> {
     }
 }
 
+/// What [`CERTIFICATE_MARGIN`] must cover, along one run: given per step the energy level L(t)
+/// where the certificate may be asked (`Some`: contact relaxed, L ≤ 1 R_max; `None` elsewhere)
+/// and the support height h(down(t)) (both R_max), the number of such steps and
+/// max over them of (max over t' ≥ t of h(t')) − L(t), the largest later rise of h above a level
+/// read (−∞ when no step may be asked). One backward pass: the running maximum of h from the end.
+pub fn largest_later_rise(steps: &[(Option<f64>, f64)]) -> (u64, f64) {
+    let (mut asked, mut rise, mut future_h) = (0, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for &(level, h) in steps.iter().rev() {
+        future_h = future_h.max(h);
+        if let Some(l) = level {
+            asked += 1;
+            rise = rise.max(future_h - l);
+        }
+    }
+    (asked, rise)
+}
+
+/// How the decisions a certificate makes along one run score against where the run ends.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DecisionScore {
+    /// Decisions made (states where the certificate decided).
+    pub decisions: u64,
+    /// Of those, the ones that name another outcome than the run's end.
+    pub wrong: u64,
+    /// Whether the first decision, the one a certified run would act on, was wrong (None: no
+    /// decision).
+    pub first_wrong: Option<bool>,
+}
+
+impl DecisionScore {
+    /// The score of the decisions `decided` (in the order they were made, facets or flocks)
+    /// against the run's end `truth`: a decision is wrong when it is not `truth`.
+    pub fn of(decided: impl IntoIterator<Item = u32>, truth: Option<u32>) -> Self {
+        let mut score = DecisionScore::default();
+        for d in decided {
+            let wrong = Some(d) != truth;
+            (score.decisions, score.wrong) = (score.decisions + 1, score.wrong + u64::from(wrong));
+            score.first_wrong.get_or_insert(wrong);
+        }
+        score
+    }
+}
+
 /// The certificate of `mode` on `stone` (a no-op for [`CertificateMode::None`]).
 pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate + '_> {
     match EnergyCertificate::new(stone, mode) {
         Some(c) => Box::new(c),
         None => Box::new(NoCertificate),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decisions_score_against_the_end() {
+        // Ends on 3: one wrong decision (5) of four, and the first (3) right.
+        let s = DecisionScore::of([3, 5, 3, 3], Some(3));
+        assert_eq!(s, DecisionScore { decisions: 4, wrong: 1, first_wrong: Some(false) });
+        // A first decision that is wrong; an end outside any flock makes every decision wrong.
+        assert_eq!(DecisionScore::of([5, 3], Some(3)).first_wrong, Some(true));
+        assert_eq!(DecisionScore::of([2, 2], None), DecisionScore { decisions: 2, wrong: 2, first_wrong: Some(true) });
+        assert_eq!(DecisionScore::of([], Some(1)), DecisionScore::default());
+    }
+
+    #[test]
+    fn the_later_rise_by_hand_and_by_every_pair() {
+        // Asked at steps 0 and 2: h rises to 0.7 after step 0 (0.7 − 0.5) and to 0.55 after step 2.
+        let steps = [(Some(0.5), 0.4), (None, 0.7), (Some(0.6), 0.55), (None, 0.3)];
+        let (asked, rise) = largest_later_rise(&steps);
+        assert_eq!(asked, 2);
+        assert!((rise - 0.2).abs() < 1e-15, "{rise}");
+        assert_eq!(largest_later_rise(&[(None, 1.0)]), (0, f64::NEG_INFINITY));
+        // Against the definition over every pair t ≤ t' of a pseudo-random run.
+        let steps: Vec<(Option<f64>, f64)> = (0..60u32)
+            .map(|k| ((k % 3 != 1).then_some((k * 37 % 11) as f64 / 11.0), (k * 53 % 17) as f64 / 17.0))
+            .collect();
+        let pairs = (0..steps.len()).filter_map(|t| {
+            let later = steps[t..].iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
+            steps[t].0.map(|l| later - l)
+        });
+        let want = pairs.fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!(largest_later_rise(&steps), (40, want));
     }
 }

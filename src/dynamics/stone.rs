@@ -268,6 +268,12 @@ impl Stone {
         Ok(stone)
     }
 
+    /// The flock where a stone at rest on `facet` lies: that of the facet's stable
+    /// micro-equilibrium (None for a facet that is not stable, or not a facet of the hull).
+    pub fn flock_of(&self, facet: u32) -> Option<usize> {
+        self.facet_flock.get(facet as usize).copied().flatten()
+    }
+
     /// R_F / R_max of a stable facet (NaN for a non-stable one).
     pub fn facet_height(&self, facet: u32) -> f64 {
         self.facet_r[facet as usize] / self.body.r_max
@@ -467,6 +473,8 @@ mod tests {
             for normal in [axis, -axis] {
                 let e = stone.stable_facing(&normal).expect("a face");
                 assert!((stone.body.facet_normals[e.facet as usize] - normal).norm() < 1e-9);
+                // At rest on the face: in the flock of the face's stable equilibrium.
+                assert_eq!(stone.flock_of(e.facet), Some(e.flock));
                 found.push(e.index);
             }
         }
@@ -475,5 +483,7 @@ mod tests {
         assert_eq!(found.len(), 6);
         // Between two faces there is none.
         assert!(stone.stable_facing(&Vec3::new(1.0, 1.0, 0.0).normalize()).is_none());
+        // Past the hull's facets, no flock.
+        assert_eq!(stone.flock_of(stone.body.facet_normals.len() as u32), None);
     }
 }

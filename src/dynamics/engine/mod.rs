@@ -15,7 +15,7 @@
 //! * [`contact`] — the one contact law: impacts completed, rolling resistance and torsional
 //!   friction through the contact.
 //! * [`impact`] — sub-stepped impacts: no hull point comes down by more than a stated bound in
-//!   one step.
+//!   one step; [`impulse`] — the closed forms of an impact on one point.
 //! * [`simulation`] — one stone in its own world, stepped.
 //! * [`flight`] — free flight between contacts outside rapier, with exact landings.
 //! * [`run`] — the one run loop and the end rule every run shares; [`rest`] — when a run has
@@ -27,6 +27,7 @@ pub mod convert;
 pub mod flight;
 pub mod hull_shape;
 pub mod impact;
+pub mod impulse;
 pub mod params;
 pub mod rest;
 pub mod run;

@@ -29,6 +29,31 @@ pub enum Decided {
     Flock(u32),
 }
 
+impl Decided {
+    /// The facet decided, if the decision is at the facet level.
+    pub fn facet(self) -> Option<u32> {
+        match self {
+            Decided::Facet(f) => Some(f),
+            Decided::Flock(_) => None,
+        }
+    }
+
+    /// The flock decided, if the decision is at the flock level.
+    pub fn flock(self) -> Option<u32> {
+        match self {
+            Decided::Flock(k) => Some(k),
+            Decided::Facet(_) => None,
+        }
+    }
+
+    /// What was decided, at whichever level: the facet's index or the flock's id.
+    pub fn id(self) -> u32 {
+        match self {
+            Decided::Facet(x) | Decided::Flock(x) => x,
+        }
+    }
+}
+
 /// A certificate that may end a run early: given the body's state (its body-frame down
 /// direction, the height of G and the energy level L = E/(m g) in the scaled frame), what is
 /// already certain.
@@ -169,4 +194,15 @@ pub fn run_to_end(
         }
     }
     RunEnd { steps: progress.taken(), settled: false, decided: None, state }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_decision_names_its_level() {
+        assert_eq!((Decided::Facet(7).facet(), Decided::Facet(7).flock(), Decided::Facet(7).id()), (Some(7), None, 7));
+        assert_eq!((Decided::Flock(2).facet(), Decided::Flock(2).flock(), Decided::Flock(2).id()), (None, Some(2), 2));
+    }
 }

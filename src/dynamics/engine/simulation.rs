@@ -117,6 +117,19 @@ impl<'a> Simulation<'a> {
         }
     }
 
+    /// Step with nothing but gravity and the contact until `done` holds of the state after a
+    /// step, or `steps_max` steps have been taken: the steps taken (0 if `steps_max` is 0; `done`
+    /// is not asked of the state before the first step).
+    pub fn step_until(&mut self, steps_max: u64, done: &mut dyn FnMut(&BodyState) -> bool) -> u64 {
+        for k in 1..=steps_max {
+            self.step();
+            if done(&self.state()) {
+                return k;
+            }
+        }
+        steps_max
+    }
+
     /// Horizontal position of G relative to the ground (scaled frame; the ground moves when it
     /// is shaken).
     pub fn ground_offset(&self) -> Vec3 {
@@ -158,5 +171,33 @@ impl<'a> Simulation<'a> {
     /// The stone's current state.
     pub fn state(&self) -> BodyState {
         body_state(&self.world.bodies[self.body_handle], self.body)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Analysis, Options};
+    use crate::dynamics::drops::params::Preset;
+    use crate::dynamics::surface::Surface;
+
+    #[test]
+    fn stepping_until_stops_where_advancing_as_far_does() {
+        let (mesh, rep) = crate::generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
+        let a = Analysis::of_solid(mesh, rep, &Options::default()).unwrap();
+        let stone = crate::dynamics::stone::Stone::new(&a, 0.01).unwrap();
+        let p = Preset::Drop.params(Surface::SteelOnWood).sim;
+        let q = UnitQuaternion::from_euler_angles(0.3, 0.2, 0.1);
+        let new = || Simulation::new(&stone.body, &p, &q, 2.0, &Vec3::zeros(), &Vec3::zeros());
+        // Falling from rest, G sinks monotonically: stop at the first state below z = 1.9 (in the air: the corners are within 1 R_max of G).
+        let (mut sim, mut twin) = (new(), new());
+        let k = sim.step_until(1000, &mut |s| s.z < 1.9);
+        twin.advance(k - 1);
+        assert!(twin.state().z >= 1.9);
+        twin.advance(1);
+        assert_eq!((sim.state().z, sim.state().linvel), (twin.state().z, twin.state().linvel));
+        assert!(sim.state().z < 1.9 && k > 1);
+        // A condition never met: every step taken.
+        assert_eq!(new().step_until(7, &mut |_| false), 7);
     }
 }
