@@ -32,6 +32,8 @@ const LAYERS: &[&[&str]] = &[
     &["dynamics"],
     &["study"],
     &["plot", "report"],
+    // Re-exports for programs over the library; nothing inside it may import them.
+    &["prelude"],
 ];
 
 /// The module path of a source file (`dynamics::engine::world`; `` for lib.rs).
