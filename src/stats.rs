@@ -303,6 +303,32 @@ pub fn ensemble_brier(truths: &[&[bool]], members: u64) -> f64 {
     perfect / k_perfect.max(1) as f64
 }
 
+/// The nearest-rank quantile of `x` at `q` ∈ [0, 1]: the value of rank round((n − 1)·q) in `x`
+/// sorted by the total order of f64 (no interpolation; NaN sorts last). `q` = 0.5 is the median,
+/// the upper of the two middle values for an even n. NaN for no data.
+pub fn quantile(x: &[f64], q: f64) -> f64 {
+    let mut sorted = x.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let rank = ((sorted.len() as f64 - 1.0) * q.clamp(0.0, 1.0)).round();
+    if sorted.is_empty() {
+        f64::NAN
+    } else {
+        sorted[rank as usize]
+    }
+}
+
+/// P(X ≥ `k`) for X ~ Binomial(`n`, `p`): the chance of at least k successes in n trials, e.g.
+/// of at least k p-values under 0.05 among n tests of true hypotheses by chance alone (crate
+/// `statrs`). 1 for k = 0; NaN for a p outside [0, 1].
+pub fn binomial_at_least(k: u64, n: u64, p: f64) -> f64 {
+    use statrs::distribution::{Binomial, DiscreteCDF};
+    match Binomial::new(p, n) {
+        Err(_) => f64::NAN,
+        Ok(_) if k == 0 => 1.0,
+        Ok(b) => b.sf(k - 1),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -438,5 +464,29 @@ mod tests {
             })
             .sum();
         assert!((exact - q * (1.0 - q) * (1.0 + 1.0 / n as f64)).abs() < 1e-14, "{exact}");
+    }
+
+    #[test]
+    fn quantiles_by_nearest_rank() {
+        // Sorted: 1, 2, 3, 4, 10. Ranks round(4q): q = 0.5 → 3, q = 0.9 → rank 4 (3.6 → 4), q = 0.1 → rank 0.
+        let x = [4.0, 10.0, 1.0, 3.0, 2.0];
+        assert_eq!(quantile(&x, 0.5), 3.0);
+        assert_eq!(quantile(&x, 0.9), 10.0);
+        assert_eq!(quantile(&x, 0.1), 1.0);
+        assert_eq!(quantile(&x, 1.0), 10.0);
+        // An even count: the upper middle value (rank round(1.5) = 2 of 1, 2, 3, 4).
+        assert_eq!(quantile(&[2.0, 1.0, 4.0, 3.0], 0.5), 3.0);
+        assert!(quantile(&[], 0.5).is_nan());
+    }
+
+    #[test]
+    fn binomial_tail_against_hand_computed_sums() {
+        // Three fair coins: P(X ≥ 2) = (3 + 1)/8; at least none is certain, four impossible.
+        assert!((binomial_at_least(2, 3, 0.5) - 0.5).abs() < 1e-12);
+        assert_eq!(binomial_at_least(0, 3, 0.5), 1.0);
+        assert!(binomial_at_least(4, 3, 0.5).abs() < 1e-12);
+        // At least one of 10 tests under 0.05 by chance: 1 − 0.95¹⁰.
+        assert!((binomial_at_least(1, 10, 0.05) - (1.0 - 0.95f64.powi(10))).abs() < 1e-12);
+        assert!(binomial_at_least(1, 10, 1.5).is_nan());
     }
 }

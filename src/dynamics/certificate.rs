@@ -24,7 +24,7 @@
 //! Certified outcomes equal full settling drop by drop on 400 throws (`tests/throws.rs`) and in
 //! the `drop` and `throw` presets of `results/drops_certificate/` (3 bodies × 300 drops each).
 
-use crate::dynamics::engine::run::{Certificate, Decided, NoCertificate};
+use crate::dynamics::engine::run::{Certificate, Decided, NoCertificate, CERTIFICATE_EVERY};
 use crate::dynamics::engine::world::BodyState;
 use crate::dynamics::stone::Stone;
 use serde::{Deserialize, Serialize};
@@ -203,6 +203,69 @@ pub fn certificate(stone: &Stone, mode: CertificateMode) -> Box<dyn Certificate 
     }
 }
 
+/// What the certificate's two bounds must cover along one run, read state by state
+/// ([`CompressionWatch::see`]): the largest compression of the soft contact h(down) − z_G (R_max)
+/// over the run and at its last state (to set against [`CERTIFICATE_MAX_COMPRESSION`] and the
+/// rest tolerance), and the largest rise of the energy level L between two relaxed states
+/// (compression ≤ [`CERTIFICATE_MAX_COMPRESSION`]) once L ≤ 1 R_max, where the certificate
+/// decides: L minus the lowest L of such states so far (to set against [`CERTIFICATE_MARGIN`]).
+#[derive(Clone, Copy, Debug)]
+pub struct CompressionWatch {
+    /// The largest h(down) − z_G seen (0 before any state, since h ≥ z_G at no compression).
+    pub compression: f64,
+    /// h(down) − z_G at the last state seen (NaN before any).
+    pub last_compression: f64,
+    /// The largest rise of L between relaxed states with L ≤ 1 R_max (0 if none).
+    pub rise: f64,
+    /// The lowest such L so far.
+    low: f64,
+}
+
+impl Default for CompressionWatch {
+    fn default() -> Self {
+        CompressionWatch { compression: 0.0, last_compression: f64::NAN, rise: 0.0, low: f64::INFINITY }
+    }
+}
+
+impl CompressionWatch {
+    /// Read one state `s` of `body` (h(down) by the exact support function).
+    pub fn see(&mut self, body: &crate::dynamics::engine::body::Body, s: &BodyState) {
+        let c = body.support(&s.down) - s.z;
+        self.compression = self.compression.max(c);
+        if c <= CERTIFICATE_MAX_COMPRESSION && s.level <= 1.0 {
+            self.low = self.low.min(s.level);
+            self.rise = self.rise.max(s.level - self.low);
+        }
+        self.last_compression = c;
+    }
+}
+
+/// The first decision a certificate makes along a run, asked at every step and asked only every
+/// [`CERTIFICATE_EVERY`] steps as runs ask it: the step (counted from 1) and the facet or flock
+/// decided. With a check every step a run would end at the first, as it does at the second.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FirstDecision {
+    /// The first decision, asked at every step.
+    pub every_step: Option<(u64, u32)>,
+    /// The first decision at a step that is a multiple of [`CERTIFICATE_EVERY`].
+    pub every_k: Option<(u64, u32)>,
+}
+
+impl FirstDecision {
+    /// Ask `cert` in state `s`, reached at step `step` (from 1), unless both first decisions are
+    /// already known.
+    pub fn ask(&mut self, cert: &dyn Certificate, step: u64, s: &BodyState) {
+        if self.every_k.is_some() {
+            return;
+        }
+        let Some(d) = cert.decided(s).map(Decided::id) else { return };
+        self.every_step.get_or_insert((step, d));
+        if step % CERTIFICATE_EVERY == 0 {
+            self.every_k = Some((step, d));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,5 +299,50 @@ mod tests {
         });
         let want = pairs.fold(f64::NEG_INFINITY, f64::max);
         assert_eq!(largest_later_rise(&steps), (40, want));
+    }
+
+    /// A state facing straight down at height `z` with energy level `level` (at rest otherwise).
+    fn state(z: f64, level: f64) -> BodyState {
+        let zero = crate::Vec3::zeros();
+        BodyState { down: -crate::Vec3::z(), z, linvel: zero, angvel: zero, level }
+    }
+
+    #[test]
+    fn the_watch_reads_compressions_and_the_rise_of_the_level() {
+        let cube = crate::generate::cuboid(1.0, 1.0, 1.0).into_solid_boundary().unwrap();
+        let a = crate::analysis::Analysis::of_solid(cube.0, cube.1, &Default::default()).unwrap();
+        let stone = Stone::new(&a, 0.0035).unwrap();
+        let h = stone.body.support(&-crate::Vec3::z());
+        let mut watch = CompressionWatch::default();
+        // Compressed by 0.05 (not relaxed), then relaxed at L = 0.9, 0.4, 0.7 (rise 0.3), then
+        // L = 1.5 (above 1 R_max: not counted), and last a compression of 5·10⁻⁴.
+        let states = [(0.05, 0.9), (0.0, 0.9), (0.0, 0.4), (-0.01, 0.7), (0.0, 1.5), (5e-4, 0.6)];
+        for (c, level) in states {
+            watch.see(&stone.body, &state(h - c, level));
+        }
+        assert!((watch.compression - 0.05).abs() < 1e-12, "{}", watch.compression);
+        assert!((watch.last_compression - 5e-4).abs() < 1e-12);
+        assert!((watch.rise - 0.3).abs() < 1e-12, "{}", watch.rise);
+    }
+
+    /// Decides facet 7 once the level is under 0.5.
+    struct Below;
+    impl Certificate for Below {
+        fn decided(&self, s: &BodyState) -> Option<Decided> {
+            (s.level < 0.5).then_some(Decided::Facet(7))
+        }
+    }
+
+    #[test]
+    fn the_first_decisions_every_step_and_every_k_steps() {
+        let mut first = FirstDecision::default();
+        // Decided from step 6 on: the first at step 6, the first checked one at step 8 (= 2·4).
+        for step in 1..=12u64 {
+            first.ask(&Below, step, &state(0.0, if step >= 6 { 0.2 } else { 0.8 }));
+        }
+        assert_eq!(first, FirstDecision { every_step: Some((6, 7)), every_k: Some((2 * CERTIFICATE_EVERY, 7)) });
+        let mut never = FirstDecision::default();
+        (1..=12).for_each(|step| never.ask(&Below, step, &state(0.0, 0.8)));
+        assert_eq!(never, FirstDecision::default());
     }
 }

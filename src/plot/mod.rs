@@ -14,6 +14,8 @@ pub use chart::{Axis, Chart, Figure, Marker};
 /// can name its own colour without depending on plotters.
 pub use plotters::style::RGBColor;
 pub use reliability::{reliability_bins, reliability_diagram};
+mod categories;
+pub use categories::BarSlot;
 
 use std::sync::Once;
 

@@ -14,6 +14,8 @@
 //! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
 //! * [`compare`] — two runs of the same releases compared drop by drop (two numerics, two engines).
 
+pub mod alone;
+pub mod audit;
 pub mod batch;
 pub mod compare;
 pub mod launch;

@@ -1,0 +1,55 @@
+//! One drop alone in its own rapier world, kept after the run: rapier's flight whatever the
+//! parameters say (the world of [`Simulation`]), no certificate and no drive, and the speed rest
+//! rule, with an observer at every step; the world is returned so that the drop can be stepped
+//! on past the rest rule's end.
+
+use crate::dynamics::drops::launch::{release_height, Release};
+use crate::dynamics::drops::params::DropParams;
+use crate::dynamics::engine::rest::RestKind;
+use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive, RunEnd};
+use crate::dynamics::engine::simulation::Simulation;
+use crate::dynamics::engine::world::BodyState;
+use crate::dynamics::stone::Stone;
+
+/// Run the drop `release` of `stone` under `p` in a [`Simulation`] of its own until the speed
+/// rule finds it at rest (or the time cap), `observe` seeing the state after every step: the
+/// simulation, to go on from the end, and how the run ended.
+pub fn run_alone<'a>(
+    stone: &'a Stone,
+    p: &DropParams,
+    release: &Release,
+    observe: &mut dyn FnMut(&BodyState),
+) -> (Simulation<'a>, RunEnd) {
+    let z0 = release_height(stone, p, release);
+    let mut sim = Simulation::new(&stone.body, &p.sim, &release.orientation, z0, &release.linvel, &release.angvel);
+    let end = run_to_end(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, observe);
+    (sim, end)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Analysis, Options};
+    use crate::dynamics::drops::{launch::launch, params::Preset, simulate::simulate};
+    use crate::dynamics::engine::params::Flight;
+    use crate::dynamics::surface::Surface;
+
+    #[test]
+    fn a_drop_alone_ends_as_the_simulated_drop_and_is_observed_at_every_step() {
+        let (mesh, repairs) = crate::generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
+        let stone = Stone::new(&Analysis::of_solid(mesh, repairs, &Options::default()).unwrap(), 0.0035).unwrap();
+        let mut p = Preset::Throw.params(Surface::SteelOnWood);
+        p.sim.flight.mode = Flight::Rapier;
+        for i in 0..3 {
+            let release = launch(&mut crate::rng::item_rng(4, i), &p);
+            let mut seen = 0u64;
+            let (sim, end) = run_alone(&stone, &p, &release, &mut |_| seen += 1);
+            let simulated = simulate(&stone, &p, &release, i, &NoCertificate);
+            assert_eq!(seen, end.steps);
+            assert!(end.settled && simulated.settled);
+            assert_eq!(Some(stone.rest(&end.state.down).facet), simulated.facet, "drop {i}");
+            assert!((end.steps as f64 * p.sim.numerics.dt - simulated.time).abs() < 1e-9, "drop {i}");
+            assert_eq!(sim.deepest_penetration(), simulated.deepest_penetration);
+        }
+    }
+}

@@ -1,0 +1,137 @@
+//! Category charts in the house style: an axis that names categories at the integers 0, 1, …,
+//! bars side by side in a group at each category, and dashed lines of any width on log–log axes.
+
+use super::chart::{Axis, Chart};
+use plotters::style::RGBColor;
+
+impl Axis {
+    /// A category axis: `names[k]` written under the integer k, nothing between them, the axis
+    /// from −0.5 to n − 0.5 (each category one unit wide), n + 1 ticks and no grid lines.
+    pub fn categories(label: impl Into<String>, names: Vec<String>) -> Self {
+        let n = names.len();
+        let name = move |x: f64| match x.round() {
+            k if (x - k).abs() > 1e-6 || k < 0.0 => String::new(),
+            k => names.get(k as usize).cloned().unwrap_or_default(),
+        };
+        Axis::linear(label, -0.5, n as f64 - 0.5).ticks(n + 1).no_grid().format(name)
+    }
+}
+
+/// Where the bars of one series stand in grouped bars on a [`Axis::categories`] axis: series
+/// `slot` of `slots` side by side, the group `width` wide (in category units) and centred on
+/// its category; each bar 0.9 of its slot wide, so that neighbouring bars keep a gap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BarSlot {
+    /// The series' place in the group, from the left (0-based).
+    pub slot: usize,
+    /// Series per group.
+    pub slots: usize,
+    /// Width of a group (category units, < 1 to leave a gap between groups).
+    pub width: f64,
+}
+
+impl BarSlot {
+    /// The left edge of this series' bar at category `k`: k − width/2 + slot · width/slots.
+    pub fn left(&self, k: usize) -> f64 {
+        k as f64 - self.width / 2.0 + self.slot as f64 * (self.width / self.slots as f64)
+    }
+
+    /// The middle of this series' bar at category `k` (where its error bar stands).
+    pub fn centre(&self, k: usize) -> f64 {
+        self.left(k) + 0.45 * (self.width / self.slots as f64)
+    }
+
+    /// The bar `(x0, 0, x1, value)` at category `k`.
+    pub fn bar(&self, k: usize, value: f64) -> (f64, f64, f64, f64) {
+        (self.left(k), 0.0, self.left(k) + self.width / self.slots as f64 * 0.9, value)
+    }
+}
+
+impl Chart {
+    /// One series of grouped bars: `values[k]` as a bar from 0 at category k, in the place of
+    /// `slot`, filled with `color`.
+    pub fn grouped_bars(self, values: &[f64], slot: BarSlot, color: RGBColor) -> Self {
+        let bars: Vec<_> = values.iter().enumerate().map(|(k, &v)| slot.bar(k, v)).collect();
+        self.boxes(&bars, color, 1.0)
+    }
+
+    /// A dashed line `width` pixels wide through `points` on log–log axes, drawn as solid
+    /// segments (the chart's own dashed lines have the house width): the plot taken as
+    /// `x_scale` = (decades, pixels) wide and `y_scale` high, each piece between two points is cut
+    /// into n = ⌈length/13 px⌉ equal steps (n ≥ 1), each a dash of 8/13 of its step, geometric in
+    /// both coordinates.
+    pub fn log_dashed(
+        mut self,
+        points: &[(f64, f64)],
+        color: RGBColor,
+        width: u32,
+        x_scale: (f64, f64),
+        y_scale: (f64, f64),
+    ) -> Self {
+        let px = |p: (f64, f64)| (p.0.log10() / x_scale.0 * x_scale.1, p.1.log10() / y_scale.0 * y_scale.1);
+        for w in points.windows(2) {
+            let ((x0, y0), (x1, y1)) = (px(w[0]), px(w[1]));
+            let n = ((x1 - x0).hypot(y1 - y0) / 13.0).ceil().max(1.0);
+            let at = |t: f64| (w[0].0 * (w[1].0 / w[0].0).powf(t), w[0].1 * (w[1].1 / w[0].1).powf(t));
+            for k in 0..n as usize {
+                let t = k as f64 / n;
+                self = self.line_width(&[at(t), at(t + 8.0 / 13.0 / n)], color, width);
+            }
+        }
+        self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::Figure;
+    use plotters::prelude::{IntoDrawingArea, SVGBackend};
+
+    fn svg_of(chart: Chart) -> String {
+        crate::plot::init_fonts();
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, (600, 400)).into_drawing_area();
+            Figure::new("t", 1, vec![chart]).draw(&root).expect("draws");
+            root.present().expect("presents");
+        }
+        svg
+    }
+
+    #[test]
+    fn a_category_axis_names_the_integers_only() {
+        let names = vec!["first one".to_string(), "second one".to_string()];
+        let y = || Axis::linear("y", 10.0, 20.0);
+        let svg = svg_of(Chart::new(Axis::categories("flock", names).ticks(9), y()));
+        assert!(svg.contains("first one") && svg.contains("second one"), "a name is missing");
+        // The same ticks on a plain axis write 0.5 and 1.5; the category axis leaves them blank.
+        let plain = svg_of(Chart::new(Axis::linear("x", -0.5, 1.5).ticks(9), y()));
+        assert!(plain.contains("\n0.5\n") && plain.contains("\n1.5\n"));
+        assert!(!svg.contains("\n0.5\n") && !svg.contains("\n1.5\n"));
+    }
+
+    #[test]
+    fn grouped_bars_stand_side_by_side() {
+        // Four series in a group 0.8 wide: slots 0.2 wide, bars 0.18 wide.
+        let first = BarSlot { slot: 0, slots: 4, width: 0.8 };
+        let last = BarSlot { slot: 3, ..first };
+        let (x0, y0, x1, y1) = first.bar(2, 0.5);
+        assert!((x0 - 1.6).abs() < 1e-12 && (x1 - 1.78).abs() < 1e-12 && y0 == 0.0 && y1 == 0.5);
+        assert!((last.left(2) - 2.2).abs() < 1e-12);
+        assert!((last.centre(2) - 2.29).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_log_dashed_line_is_cut_into_dashes_of_13_px() {
+        // One decade over 130 px: ten steps, so ten dashes 3 px wide (nothing else is that wide).
+        let chart = Chart::new(Axis::log("x", 1.0, 10.0), Axis::log("y", 1.0, 10.0));
+        let black = RGBColor(0, 0, 0);
+        let svg = svg_of(chart.log_dashed(&[(1.0, 1.0), (10.0, 1.0)], black, 3, (1.0, 130.0), (1.0, 100.0)));
+        assert_eq!(svg.matches("stroke-width=\"3\"").count(), 10);
+        // 131 px: eleven.
+        let chart = Chart::new(Axis::log("x", 1.0, 10.0), Axis::log("y", 1.0, 10.0));
+        let svg = svg_of(chart.log_dashed(&[(1.0, 1.0), (10.0, 1.0)], black, 3, (1.0, 131.0), (1.0, 100.0)));
+        assert_eq!(svg.matches("stroke-width=\"3\"").count(), 11);
+    }
+}
