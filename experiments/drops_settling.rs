@@ -6,17 +6,12 @@
 //! `results/drops_settling/`; the README's prose is `experiments/readme/drops_settling.md`.
 
 use rocking_stones::prelude::*;
+use rocking_stones::stats::quantile;
 use std::{fmt::Write as _, path::Path, time::Instant};
 
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Result, Results};
-
-/// Median of `h` (NaN when empty).
-fn median(mut h: Vec<f64>) -> f64 {
-    h.sort_by(f64::total_cmp);
-    h.get(h.len() / 2).copied().unwrap_or(f64::NAN)
-}
 
 fn main() -> Result<()> {
     let (n, common) = harness::count_args(
@@ -55,7 +50,8 @@ fn main() -> Result<()> {
         let (rf, ref_outcomes) = run_and_summarize(&stone, &RunHeader { params: reference.clone(), ..header });
         // How far above its rest on the facet a drop still moving at the cap stands: ≈ 0 for a
         // stone still jiggling on its facet.
-        let h_ref = median(ref_outcomes.values().filter(|o| !o.settled).filter_map(|o| o.height_above).collect());
+        let above: Vec<f64> = ref_outcomes.values().filter(|o| !o.settled).filter_map(|o| o.height_above).collect();
+        let h_ref = quantile(&above, 0.5);
         let frac = [r.settled as f64 / r.drops as f64, rf.settled as f64 / rf.drops as f64];
         let max_t = outcomes.values().map(|o| o.time).fold(0.0, f64::max);
         let stable = stone.facet_equilibrium.iter().filter(|e| e.is_some()).count();
