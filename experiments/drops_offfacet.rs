@@ -12,11 +12,10 @@ mod benchmark_bodies;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Result, Results};
-use rocking_stones::dynamics::drops::launch::release_height;
-use rocking_stones::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
-use rocking_stones::dynamics::engine::{rest::RestKind, simulation::Simulation};
+use rocking_stones::dynamics::drops::alone::run_alone;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::prelude::*;
+use rocking_stones::stats::quantile;
 use std::{fmt::Write as _, path::Path};
 
 fn main() -> Result<()> {
@@ -38,10 +37,7 @@ fn main() -> Result<()> {
         // going on, seconds more, height after).
         let mut off = Vec::new();
         for i in 0..n {
-            let r = launch(&mut item_rng(seed, i), &p);
-            let z0 = release_height(&stone, &p, &r);
-            let mut sim = Simulation::new(&stone.body, &p.sim, &r.orientation, z0, &r.linvel, &r.angvel);
-            let end = run_to_end(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |_| {});
+            let (mut sim, end) = run_alone(&stone, &p, &launch(&mut item_rng(seed, i), &p), &mut |_| {});
             let first = stone.rest(&end.state.down);
             if first.on_equilibrium() {
                 continue;
@@ -66,9 +62,7 @@ fn main() -> Result<()> {
         let reached: Vec<f64> = off.iter().filter(|c| c.4 <= REST_TOLERANCE).map(|c| c.3).collect();
         let max_h = off.iter().map(|c| c.0).fold(0.0, f64::max);
         let max_v = off.iter().map(|c| c.1).fold(0.0, f64::max);
-        let mut t = reached.clone();
-        t.sort_by(f64::total_cmp);
-        let median = if t.is_empty() { f64::NAN } else { t[t.len() / 2] };
+        let median = quantile(&reached, 0.5);
         medians.extend(Some(median).filter(|m| m.is_finite()));
         let k = off.len();
         let cells = [name.clone(), n.to_string(), k.to_string(), format!("{max_h:.1e}"), format!("{max_v:.1e}")];
