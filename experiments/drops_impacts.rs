@@ -17,7 +17,7 @@ use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
 use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, run::NoCertificate};
 use rocking_stones::prelude::*;
-use rocking_stones::stats::chi_square_homogeneity;
+use rocking_stones::stats::{chi_square_homogeneity, quantile};
 use std::{fmt::Write as _, path::Path};
 
 /// The presets and steps (1/s) of the comparison.
@@ -50,9 +50,7 @@ fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
     simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut finished, &mut |_, _| {});
     let per_s = n as f64 / (cpu_time::thread_cpu_seconds() - clock);
     let over = deepest.iter().filter(|&&d| d > DEPTH_BOUND).count();
-    deepest.sort_by(f64::total_cmp);
-    let at = |q: f64| deepest[((deepest.len() - 1) as f64 * q).round() as usize];
-    Measured { max: at(1.0), p99: at(0.99), over, per_s, settled, flocks }
+    Measured { max: quantile(&deepest, 1.0), p99: quantile(&deepest, 0.99), over, per_s, settled, flocks }
 }
 
 fn main() -> Result<()> {
@@ -155,11 +153,8 @@ fn main() -> Result<()> {
 fn plot(out: &Results, bodies: &[&str], bars: &[(f64, f64)]) -> Result<()> {
     let (rapier, exact, hi) = (series_color(0), series_color(1), bars.len() as f64 / 3.0 - 0.5);
     let panels = bodies.iter().zip(bars.chunks(4)).map(|(body, bars)| {
-        let step = |x: f64| STEPS.get((x.round() as usize) % 2).filter(|_| (x - x.round()).abs() < 1e-6 && x > -0.5);
-        let x = Axis::linear("time step (s)", -0.5, hi)
-            .ticks(4)
-            .no_grid()
-            .format(move |x| step(x).map_or(String::new(), |s| format!("1/{s}")));
+        let steps = PRESETS.iter().flat_map(|_| STEPS.map(|s| format!("1/{s}")));
+        let x = Axis::categories("time step (s)", steps.collect()).ticks(4);
         let at = |lo: f64, d: &mut dyn Iterator<Item = f64>| -> Vec<_> {
             d.enumerate().map(|(k, d)| (k as f64 + lo, 5e-5, k as f64 + lo + 0.38, d.max(5e-5))).collect()
         };
