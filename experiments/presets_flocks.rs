@@ -7,6 +7,7 @@
 //! `results/presets_flocks/`; the README's prose is `experiments/readme/presets_flocks.md`.
 
 use rocking_stones::plot::colors::{BLUE, GREEN, ORANGE, SKY};
+use rocking_stones::plot::BarSlot;
 use rocking_stones::prelude::*;
 use serde_json::json;
 use std::path::Path;
@@ -70,14 +71,7 @@ fn main() -> Result<()> {
 fn plot(out: &Results, name: &str, reports: &[DropReport]) -> Result<()> {
     let flocks = &reports[0].flocks;
     let labels: Vec<String> = flocks.iter().map(|f| format!("{} {}", f.id, lower(f.kind))).collect();
-    // A label under each group of bars (centred on the integers), none between them.
-    let x = Axis::linear("flock (number, type)", -0.5, flocks.len() as f64 - 0.5)
-        .ticks(flocks.len() + 1)
-        .no_grid()
-        .format(move |x| match x.round() {
-            k if (x - k).abs() > 1e-6 || k < 0.0 => String::new(),
-            k => labels.get(k as usize).cloned().unwrap_or_default(),
-        });
+    let x = Axis::categories("flock (number, type)", labels);
     let top = flocks
         .iter()
         .map(|f| f.static_probability)
@@ -86,15 +80,17 @@ fn plot(out: &Results, name: &str, reports: &[DropReport]) -> Result<()> {
     let mut chart = Chart::new(x, Axis::linear("fraction of drops", 0.0, (top * 1.1).min(1.0)))
         .title(format!("{name}: resting flocks by launch preset"));
     let series = [("quasi-static basins (exact)", GREEN), ("quasi-static", ORANGE), ("drop", SKY), ("throw", BLUE)];
-    let w = 0.8 / 4.0;
     for (s, (label, colour)) in series.into_iter().enumerate() {
-        let x0 = |k: usize| k as f64 - 0.4 + s as f64 * w;
+        let slot = BarSlot { slot: s, slots: series.len(), width: 0.8 };
         let row = |k: usize| reports.get(s.wrapping_sub(1)).and_then(|r| r.flock(flocks[k].id));
         let value = |k: usize| if s == 0 { flocks[k].static_probability } else { row(k).map_or(0.0, |g| g.fraction) };
-        let bars: Vec<_> = (0..flocks.len()).map(|k| (x0(k), 0.0, x0(k) + w * 0.9, value(k))).collect();
+        let values: Vec<f64> = (0..flocks.len()).map(value).collect();
         let ci: Vec<_> =
-            (0..flocks.len()).filter_map(|k| row(k).map(|g| (x0(k) + 0.45 * w, g.ci95.0, g.ci95.1))).collect();
-        chart = chart.legend(Mark::Box(colour, 1.0), label).boxes(&bars, colour, 1.0).y_bars(&ci, RGBColor(0, 0, 0));
+            (0..flocks.len()).filter_map(|k| row(k).map(|g| (slot.centre(k), g.ci95.0, g.ci95.1))).collect();
+        chart = chart
+            .legend(Mark::Box(colour, 1.0), label)
+            .grouped_bars(&values, slot, colour)
+            .y_bars(&ci, RGBColor(0, 0, 0));
     }
     let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
     chart
