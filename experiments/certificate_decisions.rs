@@ -17,15 +17,14 @@
 mod harness;
 use harness::{Context, Result, Results};
 use rayon::prelude::*;
-use rocking_stones::dynamics::certificate::{
-    largest_later_rise, DecisionScore, EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
-};
-use rocking_stones::dynamics::drops::batch::simulate_batch;
-use rocking_stones::dynamics::engine::run::{Certificate as _, Decided, NoCertificate, CERTIFICATE_EVERY};
+use rocking_stones::dynamics::certificate::{EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::drops::audit::audit_certificates;
+use rocking_stones::dynamics::engine::run::CERTIFICATE_EVERY;
 use rocking_stones::prelude::*;
+use rocking_stones::study::{mesh_files, pebble_id};
 use serde_json::json;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Decisions and the largest later rise of h above L, for a set of drops.
 #[derive(Clone, Copy, Default)]
@@ -53,12 +52,6 @@ impl Tally {
     }
 }
 
-/// Per step: the decisions (facet, flock) where asked, and (L if the certificate may be asked, h).
-struct Trace {
-    decided: Vec<[Option<u32>; 2]>,
-    levels: Vec<(Option<f64>, f64)>,
-}
-
 fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std::ops::Range<u64>) -> Result<Tally> {
     let mut p = preset.params(Surface::SteelOnWood);
     p.sim.flight.mode = flight;
@@ -67,37 +60,15 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std:
     let mut tally = Tally::default();
     for i in indices {
         let release = launch(&mut item_rng(seed, i), &p);
-        let mut trace = Trace { decided: Vec::new(), levels: Vec::new() };
-        let mut step = 0u64;
-        let mut rest = None;
-        simulate_batch(
-            stone,
-            &p,
-            &NoCertificate,
-            1,
-            &mut std::iter::once((i, release)),
-            &mut |o| rest = o.facet,
-            &mut |_, s| {
-                step += 1;
-                let h = stone.body.support_climb(&s.down);
-                trace.levels.push(((facet_cert.relaxed(s) && s.level <= 1.0).then_some(s.level), h));
-                if step % CERTIFICATE_EVERY == 0 {
-                    let [facet, flock] = [&facet_cert, &flock_cert].map(|c| c.decided(s));
-                    trace.decided.push([facet.and_then(Decided::facet), flock.and_then(Decided::flock)]);
-                }
-            },
-        );
-        let facet = rest.context("full settling decides the facet")?;
-        let truth = [Some(facet), stone.flock_of(facet).map(|k| k as u32)];
+        let audit = audit_certificates(stone, &p, [&facet_cert, &flock_cert], &release, i)
+            .context("full settling decides the facet")?;
         tally.drops += 1;
-        for l in 0..2 {
-            let s = DecisionScore::of(trace.decided.iter().filter_map(|d| d[l]), truth[l]);
+        for (l, s) in audit.scores.iter().enumerate() {
             (tally.decisions[l], tally.wrong[l]) = (tally.decisions[l] + s.decisions, tally.wrong[l] + s.wrong);
             tally.first[l] += u64::from(s.first_wrong.is_some());
             tally.first_wrong[l] += u64::from(s.first_wrong == Some(true));
         }
-        let (asked, excess) = largest_later_rise(&trace.levels);
-        (tally.asked, tally.excess) = (tally.asked + asked, tally.excess.max(excess));
+        (tally.asked, tally.excess) = (tally.asked + audit.asked, tally.excess.max(audit.excess));
     }
     Ok(tally)
 }
@@ -105,14 +76,8 @@ fn drops(stone: &Stone, preset: Preset, flight: Flight, seed: u64, indices: std:
 fn meshes(root: &Path) -> Result<Vec<(String, Analysis)>> {
     let options = Options::default();
     let mut out = vec![("bundled stone".to_string(), rocking_stones::bundled::analysis(&options)?)];
-    let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("data/meshes"))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "ply" || x == "obj"))
-        .collect();
-    files.sort();
-    for f in files {
-        let name = f.file_stem().context("a mesh file name")?.to_string_lossy().to_string();
-        out.push((name, Analysis::of_file(&f, &options)?));
+    for f in mesh_files(&root.join("data/meshes"))? {
+        out.push((pebble_id(&f), Analysis::of_file(&f, &options)?));
     }
     Ok(out)
 }
