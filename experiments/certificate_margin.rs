@@ -16,13 +16,11 @@ mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Context, Result, Results};
 use rayon::prelude::*;
-use rocking_stones::dynamics::certificate::{EnergyCertificate, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
-use rocking_stones::dynamics::drops::launch::release_height;
-use rocking_stones::dynamics::engine::rest::RestKind;
-use rocking_stones::dynamics::engine::run::{
-    run_to_end as run_one, Certificate, NoCertificate, Passive, CERTIFICATE_EVERY,
+use rocking_stones::dynamics::certificate::{
+    EnergyCertificate, FirstDecision, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION,
 };
-use rocking_stones::dynamics::engine::simulation::Simulation;
+use rocking_stones::dynamics::drops::alone::run_alone;
+use rocking_stones::dynamics::engine::run::CERTIFICATE_EVERY;
 use rocking_stones::prelude::*;
 use std::path::Path;
 
@@ -38,20 +36,12 @@ fn show(m: f64) -> String {
     }
 }
 
-/// The first step at which one (margin, level) decides, checked every step and every
-/// `CERTIFICATE_EVERY` steps, and what it decided.
-#[derive(Clone, Copy, Default)]
-struct First {
-    every_step: Option<(u64, usize)>,
-    every_k: Option<(u64, usize)>,
-}
-
 /// One drop: its rest (facet, flock), steps to rest, and per level (facet, flock) and margin the
 /// first decisions.
 struct Observed {
-    truth: [Option<usize>; 2],
+    truth: [Option<u32>; 2],
     steps: u64,
-    first: [[First; MARGINS.len()]; 2],
+    first: [[FirstDecision; MARGINS.len()]; 2],
 }
 
 /// The certificates asked at every step: per margin, the facet and the flock level.
@@ -63,29 +53,18 @@ fn certificates(stone: &Stone) -> Result<Certificates<'_>> {
 }
 
 fn observe(stone: &Stone, certs: &Certificates, p: &DropParams, seed: u64, i: u64) -> Observed {
-    let r = launch(&mut item_rng(seed, i), p);
-    let z0 = release_height(stone, p, &r);
-    let mut sim = Simulation::new(&stone.body, &p.sim, &r.orientation, z0, &r.linvel, &r.angvel);
-    let mut first = [[First::default(); MARGINS.len()]; 2];
+    let mut first = [[FirstDecision::default(); MARGINS.len()]; 2];
     let mut step = 0u64;
-    let end = run_one(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, &mut |s| {
+    let (_, end) = run_alone(stone, p, &launch(&mut item_rng(seed, i), p), &mut |s| {
         step += 1;
         for (k, pair) in certs.iter().enumerate() {
             for (lvl, cert) in pair.iter().enumerate() {
-                let f = &mut first[lvl][k];
-                if f.every_k.is_some() {
-                    continue;
-                }
-                let Some(d) = cert.decided(s).map(|d| d.id() as usize) else { continue };
-                f.every_step.get_or_insert((step, d));
-                if step % CERTIFICATE_EVERY == 0 {
-                    f.every_k = Some((step, d));
-                }
+                first[lvl][k].ask(cert, step, s);
             }
         }
     });
     let facet = stone.rest(&end.state.down).facet;
-    Observed { truth: [Some(facet as usize), stone.flock_of(facet)], steps: end.steps, first }
+    Observed { truth: [Some(facet), stone.flock_of(facet).map(|k| k as u32)], steps: end.steps, first }
 }
 
 /// One row: a margin's decisions on one body, preset and level (mean simulated s per drop
@@ -98,7 +77,7 @@ struct Row {
 }
 
 fn summarise(obs: &[Observed], lvl: usize, k: usize, dt: f64) -> Row {
-    let mean = |at: fn(&First) -> Option<(u64, usize)>| {
+    let mean = |at: fn(&FirstDecision) -> Option<(u64, u32)>| {
         obs.iter().map(|o| at(&o.first[lvl][k]).map_or(o.steps, |(s, _)| s) as f64 * dt).sum::<f64>() / obs.len() as f64
     };
     let decided = || obs.iter().filter_map(|o| o.first[lvl][k].every_step.map(|(_, d)| Some(d) != o.truth[lvl]));
