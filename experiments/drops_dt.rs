@@ -20,14 +20,13 @@ mod benchmark_bodies;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Common, Parser, Result, Results};
-use rocking_stones::dynamics::certificate::{CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
+use rocking_stones::dynamics::certificate::{CompressionWatch, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::batch::simulate_batch;
 use rocking_stones::dynamics::engine::run::NoCertificate;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::prelude::*;
-use rocking_stones::stats::chi_square_homogeneity;
+use rocking_stones::stats::{binomial_at_least, chi_square_homogeneity};
 use serde_json::json;
-use statrs::distribution::{Binomial, DiscreteCDF};
 
 const DTS: [f64; 7] = [1.0 / 480.0, 1.0 / 240.0, 1.0 / 180.0, 1.0 / 150.0, 1.0 / 120.0, 1.0 / 100.0, 1.0 / 80.0];
 const REFERENCE: usize = 1;
@@ -41,19 +40,12 @@ const PRESETS: [Preset; 3] = [Preset::Drop, Preset::Throw, Preset::QuasiStatic];
 /// its end, and the largest rise of L between relaxed states once L ≤ R_max.
 fn observe(stone: &Stone, p: &DropParams, seed: u64, i: u64) -> [f64; 3] {
     let r = launch(&mut item_rng(seed, i), p);
-    let (mut compression, mut low, mut rise) = (0.0f64, f64::INFINITY, 0.0f64);
-    let mut last = None;
+    let mut watch = CompressionWatch::default();
     // The run's own numerics (exact landings and sub-stepped impacts by default), one stone.
     simulate_batch(stone, p, &NoCertificate, 1, &mut std::iter::once((i, r)), &mut |_| {}, &mut |_, s| {
-        let c = stone.body.support(&s.down) - s.z;
-        compression = compression.max(c);
-        if c <= CERTIFICATE_MAX_COMPRESSION && s.level <= 1.0 {
-            low = low.min(s.level);
-            rise = rise.max(s.level - low);
-        }
-        last = Some(c);
+        watch.see(&stone.body, s)
     });
-    [compression, last.unwrap_or(f64::NAN), rise]
+    [watch.compression, watch.last_compression, watch.rise]
 }
 
 /// The largest stable time step of the presets.
@@ -141,7 +133,7 @@ fn main() -> Result<()> {
     // `tests` trials at 0.05); the chance of at least k such p-values says something only when
     // some were found.
     let k = low.len() as u64;
-    let tail = if k == 0 { 1.0 } else { Binomial::new(0.05, tests)?.sf(k - 1) };
+    let tail = binomial_at_least(k, tests, 0.05);
     let range = |v: &[f64], d: usize| {
         let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
         (fixed(lo, d), fixed(hi, d))
