@@ -266,6 +266,36 @@ impl FirstDecision {
     }
 }
 
+/// [`DecisionScore`]s summed over runs: the decisions, the wrong ones, the runs with a decision
+/// (a first one) and the runs whose first decision was wrong.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DecisionTally {
+    /// Decisions made, over every run.
+    pub decisions: u64,
+    /// Of those, the wrong ones.
+    pub wrong: u64,
+    /// Runs with at least one decision.
+    pub first: u64,
+    /// Runs whose first decision was wrong.
+    pub first_wrong: u64,
+}
+
+impl DecisionTally {
+    /// Count one run's score.
+    pub fn add(&mut self, s: &DecisionScore) {
+        let first = (u64::from(s.first_wrong.is_some()), u64::from(s.first_wrong == Some(true)));
+        self.merge(&DecisionTally { decisions: s.decisions, wrong: s.wrong, first: first.0, first_wrong: first.1 });
+    }
+
+    /// Add the counts of another tally.
+    pub fn merge(&mut self, o: &DecisionTally) {
+        self.decisions += o.decisions;
+        self.wrong += o.wrong;
+        self.first += o.first;
+        self.first_wrong += o.first_wrong;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -344,5 +374,22 @@ mod tests {
         let mut never = FirstDecision::default();
         (1..=12).for_each(|step| never.ask(&Below, step, &state(0.0, 0.8)));
         assert_eq!(never, FirstDecision::default());
+    }
+
+    #[test]
+    fn a_tally_sums_scores_over_runs() {
+        let mut tally = DecisionTally::default();
+        // Runs: 4 decisions (1 wrong, first right), 2 (first wrong), none.
+        for s in [
+            DecisionScore::of([3, 5, 3, 3], Some(3)),
+            DecisionScore::of([5, 3], Some(3)),
+            DecisionScore::of([], Some(1)),
+        ] {
+            tally.add(&s);
+        }
+        assert_eq!(tally, DecisionTally { decisions: 6, wrong: 2, first: 2, first_wrong: 1 });
+        let mut twice = tally;
+        twice.merge(&tally);
+        assert_eq!(twice, DecisionTally { decisions: 12, wrong: 4, first: 4, first_wrong: 2 });
     }
 }
