@@ -1,10 +1,6 @@
-//! What a sharper energy certificate would buy: every drop of the three benchmark bodies is
-//! simulated to rest once without a certificate, while an observer asks at every step, for each
-//! margin of a sweep from 0 to `CERTIFICATE_MARGIN`, whether the facet or the flock would be
-//! decided: how many decisions each margin makes, how many are wrong, and the mean simulated time
-//! per drop with a check every step or every `CERTIFICATE_EVERY` steps (the template,
-//! `experiments/readme/certificate_margin.md`, explains the columns; the compression and energy
-//! rise the margin covers are measured in `results/drops_dt/`).
+//! What a sharper energy certificate would buy: drops of the three benchmark bodies simulated to
+//! rest once while the certificates of a sweep of margins are asked at every step (what is
+//! measured: `experiments/readme/certificate_margin.md`).
 //!
 //! Run: `cargo run --release --example certificate_margin [-- N]` (N = 1000 drops per body and
 //! preset) → `results/certificate_margin/`.

@@ -1,18 +1,10 @@
-//! The largest stable time step of the presets (`Preset::largest_stable_dt`), measured:
-//! for each dt, on the bundled stone, a ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5,
-//!
-//! * the per-flock statistics of N fully settled drops (batched worlds) against those at the
-//!   reference dt = 1/240 s (`REFERENCE_DT`), by Pearson's χ² test of homogeneity (independent
-//!   seeds per dt, so the two samples are independent);
-//! * on the first M drops, stepped one at a time with an observer: the largest compression of
-//!   the soft contact h(down) − z_G (R_max) over the whole run and at rest, and the largest rise
-//!   of the energy level L = E/(m g) between two relaxed states once L ≤ R_max (the region where
-//!   the certificate decides; it must stay below `run::CERTIFICATE_MARGIN`);
-//! * drops that did not settle, settled off their equilibrium, the mean simulated time to rest,
-//!   and drops/s (one thread).
+//! The largest stable time step of the presets (`Preset::largest_stable_dt`), measured on the
+//! three benchmark bodies: per dt, the per-flock statistics of N drops against the reference
+//! dt, and on M of them the contact's compression and energy rise (what is measured:
+//! `experiments/readme/drops_dt.md`).
 //!
 //! Run: `cargo run --release --example drops_dt [-- N M]` (N = 400, M = 40: the committed
-//! results) → `results/drops_dt/`; the README's prose is `experiments/readme/drops_dt.md`.
+//! results) → `results/drops_dt/`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
