@@ -12,7 +12,7 @@ mod benchmark_bodies;
 mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Result, Results};
-use rocking_stones::dynamics::drops::alone::run_alone;
+use rocking_stones::dynamics::drops::alone::{go_on_to_equilibrium, run_alone};
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::prelude::*;
 use rocking_stones::stats::quantile;
@@ -42,11 +42,7 @@ fn main() -> Result<()> {
             if first.on_equilibrium() {
                 continue;
             }
-            let mut now = first;
-            let k = sim.step_until((30.0 / p.sim.numerics.dt) as u64, &mut |s| {
-                now = stone.rest(&s.down);
-                now.on_equilibrium()
-            });
+            let (k, now) = go_on_to_equilibrium(&mut sim, &stone, first, (30.0 / p.sim.numerics.dt) as u64);
             let (v, w, more) = (end.state.linvel.norm(), end.state.angvel.norm(), k as f64 * p.sim.numerics.dt);
             let same = now.facet == first.facet;
             writeln!(csv, "{name},{i},{:e},{v:e},{w:e},{same},{more:.3},{:e}", first.height_above, now.height_above)?;

@@ -1,7 +1,7 @@
 //! One drop alone in its own rapier world, kept after the run: rapier's flight whatever the
 //! parameters say (the world of [`Simulation`]), no certificate and no drive, and the speed rest
 //! rule, with an observer at every step; the world is returned so that the drop can be stepped
-//! on past the rest rule's end.
+//! on past the rest rule's end, until the stone is on its equilibrium ([`go_on_to_equilibrium`]).
 
 use crate::dynamics::drops::launch::{release_height, Release};
 use crate::dynamics::drops::params::DropParams;
@@ -9,7 +9,7 @@ use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive, RunEnd};
 use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::engine::world::BodyState;
-use crate::dynamics::stone::Stone;
+use crate::dynamics::stone::{Rest, Stone};
 
 /// Run the drop `release` of `stone` under `p` in a [`Simulation`] of its own until the speed
 /// rule finds it at rest (or the time cap), `observe` seeing the state after every step: the
@@ -24,6 +24,19 @@ pub fn run_alone<'a>(
     let mut sim = Simulation::new(&stone.body, &p.sim, &release.orientation, z0, &release.linvel, &release.angvel);
     let end = run_to_end(&mut sim, &p.sim, &mut Passive, &NoCertificate, RestKind::Speeds, observe);
     (sim, end)
+}
+
+/// Step `sim`, a run of `stone` that ended resting as `from` ([`Stone::rest`]), on with nothing
+/// but gravity and the contact until the stone is on its equilibrium ([`Rest::on_equilibrium`],
+/// read after every step) or for `steps_max` steps: the steps taken and where it rests then
+/// (`from` if no step was taken).
+pub fn go_on_to_equilibrium(sim: &mut Simulation, stone: &Stone, from: Rest, steps_max: u64) -> (u64, Rest) {
+    let mut now = from;
+    let steps = sim.step_until(steps_max, &mut |s| {
+        now = stone.rest(&s.down);
+        now.on_equilibrium()
+    });
+    (steps, now)
 }
 
 #[cfg(test)]
@@ -51,5 +64,23 @@ mod tests {
             assert!((end.steps as f64 * p.sim.numerics.dt - simulated.time).abs() < 1e-9, "drop {i}");
             assert_eq!(sim.deepest_penetration(), simulated.deepest_penetration);
         }
+    }
+
+    #[test]
+    fn going_on_stops_on_the_equilibrium() {
+        let (mesh, repairs) = crate::generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
+        let stone = Stone::new(&Analysis::of_solid(mesh, repairs, &Options::default()).unwrap(), 0.0035).unwrap();
+        let p = Preset::Drop.params(Surface::SteelOnWood);
+        let (mut sim, end) = run_alone(&stone, &p, &launch(&mut crate::rng::item_rng(2, 0), &p), &mut |_| {});
+        let rest = stone.rest(&end.state.down);
+        // No step: where it was. A box at rest on its face is on the equilibrium after one more step.
+        assert_eq!(go_on_to_equilibrium(&mut sim, &stone, rest, 0), (0, rest));
+        let (steps, now) = go_on_to_equilibrium(&mut sim, &stone, rest, 100);
+        assert_eq!((steps, now.facet), (1, rest.facet));
+        assert!(now.on_equilibrium());
+        // Tipped by a spin it takes more than one step to come back onto a face.
+        sim.set_velocity(&crate::Vec3::zeros(), &crate::Vec3::new(0.0, 3.0, 0.0));
+        let (steps, now) = go_on_to_equilibrium(&mut sim, &stone, rest, 100_000);
+        assert!(steps > 1 && now.on_equilibrium(), "{steps} steps: {now:?}");
     }
 }
