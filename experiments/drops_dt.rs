@@ -13,8 +13,7 @@ mod harness;
 use benchmark_bodies::benchmark_bodies;
 use harness::{fixed, Common, Parser, Result, Results};
 use rocking_stones::dynamics::certificate::{CompressionWatch, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
-use rocking_stones::dynamics::drops::batch::simulate_batch;
-use rocking_stones::dynamics::engine::run::NoCertificate;
+use rocking_stones::dynamics::drops::alone::simulate_observed;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::prelude::*;
 use rocking_stones::stats::{binomial_at_least, chi_square_homogeneity};
@@ -31,12 +30,9 @@ const PRESETS: [Preset; 3] = [Preset::Drop, Preset::Throw, Preset::QuasiStatic];
 /// The largest compression h(down) − z_G of one drop alone in its world during the run and at
 /// its end, and the largest rise of L between relaxed states once L ≤ R_max.
 fn observe(stone: &Stone, p: &DropParams, seed: u64, i: u64) -> [f64; 3] {
-    let r = launch(&mut item_rng(seed, i), p);
     let mut watch = CompressionWatch::default();
     // The run's own numerics (exact landings and sub-stepped impacts by default), one stone.
-    simulate_batch(stone, p, &NoCertificate, 1, &mut std::iter::once((i, r)), &mut |_| {}, &mut |_, s| {
-        watch.see(&stone.body, s)
-    });
+    simulate_observed(stone, p, &launch(&mut item_rng(seed, i), p), i, &mut |s| watch.see(&stone.body, s));
     [watch.compression, watch.last_compression, watch.rise]
 }
 

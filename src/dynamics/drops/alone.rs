@@ -1,9 +1,12 @@
-//! One drop alone in its own rapier world, kept after the run: rapier's flight whatever the
-//! parameters say (the world of [`Simulation`]), no certificate and no drive, and the speed rest
-//! rule, with an observer at every step; the world is returned so that the drop can be stepped
-//! on past the rest rule's end, until the stone is on its equilibrium ([`go_on_to_equilibrium`]).
+//! One drop alone, with an observer at every step. [`run_alone`]: in its own rapier world, kept
+//! after the run: rapier's flight whatever the parameters say (the world of [`Simulation`]), no
+//! certificate and no drive, and the speed rest rule; the world is returned so that the drop can
+//! be stepped on past the rest rule's end, until the stone is on its equilibrium
+//! ([`go_on_to_equilibrium`]). [`simulate_observed`]: in a batch of one, with the numerics of
+//! the run's parameters (their flight included), as [`crate::dynamics::drops::simulate`] runs it.
 
-use crate::dynamics::drops::launch::{release_height, Release};
+use crate::dynamics::drops::batch::simulate_batch;
+use crate::dynamics::drops::launch::{release_height, DropOutcome, Release};
 use crate::dynamics::drops::params::DropParams;
 use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive, RunEnd};
@@ -39,6 +42,22 @@ pub fn go_on_to_equilibrium(sim: &mut Simulation, stone: &Stone, from: Rest, ste
     (steps, now)
 }
 
+/// Simulate drop `index`, released as `release`, of `stone` under `p` to its end without a
+/// certificate, in a batch of one ([`simulate_batch`]: the numerics of `p`, its flight included),
+/// `observe` seeing the stone's state after every step: the drop's outcome.
+pub fn simulate_observed(
+    stone: &Stone,
+    p: &DropParams,
+    release: &Release,
+    index: u64,
+    observe: &mut dyn FnMut(&BodyState),
+) -> Option<DropOutcome> {
+    let mut out = None;
+    let mut queue = std::iter::once((index, *release));
+    simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut |o| out = Some(o), &mut |_, s| observe(s));
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,6 +82,23 @@ mod tests {
             assert_eq!(Some(stone.rest(&end.state.down).facet), simulated.facet, "drop {i}");
             assert!((end.steps as f64 * p.sim.numerics.dt - simulated.time).abs() < 1e-9, "drop {i}");
             assert_eq!(sim.deepest_penetration(), simulated.deepest_penetration);
+        }
+    }
+
+    #[test]
+    fn an_observed_drop_ends_as_the_simulated_drop() {
+        let (mesh, repairs) = crate::generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary().unwrap();
+        let stone = Stone::new(&Analysis::of_solid(mesh, repairs, &Options::default()).unwrap(), 0.0035).unwrap();
+        let p = Preset::Throw.params(Surface::SteelOnWood);
+        assert_eq!(p.sim.flight.mode, Flight::Free);
+        for i in 0..3 {
+            let release = launch(&mut crate::rng::item_rng(6, i), &p);
+            let (mut seen, mut last) = (0u64, None);
+            let observed = simulate_observed(&stone, &p, &release, i, &mut |s| (seen, last) = (seen + 1, Some(*s)));
+            assert_eq!(observed, Some(simulate(&stone, &p, &release, i, &NoCertificate)), "drop {i}");
+            // Seen to the end: the last state rests on the outcome's facet.
+            assert!(seen > 0);
+            assert_eq!(Some(stone.rest(&last.unwrap().down).facet), observed.unwrap().facet);
         }
     }
 

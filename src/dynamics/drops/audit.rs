@@ -6,10 +6,10 @@
 //! [`crate::dynamics::certificate::CERTIFICATE_MARGIN`] must cover ([`largest_later_rise`]).
 
 use crate::dynamics::certificate::{largest_later_rise, DecisionScore, EnergyCertificate};
-use crate::dynamics::drops::batch::simulate_batch;
+use crate::dynamics::drops::alone::simulate_observed;
 use crate::dynamics::drops::launch::Release;
 use crate::dynamics::drops::params::DropParams;
-use crate::dynamics::engine::run::{Certificate, Decided, NoCertificate, CERTIFICATE_EVERY};
+use crate::dynamics::engine::run::{Certificate, Decided, CERTIFICATE_EVERY};
 use crate::dynamics::stone::Stone;
 
 /// What asking the certificates along one drop found.
@@ -27,7 +27,7 @@ pub struct CertificateAudit {
 }
 
 /// Simulate drop `index`, released as `release`, of `stone` under `p` to rest without a
-/// certificate (a batch of one, [`simulate_batch`], so with the flight of `p`), asking the
+/// certificate ([`simulate_observed`]: a batch of one, so with the flight of `p`), asking the
 /// certificates `[facet, flock]` every [`CERTIFICATE_EVERY`] steps, and reading at every step
 /// h(down) (by hill climbing) and, where the facet certificate finds the contact relaxed and
 /// L ≤ 1 R_max, the level L. None if the run ends on no facet.
@@ -39,9 +39,8 @@ pub fn audit_certificates(
     index: u64,
 ) -> Option<CertificateAudit> {
     // Per step: the decisions (facet, flock) where asked, and (L if a certificate may be asked, h).
-    let (mut decided, mut levels, mut step, mut rest) = (Vec::<[Option<u32>; 2]>::new(), Vec::new(), 0u64, None);
-    let mut queue = std::iter::once((index, *release));
-    simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut |o| rest = o.facet, &mut |_, s| {
+    let (mut decided, mut levels, mut step) = (Vec::<[Option<u32>; 2]>::new(), Vec::new(), 0u64);
+    let outcome = simulate_observed(stone, p, release, index, &mut |s| {
         step += 1;
         let h = stone.body.support_climb(&s.down);
         levels.push(((facet.relaxed(s) && s.level <= 1.0).then_some(s.level), h));
@@ -49,7 +48,7 @@ pub fn audit_certificates(
             decided.push([facet.decided(s).and_then(Decided::facet), flock.decided(s).and_then(Decided::flock)]);
         }
     });
-    let facet = rest?;
+    let facet = outcome?.facet?;
     let truth = [Some(facet), stone.flock_of(facet).map(|k| k as u32)];
     let scores = std::array::from_fn(|l| DecisionScore::of(decided.iter().filter_map(|d| d[l]), truth[l]));
     let (asked, excess) = largest_later_rise(&levels);
@@ -62,6 +61,7 @@ mod tests {
     use crate::analysis::{Analysis, Options};
     use crate::dynamics::certificate::{CertificateMode, CERTIFICATE_MARGIN};
     use crate::dynamics::drops::{launch::launch, params::Preset, simulate::simulate};
+    use crate::dynamics::engine::run::NoCertificate;
     use crate::dynamics::surface::Surface;
 
     #[test]
