@@ -1,29 +1,16 @@
-//! Per-step cost of the pebble collider in rapier3d (the per-step cost cliff): the
-//! project's `HullShape` (exact facets, O(1) bounds, hill-climbing support) against parry's
-//! `ConvexPolyhedron` (`ColliderBuilder::convex_hull`: bounds and support points scan every hull
-//! point), on synthetic pebbles with ~10², 10³, 10⁴ and 3·10⁴ hull corners, same run, same
-//! initial conditions, same (solid) mass properties.
+//! Per-step cost of the pebble collider in rapier3d: the project's `HullShape` (exact facets, O(1)
+//! bounds, hill-climbing support) against parry's `ConvexPolyhedron` (bounds and support points
+//! scan every hull point), on synthetic pebbles of ~10² to 3·10⁴ hull corners, same run and
+//! initial conditions (the scenario and what is timed: `experiments/readme/collider_step_cost.md`).
 //!
-//! Scenario per size and collider: the pebble is released just above a half-space ground in a
-//! tilted orientation, never allowed to sleep, and stepped at dt = 1/60 s; it rolls and rocks
-//! (small hulls come to rest within the run, the smooth large ones keep rolling). The mean wall
-//! time of `PhysicsPipeline::step` over the steps after a short warm-up is the figure (fastest
-//! of several repeats). The per-call cost of the three shape queries on the hot path (world
-//! AABB, support point, support feature) is timed separately.
-//!
-//! Run: `cargo run --release --example collider_step_cost` → `results/collider_step_cost/`
-//! (`step_cost.csv`, `README.md`, its prose `experiments/readme/collider_step_cost.md`).
+//! Run: `cargo run --release --example collider_step_cost` → `results/collider_step_cost/`.
 
 use parry3d::math::{Pose, Real, Rotation, Vector};
 use parry3d::shape::{ConvexPolyhedron, PolygonalFeature, PolygonalFeatureMap, Shape, SupportMap};
 use rand::{RngExt, SeedableRng};
 use rand_distr::StandardNormal;
 use rand_xoshiro::Xoshiro256PlusPlus;
-use rapier3d::prelude::{
-    CCDSolver, ColliderBuilder, ColliderSet, DefaultBroadPhase, ImpulseJointSet, IntegrationParameters, IslandManager,
-    MassProperties, MultibodyJointSet, NarrowPhase, PhysicsPipeline, RigidBodyBuilder, RigidBodySet, SharedShape,
-    SoftBodySet,
-};
+use rapier3d::prelude::{ColliderBuilder, MassProperties, PhysicsWorld, RigidBodyBuilder, SharedShape};
 use rocking_stones::dynamics::engine::hull_shape::HullShape;
 use rocking_stones::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
 use rocking_stones::prelude::*;
@@ -47,41 +34,18 @@ const QUERY_CALLS: usize = 20_000;
 /// Mean µs per step after the warm-up, for one collider shape, and the body's final speed and
 /// angular speed (to tell whether it has settled).
 fn step_cost(shape: SharedShape, mass: MassProperties, start: Pose) -> (f64, f32, f32) {
-    let mut bodies = RigidBodySet::new();
-    let mut colliders = ColliderSet::new();
-    colliders.insert(ColliderBuilder::new(SharedShape::halfspace(Vector::Y)).friction(0.6).build());
-    let h = bodies.insert(RigidBodyBuilder::dynamic().can_sleep(false).pose(start).build());
+    // Rapier's own world: default integration parameters, no hooks or events.
+    let mut world = PhysicsWorld::new();
+    world.gravity = Vector::new(0.0, -9.81, 0.0);
+    world.colliders.insert(ColliderBuilder::new(SharedShape::halfspace(Vector::Y)).friction(0.6).build());
+    let h = world.bodies.insert(RigidBodyBuilder::dynamic().can_sleep(false).pose(start).build());
     let c = ColliderBuilder::new(shape).density(0.0).mass_properties(mass).friction(0.6).restitution(0.0).build();
-    colliders.insert_with_parent(c, h, &mut bodies);
-    let mut pipeline = PhysicsPipeline::new();
-    let params = IntegrationParameters::default();
-    let (mut islands, mut broad, mut narrow) = (IslandManager::new(), DefaultBroadPhase::new(), NarrowPhase::new());
-    let (mut impulse_joints, mut multibody_joints) = (ImpulseJointSet::new(), MultibodyJointSet::new());
-    let (mut soft_bodies, mut ccd) = (SoftBodySet::new(), CCDSolver::new());
-    let mut step = |n: usize| {
-        for _ in 0..n {
-            pipeline.step(
-                Vector::new(0.0, -9.81, 0.0),
-                &params,
-                &mut islands,
-                &mut broad,
-                &mut narrow,
-                &mut bodies,
-                &mut colliders,
-                &mut impulse_joints,
-                &mut multibody_joints,
-                &mut soft_bodies,
-                &mut ccd,
-                &(),
-                &(),
-            );
-        }
-    };
-    step(WARMUP_STEPS);
+    world.colliders.insert_with_parent(c, h, &mut world.bodies);
+    (0..WARMUP_STEPS).for_each(|_| world.step());
     let t = Instant::now();
-    step(TIMED_STEPS);
+    (0..TIMED_STEPS).for_each(|_| world.step());
     let us = t.elapsed().as_secs_f64() * 1e6 / TIMED_STEPS as f64;
-    (us, bodies[h].linvel().length(), bodies[h].angvel().length())
+    (us, world.bodies[h].linvel().length(), world.bodies[h].angvel().length())
 }
 
 /// ns per call of world AABB, support point and support feature.
