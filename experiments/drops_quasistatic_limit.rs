@@ -1,11 +1,7 @@
 //! Drops at vanishing energy converge to the quasi-static basin probabilities
 //! ([`rocking_stones::basins`]), and move away from them as the drop height and the restitution
-//! grow (large faces gain).
-//!
-//! Bodies: a box 2 × 1.4 × 1 (six faces, unequal basins) and a synthetic pebble with micro-facets.
-//! For each drop height (and restitution), N drops with the same seed; per flock and per facet:
-//! KL divergence and χ² of the empirical distribution from the static one. Then the pebble at the
-//! lowest height for increasing damping (towards overdamped, quasi-static rolling).
+//! grow (large faces gain): a box 2 × 1.4 × 1 and a synthetic pebble with micro-facets, per drop
+//! height and restitution, then the pebble for increasing damping.
 //!
 //! Run: `cargo run --release --example drops_quasistatic_limit` → `results/drops_quasistatic_limit/`;
 //! the README's prose is `experiments/readme/drops_quasistatic_limit.md`.
@@ -117,13 +113,8 @@ fn main() -> Result<()> {
         &["restitution", "height", "face_area", "fraction", "ci_lo", "ci_hi", "static"],
         rows.iter().filter(|r| r.body == 0).flat_map(|r| {
             r.report.facets.iter().map(|f| {
-                let area = if f.normal.x.abs() > 0.9 {
-                    1.4
-                } else if f.normal.y.abs() > 0.9 {
-                    2.0
-                } else {
-                    2.8
-                };
+                // The box's 2 × 1.4 × 1 without its extent along the face's normal (x, y or z).
+                let area = [1.4, 2.0, 2.8][f.normal.iamax()];
                 [r.restitution.to_string(), r.height.to_string(), f64::to_string(&area)]
                     .into_iter()
                     .chain([f.fraction, f.ci95.0, f.ci95.1, f.static_probability].map(|x| fixed(x, 5)))
@@ -172,27 +163,12 @@ fn plot(out: &Results, rows: &[Row]) -> Result<()> {
             chart = if body == 0 {
                 chart.line_width(&pts, c, width).dots(&pts, c).legend(Mark::LineDot(c), label)
             } else {
-                dashed(chart, &pts, c, width).rings(&pts, c).legend(Mark::Dashed(c), label)
+                // The plot: 3.3 decades over ~900 px wide, 2.8 decades over ~500 px high.
+                let dashed = chart.log_dashed(&pts, c, width, (3.3, 900.0), (2.8, 500.0));
+                dashed.rings(&pts, c).legend(Mark::Dashed(c), label)
             };
         }
     }
     chart.save(&out.path("kl_vs_height.png"), (1000, 640))?;
     Ok(())
-}
-
-/// A dashed line `width` pixels wide through `pts` on the figure's log–log axes (the chart's own
-/// dashed lines have the house width): dashes of about 8 px, gaps of about 5 px.
-fn dashed(mut chart: Chart, pts: &[(f64, f64)], c: RGBColor, width: u32) -> Chart {
-    // Positions as fractions of the plot (3.3 decades wide over ~900 px, 2.8 decades high over ~500 px).
-    let frac = |p: (f64, f64)| (p.0.log10() / 3.3 * 900.0, p.1.log10() / 2.8 * 500.0);
-    for w in pts.windows(2) {
-        let ((x0, y0), (x1, y1)) = (frac(w[0]), frac(w[1]));
-        let n = ((x1 - x0).hypot(y1 - y0) / 13.0).ceil().max(1.0);
-        let at = |t: f64| (w[0].0 * (w[1].0 / w[0].0).powf(t), w[0].1 * (w[1].1 / w[0].1).powf(t));
-        for k in 0..n as usize {
-            let t = k as f64 / n;
-            chart = chart.line_width(&[at(t), at(t + 8.0 / 13.0 / n)], c, width);
-        }
-    }
-    chart
 }
