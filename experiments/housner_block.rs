@@ -3,17 +3,13 @@
 //! each impact of free rocking, against the closed forms, over aspect ratios and the engine's
 //! contact settings.
 //!
-//! Blocks: `generate::cuboid(2b, 0.6, 2h)` with h = 1, resting on the face with normal −z,
-//! shaken / rocking in the x–z plane (tan α = b/h), on the contact of every resting run (rock on
-//! concrete at R_max = 1 m) with friction 1 (no sliding below 1 g).
-//!
 //! Run: `cargo run --release --example housner_block` → `results/housner_block/`; the README's
 //! prose is `experiments/readme/housner_block.md`.
 
 use rocking_stones::dynamics::resting::RestingParams;
-use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, impact_ratios, mean_impact_ratio};
+use rocking_stones::dynamics::shaking::housner::{ramp_lag, ramp_tipping};
 use rocking_stones::prelude::*;
-use rocking_stones::GRAVITY;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]
@@ -51,7 +47,7 @@ struct Tip {
 struct Decay {
     tan_a: f64,
     setting: &'static str,
-    /// (amplitude before, ratio) of every impact.
+    /// (amplitude after, ratio) of every impact.
     impacts: Vec<(f64, f64)>,
     /// Mean ratio of the first (up to 4) impacts whose post-impact amplitude exceeds 0.02 rad.
     mean: Option<f64>,
@@ -66,9 +62,7 @@ fn main() -> Result<()> {
         let stone = Stone::new(&Analysis::of_solid(mesh, rep, &Options::default())?, 0.01)?;
         let start = stone.stable().iter().position(|e| stone.body.facet_normals[e.facet as usize].z < -0.999);
         let start = start.context("no resting face with normal −z")?;
-        let r_max = stone.body.r_max;
-        let (bs, hs) = (tan_a / r_max, 1.0 / r_max);
-        let i_o = 4.0 / 3.0 * (bs * bs + hs * hs);
+        let (bs, hs) = (tan_a / stone.body.r_max, 1.0 / stone.body.r_max);
         for &(setting, restitution, frequency, dt, tipping, _) in &SETTINGS {
             // The contact of every resting run (rock on concrete, a block of R_max = 1 m: rolling
             // resistance δ = 10⁻⁴ R_max through the contact), friction 1, the setting's rest.
@@ -80,7 +74,7 @@ fn main() -> Result<()> {
                     continue;
                 }
                 let tilt = 1e-3;
-                let lag = rate * (6.0 * i_o * tilt / (hs * rate * GRAVITY)).cbrt();
+                let lag = ramp_lag(bs, hs, rate, tilt);
                 let measured = ramp_tipping(&stone, start, &p, 0.0, rate, tilt, 2.0 * tan_a).unwrap_or(f64::NAN);
                 eprintln!("tan α {tan_a}: {setting} rate {rate}: {measured:.4} (lag {lag:.4})");
                 let (corrected, error) = (measured - lag, (measured - lag) / tan_a - 1.0);
@@ -88,13 +82,8 @@ fn main() -> Result<()> {
             }
             let cycles = free_rocking(&stone, start, &p, tan_a, 1.0, 0.5 * tan_a.atan(), 8.0);
             // Impacts until the rocking has died out (amplitude below 10⁻⁵ rad: contact noise).
-            let impacts: Vec<(f64, f64)> = cycles
-                .windows(2)
-                .take_while(|w| w[1].amplitude > 1e-5)
-                .map(|w| (w[1].amplitude, w[1].omega0 / w[0].omega0))
-                .collect();
-            let large: Vec<f64> = impacts.iter().filter(|i| i.0 > 0.02).take(4).map(|i| i.1).collect();
-            let mean = (!large.is_empty()).then(|| large.iter().sum::<f64>() / large.len() as f64);
+            let impacts = impact_ratios(&cycles, 1e-5);
+            let mean = mean_impact_ratio(&impacts, 0.02, 4);
             eprintln!("  decay: mean {mean:?} vs Housner {:.4}", housner_ratio(tan_a, 1.0));
             decays.push(Decay { tan_a, setting, impacts, mean });
         }

@@ -151,6 +151,18 @@ impl FragilitySurface {
         let logit = (p / (1.0 - p)).ln();
         Some(((logit - b0 - b2 * pgv_over_pga_s.ln()) / b1).exp())
     }
+
+    /// The PGV/PGA (s) at which P(overturn) = `p` for motions of peak `pga_g` (g): the contour
+    /// read the other way, ln(PGV/PGA) = (logit p − β₀ − β₁ ln PGA) / β₂. None when β₂ = 0 or
+    /// p ∉ (0, 1).
+    pub fn ratio_at(&self, p: f64, pga_g: f64) -> Option<f64> {
+        let [b0, b1, b2] = self.beta;
+        if !(p > 0.0 && p < 1.0) || b2 == 0.0 {
+            return None;
+        }
+        let logit = (p / (1.0 - p)).ln();
+        Some(((logit - b0 - b1 * pga_g.ln()) / b2).exp())
+    }
 }
 
 impl FragilitySurface {
@@ -247,6 +259,43 @@ impl Target {
     }
 }
 
+impl std::fmt::Display for Target {
+    /// "P at PGA 0.350 g and PGV/PGA 0.100 s", "PGA of P = 0.5 at PGV/PGA 0.100 s".
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match *self {
+            Target::Point(pga, r) => write!(f, "P at PGA {pga:.3} g and PGV/PGA {r:.3} s"),
+            Target::Contour(p, r) => write!(f, "PGA of P = {p} at PGV/PGA {r:.3} s"),
+        }
+    }
+}
+
+/// How often fitted bands cover a known surface, counted over repeated studies: for each study s
+/// of `0..studies` (run in parallel) `fits(s)` gives the study's fits, one per kind of band in a
+/// fixed order (say a fit and its [`FragilitySurface::cluster_robust`] variant). Returns, for
+/// each kind k and each target i of `targets`, the number of studies whose fit k covers
+/// `truth`'s value of target i ([`Target::covered`]). The error of the first failing study in
+/// order, if any; an error too if `truth` has no contour a target asks for, or the studies give
+/// different numbers of fits.
+pub fn coverage_counts<F>(targets: &[Target], truth: &FragilitySurface, studies: u64, fits: F) -> Result<Vec<Vec<u64>>>
+where
+    F: Fn(u64) -> Result<Vec<FragilitySurface>> + Sync,
+{
+    use rayon::prelude::*;
+    if let Some(t) = targets.iter().find(|t| matches!(t, Target::Contour(p, r) if truth.pga_at(*p, *r).is_none())) {
+        return Err(Error::Fit(format!("a coverage count: the truth has no contour for the target {t}")));
+    }
+    let covered: Vec<Vec<Vec<bool>>> = (0..studies)
+        .into_par_iter()
+        .map(|s| Ok(fits(s)?.iter().map(|f| targets.iter().map(|t| t.covered(f, truth)).collect()).collect()))
+        .collect::<Result<_>>()?;
+    let kinds = covered.first().map_or(0, Vec::len);
+    if covered.iter().any(|c| c.len() != kinds) {
+        return Err(Error::Fit("a coverage count: the studies gave different numbers of fits".into()));
+    }
+    let count = |k: usize, i: usize| covered.iter().filter(|c| c[k][i]).count() as u64;
+    Ok((0..kinds).map(|k| (0..targets.len()).map(|i| count(k, i)).collect()).collect())
+}
+
 /// Firth's modified score and the Fisher information XᵀWX at `beta`.
 fn firth_score(x: &[Vector3<f64>], y: &[f64], beta: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
     let p: Vec<f64> = x.iter().map(|xi| logistic(xi.dot(beta))).collect();
@@ -335,18 +384,16 @@ mod tests {
         let beta = [4.0, 3.0, 1.5];
         let (pga, ratio) = (0.35, 0.1);
         let truth = FragilitySurface::exact(beta);
-        let (p_true, pga50_true) = (truth.probability(pga, ratio), truth.pga_at(0.5, ratio).unwrap());
-        let (mut covered, mut contour_covered) = (0, 0);
-        for seed in 0..STUDIES {
-            let fit = FragilitySurface::fit(&simulated(beta, 2, 1000 + seed)).unwrap();
+        let targets = [Target::Point(pga, ratio), Target::Contour(0.5, ratio)];
+        let counts = coverage_counts(&targets, &truth, STUDIES, |seed| {
+            let fit = FragilitySurface::fit(&simulated(beta, 2, 1000 + seed))?;
             let [lo, p, hi] = fit.band(pga, ratio, 1.96);
             assert!(lo < p && p < hi);
-            covered += (lo <= p_true && p_true <= hi) as usize;
-            let [a, _, b] = fit.pga_band_at(0.5, ratio, 1.96).unwrap();
-            contour_covered += (a.unwrap() <= pga50_true && pga50_true <= b.unwrap()) as usize;
-        }
+            Ok(vec![fit])
+        })
+        .unwrap();
         let se = (0.95 * 0.05 / STUDIES as f64).sqrt();
-        for (what, k) in [("P", covered), ("PGA₅₀", contour_covered)] {
+        for (what, &k) in ["P", "PGA₅₀"].iter().zip(&counts[0]) {
             let rate = k as f64 / STUDIES as f64;
             assert!(
                 (rate - 0.95).abs() <= 3.0 * se,
@@ -354,6 +401,29 @@ mod tests {
                 3.0 * se
             );
         }
+    }
+
+    #[test]
+    fn coverage_counts_each_kind_of_band_on_each_target() {
+        // As in the covered-target test below, a fit with variance s² on β₀ alone covers a truth
+        // off by 1.9 s on β₀ and misses one off by 2.0 s, at a point and on a contour: band 0 of
+        // the even studies (0, 2, 4) covers. Band 1, a fit with no band off by 0.5 s, never does.
+        let (beta, s) = ([1.0, 2.0, 0.5], 0.5);
+        let fit =
+            FragilitySurface { covariance: [[s * s, 0.0, 0.0], [0.0; 3], [0.0; 3]], ..FragilitySurface::exact(beta) };
+        let off = |d: f64| [beta[0] + d * s, beta[1], beta[2]];
+        let targets = [Target::Point(0.3, 0.1), Target::Contour(0.5, 0.1)];
+        let studies = |study: u64| {
+            let d = if study % 2 == 0 { 1.9 } else { 2.0 };
+            Ok(vec![FragilitySurface { beta: off(d), ..fit }, FragilitySurface::exact(off(0.5))])
+        };
+        let counts = coverage_counts(&targets, &FragilitySurface::exact(beta), 5, studies).unwrap();
+        assert_eq!(counts, vec![vec![3, 3], vec![0, 0]]);
+        // A truth with no contour, and studies that disagree on their number of fits, are errors.
+        let flat = FragilitySurface::exact([1.0, -1.0, 0.0]);
+        assert!(coverage_counts(&targets, &flat, 5, |_| Ok(vec![fit])).is_err());
+        let ragged = |study: u64| Ok(vec![fit; 1 + study as usize % 2]);
+        assert!(coverage_counts(&targets, &fit, 5, ragged).is_err());
     }
 
     #[test]
@@ -429,5 +499,18 @@ mod tests {
             assert!((rate - expected).abs() < 0.032, "cell {k}: {rate} vs {expected}");
         }
         assert_eq!(runs, truth.draw_runs(&[1.0 / 3.0, 1.0, 3.0], &[1.0], 4000, 9));
+    }
+
+    #[test]
+    fn a_contour_read_at_a_pga_gives_back_its_ratio() {
+        // β = (1, 2, 0.5): P = ½ where 1 + 2 ln PGA + 0.5 ln r = 0, at PGA 1 g r = e⁻², and
+        // P = ¾ (logit ln 3) at PGA e⁻¹ g where r = e^(2 ln 3 + 2) = 9e².
+        let s = FragilitySurface::exact([1.0, 2.0, 0.5]);
+        assert!((s.ratio_at(0.5, 1.0).unwrap() - (-2.0f64).exp()).abs() < 1e-15);
+        let r = s.ratio_at(0.75, (-1.0f64).exp()).unwrap();
+        assert!((r / (9.0 * 2.0f64.exp()) - 1.0).abs() < 1e-12, "{r}");
+        assert!((s.pga_at(0.75, r).unwrap() - (-1.0f64).exp()).abs() < 1e-12);
+        assert_eq!(FragilitySurface::exact([1.0, 2.0, 0.0]).ratio_at(0.5, 1.0), None);
+        assert_eq!(s.ratio_at(1.0, 1.0), None);
     }
 }

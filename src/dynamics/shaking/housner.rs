@@ -61,6 +61,15 @@ pub fn ramp_tipping(
     None
 }
 
+/// The detection lag (g) of [`ramp_tipping`] on a block of half-width `b` and half-height `h`
+/// (scaled lengths, R_max = 1) at ramp `rate` (g per scaled s) and detection `tilt` (rad):
+/// rate·(6 I_O tilt / (h rate g))^(1/3), I_O = (4/3)(b² + h²) the block's moment of inertia
+/// about its bottom edge (unit mass).
+pub fn ramp_lag(b: f64, h: f64, rate: f64, tilt: f64) -> f64 {
+    let i_o = 4.0 / 3.0 * (b * b + h * h);
+    rate * (6.0 * i_o * tilt / (h * rate * GRAVITY)).cbrt()
+}
+
 /// The ground acceleration a(t) = `rate`·t along x (g per s) up to `a_max` (g), in m/s².
 pub fn ramp_record(rate: f64, a_max: f64) -> Result<Record> {
     if !(rate > 0.0 && a_max > 0.0 && rate.is_finite() && a_max.is_finite()) {
@@ -149,6 +158,23 @@ pub fn free_rocking(
     cycles
 }
 
+/// The impacts of free rocking ([`free_rocking`]'s half-cycles), until the rocking has died out:
+/// for each half-cycle after the first, its amplitude (rad) and the ratio ω₀(it)/ω₀(the one
+/// before) of the impact that began it, up to the first half-cycle of amplitude `floor` (rad) or
+/// less.
+pub fn impact_ratios(cycles: &[HalfCycle], floor: f64) -> Vec<(f64, f64)> {
+    let impacts = cycles.windows(2).take_while(|w| w[1].amplitude > floor);
+    impacts.map(|w| (w[1].amplitude, w[1].omega0 / w[0].omega0)).collect()
+}
+
+/// The mean ratio of the first (up to) `count` `impacts` ([`impact_ratios`]) whose amplitude
+/// after the impact exceeds `amplitude` (rad): impacts small enough for the contact's
+/// compliance to matter left out. None if there is none.
+pub fn mean_impact_ratio(impacts: &[(f64, f64)], amplitude: f64, count: usize) -> Option<f64> {
+    let large: Vec<f64> = impacts.iter().filter(|i| i.0 > amplitude).take(count).map(|i| i.1).collect();
+    (!large.is_empty()).then(|| large.iter().sum::<f64>() / large.len() as f64)
+}
+
 /// Housner's ratio of angular velocities after / before an impact of a rocking block,
 /// 1 − (3/2) sin² α, tan α = b/h.
 pub fn housner_ratio(b: f64, h: f64) -> f64 {
@@ -177,6 +203,19 @@ impl HousnerBlock {
     /// rocking plane (m/s²) within `duration` s.
     pub fn overturns(&self, accel: &dyn Fn(f64) -> f64, duration: f64) -> bool {
         housner_overturns(self.tan_alpha.atan(), self.p(), accel, duration, housner_ratio(self.tan_alpha, 1.0))
+    }
+
+    /// Whether Housner's equation overturns the block under the horizontal components of
+    /// `record` times `k` (a scale factor, its sign included), its rocking plane at `theta` (rad)
+    /// from the record's x axis: ü_g(t) = k (cos θ a_x(t) + sin θ a_y(t)) over the record
+    /// ([`HousnerBlock::overturns`]).
+    pub fn overturns_along(&self, record: &Record, k: f64, theta: f64) -> bool {
+        let (s, c) = theta.sin_cos();
+        let accel = |t: f64| {
+            let a = record.at(t);
+            k * (c * a[0] + s * a[1])
+        };
+        self.overturns(&accel, record.duration())
     }
 }
 
@@ -259,5 +298,43 @@ mod tests {
         assert!(!block.overturns(&|_| -0.98 * a_c, 5.0));
         assert!(block.overturns(&|_| 1.5 * a_c, 5.0));
         assert!(block.overturns(&|_| -1.5 * a_c, 5.0));
+    }
+
+    #[test]
+    fn a_housner_block_feels_the_record_along_its_rocking_plane() {
+        // A record of constant 1.5 g tan α along y (10 s): the block overturns with its plane
+        // along y, either sign, but not along x, nor at 60° from y (cos 60° · 1.5 = 0.75 < 1).
+        let block = HousnerBlock { tan_alpha: 0.25, r_m: 0.75 };
+        let a = 1.5 * GRAVITY * block.tan_alpha;
+        let record = Record::new("y", 0.01, vec![[0.0, a, 0.0]; 1001]).unwrap();
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        assert!(block.overturns_along(&record, 1.0, half_pi) && block.overturns_along(&record, -1.0, half_pi));
+        assert!(!block.overturns_along(&record, 1.0, 0.0));
+        assert!(!block.overturns_along(&record, 1.0, half_pi / 3.0));
+        // Scaled by 2, 60° from y is 1.5 g tan α again.
+        assert!(block.overturns_along(&record, 2.0, half_pi / 3.0));
+    }
+
+    #[test]
+    fn the_ramp_lag_grows_as_the_rate_to_two_thirds() {
+        // b = 1/2, h = 1: I_O = 5/3, and at tilt 10⁻³ 6 I_O tilt = 10⁻², so at rate 10⁻² g/s
+        // the lag is 10⁻² g^(−1/3); eight times the rate, four times the lag.
+        let lag = ramp_lag(0.5, 1.0, 0.01, 1e-3);
+        assert!((lag - 0.01 / GRAVITY.cbrt()).abs() < 1e-15, "{lag}");
+        assert!((ramp_lag(0.5, 1.0, 0.08, 1e-3) / lag - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn impacts_are_ratios_of_successive_half_cycles_until_the_rocking_dies() {
+        let cycle = |amplitude: f64, omega0: f64| HalfCycle { t0: 0.0, t1: 0.0, amplitude, omega0 };
+        let cycles = [cycle(0.1, 2.0), cycle(0.05, 1.0), cycle(0.01, 0.8), cycle(1e-6, 0.1), cycle(0.03, 0.3)];
+        // Everything from the first amplitude at or below 10⁻⁵ rad on is contact noise.
+        let impacts = impact_ratios(&cycles, 1e-5);
+        assert_eq!(impacts, vec![(0.05, 0.5), (0.01, 0.8)]);
+        // Only impacts that leave more than 0.02 rad count: the first one; at most one: the first.
+        assert_eq!(mean_impact_ratio(&impacts, 0.02, 4), Some(0.5));
+        assert!((mean_impact_ratio(&impacts, 0.0, 4).unwrap() - 0.65).abs() < 1e-15);
+        assert_eq!(mean_impact_ratio(&impacts, 0.0, 1), Some(0.5));
+        assert_eq!(mean_impact_ratio(&impacts, 0.1, 4), None);
     }
 }

@@ -215,9 +215,7 @@ pub struct EnsembleSummary {
 /// The summaries of every record × scale of an ensemble batch's `runs`, in their order.
 pub fn summaries(e: &EnsembleSpec, runs: &[RecordRun]) -> Vec<EnsembleSummary> {
     let mut out: Vec<EnsembleSummary> = Vec::new();
-    for group in
-        runs.chunk_by(|a, b| a.motion.record == b.motion.record && a.motion.scale.to_bits() == b.motion.scale.to_bits())
-    {
+    for group in runs.chunk_by(|a, b| a.motion.same_as(&b.motion)) {
         let members: Vec<Member> =
             group.iter().filter_map(|r| r.member.map(|draw| Member { draw, run: r.rock.clone() })).collect();
         out.push(EnsembleSummary {
