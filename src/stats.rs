@@ -315,6 +315,12 @@ pub fn median_range(x: &[f64]) -> [f64; 3] {
     [if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }, v[0], v[n - 1]]
 }
 
+/// The range of non-negative values `xs` (intensity measures, periods, ratios): (the smallest,
+/// the largest), the largest at least 0; (∞, 0) for none.
+pub fn nonnegative_range(xs: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    xs.into_iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)))
+}
+
 /// A measured rate: k of n, as (k/n, low, high) with the Wilson score interval ([`wilson`]) at
 /// z (1.96 for 95 %); (NaN, 0, 1) for n = 0.
 pub fn rate_with_wilson(k: u64, n: u64, z: f64) -> (f64, f64, f64) {
@@ -476,5 +482,11 @@ mod tests {
         assert_eq!(median_range(&[3.0, -1.0, 7.0]), [3.0, -1.0, 7.0]);
         assert_eq!(median_range(&[4.0, 1.0, 10.0, 2.0]), [3.0, 1.0, 10.0]);
         assert!(median_range(&[]).iter().all(|x| x.is_nan()));
+    }
+
+    #[test]
+    fn the_range_of_nonnegative_values() {
+        assert_eq!(nonnegative_range([0.3, 2.0, 0.05, 1.0]), (0.05, 2.0));
+        assert_eq!(nonnegative_range([]), (f64::INFINITY, 0.0));
     }
 }

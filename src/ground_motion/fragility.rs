@@ -18,6 +18,7 @@
 //! Three parameters need no optimisation library: the Newton iteration on a 3 × 3 system is a
 //! dozen lines, and is checked against the exact score equations and simulated data.
 
+use super::ScaledRecord;
 use crate::rng::item_rng;
 use crate::stats::logistic;
 use crate::{Error, Result};
@@ -34,6 +35,13 @@ pub struct Run {
     pub pgv_over_pga_s: f64,
     /// Whether the rock overturned.
     pub overturned: bool,
+}
+
+impl Run {
+    /// The run of a record × scale `motion` (its PGA and PGV/PGA) and its outcome.
+    pub fn of(motion: &ScaledRecord, overturned: bool) -> Run {
+        Run { pga_g: motion.pga_g, pgv_over_pga_s: motion.pgv_over_pga_s, overturned }
+    }
 }
 
 /// The fitted surface.
@@ -150,6 +158,19 @@ impl FragilitySurface {
         }
         let logit = (p / (1.0 - p)).ln();
         Some(((logit - b0 - b2 * pgv_over_pga_s.ln()) / b1).exp())
+    }
+
+    /// Coefficient β_`i` with its standard error, "β ± se", both to `decimals` decimals.
+    pub fn coefficient_text(&self, i: usize, decimals: usize) -> String {
+        format!("{:.decimals$} ± {:.decimals$}", self.beta[i], self.std_err[i])
+    }
+
+    /// The largest relative gap |PGA(self)/PGA(other) − 1| between the contours P = `p` of this
+    /// surface and `other` ([`FragilitySurface::pga_at`]) over the PGV/PGA (s) of `ratios` where
+    /// both are defined; 0 where neither is anywhere.
+    pub fn contour_gap(&self, other: &FragilitySurface, p: f64, ratios: impl IntoIterator<Item = f64>) -> f64 {
+        let gaps = ratios.into_iter().filter_map(|r| Some(self.pga_at(p, r)? / other.pga_at(p, r)?));
+        gaps.fold(0.0, |w, x| w.max((x - 1.0).abs()))
     }
 
     /// The PGV/PGA (s) at which P(overturn) = `p` for motions of peak `pga_g` (g): the contour
@@ -269,33 +290,6 @@ impl std::fmt::Display for Target {
     }
 }
 
-/// How often fitted bands cover a known surface, counted over repeated studies: for each study s
-/// of `0..studies` (run in parallel) `fits(s)` gives the study's fits, one per kind of band in a
-/// fixed order (say a fit and its [`FragilitySurface::cluster_robust`] variant). Returns, for
-/// each kind k and each target i of `targets`, the number of studies whose fit k covers
-/// `truth`'s value of target i ([`Target::covered`]). The error of the first failing study in
-/// order, if any; an error too if `truth` has no contour a target asks for, or the studies give
-/// different numbers of fits.
-pub fn coverage_counts<F>(targets: &[Target], truth: &FragilitySurface, studies: u64, fits: F) -> Result<Vec<Vec<u64>>>
-where
-    F: Fn(u64) -> Result<Vec<FragilitySurface>> + Sync,
-{
-    use rayon::prelude::*;
-    if let Some(t) = targets.iter().find(|t| matches!(t, Target::Contour(p, r) if truth.pga_at(*p, *r).is_none())) {
-        return Err(Error::Fit(format!("a coverage count: the truth has no contour for the target {t}")));
-    }
-    let covered: Vec<Vec<Vec<bool>>> = (0..studies)
-        .into_par_iter()
-        .map(|s| Ok(fits(s)?.iter().map(|f| targets.iter().map(|t| t.covered(f, truth)).collect()).collect()))
-        .collect::<Result<_>>()?;
-    let kinds = covered.first().map_or(0, Vec::len);
-    if covered.iter().any(|c| c.len() != kinds) {
-        return Err(Error::Fit("a coverage count: the studies gave different numbers of fits".into()));
-    }
-    let count = |k: usize, i: usize| covered.iter().filter(|c| c[k][i]).count() as u64;
-    Ok((0..kinds).map(|k| (0..targets.len()).map(|i| count(k, i)).collect()).collect())
-}
-
 /// Firth's modified score and the Fisher information XᵀWX at `beta`.
 fn firth_score(x: &[Vector3<f64>], y: &[f64], beta: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
     let p: Vec<f64> = x.iter().map(|xi| logistic(xi.dot(beta))).collect();
@@ -385,7 +379,7 @@ mod tests {
         let (pga, ratio) = (0.35, 0.1);
         let truth = FragilitySurface::exact(beta);
         let targets = [Target::Point(pga, ratio), Target::Contour(0.5, ratio)];
-        let counts = coverage_counts(&targets, &truth, STUDIES, |seed| {
+        let counts = crate::ground_motion::studies::coverage_counts(&targets, &truth, STUDIES, |seed| {
             let fit = FragilitySurface::fit(&simulated(beta, 2, 1000 + seed))?;
             let [lo, p, hi] = fit.band(pga, ratio, 1.96);
             assert!(lo < p && p < hi);
@@ -401,29 +395,6 @@ mod tests {
                 3.0 * se
             );
         }
-    }
-
-    #[test]
-    fn coverage_counts_each_kind_of_band_on_each_target() {
-        // As in the covered-target test below, a fit with variance s² on β₀ alone covers a truth
-        // off by 1.9 s on β₀ and misses one off by 2.0 s, at a point and on a contour: band 0 of
-        // the even studies (0, 2, 4) covers. Band 1, a fit with no band off by 0.5 s, never does.
-        let (beta, s) = ([1.0, 2.0, 0.5], 0.5);
-        let fit =
-            FragilitySurface { covariance: [[s * s, 0.0, 0.0], [0.0; 3], [0.0; 3]], ..FragilitySurface::exact(beta) };
-        let off = |d: f64| [beta[0] + d * s, beta[1], beta[2]];
-        let targets = [Target::Point(0.3, 0.1), Target::Contour(0.5, 0.1)];
-        let studies = |study: u64| {
-            let d = if study % 2 == 0 { 1.9 } else { 2.0 };
-            Ok(vec![FragilitySurface { beta: off(d), ..fit }, FragilitySurface::exact(off(0.5))])
-        };
-        let counts = coverage_counts(&targets, &FragilitySurface::exact(beta), 5, studies).unwrap();
-        assert_eq!(counts, vec![vec![3, 3], vec![0, 0]]);
-        // A truth with no contour, and studies that disagree on their number of fits, are errors.
-        let flat = FragilitySurface::exact([1.0, -1.0, 0.0]);
-        assert!(coverage_counts(&targets, &flat, 5, |_| Ok(vec![fit])).is_err());
-        let ragged = |study: u64| Ok(vec![fit; 1 + study as usize % 2]);
-        assert!(coverage_counts(&targets, &fit, 5, ragged).is_err());
     }
 
     #[test]
@@ -512,5 +483,37 @@ mod tests {
         assert!((s.pga_at(0.75, r).unwrap() - (-1.0f64).exp()).abs() < 1e-12);
         assert_eq!(FragilitySurface::exact([1.0, 2.0, 0.0]).ratio_at(0.5, 1.0), None);
         assert_eq!(s.ratio_at(1.0, 1.0), None);
+    }
+
+    #[test]
+    fn the_contour_gap_is_the_largest_relative_difference_of_two_contours() {
+        // β₀ differs by ln 1.2 · β₁: every contour of b lies at 1.2 times a's PGA, a gap of 1/6
+        // read from b against a, 0.2 from a against b.
+        let a = FragilitySurface::exact([1.0, 2.0, 0.5]);
+        let b = FragilitySurface::exact([1.0 - 2.0 * 1.2f64.ln(), 2.0, 0.5]);
+        assert!((a.contour_gap(&b, 0.5, [0.05, 0.1, 0.2]) - 1.0 / 6.0).abs() < 1e-12);
+        assert!((b.contour_gap(&a, 0.9, [0.05, 0.1]) - 0.2).abs() < 1e-12);
+        assert_eq!(a.contour_gap(&FragilitySurface::exact([1.0, -2.0, 0.5]), 0.5, [0.1]), 0.0);
+    }
+
+    #[test]
+    fn a_coefficient_is_written_with_its_standard_error() {
+        let s = FragilitySurface { std_err: [0.5, 0.125, 0.0], ..FragilitySurface::exact([4.0, 2.346, -1.5]) };
+        assert_eq!(s.coefficient_text(1, 2), "2.35 ± 0.12");
+        assert_eq!(s.coefficient_text(2, 3), "-1.500 ± 0.000");
+    }
+
+    #[test]
+    fn a_run_of_a_scaled_record_keeps_its_pga_and_ratio() {
+        let run = |pga_g, pgv_over_pga_s, overturned| Run { pga_g, pgv_over_pga_s, overturned };
+        let motion = ScaledRecord {
+            record: "r".into(),
+            scale: 2.0,
+            pga_g: 0.4,
+            pgv_m_s: 0.3,
+            pgv_over_pga_s: 0.0765,
+            pga_vertical_g: 0.0,
+        };
+        assert_eq!(Run::of(&motion, true), run(0.4, 0.0765, true));
     }
 }

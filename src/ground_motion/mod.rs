@@ -5,7 +5,8 @@
 //! time), in m/s², with components `[x, y, z]`: two horizontal components and the vertical one (z
 //! up). Readers turn the formats seismologists use into records ([`read`]: CSV with named
 //! columns, PEER NGA `.AT2`); [`synthetic`] makes the test motions (one-sine pulses, filtered
-//! noise); [`fragility`] fits P(overturn | PGA, PGV/PGA).
+//! noise); [`fragility`] fits P(overturn | PGA, PGV/PGA), [`studies`] checks its band over repeated
+//! studies.
 //!
 //! This module knows nothing of stones: the dynamics read a record through [`Record::at`].
 //!
@@ -25,6 +26,7 @@
 
 pub mod fragility;
 pub mod read;
+pub mod studies;
 pub mod synthetic;
 
 use crate::{Error, Result, GRAVITY as G};

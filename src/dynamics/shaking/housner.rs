@@ -15,16 +15,39 @@
 //! * under any ground motion its rocking follows Housner's equation ([`housner_overturns`]),
 //!   integrated here independently of rapier.
 
+use crate::analysis::{Analysis, Options};
 use crate::dynamics::engine::convert;
 use crate::dynamics::engine::run::Drive;
 use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::resting::{resting_simulation, RestingParams};
 use crate::dynamics::shaking::drive::GroundDrive;
+use crate::dynamics::shaking::ensemble::Draw;
 use crate::dynamics::stone::{resting_orientation, Stone};
+use crate::ground_motion::fragility::FragilitySurface;
 use crate::ground_motion::Record;
+use crate::rng::item_rng;
 use crate::{Error, Result, Vec3, GRAVITY};
 use nalgebra::UnitQuaternion;
+use rand::RngExt;
 use serde::Serialize;
+
+/// A rectangular block of half-width `b` (x), half-depth `d` (y) and half-height `h` (z), in
+/// input units ([`crate::generate::cuboid`] of 2b × 2d × 2h), as a stone with its flocks at `nu`
+/// (its macro ν if None), and the position in [`Stone::stable`] of its rest on the face with
+/// normal −z: the block of [`ramp_tipping`] and [`free_rocking`], rocking in the x–z plane with
+/// tan α = b/h.
+pub fn block_stone(b: f64, d: f64, h: f64, nu: Option<f64>) -> Result<(Stone, usize)> {
+    if ![b, d, h].iter().all(|x| *x > 0.0 && x.is_finite()) {
+        return Err(Error::parameter("block", format!("{b} × {d} × {h}"), "positive half-lengths b × d × h"));
+    }
+    let (mesh, repairs) = crate::generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h).into_solid_boundary()?;
+    let stone = super::rock::stone_of(&Analysis::of_solid(mesh, repairs, &Options::default())?, nu)?;
+    let bottom = stone.stable().iter().position(|e| stone.body.facet_normals[e.facet as usize].z < -0.999);
+    let what = "the block has no stable rest on its bottom face";
+    let bottom =
+        bottom.ok_or_else(|| Error::Pose { pose: "on the face with normal −z".into(), what: what.into() })?;
+    Ok((stone, bottom))
+}
 
 /// Housner's ramp: the stone at rest on `start`, the ground accelerating along `azimuth` with
 /// a(t) = `rate`·t (g per scaled second) up to `a_max` (g). Returns the ground acceleration
@@ -217,6 +240,52 @@ impl HousnerBlock {
         };
         self.overturns(&accel, record.duration())
     }
+
+    /// The contour P = `prob` of a fitted fragility `surface` in the block's dimensionless
+    /// variables: PGA/(g tan α) at τ = p·PGV/PGA (the surface's [`FragilitySurface::pga_at`] at
+    /// PGV/PGA = τ/p); None where that is.
+    pub fn dimensionless_pga_at(&self, surface: &FragilitySurface, prob: f64, tau: f64) -> Option<f64> {
+        surface.pga_at(prob, tau / self.p()).map(|pga| pga / self.tan_alpha)
+    }
+
+    /// The band of that contour ([`FragilitySurface::pga_band_at`], `z` standard errors) in the
+    /// same variables over the τ of `taus`, as a polygon: its low-PGA edge along `taus`, then its
+    /// high-PGA edge back, at the τ where both edges are found.
+    pub fn dimensionless_band(&self, surface: &FragilitySurface, prob: f64, taus: &[f64], z: f64) -> Vec<(f64, f64)> {
+        let edges = |&t: &f64| {
+            let [lo, _, hi] = surface.pga_band_at(prob, t / self.p(), z)?;
+            Some(((t, lo? / self.tan_alpha), (t, hi? / self.tan_alpha)))
+        };
+        let band: Vec<_> = taus.iter().filter_map(edges).collect();
+        band.iter().map(|e| e.0).chain(band.iter().rev().map(|e| e.1)).collect()
+    }
+
+    /// Housner's equation on the members `draws` of an ensemble under `record` × `scale`: a
+    /// member's record has its x axis at the draw's azimuth φ from the rocking plane (as
+    /// [`Record::rotated`] puts it) and the draw's sign, so the plane is at −φ from the record's
+    /// x axis ([`HousnerBlock::overturns_along`] with k = scale × sign). One outcome per draw, the
+    /// draws run in parallel.
+    pub fn overturns_drawn(&self, record: &Record, scale: f64, draws: &[Draw]) -> Vec<bool> {
+        use rayon::prelude::*;
+        let along = |d: &Draw| self.overturns_along(record, scale * d.sign, -d.azimuth_deg.to_radians());
+        draws.par_iter().map(along).collect()
+    }
+
+    /// Housner's equation on `members` random orientations of the block under each case
+    /// (record, scale factor) of `cases`: member m draws from stream m of `seed` ([`item_rng`])
+    /// the angle θ of its rocking plane from the records' x axis, uniform in [0, 2π), then its
+    /// sign, −1 or +1 with probability ½ each. Entry [m][k] says whether case k overturns member m
+    /// ([`HousnerBlock::overturns_along`] with k = scale × sign). The members run in parallel.
+    pub fn overturns_oriented(&self, cases: &[(&Record, f64)], members: u64, seed: u64) -> Vec<Vec<bool>> {
+        use rayon::prelude::*;
+        let member = |m: u64| -> Vec<bool> {
+            let mut rng = item_rng(seed, m);
+            let theta = rng.random_range(0.0..std::f64::consts::TAU);
+            let sign = if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
+            cases.iter().map(|&(record, scale)| self.overturns_along(record, scale * sign, theta)).collect()
+        };
+        (0..members).into_par_iter().map(member).collect()
+    }
 }
 
 /// Housner's rocking equation for a rigid rectangular block (Housner 1963; the form integrated by
@@ -336,5 +405,74 @@ mod tests {
         assert!((mean_impact_ratio(&impacts, 0.0, 4).unwrap() - 0.65).abs() < 1e-15);
         assert_eq!(mean_impact_ratio(&impacts, 0.0, 1), Some(0.5));
         assert_eq!(mean_impact_ratio(&impacts, 0.1, 4), None);
+    }
+
+    #[test]
+    fn oriented_members_overturn_where_their_plane_sees_enough_of_the_record() {
+        // A constant 3 g tan α along x: a member overturns where |cos θ| > 1/3 (θ uniform), a
+        // share 2 acos(1/3)/π = 0.784 of the members; 400 members: a binomial standard error of
+        // 0.021. The same record at scale 0.3 (0.9 g tan α) overturns none.
+        let block = HousnerBlock { tan_alpha: 0.25, r_m: 0.75 };
+        let record = Record::new("x", 0.01, vec![[3.0 * GRAVITY * block.tan_alpha, 0.0, 0.0]; 501]).unwrap();
+        let outcome = block.overturns_oriented(&[(&record, 1.0), (&record, 0.3)], 400, 7);
+        let share = outcome.iter().filter(|o| o[0]).count() as f64 / 400.0;
+        let expected = 2.0 * (1.0f64 / 3.0).acos() / std::f64::consts::PI;
+        assert!((share - expected).abs() < 0.07, "{share} vs {expected}");
+        assert!(outcome.iter().all(|o| !o[1]));
+        assert_eq!(outcome, block.overturns_oriented(&[(&record, 1.0), (&record, 0.3)], 400, 7));
+    }
+
+    #[test]
+    fn a_surface_reads_in_housner_s_dimensionless_variables() {
+        // R = 3/4 m: p = √g. A surface with β = (0, 1, 0) has PGA₅₀ = 1 g at every PGV/PGA, so
+        // PGA₅₀/(g tan α) = 4 at tan α = 0.25; with β₂ = 1 too, PGA₅₀ = 1/(PGV/PGA) = p/τ.
+        let block = HousnerBlock { tan_alpha: 0.25, r_m: 0.75 };
+        let flat = FragilitySurface::exact([0.0, 1.0, 0.0]);
+        assert!((block.dimensionless_pga_at(&flat, 0.5, 2.0).unwrap() - 4.0).abs() < 1e-12);
+        let sloped = FragilitySurface::exact([0.0, 1.0, 1.0]);
+        let at = block.dimensionless_pga_at(&sloped, 0.5, 2.0).unwrap();
+        assert!((at - 4.0 * GRAVITY.sqrt() / 2.0).abs() < 1e-12, "{at}");
+        // A band ±1.96 on β₀ (variance 1): ln PGA ± 1.96 about the contour, within the grid's step.
+        let fit = FragilitySurface { covariance: [[1.0, 0.0, 0.0], [0.0; 3], [0.0; 3]], ..flat };
+        let band = block.dimensionless_band(&fit, 0.5, &[1.0, 2.0, 3.0], 1.96);
+        assert_eq!(band.iter().map(|p| p.0).collect::<Vec<_>>(), [1.0, 2.0, 3.0, 3.0, 2.0, 1.0]);
+        let step = 12.0 / 4000.0;
+        assert!(band[..3].iter().all(|p| ((p.1 / 4.0).ln() + 1.96).abs() <= step), "{band:?}");
+        assert!(band[3..].iter().all(|p| ((p.1 / 4.0).ln() - 1.96).abs() <= step), "{band:?}");
+        // No band where the fit has no contour.
+        assert!(block.dimensionless_band(&FragilitySurface::exact([0.0, -1.0, 0.0]), 0.5, &[1.0], 1.96).is_empty());
+    }
+
+    #[test]
+    fn a_block_stone_rests_on_its_bottom_face() {
+        // b = 0.25, d = 0.3, h = 1: the rest on the face −z lies h = 1 below the centre of mass.
+        let (stone, k) = block_stone(0.25, 0.3, 1.0, Some(0.01)).unwrap();
+        let rest = &stone.stable()[k];
+        assert!(stone.body.facet_normals[rest.facet as usize].z < -0.999);
+        assert!((rest.r - 1.0).abs() < 1e-9, "{}", rest.r);
+        assert_eq!(stone.nu, 0.01);
+        assert!(block_stone(0.25, 0.3, 0.0, None).is_err());
+    }
+
+    #[test]
+    fn a_drawn_member_sees_the_record_turned_by_its_azimuth() {
+        // A constant 1.5 g tan α along y: a member whose record's x axis is at 90° from the
+        // rocking plane has the record's y axis along −x, in the plane: it overturns, either sign.
+        // At 0° (y across the plane) and at 30° (y at 60° from the plane: cos 60° · 1.5 < 1) it
+        // stands; at 30° and scale 2, 1.5 g tan α again, it overturns.
+        let block = HousnerBlock { tan_alpha: 0.25, r_m: 0.75 };
+        let record = Record::new("y", 0.01, vec![[0.0, 1.5 * GRAVITY * block.tan_alpha, 0.0]; 501]).unwrap();
+        let draw = |azimuth_deg: f64, sign: f64| Draw {
+            member: 0,
+            contact_tolerance_m: 0.0,
+            azimuth_deg,
+            sign,
+            friction: 0.6,
+            restitution: 0.3,
+            rolling_resistance_m: 0.0,
+        };
+        let draws = [draw(90.0, 1.0), draw(90.0, -1.0), draw(0.0, 1.0), draw(30.0, 1.0)];
+        assert_eq!(block.overturns_drawn(&record, 1.0, &draws), [true, true, false, false]);
+        assert_eq!(block.overturns_drawn(&record, 2.0, &draws[3..]), [true]);
     }
 }
