@@ -7,6 +7,7 @@
 use nalgebra::UnitQuaternion;
 use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::Release};
 use rocking_stones::dynamics::engine::{impulse::PointImpact, run::NoCertificate, world::BodyState};
+use rocking_stones::dynamics::shaking::housner::block_stone;
 use rocking_stones::prelude::*;
 use rocking_stones::stats::median_range;
 
@@ -52,9 +53,7 @@ fn main() -> Result<()> {
         harness::common_args("Where a box's corner impact lies between the closed forms, at solver sub-steps 1–32.");
     let seed = common.seed_or(3);
     let out = Results::open("corner_impact", &common)?;
-    let (mesh, rep) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary()?;
-    let a = Analysis::of_solid(mesh, rep, &Options::default())?;
-    let stone = Stone::new(&a, a.macro_nu(&Options::default()).0)?;
+    let (stone, _) = block_stone(0.5, 0.4, 0.25, None)?; // a box 1 × 0.8 × 0.5
     let launch_params = Preset::Drop.params(Surface::SteelOnWood);
     let mut impacts: Vec<Impact> = Vec::new();
     let (mut sticking, mut sliding, mut two_corners) = (0, 0, 0);
@@ -104,8 +103,7 @@ fn main() -> Result<()> {
     plot(&out, &rows)?;
     let at = |k: usize| RESTITUTIONS.map(|e| rows.iter().find(|r| (r.0, r.1) == (e, k)).map(|r| r.3[0]));
     let phi = RESTITUTIONS.map(|e| {
-        let phi = rows.iter().filter(|r| r.0 == e).map(|r| r.3[0]);
-        let (lo, hi) = (phi.clone().fold(f64::INFINITY, f64::min), phi.fold(f64::NEG_INFINITY, f64::max));
+        let [_, lo, hi] = median_range(&rows.iter().filter(|r| r.0 == e).map(|r| r.3[0]).collect::<Vec<_>>());
         serde_json::json!({"lo": fixed(lo, 2), "hi": fixed(hi, 2)})
     });
     let f2 = |x: Option<f64>| x.map(|x| fixed(x, 2));

@@ -7,14 +7,14 @@
 //! prose is `experiments/readme/housner_block.md`.
 
 use rocking_stones::dynamics::resting::RestingParams;
+use rocking_stones::dynamics::shaking::housner::{block_stone, ramp_lag, ramp_tipping};
 use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, impact_ratios, mean_impact_ratio};
-use rocking_stones::dynamics::shaking::housner::{ramp_lag, ramp_tipping};
 use rocking_stones::prelude::*;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Context, Result, Results};
+use harness::{columns, fixed, Result, Results};
 
 /// The blocks' slenderness tan α = b/h.
 const TAN_ALPHAS: [f64; 6] = [0.15, 0.25, 0.4, 0.5, 0.667, 0.8];
@@ -58,10 +58,7 @@ fn main() -> Result<()> {
     let out = Results::open("housner_block", &common)?;
     let (mut tips, mut decays) = (Vec::new(), Vec::new());
     for &tan_a in &TAN_ALPHAS {
-        let (mesh, rep) = generate::cuboid(2.0 * tan_a, 2.0 * DEPTH, 2.0).into_solid_boundary()?;
-        let stone = Stone::new(&Analysis::of_solid(mesh, rep, &Options::default())?, 0.01)?;
-        let start = stone.stable().iter().position(|e| stone.body.facet_normals[e.facet as usize].z < -0.999);
-        let start = start.context("no resting face with normal −z")?;
+        let (stone, start) = block_stone(tan_a, DEPTH, 1.0, Some(0.01))?;
         let (bs, hs) = (tan_a / stone.body.r_max, 1.0 / stone.body.r_max);
         for &(setting, restitution, frequency, dt, tipping, _) in &SETTINGS {
             // The contact of every resting run (rock on concrete, a block of R_max = 1 m: rolling
@@ -91,9 +88,7 @@ fn main() -> Result<()> {
     let f5 = |x: f64| fixed(x, 5);
     out.csv(
         "tipping.csv",
-        &"tan_alpha,setting,ramp_rate_g_per_s,measured_g,detection_lag_g,corrected_g,relative_error"
-            .split(',')
-            .collect::<Vec<_>>(),
+        &columns("tan_alpha,setting,ramp_rate_g_per_s,measured_g,detection_lag_g,corrected_g,relative_error"),
         tips.iter().map(|t| {
             [t.tan_a.to_string(), t.setting.into(), t.rate.to_string()]
                 .into_iter()

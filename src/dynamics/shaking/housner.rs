@@ -1,7 +1,7 @@
 //! Housner's rigid block: the closed forms and the rocking equation the engine is checked
 //! against, and the two measurements that compare them with rapier — the validation module the
 //! tests (`tests/perturb.rs`, `tests/shake_rock.rs`) and experiments (`housner_block`,
-//! `fragility_surface`) share.
+//! `fragility_surface`, `ensemble_fragility`) share.
 //!
 //! A block of half-width b and half-height h (tan α = b/h, R = √(b² + h²)) on a rigid ground with
 //! enough friction:
@@ -13,7 +13,10 @@
 //!   perfectly plastic impact at that corner alone, [`housner_ratio`]) — [`free_rocking`]
 //!   measures the ratio of the impact angular velocities of successive half-cycles;
 //! * under any ground motion its rocking follows Housner's equation ([`housner_overturns`]),
-//!   integrated here independently of rapier.
+//!   integrated here independently of rapier: for one block ([`HousnerBlock::overturns_along`]),
+//!   for the members of an ensemble ([`HousnerBlock::overturns_drawn`],
+//!   [`HousnerBlock::overturns_oriented`]), its fragility read in Housner's dimensionless
+//!   variables ([`HousnerBlock::dimensionless_pga_at`]).
 
 use crate::analysis::{Analysis, Options};
 use crate::dynamics::engine::convert;
@@ -243,7 +246,7 @@ impl HousnerBlock {
 
     /// The contour P = `prob` of a fitted fragility `surface` in the block's dimensionless
     /// variables: PGA/(g tan α) at τ = p·PGV/PGA (the surface's [`FragilitySurface::pga_at`] at
-    /// PGV/PGA = τ/p); None where that is.
+    /// PGV/PGA = τ/p); None where the surface has no such contour ([`FragilitySurface::pga_at`]).
     pub fn dimensionless_pga_at(&self, surface: &FragilitySurface, prob: f64, tau: f64) -> Option<f64> {
         surface.pga_at(prob, tau / self.p()).map(|pga| pga / self.tan_alpha)
     }
