@@ -1,16 +1,15 @@
-//! A corner impact against the closed forms of a rigid body's impact, at rapier's solver sub-steps
-//! 1–32: a box 1 × 0.8 × 0.5 released at rest in random orientations lands on one corner, and
-//! the spin after the impact is placed by its slip fraction φ between Newton's law with sticking
-//! friction (φ = 0) and a sticking compression followed by a frictionless restitution (φ = 1),
-//! the contact law's two stages (the closed forms: `dynamics::engine::impulse`; φ:
-//! `experiments/readme/corner_impact.md`).
+//! A box's corner impact against the closed forms of a rigid body's impact
+//! (`dynamics::engine::impulse`), at rapier's solver sub-steps 1–32: where its spin lies between
+//! them (the slip fraction φ, `PointImpact::slip_fraction`).
 //!
 //! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`.
 
 use nalgebra::UnitQuaternion;
 use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::Release};
 use rocking_stones::dynamics::engine::{impulse::PointImpact, run::NoCertificate, world::BodyState};
+use rocking_stones::dynamics::shaking::housner::block_stone;
 use rocking_stones::prelude::*;
+use rocking_stones::stats::median_range;
 
 #[path = "shared/harness.rs"]
 mod harness;
@@ -49,20 +48,12 @@ type Impact = (f64, usize, f64, f64);
 /// Per restitution and sub-step count: the spin error's and φ's median, least and largest.
 type Row = (f64, usize, [f64; 3], [f64; 3]);
 
-fn stats(mut v: Vec<f64>) -> [f64; 3] {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    [if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }, v[0], v[n - 1]]
-}
-
 fn main() -> Result<()> {
     let common =
         harness::common_args("Where a box's corner impact lies between the closed forms, at solver sub-steps 1–32.");
     let seed = common.seed_or(3);
     let out = Results::open("corner_impact", &common)?;
-    let (mesh, rep) = generate::cuboid(1.0, 0.8, 0.5).into_solid_boundary()?;
-    let a = Analysis::of_solid(mesh, rep, &Options::default())?;
-    let stone = Stone::new(&a, a.macro_nu(&Options::default()).0)?;
+    let (stone, _) = block_stone(0.5, 0.4, 0.25, None)?; // a box 1 × 0.8 × 0.5
     let launch_params = Preset::Drop.params(Surface::SteelOnWood);
     let mut impacts: Vec<Impact> = Vec::new();
     let (mut sticking, mut sliding, mut two_corners) = (0, 0, 0);
@@ -88,8 +79,7 @@ fn main() -> Result<()> {
                     sliding += 1;
                     continue 'orientations;
                 }
-                let (w_n, w_f) = (impact.spin(&newton), impact.spin(&impact.frictionless_restitution(e, u)));
-                let slip = (after.angvel - w_n).dot(&(w_f - w_n)) / (w_f - w_n).norm_squared();
+                let (w_n, slip) = (impact.spin(&newton), impact.slip_fraction(e, u, &after.angvel));
                 rows.push((e, substeps, (after.angvel - w_n).norm() / w_n.norm(), slip));
             }
             // An orientation that slides at the second e keeps its rows of the first.
@@ -106,15 +96,14 @@ fn main() -> Result<()> {
         .flat_map(|&e| SUBSTEPS.map(|k| (e, k)))
         .map(|(e, k)| {
             let of = impacts.iter().filter(|m| m.0 == e && m.1 == k);
-            let (errors, slips) = of.map(|m| (m.2, m.3)).unzip();
-            (e, k, stats(errors), stats(slips))
+            let (errors, slips): (Vec<f64>, Vec<f64>) = of.map(|m| (m.2, m.3)).unzip();
+            (e, k, median_range(&errors), median_range(&slips))
         })
         .collect();
     plot(&out, &rows)?;
     let at = |k: usize| RESTITUTIONS.map(|e| rows.iter().find(|r| (r.0, r.1) == (e, k)).map(|r| r.3[0]));
     let phi = RESTITUTIONS.map(|e| {
-        let phi = rows.iter().filter(|r| r.0 == e).map(|r| r.3[0]);
-        let (lo, hi) = (phi.clone().fold(f64::INFINITY, f64::min), phi.fold(f64::NEG_INFINITY, f64::max));
+        let [_, lo, hi] = median_range(&rows.iter().filter(|r| r.0 == e).map(|r| r.3[0]).collect::<Vec<_>>());
         serde_json::json!({"lo": fixed(lo, 2), "hi": fixed(hi, 2)})
     });
     let f2 = |x: Option<f64>| x.map(|x| fixed(x, 2));

@@ -4,17 +4,16 @@
 //! on simulated truths. Prose: `experiments/readme/ensemble_fragility.md`.
 //! Run: `cargo run --release --example ensemble_fragility` → `results/ensemble_fragility/`.
 
-use rayon::prelude::*;
 use rocking_stones::dynamics::shaking::ensemble::{draw, Draw};
-use rocking_stones::dynamics::shaking::housner::HousnerBlock as Block;
-use rocking_stones::dynamics::shaking::{rock_params, run_batch, EnsembleSpec, Pose};
+use rocking_stones::dynamics::shaking::housner::{block_stone, HousnerBlock as Block};
+use rocking_stones::dynamics::shaking::{default_poses, rock_params, run_batch, EnsembleSpec, Pose};
 use rocking_stones::dynamics::shaking::{RecordRun, RockSetup, Uncertainty};
 use rocking_stones::ground_motion::fragility::{FragilitySurface, Run};
 use rocking_stones::ground_motion::synthetic::{noise_family, one_sine_pulse, Noise};
 use rocking_stones::ground_motion::Record;
 use rocking_stones::plot::{colors::GREY, reliability_diagram};
 use rocking_stones::prelude::*;
-use rocking_stones::stats::{ensemble_brier, forecast_scores, oracle_brier};
+use rocking_stones::stats::{ensemble_brier, forecast_scores, nonnegative_range, oracle_brier};
 use serde_json::{json, Value};
 use std::time::Instant;
 
@@ -22,7 +21,7 @@ use std::time::Instant;
 mod harness;
 #[path = "shared/rocks.rs"]
 mod rocks;
-use harness::{fixed, Context, Result, Results};
+use harness::{columns, fixed, Context, Result, Results};
 use rocks::row;
 
 /// Members of a block's forecast ensemble, and Housner rocks drawn as its truth.
@@ -56,11 +55,11 @@ fn block_name(b: &Block) -> String {
 }
 /// The range of p·PGV/PGA block `b`'s records cover.
 fn taus(b: &Block, r: &BlockResult) -> (f64, f64) {
-    rocks::range(r.cases.iter().map(|c| b.p() * c.run.motion.pgv_over_pga_s))
+    nonnegative_range(r.cases.iter().map(|c| b.p() * c.run.motion.pgv_over_pga_s))
 }
 /// PGA₅₀/(g tan α) of block `b`'s surface `s` at p·PGV/PGA = `tau`.
 fn pga50(b: &Block, s: Option<&FragilitySurface>, tau: f64) -> Option<f64> {
-    s?.pga_at(0.5, tau / b.p()).map(|pga| pga / b.tan_alpha)
+    b.dimensionless_pga_at(s?, 0.5, tau)
 }
 
 /// One record × scale of a rock: as-given run, forecast members, Housner's P, nominal run, truths.
@@ -85,7 +84,7 @@ impl Case {
             settled: settled.len(),
             overturned: settled.iter().filter(|m| m.rock.overturned).count(),
             ode: None,
-            nominal: nominal.iter().find(|r| same_case(r, d)).expect("a nominal run").rock.overturned,
+            nominal: nominal.iter().find(|r| r.motion.same_as(&d.motion)).expect("a nominal run").rock.overturned,
             truths,
         }
     }
@@ -100,11 +99,6 @@ impl Case {
     }
 }
 
-/// Whether two runs are of the same record × scale.
-fn same_case(a: &RecordRun, b: &RecordRun) -> bool {
-    a.motion.record == b.motion.record && a.motion.scale.to_bits() == b.motion.scale.to_bits()
-}
-
 /// A block's cases, surfaces fitted to the simulation and to Housner's equation, runs, seconds.
 struct BlockResult {
     cases: Vec<Case>,
@@ -116,10 +110,8 @@ struct BlockResult {
 
 fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
     let t0 = Instant::now();
-    let stone = rocks::of_mesh(generate::cuboid(2.0 * b.tan_alpha, 2.0 * DEPTH, 2.0), Some(0.01))?;
-    let bottom =
-        stone.stable_facing(&-Vec3::z()).with_context(|| format!("block {}: no bottom face", block_name(b)))?;
-    let bottom = bottom.index;
+    let (stone, k) = block_stone(b.tan_alpha, DEPTH, 1.0, Some(0.01))?;
+    let bottom = stone.stable()[k].index;
     // Mesh: h = 1, rocking semi-diagonal √(tan²α + 1) mesh units = R metres.
     let unit = b.r_m / (b.tan_alpha * b.tan_alpha + 1.0).sqrt();
     let mut params = rock_params(Surface::RockOnConcrete, stone.body.r_max * unit)?;
@@ -132,18 +124,13 @@ fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
     let (ensemble, single, nominal) = (batch(Some(&spec))?, batch(None)?, batch(Some(&spec.nominal(&setup)))?);
     let (mut cases, mut ode_points) = (Vec::new(), Vec::new());
     for d in &single.runs {
-        let members: Vec<&RecordRun> = ensemble.runs.iter().filter(|r| same_case(r, d)).collect();
+        let members: Vec<&RecordRun> = ensemble.runs.iter().filter(|r| r.motion.same_as(&d.motion)).collect();
         let record = records.iter().find(|r| r.name == d.motion.record).expect("a record of the batch");
         // Housner's equation on draws: the record's component in the rocking plane.
-        let housner = |draws: Vec<Draw>| -> Vec<bool> {
-            let ks: Vec<f64> =
-                draws.iter().map(|t| d.motion.scale * t.sign * t.azimuth_deg.to_radians().cos()).collect();
-            ks.par_iter().map(|&k| b.overturns(&|s: f64| k * record.at(s)[0], record.duration())).collect()
-        };
+        let housner = |draws: Vec<Draw>| b.overturns_drawn(record, d.motion.scale, &draws);
         let same = housner(members.iter().map(|m| m.member.expect("an ensemble run")).collect());
         let truths = housner((0..BLOCK_TRUTHS).map(|k| draw(&uncertainty, &setup, seed, TRUTH_OFFSET + k)).collect());
-        let (pga_g, pgv_over_pga_s) = (d.motion.pga_g, d.motion.pgv_over_pga_s);
-        ode_points.extend(same.iter().map(|&overturned| Run { pga_g, pgv_over_pga_s, overturned }));
+        ode_points.extend(same.iter().map(|&overturned| Run::of(&d.motion, overturned)));
         let ode = Some(same.iter().filter(|&&o| o).count() as f64 / same.len() as f64);
         cases.push(Case { ode, ..Case::of(block_name(b), d, &nominal.runs, &members, truths) });
     }
@@ -164,7 +151,7 @@ fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
 fn run_stone(seed: u64) -> Result<(Vec<Case>, String, f64, String)> {
     let t0 = Instant::now();
     let (_, stone) = rocks::of_file("data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply")?;
-    let (regular, rocking) = rocks::default_poses(&stone, stone.body.r_max)?;
+    let (regular, rocking) = default_poses(&stone, stone.body.r_max)?;
     let pose = Pose::Facet { id: rocking.or(regular).context("the quarry stone has no stable pose")? };
     let setup = RockSetup::new(&stone, pose, 1.0, Surface::RockOnConcrete, 0.0)?;
     let (contact_tolerance_m, azimuth_deg) = (Some([0.0, 0.002]), Some([0.0, 360.0]));
@@ -183,7 +170,7 @@ fn run_stone(seed: u64) -> Result<(Vec<Case>, String, f64, String)> {
     let (tol, delta) = (1e3 * d.contact_tolerance_m, 1e3 * d.rolling_resistance_m);
     let inputs = format!("base contact {tol:.1} mm, μ {}, e {}, δ {delta:.2} mm", d.friction, d.restitution);
     let cases = single.runs.iter().map(|d| {
-        let settled = ensemble.runs.iter().filter(|r| same_case(r, d) && r.rock.settled);
+        let settled = ensemble.runs.iter().filter(|r| r.motion.same_as(&d.motion) && r.rock.settled);
         let (forecast, truth): (Vec<&RecordRun>, Vec<&RecordRun>) =
             settled.partition(|r| r.member.expect("an ensemble run").member < STONE_MEMBERS);
         let truths = truth.iter().map(|r| r.rock.overturned).collect();
@@ -216,7 +203,7 @@ fn main() -> Result<()> {
             d.motion.record, d.motion.scale, d.motion.pga_g, d.motion.pgv_over_pga_s, d.rock.overturned
         ))
     });
-    out.csv("cases.csv", &header.split(',').collect::<Vec<_>>(), cases)?;
+    out.csv("cases.csv", &columns(header), cases)?;
     let block_cases: Vec<&Case> = blocks.iter().flat_map(|b| &b.cases).collect();
     let stone_cases: Vec<&Case> = stone.iter().collect();
     let sets = [
@@ -259,7 +246,7 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
     for (k, (b, r)) in BLOCKS.iter().zip(blocks).enumerate() {
         chart = contours(chart, series_color(k + 1), b, r);
         let beta = |s: &Option<FragilitySurface>, i, se| {
-            s.map_or("-".into(), |s| if se { rocks::beta_se(&s, i) } else { fixed(s.beta[i], 2) })
+            s.map_or("-".into(), |s| if se { s.coefficient_text(i, 2) } else { fixed(s.beta[i], 2) })
         };
         let mut cells = Vec::new();
         for &tau in &TAU_GRID {
@@ -285,11 +272,10 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
         let (Some(s), Some(h)) = (&r.surface, &r.ode_surface) else { continue };
         let (lo, hi) = taus(b, r);
         let ratios = (0..=20).map(|k| lo * (hi / lo).powf(k as f64 / 20.0) / b.p());
-        let ratios = ratios.filter_map(|t| Some(s.pga_at(0.5, t)? / h.pga_at(0.5, t)?));
-        worst = ratios.fold(worst, |w, x| w.max((x - 1.0).abs()));
+        worst = worst.max(s.contour_gap(h, 0.5, ratios));
         worst_beta = (1..3).map(|i| (s.beta[i] - h.beta[i]).abs() / s.std_err[i]).fold(worst_beta, f64::max);
         // The form's crossing of g tan α, ln(PGV/PGA) = (−β₀ − β₁ ln tan α)/β₂; the weakest overturning.
-        let cross = b.p() * ((-s.beta[0] - s.beta[1] * b.tan_alpha.ln()) / s.beta[2]).exp();
+        let cross = b.p() * s.ratio_at(0.5, b.tan_alpha).unwrap_or(f64::NAN);
         let overturning = r.cases.iter().filter(|c| c.overturned > 0);
         let lowest = overturning.map(|c| c.run.motion.pga_g / b.tan_alpha).fold(f64::INFINITY, f64::min);
         floor.push(format!(
@@ -298,7 +284,7 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
         ));
     }
     let header = "block,tan_alpha,r_m,p,source,beta0,beta1,beta2,se0,se1,se2,tau,pga50_over_g_tan_alpha";
-    out.csv("surfaces.csv", &header.split(',').collect::<Vec<_>>(), csv)?;
+    out.csv("surfaces.csv", &columns(header), csv)?;
     chart
         .legend(Mark::Line(black), "solid: simulation (shaded: 95 % band)")
         .legend(Mark::Dashed(black), "Housner's equation, same members")
@@ -313,7 +299,8 @@ fn part_a(out: &Results, blocks: &[BlockResult]) -> Result<Value> {
     let spread = |ode: bool| {
         [0.3, 1.0, 3.0].map(|tau| {
             let s = |r: &BlockResult| if ode { r.ode_surface } else { r.surface };
-            let (lo, hi) = rocks::range(BLOCKS.iter().zip(blocks).filter_map(|(b, r)| pga50(b, s(r).as_ref(), tau)));
+            let (lo, hi) =
+                nonnegative_range(BLOCKS.iter().zip(blocks).filter_map(|(b, r)| pga50(b, s(r).as_ref(), tau)));
             format!("{lo:.2}–{hi:.2}")
         })
     };
@@ -381,13 +368,7 @@ fn contours(mut chart: Chart, colour: RGBColor, b: &Block, r: &BlockResult) -> C
         grid.iter().filter_map(|&t| Some((t, pga50(b, Some(s), t)?))).collect()
     };
     if let Some(s) = &r.surface {
-        // The 95 % band: its lower edge, then its upper edge backwards.
-        let edges = |&t: &f64| {
-            let [lo, _, hi] = s.pga_band_at(0.5, t / b.p(), 1.96)?;
-            Some(((t, lo? / b.tan_alpha), (t, hi? / b.tan_alpha)))
-        };
-        let band: Vec<_> = grid.iter().filter_map(edges).collect();
-        let poly: Vec<_> = band.iter().map(|e| e.0).chain(band.iter().rev().map(|e| e.1)).collect();
+        let poly = b.dimensionless_band(s, 0.5, &grid, 1.96);
         if poly.len() > 2 {
             chart = chart.polygon(&poly, colour, 0.12);
         }

@@ -2,25 +2,21 @@
 //! rocks): P(topple out of the flock) against peak ground acceleration for sine pulses of
 //! several frequencies and for a recorded-style ground motion read from a CSV.
 //!
-//! The pebble and its two equilibria are those of `fig11_rocking_vs_regular` (the first seed of
-//! `generate::pebble([1, 0.75, 0.5], 0.02, 600, seed)` with a convincingly balanced rocking
-//! equilibrium; `default_pair`), here a boulder of R_max = 1 m on rock (`Surface::StoneOnStone`:
-//! the contact of every resting run at its real size). Each trial shakes along a uniformly random
-//! azimuth. The recorded-style motion is a synthetic accelerogram (Kanai–Tajimi / Clough–Penzien
+//! The recorded-style motion is a synthetic accelerogram (Kanai–Tajimi / Clough–Penzien
 //! filtered noise, predominant period 0.4 s, 10 s; `ground_motion::synthetic::filtered_noise`),
 //! written to `motion.csv` and read back through the same reader as the CLI's `--motion`.
 //!
 //! Run: `cargo run --release --example fragility_shaking` → `results/fragility_shaking/`; the
 //! README's prose is `experiments/readme/fragility_shaking.md`.
 
-use rocking_stones::dynamics::resting::outcome::{Outcome, Threshold};
+use rocking_stones::dynamics::resting::outcome::Outcome;
 use rocking_stones::dynamics::resting::{default_pair, RestingParams};
 use rocking_stones::dynamics::shaking::{self, sine_pulse, ShakeConfig};
 use rocking_stones::dynamics::stone::Class;
 use rocking_stones::ground_motion::read::{read_record, AccelUnit};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, Noise};
 use rocking_stones::prelude::*;
-use rocking_stones::report::shake as report;
+use rocking_stones::report::shake::{self as report, pga50_cell};
 use serde_json::json;
 
 #[path = "shared/harness.rs"]
@@ -36,21 +32,12 @@ const R_MAX_M: f64 = 1.0;
 /// The surface pair.
 const SURFACE: Surface = Surface::StoneOnStone;
 
-/// A PGA₅₀ as the README writes it: "≤ x", "x" or "> x" (g), "–" when there is none.
-fn th(t: &Option<Threshold>) -> String {
-    match t {
-        None => "–".into(),
-        Some(Threshold::Below(x)) => format!("≤ {x:.3}"),
-        Some(Threshold::At(x)) => format!("{x:.3}"),
-        Some(Threshold::Above(x)) => format!("> {x:.3}"),
-    }
-}
-
 fn main() -> Result<()> {
     let common = harness::common_args("Fragility curves of the rocking and the regular equilibrium of a pebble.");
     let shake_seed = common.seed_or(1963);
     let out = Results::open("fragility_shaking", &common)?;
     let params = RestingParams::on_surface(SURFACE, R_MAX_M)?;
+    // The pebble of `fig11_rocking_vs_regular`: the first seed with a convincingly balanced rocking equilibrium.
     let (seed, stone, regular, rocking) = (0..50u64)
         .find_map(|seed| {
             let stone = rocks::of_mesh(generate::pebble([1.0, 0.75, 0.5], 0.02, 600, seed), None).ok()?;
@@ -100,7 +87,7 @@ fn main() -> Result<()> {
             let left = below.iter().filter(|t| t.outcome != Outcome::Same).count();
             rows.push(json!({
                 "motion": name, "index": q.index, "facet": q.facet, "class": q.class.to_string(),
-                "uplift": fixed(uplift, 3), "micro": th(&f.pga50_micro), "flock": th(&f.pga50_flock),
+                "uplift": fixed(uplift, 3), "micro": pga50_cell(&f.pga50_micro), "flock": pga50_cell(&f.pga50_flock),
                 "first": f.first_topple.map_or("–".into(), |x| fixed(x, 3)), "left": left, "below": below.len(),
             }));
         }

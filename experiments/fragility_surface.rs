@@ -1,26 +1,22 @@
-//! Fragility of field rocks under ground motion, and the checks behind it.
-//!
-//! A. **One-sine pulses on a slender block** (b/h = 0.25, R = 1.03 m): the minimum overturning
-//!    acceleration a_p/(g tan α) against ω_p/p (the spectrum of Zhang & Makris 2001, Bull.
-//!    Seismol. Soc. Am. 91(2); Makris & Roussos 2000), from rapier at true size and from
-//!    Housner's rocking equation. B. **Fragility surfaces** P(overturn | PGA, PGV/PGA) (Purvance,
-//!    Anooshehpoor & Brune 2008) of field rocks. C. **Speed** of one 60 s, 800 Hz record on the
-//!    scanned quarry stone. D. **Coverage of the surface's 95 % band** over repeated simulated
-//!    studies: of a known logistic surface, and of ensembles of a block under Housner's equation.
+//! Fragility of field rocks under ground motion, and the checks behind it: A. one-sine pulses on a
+//! slender block, rapier against Housner's equation; B. fragility surfaces of field rocks; C. the
+//! speed of one long record; D. the coverage of the surface's 95 % band over repeated studies.
 //!
 //! Run: `cargo run --release --example fragility_surface [-- --synthetic-studies N
 //! --ensemble-studies N --reference-members N]` → `results/fragility_surface/`; the README's
 //! prose is `experiments/readme/fragility_surface.md`.
 
 use anyhow::Context as _;
-use rand::RngExt;
 use rayon::prelude::*;
-use rocking_stones::dynamics::shaking::housner::{housner_overturns, HousnerBlock};
-use rocking_stones::dynamics::shaking::{place, rock_params, run_batch, run_record, shake_record, Pose, RockSetup};
-use rocking_stones::ground_motion::fragility::{FragilitySurface, Run as SurfaceRun, Target};
+use rocking_stones::dynamics::shaking::housner::{block_stone, housner_ratio, HousnerBlock};
+use rocking_stones::dynamics::shaking::{default_poses, place, rock_params, run_batch, run_record, shake_record};
+use rocking_stones::dynamics::shaking::{Pose, RockSetup};
+use rocking_stones::ground_motion::fragility::{FragilitySurface, Target};
+use rocking_stones::ground_motion::studies::{coverage_counts, member_runs};
 use rocking_stones::ground_motion::synthetic::{filtered_noise, noise_family, one_sine_pulse, Noise};
 use rocking_stones::prelude::*;
-use rocking_stones::{ground_motion::Record, stats::wilson, GRAVITY as G};
+use rocking_stones::stats::{nonnegative_range, rate_with_wilson};
+use rocking_stones::{ground_motion::Record, GRAVITY as G};
 use serde_json::{json, Value};
 use std::time::Instant;
 
@@ -28,7 +24,7 @@ use std::time::Instant;
 mod harness;
 #[path = "shared/rocks.rs"]
 mod rocks;
-use harness::{fixed, Common, Parser, Result, Results};
+use harness::{cell, columns, fixed, timed, Common, Parser, Result, Results};
 use rocks::row;
 
 /// Part A: the ω_p/p grid and the a_p/(g tan α) grid.
@@ -83,11 +79,11 @@ fn main() -> Result<()> {
 
 fn part_a(out: &Results) -> Result<Value> {
     let (b, d, h) = (0.25, 0.3, 1.0);
-    let stone = rocks::of_mesh(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h), None)?;
+    let (stone, k) = block_stone(b, d, h, None)?;
     let r_max_m = stone.body.r_max; // length unit: metres
-    let (big_r, alpha) = ((b * b + h * h).sqrt(), (b / h).atan());
-    let (p, r) = ((3.0 * G / (4.0 * big_r)).sqrt(), 1.0 - 1.5 * alpha.sin().powi(2));
-    let bottom = stone.stable_facing(&-Vec3::z()).context("the block has no stable bottom face")?.index;
+    let block = HousnerBlock { tan_alpha: b / h, r_m: (b * b + h * h).sqrt() };
+    let (big_r, alpha, p, r) = (block.r_m, block.tan_alpha.atan(), block.p(), housner_ratio(b, h));
+    let bottom = stone.stable()[k].index;
     let concrete = rock_params(Surface::RockOnConcrete, r_max_m)?;
     let mut ideal = concrete.clone();
     (ideal.sim.contact.friction, ideal.sim.contact.restitution) = (1.0, 0.0);
@@ -108,16 +104,16 @@ fn part_a(out: &Results) -> Result<Value> {
         .map(|&(ratio, amp)| {
             let (wp, ap) = (ratio * p, amp * G * alpha.tan());
             let accel = move |t: f64| ap * (wp * t).sin();
-            let ode = housner_overturns(alpha, p, &accel, 2.0 * std::f64::consts::PI / wp, r);
+            let ode = block.overturns(&accel, 2.0 * std::f64::consts::PI / wp);
             Ok((ratio, amp, [ode, sim(&ideal, ap, wp)?, sim(&concrete, ap, wp)?]))
         })
         .collect::<Result<_>>()?;
     eprintln!("part A: {} runs in {:.1} s", rows.len(), t0.elapsed().as_secs_f64());
     out.csv(
         "one_sine_pulse.csv",
-        &"omega_p_over_p,ap_over_g_tan_alpha,ode_overturns,rapier_ideal_overturns,rapier_rock_on_concrete_overturns"
-            .split(',')
-            .collect::<Vec<_>>(),
+        &columns(
+            "omega_p_over_p,ap_over_g_tan_alpha,ode_overturns,rapier_ideal_overturns,rapier_rock_on_concrete_overturns",
+        ),
         rows.iter()
             .map(|(x, a, o)| [x.to_string(), fixed(*a, 3), o[0].to_string(), o[1].to_string(), o[2].to_string()]),
     )?;
@@ -142,12 +138,11 @@ fn part_a(out: &Results) -> Result<Value> {
         .legend(Mark::Box(red, 0.7), "rapier (e = 0, μ = 1) overturns (right)")
         .legend(Mark::Line(blue), "rapier, rock on concrete: minimum")
         .save(&out.path("one_sine_pulse.png"), (900, 600))?;
-    let cell = |v: f64| if v.is_finite() { fixed(v, 2) } else { "∞".to_string() };
     let rows: Vec<[String; 5]> = minima
         .iter()
         .map(|&[x, o, i, c]| {
             let ratio = if o.is_finite() && i.is_finite() { fixed(i / o, 3) } else { "–".to_string() };
-            [x.to_string(), cell(o), cell(i), cell(c), ratio]
+            [x.to_string(), cell(o, 2, false), cell(i, 2, false), cell(c, 2, false), ratio]
         })
         .collect();
     Ok(json!({
@@ -161,8 +156,8 @@ fn part_a(out: &Results) -> Result<Value> {
 fn part_b(out: &Results, quarry: &Stone, records: &[Record]) -> Result<Value> {
     let (_, pebble) = rocks::of_file("data/default_pebble.ply")?;
     let unit = 0.5 / pebble.body.r_max;
-    let (regular, rocking) = rocks::default_poses(&pebble, 0.5)?;
-    let (q_regular, q_rocking) = rocks::default_poses(quarry, quarry.body.r_max)?;
+    let (regular, rocking) = default_poses(&pebble, 0.5)?;
+    let (q_regular, q_rocking) = default_poses(quarry, quarry.body.r_max)?;
     let cases = [
         ("bundled_regular", &pebble, regular, unit),
         ("bundled_rocking", &pebble, rocking, unit),
@@ -178,19 +173,13 @@ fn part_b(out: &Results, quarry: &Stone, records: &[Record]) -> Result<Value> {
         rocking_stones::report::shake::write_batch_outputs(&batch, name, &out.path(name))?;
         let k = stone.position(batch.start_equilibrium).context("the batch starts at a stable equilibrium")?;
         let overturned = batch.runs.iter().filter(|r| r.rock.overturned).count();
-        let f = |x: Option<f64>| x.map_or("-".to_string(), |v| fixed(v, 3));
-        let (beta, p05, p2) = match &batch.surface {
-            Some(s) => (
-                (0..3).map(|i| rocks::beta_se(s, i)).collect::<Vec<_>>().join(" | "),
-                f(s.pga_at(0.5, 0.05)),
-                f(s.pga_at(0.5, 0.2)),
-            ),
-            None => ("- | - | -".to_string(), "-".into(), "-".into()),
-        };
+        let s = batch.surface.as_ref();
+        let beta = (0..3).map(|i| s.map_or("-".into(), |s| s.coefficient_text(i, 2))).collect::<Vec<_>>().join(" | ");
+        let pga50 = |ratio| s.and_then(|s| s.pga_at(0.5, ratio)).map_or("-".to_string(), |v| fixed(v, 3));
         rows.push(json!({
             "name": name, "r_max": fixed(setup.r_max_m, 3), "pose": pose.to_string(),
             "class": stone.stable()[k].class.to_string(), "runs": batch.runs.len(), "overturned": overturned,
-            "beta": beta, "p05": p05, "p2": p2, "secs": fixed(secs, 1),
+            "beta": beta, "p05": pga50(0.05), "p2": pga50(0.2), "secs": fixed(secs, 1),
         }));
         eprintln!("{name}: {} runs, {overturned} overturned, {secs:.1} s", batch.runs.len());
     }
@@ -200,7 +189,7 @@ fn part_b(out: &Results, quarry: &Stone, records: &[Record]) -> Result<Value> {
 /// Part C: time per run of a 60 s, 800 Hz, three-component record on the 1 872-vertex quarry
 /// stone (one thread), at its true size and as a 1 m rock.
 fn part_c((a, stone): &(Analysis, Stone)) -> Result<Value> {
-    let (regular, _) = rocks::default_poses(stone, stone.body.r_max)?;
+    let (regular, _) = default_poses(stone, stone.body.r_max)?;
     let pose = Pose::Facet { id: regular.context("the quarry stone has no regular pose")? };
     let noise = Noise { duration: 60.0, period: 0.5, dt: 1.0 / 800.0, components: 3, ..Noise::default() };
     let (rec, t_make) = timed(|| filtered_noise(&noise, 0.1, 11));
@@ -222,27 +211,11 @@ fn part_c((a, stone): &(Analysis, Stone)) -> Result<Value> {
     }))
 }
 
-/// The value of `f` and the seconds it took.
-fn timed<T>(f: impl FnOnce() -> rocking_stones::Result<T>) -> (rocking_stones::Result<T>, f64) {
-    let t0 = Instant::now();
-    (f(), t0.elapsed().as_secs_f64())
-}
-
-/// Measured coverage: k of n, with its Wilson 95 % interval.
-fn rate(k: u64, n: u64) -> (f64, f64, f64) {
-    let (lo, hi) = wilson(k, n, 1.96);
-    (k as f64 / n as f64, lo, hi)
-}
-
-/// A target's name, and its columns of a coverage CSV: what, p, PGA (g), PGV/PGA (s).
-fn target_name(target: &Target) -> (String, String) {
+/// A target's columns of a coverage CSV: what, p, PGA (g), PGV/PGA (s).
+fn target_columns(target: &Target) -> String {
     match *target {
-        Target::Point(pga, r) => {
-            (format!("P at PGA {pga:.3} g and PGV/PGA {r:.3} s"), format!("P at a point,,{pga:.4},{r:.4}"))
-        }
-        Target::Contour(p, r) => {
-            (format!("PGA of P = {p} at PGV/PGA {r:.3} s"), format!("PGA of a contour,{p},,{r:.4}"))
-        }
+        Target::Point(pga, r) => format!("P at a point,,{pga:.4},{r:.4}"),
+        Target::Contour(p, r) => format!("PGA of a contour,{p},,{r:.4}"),
     }
 }
 
@@ -261,108 +234,68 @@ fn part_d(out: &Results, args: &Args, records: &[Record]) -> Result<Value> {
     let pgas: Vec<f64> = (0..12).map(|i| 0.05 * 1.3f64.powi(i)).collect();
     let ratios: Vec<f64> = (0..8).map(|j| 0.02 * 1.4f64.powi(j)).collect();
     let d1 = [Target::Point(SYNTH_POINT.0, SYNTH_POINT.1), Target::Contour(0.5, SYNTH_POINT.1)];
-    let synth: Vec<Vec<bool>> = (0..synth_studies)
-        .into_par_iter()
-        .map(|s| {
-            let fit = FragilitySurface::fit(&truth.draw_runs(&pgas, &ratios, 2, seed + s))?;
-            Ok(d1.iter().map(|t| t.covered(&fit, &truth)).collect())
-        })
-        .collect::<Result<_>>()?;
-    for (i, t) in d1.iter().enumerate() {
-        rows.push(("D1 known surface", *t, PRODUCT, synth_studies, synth.iter().filter(|c| c[i]).count() as u64));
-    }
+    let fits = |s| Ok(vec![FragilitySurface::fit(&truth.draw_runs(&pgas, &ratios, 2, seed + s))?]);
+    let synth = coverage_counts(&d1, &truth, synth_studies, fits)?;
+    rows.extend(d1.iter().zip(&synth[0]).map(|(t, &k)| ("D1 known surface", *t, PRODUCT, synth_studies, k)));
     eprintln!("part D1: {synth_studies} studies in {:.1} s", t0.elapsed().as_secs_f64());
 
     // D2: ensembles of a block under Housner's equation, members common to every record × scale.
-    let t1 = Instant::now();
     let tan_alpha = BLOCK.tan_alpha;
     let measures: Vec<_> = records.iter().map(|r| r.measures()).collect();
     let cases: Vec<(usize, f64)> =
         (0..records.len()).flat_map(|r| BLOCK_X.iter().map(move |&x| (r, x * tan_alpha))).collect();
     let members = studies_n * STUDY_MEMBERS + args.reference_members;
-    let outcome: Vec<Vec<bool>> = (0..members)
-        .into_par_iter()
-        .map(|m| {
-            // Member m: azimuth of the record's x axis from the rocking plane, and sign.
-            let mut rng = item_rng(seed, m);
-            let theta = rng.random_range(0.0..std::f64::consts::TAU);
-            let sign = if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
-            let (s, c) = theta.sin_cos();
-            cases
-                .iter()
-                .map(|&(r, scale)| {
-                    let (rec, k) = (&records[r], scale * sign);
-                    let accel = |t: f64| {
-                        let a = rec.at(t);
-                        k * (c * a[0] + s * a[1])
-                    };
-                    BLOCK.overturns(&accel, rec.duration())
-                })
-                .collect()
-        })
-        .collect();
-    let d2_seconds = t1.elapsed().as_secs_f64();
-    // The runs of members from..to, and the member of each.
-    let runs_of = |from: u64, to: u64| -> (Vec<SurfaceRun>, Vec<u64>) {
-        (from..to)
-            .flat_map(|m| cases.iter().enumerate().map(move |(k, &(r, scale))| (m, k, r, scale)))
-            .map(|(m, k, r, scale)| {
-                let (pga_g, pgv_over_pga_s) = (measures[r].pga_g * scale, measures[r].pgv_over_pga_s);
-                (SurfaceRun { pga_g, pgv_over_pga_s, overturned: outcome[m as usize][k] }, m)
-            })
-            .unzip()
-    };
+    // Member m: the angle of its rocking plane from the records' x axis, and its sign.
+    let oriented: Vec<(&Record, f64)> = cases.iter().map(|&(r, scale)| (&records[r], scale)).collect();
+    let (outcome, d2_seconds) = timed(|| BLOCK.overturns_oriented(&oriented, members, seed));
+    // The runs of members from..to (each case's PGA and PGV/PGA), and the member of each.
+    let intensity: Vec<(f64, f64)> =
+        cases.iter().map(|&(r, scale)| (measures[r].pga_g * scale, measures[r].pgv_over_pga_s)).collect();
+    let runs_of = |from: u64, to: u64| member_runs(&intensity, &outcome, from..to);
     let first = studies_n * STUDY_MEMBERS;
-    let reference = FragilitySurface::fit(&runs_of(first, first + args.reference_members).0)?;
+    let reference = FragilitySurface::fit(&runs_of(first, first + args.reference_members)?.0)?;
     // The records' range of PGV/PGA: its ends and its geometric middle.
-    let (lo, hi) = rocks::range(measures.iter().map(|m| m.pgv_over_pga_s));
+    let (lo, hi) = nonnegative_range(measures.iter().map(|m| m.pgv_over_pga_s));
     let mid = (lo * hi).sqrt();
     let mut d2 = vec![Target::Point(reference.pga_at(0.5, mid).context("the reference rises with PGA")?, mid)];
     for r in [lo, mid, hi] {
         d2.extend(CONTOURS.iter().map(|&p| Target::Contour(p, r)));
     }
-    let studies: Vec<[Vec<bool>; 2]> = (0..studies_n)
-        .into_par_iter()
-        .map(|s| {
-            let (runs, cluster) = runs_of(s * STUDY_MEMBERS, (s + 1) * STUDY_MEMBERS);
-            let fit = FragilitySurface::fit(&runs)?;
-            let robust = fit.cluster_robust(&runs, &cluster);
-            Ok([fit, robust].map(|f| d2.iter().map(|t| t.covered(&f, &reference)).collect()))
-        })
-        .collect::<Result<_>>()?;
-    for (j, band) in [PRODUCT, ROBUST].into_iter().enumerate() {
-        for (i, t) in d2.iter().enumerate() {
-            rows.push(("D2 block ensembles", *t, band, studies_n, studies.iter().filter(|c| c[j][i]).count() as u64));
-        }
+    // Each study's fit, with its model-based band and with its cluster-robust one.
+    let studies = coverage_counts(&d2, &reference, studies_n, |s| {
+        let (runs, cluster) = runs_of(s * STUDY_MEMBERS, (s + 1) * STUDY_MEMBERS)?;
+        let fit = FragilitySurface::fit(&runs)?;
+        Ok(vec![fit, fit.cluster_robust(&runs, &cluster)])
+    })?;
+    for (band, counts) in [PRODUCT, ROBUST].into_iter().zip(&studies) {
+        rows.extend(d2.iter().zip(counts).map(|(t, &k)| ("D2 block ensembles", *t, band, studies_n, k)));
     }
     eprintln!("part D2: {members} members × {} cases in {d2_seconds:.0} s", cases.len());
     out.csv(
         "coverage.csv",
-        &"studies_of,target,p,pga_g,pgv_over_pga_s,band,studies,covered,coverage,low95,high95"
-            .split(',')
-            .collect::<Vec<_>>(),
+        &columns("studies_of,target,p,pga_g,pgv_over_pga_s,band,studies,covered,coverage,low95,high95"),
         rows.iter().map(|&(kind, target, band, n, k)| {
-            let (c, lo, hi) = rate(k, n);
-            row(format!("{kind},{},{band},{n},{k},{c:.4},{lo:.4},{hi:.4}", target_name(&target).1))
+            let (c, lo, hi) = rate_with_wilson(k, n, 1.96);
+            row(format!("{kind},{},{band},{n},{k},{c:.4},{lo:.4},{hi:.4}", target_columns(&target)))
         }),
     )?;
     // The reading, computed: the range of each set's rates, and the mean over the D2 targets.
     let rates = |kind: &str, band: &str| -> Vec<(f64, f64, f64)> {
-        rows.iter().filter(|x| x.0 == kind && x.2 == band).map(|x| rate(x.4, x.3)).collect()
+        rows.iter().filter(|x| x.0 == kind && x.2 == band).map(|x| rate_with_wilson(x.4, x.3, 1.96)).collect()
     };
     let span = |kind: &str, band: &str| {
         let r = rates(kind, band);
-        let (lo, hi) = rocks::range(r.iter().map(|x| x.0));
+        let (lo, hi) = nonnegative_range(r.iter().map(|x| x.0));
         let (below, above) = (r.iter().filter(|x| x.2 < 0.95).count(), r.iter().filter(|x| x.1 > 0.95).count());
         json!({ "lo": fixed(lo, 3), "hi": fixed(hi, 3), "n": r.len(), "below": below, "above": above })
     };
     let mean = |band: &str| rates("D2 block ensembles", band).iter().map(|x| x.0).sum::<f64>() / d2.len() as f64;
     let (product, robust) = (mean(PRODUCT), mean(ROBUST));
     let table = rows.iter().map(|&(kind, target, band, n, k)| {
-        let (c, lo, hi) = rate(k, n);
+        let (c, lo, hi) = rate_with_wilson(k, n, 1.96);
         [
             kind.into(),
-            target_name(&target).0,
+            target.to_string(),
             band.into(),
             n.to_string(),
             k.to_string(),

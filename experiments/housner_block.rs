@@ -3,22 +3,18 @@
 //! each impact of free rocking, against the closed forms, over aspect ratios and the engine's
 //! contact settings.
 //!
-//! Blocks: `generate::cuboid(2b, 0.6, 2h)` with h = 1, resting on the face with normal −z,
-//! shaken / rocking in the x–z plane (tan α = b/h), on the contact of every resting run (rock on
-//! concrete at R_max = 1 m) with friction 1 (no sliding below 1 g).
-//!
 //! Run: `cargo run --release --example housner_block` → `results/housner_block/`; the README's
 //! prose is `experiments/readme/housner_block.md`.
 
 use rocking_stones::dynamics::resting::RestingParams;
-use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::shaking::housner::{block_stone, ramp_lag, ramp_tipping};
+use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, impact_ratios, mean_impact_ratio};
 use rocking_stones::prelude::*;
-use rocking_stones::GRAVITY;
 use serde_json::json;
 
 #[path = "shared/harness.rs"]
 mod harness;
-use harness::{fixed, Context, Result, Results};
+use harness::{columns, fixed, Result, Results};
 
 /// The blocks' slenderness tan α = b/h.
 const TAN_ALPHAS: [f64; 6] = [0.15, 0.25, 0.4, 0.5, 0.667, 0.8];
@@ -51,7 +47,7 @@ struct Tip {
 struct Decay {
     tan_a: f64,
     setting: &'static str,
-    /// (amplitude before, ratio) of every impact.
+    /// (amplitude after, ratio) of every impact.
     impacts: Vec<(f64, f64)>,
     /// Mean ratio of the first (up to 4) impacts whose post-impact amplitude exceeds 0.02 rad.
     mean: Option<f64>,
@@ -62,13 +58,8 @@ fn main() -> Result<()> {
     let out = Results::open("housner_block", &common)?;
     let (mut tips, mut decays) = (Vec::new(), Vec::new());
     for &tan_a in &TAN_ALPHAS {
-        let (mesh, rep) = generate::cuboid(2.0 * tan_a, 2.0 * DEPTH, 2.0).into_solid_boundary()?;
-        let stone = Stone::new(&Analysis::of_solid(mesh, rep, &Options::default())?, 0.01)?;
-        let start = stone.stable().iter().position(|e| stone.body.facet_normals[e.facet as usize].z < -0.999);
-        let start = start.context("no resting face with normal −z")?;
-        let r_max = stone.body.r_max;
-        let (bs, hs) = (tan_a / r_max, 1.0 / r_max);
-        let i_o = 4.0 / 3.0 * (bs * bs + hs * hs);
+        let (stone, start) = block_stone(tan_a, DEPTH, 1.0, Some(0.01))?;
+        let (bs, hs) = (tan_a / stone.body.r_max, 1.0 / stone.body.r_max);
         for &(setting, restitution, frequency, dt, tipping, _) in &SETTINGS {
             // The contact of every resting run (rock on concrete, a block of R_max = 1 m: rolling
             // resistance δ = 10⁻⁴ R_max through the contact), friction 1, the setting's rest.
@@ -80,7 +71,7 @@ fn main() -> Result<()> {
                     continue;
                 }
                 let tilt = 1e-3;
-                let lag = rate * (6.0 * i_o * tilt / (hs * rate * GRAVITY)).cbrt();
+                let lag = ramp_lag(bs, hs, rate, tilt);
                 let measured = ramp_tipping(&stone, start, &p, 0.0, rate, tilt, 2.0 * tan_a).unwrap_or(f64::NAN);
                 eprintln!("tan α {tan_a}: {setting} rate {rate}: {measured:.4} (lag {lag:.4})");
                 let (corrected, error) = (measured - lag, (measured - lag) / tan_a - 1.0);
@@ -88,13 +79,8 @@ fn main() -> Result<()> {
             }
             let cycles = free_rocking(&stone, start, &p, tan_a, 1.0, 0.5 * tan_a.atan(), 8.0);
             // Impacts until the rocking has died out (amplitude below 10⁻⁵ rad: contact noise).
-            let impacts: Vec<(f64, f64)> = cycles
-                .windows(2)
-                .take_while(|w| w[1].amplitude > 1e-5)
-                .map(|w| (w[1].amplitude, w[1].omega0 / w[0].omega0))
-                .collect();
-            let large: Vec<f64> = impacts.iter().filter(|i| i.0 > 0.02).take(4).map(|i| i.1).collect();
-            let mean = (!large.is_empty()).then(|| large.iter().sum::<f64>() / large.len() as f64);
+            let impacts = impact_ratios(&cycles, 1e-5);
+            let mean = mean_impact_ratio(&impacts, 0.02, 4);
             eprintln!("  decay: mean {mean:?} vs Housner {:.4}", housner_ratio(tan_a, 1.0));
             decays.push(Decay { tan_a, setting, impacts, mean });
         }
@@ -102,9 +88,7 @@ fn main() -> Result<()> {
     let f5 = |x: f64| fixed(x, 5);
     out.csv(
         "tipping.csv",
-        &"tan_alpha,setting,ramp_rate_g_per_s,measured_g,detection_lag_g,corrected_g,relative_error"
-            .split(',')
-            .collect::<Vec<_>>(),
+        &columns("tan_alpha,setting,ramp_rate_g_per_s,measured_g,detection_lag_g,corrected_g,relative_error"),
         tips.iter().map(|t| {
             [t.tan_a.to_string(), t.setting.into(), t.rate.to_string()]
                 .into_iter()

@@ -329,6 +329,31 @@ pub fn binomial_at_least(k: u64, n: u64, p: f64) -> f64 {
     }
 }
 
+/// The median of `x` (the mean of the two middle values for an even count), its smallest and its
+/// largest value: [median, min, max]; NaN for an empty `x`.
+pub fn median_range(x: &[f64]) -> [f64; 3] {
+    if x.is_empty() {
+        return [f64::NAN; 3];
+    }
+    let mut v = x.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    [if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }, v[0], v[n - 1]]
+}
+
+/// The range of non-negative values `xs` (intensity measures, periods, ratios): (the smallest,
+/// the largest), the largest at least 0; (∞, 0) for none.
+pub fn nonnegative_range(xs: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    xs.into_iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)))
+}
+
+/// A measured rate: k of n, as (k/n, low, high) with the Wilson score interval ([`wilson`]) at
+/// z (1.96 for 95 %); (NaN, 0, 1) for n = 0.
+pub fn rate_with_wilson(k: u64, n: u64, z: f64) -> (f64, f64, f64) {
+    let (lo, hi) = wilson(k, n, z);
+    (k as f64 / n as f64, lo, hi)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -488,5 +513,30 @@ mod tests {
         // At least one of 10 tests under 0.05 by chance: 1 − 0.95¹⁰.
         assert!((binomial_at_least(1, 10, 0.05) - (1.0 - 0.95f64.powi(10))).abs() < 1e-12);
         assert!(binomial_at_least(1, 10, 1.5).is_nan());
+    }
+
+    #[test]
+    fn a_rate_is_its_fraction_inside_its_wilson_interval() {
+        // 8 of 10 at z = 2: centre (0.8 + 0.2)/1.4 = 5/7, half-width 2·√(0.016 + 0.01)/1.4.
+        let (rate, lo, hi) = rate_with_wilson(8, 10, 2.0);
+        let half = 2.0 * 0.026f64.sqrt() / 1.4;
+        assert_eq!(rate, 0.8);
+        assert!((lo - (5.0 / 7.0 - half)).abs() < 1e-12 && (hi - (5.0 / 7.0 + half)).abs() < 1e-12);
+        assert!(lo < rate && rate < hi);
+        let (none, lo, hi) = rate_with_wilson(0, 0, 1.96);
+        assert!(none.is_nan() && (lo, hi) == (0.0, 1.0));
+    }
+
+    #[test]
+    fn the_median_range_of_odd_and_even_counts() {
+        assert_eq!(median_range(&[3.0, -1.0, 7.0]), [3.0, -1.0, 7.0]);
+        assert_eq!(median_range(&[4.0, 1.0, 10.0, 2.0]), [3.0, 1.0, 10.0]);
+        assert!(median_range(&[]).iter().all(|x| x.is_nan()));
+    }
+
+    #[test]
+    fn the_range_of_nonnegative_values() {
+        assert_eq!(nonnegative_range([0.3, 2.0, 0.05, 1.0]), (0.05, 2.0));
+        assert_eq!(nonnegative_range([]), (f64::INFINITY, 0.0));
     }
 }

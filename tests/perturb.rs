@@ -7,7 +7,7 @@ use rocking_stones::analysis::{Analysis, Options};
 use rocking_stones::dynamics::pushes::{self, kick, trial, Family, PerturbConfig};
 use rocking_stones::dynamics::resting::outcome::{Outcome, Threshold};
 use rocking_stones::dynamics::resting::{check_rest, default_pair, RestingParams};
-use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, ramp_tipping};
+use rocking_stones::dynamics::shaking::housner::{block_stone, free_rocking, housner_ratio, ramp_tipping};
 use rocking_stones::dynamics::shaking::{self, shake_trial, sine_pulse, ShakeConfig};
 use rocking_stones::dynamics::stone::{Class, Stone};
 use rocking_stones::dynamics::surface::Surface;
@@ -26,9 +26,7 @@ fn stone(mesh: TriMesh) -> Stone {
 /// A box of half-width b (x), half-depth d (y), half-height h (z), and the position of its
 /// resting face with normal −z in `stone.stable`.
 fn block(b: f64, d: f64, h: f64) -> (Stone, usize) {
-    let s = stone(generate::cuboid(2.0 * b, 2.0 * d, 2.0 * h));
-    let start = s.stable().iter().position(|e| s.body.facet_normals[e.facet as usize].z < -0.999).unwrap();
-    (s, start)
+    block_stone(b, d, h, None).unwrap()
 }
 
 /// Housner's conditions on the contact of every resting run (rock on concrete, a 1 m block, so

@@ -142,3 +142,14 @@ pub fn cell(x: f64, prec: usize, e: bool) -> String {
         x => fixed(x, prec),
     }
 }
+
+/// A CSV header written as one line, split at its commas (no column name holds one).
+pub fn columns(header: &str) -> Vec<&str> {
+    header.split(',').collect()
+}
+
+/// The value of `f` and the wall-clock seconds it took.
+pub fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t0 = std::time::Instant::now();
+    (f(), t0.elapsed().as_secs_f64())
+}

@@ -18,6 +18,7 @@
 //! Three parameters need no optimisation library: the Newton iteration on a 3 × 3 system is a
 //! dozen lines, and is checked against the exact score equations and simulated data.
 
+use super::ScaledRecord;
 use crate::rng::item_rng;
 use crate::stats::logistic;
 use crate::{Error, Result};
@@ -34,6 +35,13 @@ pub struct Run {
     pub pgv_over_pga_s: f64,
     /// Whether the rock overturned.
     pub overturned: bool,
+}
+
+impl Run {
+    /// The run of a record × scale `motion` (its PGA and PGV/PGA) and its outcome.
+    pub fn of(motion: &ScaledRecord, overturned: bool) -> Run {
+        Run { pga_g: motion.pga_g, pgv_over_pga_s: motion.pgv_over_pga_s, overturned }
+    }
 }
 
 /// The fitted surface.
@@ -151,6 +159,31 @@ impl FragilitySurface {
         let logit = (p / (1.0 - p)).ln();
         Some(((logit - b0 - b2 * pgv_over_pga_s.ln()) / b1).exp())
     }
+
+    /// Coefficient β_`i` with its standard error, "β ± se", both to `decimals` decimals.
+    pub fn coefficient_text(&self, i: usize, decimals: usize) -> String {
+        format!("{:.decimals$} ± {:.decimals$}", self.beta[i], self.std_err[i])
+    }
+
+    /// The largest relative gap |PGA(self)/PGA(other) − 1| between the contours P = `p` of this
+    /// surface and `other` ([`FragilitySurface::pga_at`]) over the PGV/PGA (s) of `ratios` where
+    /// both are defined; 0 where neither is anywhere.
+    pub fn contour_gap(&self, other: &FragilitySurface, p: f64, ratios: impl IntoIterator<Item = f64>) -> f64 {
+        let gaps = ratios.into_iter().filter_map(|r| Some(self.pga_at(p, r)? / other.pga_at(p, r)?));
+        gaps.fold(0.0, |w, x| w.max((x - 1.0).abs()))
+    }
+
+    /// The PGV/PGA (s) at which P(overturn) = `p` for motions of peak `pga_g` (g): the contour
+    /// read the other way, ln(PGV/PGA) = (logit p − β₀ − β₁ ln PGA) / β₂. None when β₂ = 0 or
+    /// p ∉ (0, 1).
+    pub fn ratio_at(&self, p: f64, pga_g: f64) -> Option<f64> {
+        let [b0, b1, b2] = self.beta;
+        if !(p > 0.0 && p < 1.0) || b2 == 0.0 {
+            return None;
+        }
+        let logit = (p / (1.0 - p)).ln();
+        Some(((logit - b0 - b1 * pga_g.ln()) / b2).exp())
+    }
 }
 
 impl FragilitySurface {
@@ -247,6 +280,16 @@ impl Target {
     }
 }
 
+impl std::fmt::Display for Target {
+    /// "P at PGA 0.350 g and PGV/PGA 0.100 s", "PGA of P = 0.5 at PGV/PGA 0.100 s".
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match *self {
+            Target::Point(pga, r) => write!(f, "P at PGA {pga:.3} g and PGV/PGA {r:.3} s"),
+            Target::Contour(p, r) => write!(f, "PGA of P = {p} at PGV/PGA {r:.3} s"),
+        }
+    }
+}
+
 /// Firth's modified score and the Fisher information XᵀWX at `beta`.
 fn firth_score(x: &[Vector3<f64>], y: &[f64], beta: &Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
     let p: Vec<f64> = x.iter().map(|xi| logistic(xi.dot(beta))).collect();
@@ -335,18 +378,16 @@ mod tests {
         let beta = [4.0, 3.0, 1.5];
         let (pga, ratio) = (0.35, 0.1);
         let truth = FragilitySurface::exact(beta);
-        let (p_true, pga50_true) = (truth.probability(pga, ratio), truth.pga_at(0.5, ratio).unwrap());
-        let (mut covered, mut contour_covered) = (0, 0);
-        for seed in 0..STUDIES {
-            let fit = FragilitySurface::fit(&simulated(beta, 2, 1000 + seed)).unwrap();
+        let targets = [Target::Point(pga, ratio), Target::Contour(0.5, ratio)];
+        let counts = crate::ground_motion::studies::coverage_counts(&targets, &truth, STUDIES, |seed| {
+            let fit = FragilitySurface::fit(&simulated(beta, 2, 1000 + seed))?;
             let [lo, p, hi] = fit.band(pga, ratio, 1.96);
             assert!(lo < p && p < hi);
-            covered += (lo <= p_true && p_true <= hi) as usize;
-            let [a, _, b] = fit.pga_band_at(0.5, ratio, 1.96).unwrap();
-            contour_covered += (a.unwrap() <= pga50_true && pga50_true <= b.unwrap()) as usize;
-        }
+            Ok(vec![fit])
+        })
+        .unwrap();
         let se = (0.95 * 0.05 / STUDIES as f64).sqrt();
-        for (what, k) in [("P", covered), ("PGA₅₀", contour_covered)] {
+        for (what, &k) in ["P", "PGA₅₀"].iter().zip(&counts[0]) {
             let rate = k as f64 / STUDIES as f64;
             assert!(
                 (rate - 0.95).abs() <= 3.0 * se,
@@ -429,5 +470,50 @@ mod tests {
             assert!((rate - expected).abs() < 0.032, "cell {k}: {rate} vs {expected}");
         }
         assert_eq!(runs, truth.draw_runs(&[1.0 / 3.0, 1.0, 3.0], &[1.0], 4000, 9));
+    }
+
+    #[test]
+    fn a_contour_read_at_a_pga_gives_back_its_ratio() {
+        // β = (1, 2, 0.5): P = ½ where 1 + 2 ln PGA + 0.5 ln r = 0, at PGA 1 g r = e⁻², and
+        // P = ¾ (logit ln 3) at PGA e⁻¹ g where r = e^(2 ln 3 + 2) = 9e².
+        let s = FragilitySurface::exact([1.0, 2.0, 0.5]);
+        assert!((s.ratio_at(0.5, 1.0).unwrap() - (-2.0f64).exp()).abs() < 1e-15);
+        let r = s.ratio_at(0.75, (-1.0f64).exp()).unwrap();
+        assert!((r / (9.0 * 2.0f64.exp()) - 1.0).abs() < 1e-12, "{r}");
+        assert!((s.pga_at(0.75, r).unwrap() - (-1.0f64).exp()).abs() < 1e-12);
+        assert_eq!(FragilitySurface::exact([1.0, 2.0, 0.0]).ratio_at(0.5, 1.0), None);
+        assert_eq!(s.ratio_at(1.0, 1.0), None);
+    }
+
+    #[test]
+    fn the_contour_gap_is_the_largest_relative_difference_of_two_contours() {
+        // β₀ differs by ln 1.2 · β₁: every contour of b lies at 1.2 times a's PGA, a gap of 1/6
+        // read from b against a, 0.2 from a against b.
+        let a = FragilitySurface::exact([1.0, 2.0, 0.5]);
+        let b = FragilitySurface::exact([1.0 - 2.0 * 1.2f64.ln(), 2.0, 0.5]);
+        assert!((a.contour_gap(&b, 0.5, [0.05, 0.1, 0.2]) - 1.0 / 6.0).abs() < 1e-12);
+        assert!((b.contour_gap(&a, 0.9, [0.05, 0.1]) - 0.2).abs() < 1e-12);
+        assert_eq!(a.contour_gap(&FragilitySurface::exact([1.0, -2.0, 0.5]), 0.5, [0.1]), 0.0);
+    }
+
+    #[test]
+    fn a_coefficient_is_written_with_its_standard_error() {
+        let s = FragilitySurface { std_err: [0.5, 0.125, 0.0], ..FragilitySurface::exact([4.0, 2.346, -1.5]) };
+        assert_eq!(s.coefficient_text(1, 2), "2.35 ± 0.12");
+        assert_eq!(s.coefficient_text(2, 3), "-1.500 ± 0.000");
+    }
+
+    #[test]
+    fn a_run_of_a_scaled_record_keeps_its_pga_and_ratio() {
+        let run = |pga_g, pgv_over_pga_s, overturned| Run { pga_g, pgv_over_pga_s, overturned };
+        let motion = ScaledRecord {
+            record: "r".into(),
+            scale: 2.0,
+            pga_g: 0.4,
+            pgv_m_s: 0.3,
+            pgv_over_pga_s: 0.0765,
+            pga_vertical_g: 0.0,
+        };
+        assert_eq!(Run::of(&motion, true), run(0.4, 0.0765, true));
     }
 }

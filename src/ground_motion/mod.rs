@@ -5,7 +5,8 @@
 //! time), in m/s², with components `[x, y, z]`: two horizontal components and the vertical one (z
 //! up). Readers turn the formats seismologists use into records ([`read`]: CSV with named
 //! columns, PEER NGA `.AT2`); [`synthetic`] makes the test motions (one-sine pulses, filtered
-//! noise); [`fragility`] fits P(overturn | PGA, PGV/PGA).
+//! noise); [`fragility`] fits P(overturn | PGA, PGV/PGA), [`studies`] checks its band over repeated
+//! studies.
 //!
 //! This module knows nothing of stones: the dynamics read a record through [`Record::at`].
 //!
@@ -25,6 +26,7 @@
 
 pub mod fragility;
 pub mod read;
+pub mod studies;
 pub mod synthetic;
 
 use crate::{Error, Result, GRAVITY as G};
@@ -82,6 +84,12 @@ impl ScaledRecord {
     pub fn of(record: &Record, scale: f64, m: &Measures) -> ScaledRecord {
         let (pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g) = (m.pga_g, m.pgv_m_s, m.pgv_over_pga_s, m.pga_vertical_g);
         ScaledRecord { record: record.name.clone(), scale, pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g }
+    }
+
+    /// Whether `other` is the same record at the same scale factor (bit for bit): a run of the
+    /// same case, whatever the rock or the member.
+    pub fn same_as(&self, other: &ScaledRecord) -> bool {
+        self.record == other.record && self.scale.to_bits() == other.scale.to_bits()
     }
 }
 
@@ -404,5 +412,16 @@ mod tests {
         for k in (0..2001).step_by(10) {
             assert!((up.accel[k][0] - r.accel[k / 10][0]).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn a_scaled_record_is_the_same_case_by_name_and_scale_alone() {
+        let r = sine(1.0, 0.01, 2.0, 3.0);
+        let m = r.measures();
+        let a = ScaledRecord::of(&r, 0.5, &m);
+        // Other measures (another rock's resampling) do not matter; another scale or record does.
+        assert!(a.same_as(&ScaledRecord { pga_g: 9.0, ..a.clone() }));
+        assert!(!a.same_as(&ScaledRecord::of(&r, 0.5 + 1e-12, &m)));
+        assert!(!a.same_as(&ScaledRecord { record: "other".into(), ..a.clone() }));
     }
 }

@@ -59,6 +59,16 @@ impl PointImpact {
     pub fn spin(&self, p: &Vec3) -> Vec3 {
         self.inertia_inverse * self.r.cross(p)
     }
+
+    /// Where a spin `w` after the impact at approach speed `u` and restitution `e` lies between
+    /// the two closed forms: the slip fraction φ = (w − ω_N)·(ω_F − ω_N) / |ω_F − ω_N|², ω_N
+    /// the spin of Newton's law with sticking friction ([`PointImpact::sticking`]) and ω_F that
+    /// of the frictionless restitution ([`PointImpact::frictionless_restitution`]): 0 at ω_N,
+    /// 1 at ω_F (w projected on the line through them).
+    pub fn slip_fraction(&self, e: f64, u: f64, w: &Vec3) -> f64 {
+        let (w_n, w_f) = (self.spin(&self.sticking(e, u)), self.spin(&self.frictionless_restitution(e, u)));
+        (w - w_n).dot(&(w_f - w_n)) / (w_f - w_n).norm_squared()
+    }
 }
 
 #[cfg(test)]
@@ -95,5 +105,18 @@ mod tests {
         let v = point_velocity(&i, u, &i.frictionless_restitution(e, u));
         let slide = k.column(2).xy() * lambda;
         assert!((v - Vec3::new(slide.x, slide.y, e * u)).norm() < 1e-12, "{v:?}");
+    }
+
+    #[test]
+    fn the_slip_fraction_places_a_spin_between_the_closed_forms() {
+        let (r, e, u) = (Vec3::new(0.4, -0.3, -0.5), 0.3, 1.7);
+        let i = PointImpact::new(&Matrix3::from_diagonal(&Vec3::new(0.2, 0.3, 0.4)), &r).unwrap();
+        let (w_n, w_f) = (i.spin(&i.sticking(e, u)), i.spin(&i.frictionless_restitution(e, u)));
+        assert!((w_f - w_n).norm() > 1e-3);
+        assert!(i.slip_fraction(e, u, &w_n).abs() < 1e-12);
+        assert!((i.slip_fraction(e, u, &w_f) - 1.0).abs() < 1e-12);
+        // A quarter of the way, moved off the line by a perpendicular: still 1/4.
+        let off = (w_f - w_n).cross(&Vec3::new(1.0, 2.0, 3.0));
+        assert!((i.slip_fraction(e, u, &(w_n + (w_f - w_n) * 0.25 + off)) - 0.25).abs() < 1e-12);
     }
 }

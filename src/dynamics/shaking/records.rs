@@ -99,15 +99,8 @@ pub struct ShakeBatch {
 /// the surface, or why it could not be fitted, and how many runs were left out.
 pub fn fit_surface(runs: &[RecordRun]) -> (Option<fragility::FragilitySurface>, Option<String>, usize) {
     let unsettled = runs.iter().filter(|r| !r.rock.settled).count();
-    let points: Vec<fragility::Run> = runs
-        .iter()
-        .filter(|r| r.rock.settled)
-        .map(|r| fragility::Run {
-            pga_g: r.motion.pga_g,
-            pgv_over_pga_s: r.motion.pgv_over_pga_s,
-            overturned: r.rock.overturned,
-        })
-        .collect();
+    let points: Vec<fragility::Run> =
+        runs.iter().filter(|r| r.rock.settled).map(|r| fragility::Run::of(&r.motion, r.rock.overturned)).collect();
     match fragility::FragilitySurface::fit(&points) {
         Ok(s) => (Some(s), None, unsettled),
         Err(e) => (None, Some(e.to_string()), unsettled),
@@ -215,9 +208,7 @@ pub struct EnsembleSummary {
 /// The summaries of every record × scale of an ensemble batch's `runs`, in their order.
 pub fn summaries(e: &EnsembleSpec, runs: &[RecordRun]) -> Vec<EnsembleSummary> {
     let mut out: Vec<EnsembleSummary> = Vec::new();
-    for group in
-        runs.chunk_by(|a, b| a.motion.record == b.motion.record && a.motion.scale.to_bits() == b.motion.scale.to_bits())
-    {
+    for group in runs.chunk_by(|a, b| a.motion.same_as(&b.motion)) {
         let members: Vec<Member> =
             group.iter().filter_map(|r| r.member.map(|draw| Member { draw, run: r.rock.clone() })).collect();
         out.push(EnsembleSummary {
@@ -251,7 +242,7 @@ pub struct Contour {
 /// `runs`.
 pub fn contours(surface: &FragilitySurface, runs: &[RecordRun]) -> Vec<Contour> {
     let ratios = runs.iter().map(|r| r.motion.pgv_over_pga_s).filter(|r| *r > 0.0 && r.is_finite());
-    let (lo, hi) = ratios.fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(r), b.max(r)));
+    let (lo, hi) = crate::stats::nonnegative_range(ratios);
     if !(lo <= hi) {
         return Vec::new();
     }

@@ -14,6 +14,7 @@
 //! * Records × scale factors, with or without an ensemble, and their fragility surface:
 //!   [`crate::dynamics::shaking::records`].
 
+use crate::analysis::{Analysis, Options};
 use crate::dynamics::engine::rest::RestKind;
 use crate::dynamics::engine::run::{run_to_end, NoCertificate, Passive};
 use crate::dynamics::engine::simulation::Simulation;
@@ -273,6 +274,23 @@ pub fn rock_params(surface: Surface, r_max_m: f64) -> Result<RestingParams> {
     RestingParams::on_surface(surface, r_max_m)
 }
 
+/// The stone of the analysis `a` with its flocks at `nu`, or at the analysis' macro ν
+/// ([`Analysis::macro_nu`]) if None.
+pub fn stone_of(a: &Analysis, nu: Option<f64>) -> Result<Stone> {
+    Stone::new(a, nu.unwrap_or_else(|| a.macro_nu(&Options::default()).0))
+}
+
+/// The default poses of `stone` as a rock of R_max `r_max_m` on concrete: the equilibrium
+/// indices of its regular and its rocking default equilibrium
+/// ([`crate::dynamics::resting::default_pair`] with [`rock_params`] of
+/// [`Surface::RockOnConcrete`]), either None when the stone has none that stays at rest.
+pub fn default_poses(stone: &Stone, r_max_m: f64) -> Result<(Option<usize>, Option<usize>)> {
+    let p = rock_params(Surface::RockOnConcrete, r_max_m)?;
+    let (regular, rocking) = crate::dynamics::resting::default_pair(stone, &p);
+    let index = |k: Option<usize>| k.map(|k| stone.stable()[k].index);
+    Ok((index(regular), index(rocking)))
+}
+
 /// A field rock and how it is shaken: everything of a run but the record.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RockSetup {
@@ -344,5 +362,28 @@ pub fn driven(record: &Record, real_dt: f64) -> Result<Record> {
         record.resampled(real_dt)
     } else {
         Ok(record.clone())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_box_is_a_stone_at_its_nu_resting_by_default_on_its_largest_face() {
+        // A 2 × 1.2 × 0.6 box: its stable equilibria are its six faces, the deepest (R = 0.3)
+        // the two of normal ±z; a box has no rocking equilibrium.
+        let (mesh, repairs) = crate::generate::cuboid(2.0, 1.2, 0.6).into_solid_boundary().unwrap();
+        let a = Analysis::of_solid(mesh, repairs, &Options::default()).unwrap();
+        let stone = stone_of(&a, Some(0.01)).unwrap();
+        assert_eq!(stone.nu, 0.01);
+        assert_eq!(stone_of(&a, None).unwrap().nu, a.macro_nu(&Options::default()).0);
+        let (regular, rocking) = default_poses(&stone, 1.0).unwrap();
+        let k = stone.position(regular.expect("a regular pose")).unwrap();
+        let q = &stone.stable()[k];
+        assert!(stone.body.facet_normals[q.facet as usize].z.abs() > 0.999);
+        assert!((q.r - 0.3).abs() < 1e-9, "{}", q.r);
+        assert_eq!(rocking, None);
+        assert!(default_poses(&stone, -1.0).is_err());
     }
 }

@@ -15,7 +15,7 @@ pub mod trials;
 pub use batch::{batch_summary, plot_fragility_surface, write_batch_outputs};
 pub use ensemble::{ensemble_runs, ensemble_summary, tipping_lines, write_ensemble_outputs};
 pub use runs::{rock_run_summary, run_csv_row, write_run_outputs, write_runs_csv, RUN_CSV_HEADER};
-pub use trials::{plot_fragility, summary, write_fragility_csv, write_outputs, write_trials_csv};
+pub use trials::{pga50_cell, plot_fragility, summary, write_fragility_csv, write_outputs, write_trials_csv};
 
 use crate::dynamics::shaking::MotionInfo;
 use crate::ground_motion::Record;

@@ -142,6 +142,17 @@ pub fn write_fragility_csv(path: &Path, r: &ShakeReport) -> crate::Result<()> {
     )
 }
 
+/// A PGA₅₀ ([`Threshold`], g) as a table cell: "≤ x" (P already ½ at the grid's least PGA), "x"
+/// or "> x" (P never ½ up to its largest), x to 3 decimals; "–" when there is none.
+pub fn pga50_cell(t: &Option<Threshold>) -> String {
+    match t {
+        None => "–".into(),
+        Some(Threshold::Below(x)) => format!("≤ {x:.3}"),
+        Some(Threshold::At(x)) => format!("{x:.3}"),
+        Some(Threshold::Above(x)) => format!("> {x:.3}"),
+    }
+}
+
 /// Fragility curves P(toppled) against PGA, one line (with 95 % intervals) per
 /// `(label, curve, colour)`, and vertical markers.
 pub fn plot_fragility(
@@ -276,4 +287,17 @@ pub fn write_outputs(r: &ShakeReport, name: &str, dir: &Path) -> crate::Result<V
         }
     }
     Ok(out.written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pga50_cell_says_which_side_of_the_grid_it_is_on() {
+        assert_eq!(pga50_cell(&Some(Threshold::Below(0.025))), "≤ 0.025");
+        assert_eq!(pga50_cell(&Some(Threshold::At(0.24512))), "0.245");
+        assert_eq!(pga50_cell(&Some(Threshold::Above(1.0))), "> 1.000");
+        assert_eq!(pga50_cell(&None), "–");
+    }
 }
