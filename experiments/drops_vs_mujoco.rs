@@ -1,33 +1,27 @@
 //! Drops per second per core of this project against MuJoCo under the same physics, and the
-//! agreement of their outcome statistics, in one run on one core. Both engines drop the three
-//! benchmark bodies from the same releases (the project's orientation of each drop index, passed
-//! to MuJoCo), so the outcomes are compared drop by drop, on the timed drops and on larger untimed
-//! samples: the project at each step (1/240 s, 1/120 s) against MuJoCo at each, and MuJoCo at
-//! 1/120 s against itself at 1/240 s. The matched physics is in the README (its template) and in
-//! `shared/mujoco_drops.py`; the MuJoCo side, shared with `drops_solver_substeps` (rapier's solver
-//! sub-steps against the same MuJoCo drops), is `shared/mujoco.rs`.
+//! agreement of their outcome statistics drop by drop on the same releases; what it compares and
+//! how is in its README's template, `experiments/readme/drops_vs_mujoco.md`, the MuJoCo side in
+//! `shared/mujoco.rs` and `shared/mujoco_drops.py`.
 //!
 //! Run: `cargo run --release --example drops_vs_mujoco [-- N]` (N = 300 drops per body and mode;
-//! `--seed` the releases' seed, default 7) → `results/drops_vs_mujoco/`; the README's prose is
-//! `experiments/readme/drops_vs_mujoco.md`. Needs MuJoCo's Python bindings (`pip install mujoco`)
-//! in `python3` or in the interpreter named by `ROCKING_PYTHON`.
+//! `--seed` the releases' seed, default 7) → `results/drops_vs_mujoco/`. Needs MuJoCo's Python
+//! bindings (`pip install mujoco`) in `python3` or in the interpreter named by `ROCKING_PYTHON`.
 
 #![recursion_limit = "256"] // the README's context is one large `json!`
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
-#[path = "shared/cpu_time.rs"]
-mod cpu_time;
 #[path = "shared/harness.rs"]
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
-use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares};
+use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
 use rocking_stones::dynamics::drops::simulate::flat_restitution;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
+use rocking_stones::plot::bar_slot;
 use rocking_stones::prelude::*;
 use serde_json::{json, Value};
 use std::path::Path;
@@ -59,7 +53,7 @@ fn main() -> Result<()> {
     // longer step; in the first round, an untimed check runs MuJoCo at the longer step with the
     // damping ratio calibrated again at that step (`recal`).
     let (mut mj_rounds, mut recal) = (Vec::<[MjOut; 2]>::new(), None);
-    let mut best: Vec<Vec<Option<Run>>> = bodies.iter().map(|_| modes.iter().map(|_| None).collect()).collect();
+    let mut best: Vec<Vec<Option<TimedRun>>> = bodies.iter().map(|_| modes.iter().map(|_| None).collect()).collect();
     for round in 1..=REPEATS {
         let sample = if round == 1 { big } else { n };
         eprintln!("round {round} of {REPEATS}: MuJoCo at dt {} ({python} {})", step_label(dts[0]), script);
@@ -75,8 +69,8 @@ fn main() -> Result<()> {
         eprintln!("round {round} of {REPEATS}: the project");
         for (b, ((name, _), stone)) in bodies.iter().zip(stones).enumerate() {
             for (k, m) in modes.iter().enumerate() {
-                let r = timed(&pool, stone, &header(name, n, m, seed), m.batch);
-                eprintln!("  {name} {}: {:.1} drops/s", m.name, nd / r.seconds);
+                let r = run_timed(&pool, stone, &header(name, n, m, seed), m.batch)?;
+                eprintln!("  {name} {}: {:.1} drops/s", m.name, r.rate());
                 if best[b][k].as_ref().is_none_or(|x| r.seconds < x.seconds) {
                     best[b][k] = Some(r);
                 }
@@ -115,12 +109,12 @@ fn main() -> Result<()> {
             }
         }
         // The project's modes, their fastest round.
-        let rows: Vec<Run> = best[b].iter_mut().map(|r| r.take().expect("REPEATS ≥ 1")).collect();
+        let rows: Vec<TimedRun> = best[b].iter_mut().map(|r| r.take().expect("REPEATS ≥ 1")).collect();
         let checks = mj_checks(&bench, &mj_rounds, b, &mj, &rows[0].outcomes);
         // The larger, untimed samples: the batched project at the reference step (drop by drop
         // the plain drops), the default numerics, and MuJoCo at both steps.
-        let project = timed(&pool, stone, &header(name, big, &modes[1], seed), DEFAULT_BATCH);
-        let fast = timed(&pool, stone, &header(name, big, &modes[3], seed), modes[3].batch);
+        let project = run_timed(&pool, stone, &header(name, big, &modes[1], seed), DEFAULT_BATCH)?;
+        let fast = run_timed(&pool, stone, &header(name, big, &modes[3], seed), modes[3].batch)?;
         let versus = |a: &Outcomes, b: &Outcomes| agreement(&stone.facet_flock, a, b);
         // The two steps of one engine start from the same orientations: drops that end in the
         // same flock at both steps.
@@ -136,6 +130,7 @@ fn main() -> Result<()> {
         let shares = chi_square_shares(&counts(pb), &counts(&mj[0].big));
         let shares_mj = chi_square_shares(&counts(&mj[1].big), &counts(&mj[0].big));
         let kind = |k: usize| format!("{:?}", stone.flock_kinds[k]).to_lowercase();
+        let cell = |r: &DropReport, k: usize| r.flock_fraction_with_ci(k, 3);
         // The flock with the largest share of χ² between two samples, its fraction in each.
         let widest = |v: &[f64], a: &DropReport, b: &DropReport| {
             let k = (0..v.len()).max_by(|&x, &y| v[x].total_cmp(&v[y])).expect("a flock");
@@ -183,7 +178,7 @@ fn main() -> Result<()> {
         let mut p_fast_same = 0.0;
         for (m, r) in modes.iter().zip(&rows) {
             let s = dts.iter().position(|&d| d == m.dt).expect("MuJoCo runs at every mode's step");
-            let rate = nd / r.seconds;
+            let rate = r.rate();
             let ratio = |secs: f64| rate / (nd / secs);
             let (rl, rs, sl, ss) = (ratio(mj[0].loop_s), ratio(mj[0].step_s), ratio(mj[s].loop_s), ratio(mj[s].step_s));
             ratios.push((rl, rs));
@@ -192,7 +187,7 @@ fn main() -> Result<()> {
             if s == 1 {
                 p_fast_same = p_same;
             }
-            let us_k = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.sim.numerics.dt);
+            let us_k = r.micros_per_step();
             us.push(us_k);
             p_modes.push(fixed(p, 2));
             if p < worst.0 {
@@ -217,7 +212,7 @@ fn main() -> Result<()> {
             );
         }
         // The default numerics against MuJoCo at the same step.
-        let ratio = |secs: f64| nd / rows[3].seconds / (nd / secs);
+        let ratio = |secs: f64| rows[3].rate() / (nd / secs);
         ratios.push((ratio(mj[1].loop_s), ratio(mj[1].step_s)));
         let p_mj_steps = versus(&mj[1].outcomes, &mj[0].outcomes).p;
         let mut mj_table = Vec::new();
@@ -338,48 +333,33 @@ fn main() -> Result<()> {
 /// default numerics against MuJoCo at the same step (the bar: against MuJoCo's loop; a black
 /// mark: against its stepping alone), on a log axis (a ratio and its inverse are as far from 1×).
 fn plot(path: &Path, modes: &[Mode], bars: &[(&str, Vec<(f64, f64)>)]) -> Result<()> {
-    let (r_l, d_l) = (step_label(REFERENCE_DT), step_label(fast_dt()));
-    let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l}", m.short)).collect();
-    series.push(format!("{} ÷ MuJoCo at {d_l}, the same step", modes[3].short));
+    let (r_l, d_l, loop_) = (step_label(REFERENCE_DT), step_label(fast_dt()), "(its mj_step loop + rest check)");
+    let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l} {loop_}", m.short)).collect();
+    series.push(format!("{} ÷ MuJoCo at {d_l}, the same step {loop_}", modes[3].short));
     let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));
     let (bottom, top, right) =
         (values().fold(0.5, f64::min) * 0.8, values().fold(10.0, f64::max) * 12.0, bars.len() as f64 - 0.5);
-    let names: Vec<String> = bars.iter().map(|b| b.0.to_string()).collect();
-    let x = Axis::linear("", -0.5, right).no_grid().ticks(bars.len() + 1).format(move |x| {
-        let k = x.round();
-        let known = ((x - k).abs() < 1e-6 && k >= 0.0).then(|| names.get(k as usize)).flatten();
-        known.map_or(String::new(), |b| match b.as_str() {
-            "stone" => "bundled stone (581 hull vertices)".into(),
-            "pebble" => "synthetic pebble (500 hull vertices)".into(),
-            other => format!("{other} 1 × 0.8 × 0.5"),
-        })
+    let names = bars.iter().map(|b| match b.0 {
+        "stone" => "bundled stone (581 hull vertices)".into(),
+        "pebble" => "synthetic pebble (500 hull vertices)".into(),
+        other => format!("{other} 1 × 0.8 × 0.5"),
     });
     let y = Axis::log("drops/s of the project ÷ drops/s of MuJoCo (log scale)", bottom, top)
         .format(|y| format!("{}×", rocking_stones::plot::log_tick(y)))
         .space(70);
+    let loops: Vec<Vec<f64>> = bars.iter().map(|(_, v)| v.iter().map(|r| r.0).collect()).collect();
     // The reference level 1× first, so that the bars and their labels lie over it.
-    let mut chart = Chart::new(x, y)
+    let mut chart = Chart::new(Axis::categories("", names.collect()), y)
         .title("Drops per core: this project ÷ MuJoCo, same physics, one core")
-        .dashed(&[(-0.5, 1.0), (right, 1.0)], BLACK);
-    let w = 0.86 / series.len() as f64;
-    let x0 = |k: usize, slot: usize| k as f64 - 0.43 + slot as f64 * w;
-    for (slot, label) in series.iter().enumerate() {
-        let boxes: Vec<_> = bars
-            .iter()
-            .enumerate()
-            .map(|(k, (_, v))| (x0(k, slot), bottom, x0(k, slot) + w * 0.9, v[slot].0))
-            .collect();
-        chart = chart
-            .boxes(&boxes, series_color(slot), 1.0)
-            .legend(Mark::Box(series_color(slot), 1.0), format!("{label} (its mj_step loop + rest check)"));
-    }
+        .dashed(&[(-0.5, 1.0), (right, 1.0)], BLACK)
+        .grouped_bars(&loops, &series, bottom, 0.86);
     for (k, (_, v)) in bars.iter().enumerate() {
         for (slot, &(l, s)) in v.iter().enumerate() {
             // The ratio against MuJoCo's loop above each bar, the mark of the stepping alone across it.
-            let label_at = (x0(k, slot) + w * 0.05, l.max(s) * 1.3);
+            let (x0, w) = bar_slot(k, slot, series.len(), 0.86);
             chart = chart
-                .line_width(&[(x0(k, slot), s), (x0(k, slot) + w * 0.9, s)], BLACK, 3)
-                .text(format!("{l:.1}×"), label_at);
+                .line_width(&[(x0, s), (x0 + w * 0.9, s)], BLACK, 3)
+                .text(format!("{l:.1}×"), (x0 + w * 0.05, l.max(s) * 1.3));
         }
     }
     chart

@@ -11,7 +11,7 @@ use super::harness::{fixed, Context, Result};
 use nalgebra::UnitQuaternion;
 use rocking_stones::dynamics::drops::compare::Agreement;
 use rocking_stones::dynamics::drops::launch::outcome_at;
-use rocking_stones::dynamics::drops::montecarlo::summarize;
+use rocking_stones::dynamics::drops::montecarlo::{height_above_median_max, summarize};
 use rocking_stones::prelude::*;
 use serde::Deserialize;
 use serde_json::{json, Value};
@@ -179,20 +179,6 @@ pub fn agreement_json(c: &Agreement) -> Value {
     json!({"same": c.same, "both": c.both, "chi2": chi2, "dof": c.dof, "p": p})
 }
 
-/// Median and largest `height_above` (h(final down) − R_F, R_max) of the settled outcomes: how
-/// far off its stable facet's normal a drop ended (0 when flat on it); `{:.1e}` each.
-pub fn rise(outcomes: &Outcomes) -> [String; 2] {
-    let mut h: Vec<f64> = outcomes.values().filter(|o| o.settled).filter_map(|o| o.height_above).collect();
-    h.sort_by(f64::total_cmp);
-    let at = |i: Option<usize>| i.and_then(|i| h.get(i)).map_or(f64::NAN, |x| *x);
-    [at(Some(h.len() / 2)), at(h.len().checked_sub(1))].map(|x| format!("{x:.1e}"))
-}
-
-/// Flock `k`'s fraction of a report with its 95 % interval, "—" if it has no such flock.
-pub fn cell(r: &DropReport, k: usize) -> String {
-    r.flock(k).map_or("—".into(), |g| g.fraction_with_ci(3))
-}
-
 /// MuJoCo at one step, for one body: the timed drops, the larger sample (which holds them), the
 /// fastest round's CPU s of the loop and of the stepping alone, the timed drops' steps, and the
 /// sample's drops with a MuJoCo warning.
@@ -246,6 +232,8 @@ pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], 
         })
     };
     let e1 = |x: f64| format!("{x:.1e}");
+    // Median and largest height above the facet's rest of each run's settled drops.
+    let rise = |o: &Outcomes| height_above_median_max(o).map(e1);
     json!({
         "releases": downs().count(), "angle": e1(release_angle), "vertices": first[0].bodies[b].mesh_vertices,
         "corners": bench.stones[b].body.corners.len(), "placement": e1(first[0].bodies[b].placement_error),
