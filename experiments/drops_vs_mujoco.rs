@@ -17,12 +17,13 @@ mod harness;
 mod mujoco;
 use harness::{fixed, Result, Results};
 use mujoco::*;
-use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares};
+use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares, matching_drops, Match};
 use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
 use rocking_stones::dynamics::drops::simulate::flat_restitution;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::plot::bar_slot;
 use rocking_stones::prelude::*;
+use rocking_stones::report::drops::flock_cells;
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -71,9 +72,7 @@ fn main() -> Result<()> {
             for (k, m) in modes.iter().enumerate() {
                 let r = run_timed(&pool, stone, &header(name, n, m, seed), m.batch)?;
                 eprintln!("  {name} {}: {:.1} drops/s", m.name, r.rate());
-                if best[b][k].as_ref().is_none_or(|x| r.seconds < x.seconds) {
-                    best[b][k] = Some(r);
-                }
+                best[b][k] = Some(if let Some(fastest) = best[b][k].take() { fastest.faster(r) } else { r });
             }
         }
     }
@@ -129,7 +128,7 @@ fn main() -> Result<()> {
         let counts = |r: &DropReport| r.flock_counts(stone.flock_kinds.len());
         let shares = chi_square_shares(&counts(pb), &counts(&mj[0].big));
         let shares_mj = chi_square_shares(&counts(&mj[1].big), &counts(&mj[0].big));
-        let kind = |k: usize| format!("{:?}", stone.flock_kinds[k]).to_lowercase();
+        let kind = |k: usize| stone.flock_kinds[k].name();
         let cell = |r: &DropReport, k: usize| r.flock_fraction_with_ci(k, 3);
         // The flock with the largest share of χ² between two samples, its fraction in each.
         let widest = |v: &[f64], a: &DropReport, b: &DropReport| {
@@ -193,8 +192,7 @@ fn main() -> Result<()> {
             if p < worst.0 {
                 worst = (p, short);
             }
-            let ff = &stone.facet_flock;
-            let same = r.outcomes.iter().filter(|(i, o)| o.flock_in(ff) == rows[0].outcomes[*i].flock_in(ff)).count();
+            let same = matching_drops(&stone.facet_flock, &r.outcomes, &rows[0].outcomes, Match::Flock);
             same_modes.push(same);
             let rep = &r.report;
             table.push(json!({
@@ -276,9 +274,7 @@ fn main() -> Result<()> {
             "big_steps_p": fixed(big_steps.p, 3), "steps_low": big_steps.p < 0.05,
             "same_project_big": format!("{same_project} of {big}"),
             "big_unsettled": format!("{} / {}", pb.unsettled, fb.unsettled),
-            "flocks": rows[0].report.flocks.iter().map(|f| json!({"id": f.id, "kind": kind(f.id),
-            "static": fixed(f.static_probability, 3),
-                "cells": reports.iter().map(|r| cell(r, f.id)).collect::<Vec<_>>()})).collect::<Vec<_>>(),
+            "flocks": flock_cells(&reports, 3),
             "kl": reports.iter().map(|r| fixed(r.fit_flocks.kl_divergence, 4)).collect::<Vec<_>>(),
         }));
         all_same &= same_modes[1] == n as usize && same_modes[2] == n as usize;

@@ -43,6 +43,16 @@ impl TimedRun {
         self.report.drops as f64 / self.seconds
     }
 
+    /// The faster of two timings of the same drops: `other` if it took fewer CPU seconds, else
+    /// this one.
+    pub fn faster(self, other: TimedRun) -> TimedRun {
+        if other.seconds < self.seconds {
+            other
+        } else {
+            self
+        }
+    }
+
     /// CPU µs per simulated step: 10⁶ × seconds ÷ (drops × mean simulated time ÷ dt), the steps
     /// of every drop, each counted once whatever the number of stones in its world.
     pub fn micros_per_step(&self) -> f64 {
@@ -110,5 +120,11 @@ mod tests {
         // The steps of the drops, counted from their own simulated times.
         let steps = outcomes.values().map(|o| o.time).sum::<f64>() / params.sim.numerics.dt;
         assert!((run.micros_per_step() - 1e6 * run.seconds / steps).abs() < 1e-6 * run.micros_per_step());
+        // The faster of two timings; a tie keeps the first.
+        let timing = |seconds| TimedRun { report: report.clone(), outcomes: outcomes.clone(), seconds };
+        assert_eq!(timing(2.0).faster(timing(1.5)).seconds, 1.5);
+        assert_eq!(timing(1.5).faster(timing(2.0)).seconds, 1.5);
+        let (first, second) = (timing(1.0), TimedRun { outcomes: BTreeMap::new(), ..timing(1.0) });
+        assert_eq!(first.faster(second).outcomes.len(), 40);
     }
 }
