@@ -329,7 +329,7 @@ fn main() -> Result<()> {
 /// default numerics against MuJoCo at the same step (the bar: against MuJoCo's loop; a black
 /// mark: against its stepping alone), on a log axis (a ratio and its inverse are as far from 1×).
 fn plot(path: &Path, modes: &[Mode], bars: &[(&str, Vec<(f64, f64)>)]) -> Result<()> {
-    let (r_l, d_l, loop_) = (step_label(REFERENCE_DT), step_label(fast_dt()), "(its mj_step loop + rest check)");
+    let (r_l, d_l, loop_) = (step_label(REFERENCE_DT), step_label(modes[3].dt), "(its mj_step loop + rest check)");
     let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l} {loop_}", m.short)).collect();
     series.push(format!("{} ÷ MuJoCo at {d_l}, the same step {loop_}", modes[3].short));
     let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));

@@ -3,7 +3,7 @@
 //! and parameters, MuJoCo's run through `shared/mujoco_drops.py` (its output, its drops
 //! classified by the project's rule) and the drop-by-drop comparison of two runs of the same
 //! releases (`dynamics::drops::compare`) for a README. Included with
-//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`, `cpu_time` and `benchmark_bodies`.
+//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness` and `benchmark_bodies`.
 #![allow(dead_code)] // each experiment uses the part it needs
 
 use super::benchmark_bodies::benchmark_bodies;
@@ -31,14 +31,10 @@ pub const SAMPLE_FACTOR: u64 = 10;
 
 pub type Outcomes = BTreeMap<u64, DropOutcome>;
 
-/// The project's default drop step, `Preset::largest_stable_dt` (1/120 s).
-pub fn fast_dt() -> f64 {
-    Preset::Drop.largest_stable_dt()
-}
-
-/// The steps MuJoCo runs at: the reference step (the benchmark protocol) and the project's default step.
+/// The steps MuJoCo runs at: the reference step (the benchmark protocol) and the project's default
+/// drop step, `Preset::largest_stable_dt` (1/120 s).
 pub fn mj_dts() -> [f64; 2] {
-    [REFERENCE_DT, fast_dt()]
+    [REFERENCE_DT, Preset::Drop.largest_stable_dt()]
 }
 
 /// "1/240 s" for dt = 1/240 s.
@@ -61,17 +57,17 @@ pub struct Mode {
 /// the default numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
 pub fn modes() -> [Mode; 4] {
     let mode = |name: String, short: String, batch, cert, dt| Mode { name, short, batch, cert, dt };
-    let (b, f, d) = (DEFAULT_BATCH, CertificateMode::Flock, step_label(fast_dt()));
+    let (b, f, fast) = (DEFAULT_BATCH, CertificateMode::Flock, Preset::Drop.largest_stable_dt());
     [
         mode("plain".into(), "plain".into(), 1, CertificateMode::None, REFERENCE_DT),
         mode("batched".into(), "batched".into(), b, CertificateMode::None, REFERENCE_DT),
         mode("flock-certified + batched".into(), "flock-cert. + batched".into(), b, f, REFERENCE_DT),
         mode(
-            format!("flock-certified + batched, default numerics (dt {d})"),
-            format!("flock-cert. + batched, default numerics (dt {d})"),
+            format!("flock-certified + batched, default numerics (dt {})", step_label(fast)),
+            format!("flock-cert. + batched, default numerics (dt {})", step_label(fast)),
             b,
             f,
-            fast_dt(),
+            fast,
         ),
     ]
 }
