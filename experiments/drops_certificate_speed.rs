@@ -65,8 +65,7 @@ fn header(name: &str, n: u64, seed: u64, preset: Preset, m: &Mode) -> RunHeader 
     if !m.default_step {
         params.sim.numerics.dt = REFERENCE_DT;
     }
-    let header = RunHeader::of_params(name, seed, n, params, m.cert);
-    RunHeader { preset: Some(preset.name().into()), ..header }
+    RunHeader::of_params(name, seed, n, params, m.cert).with_preset(preset)
 }
 
 fn main() -> Result<()> {

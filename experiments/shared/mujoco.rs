@@ -88,8 +88,7 @@ pub fn params(dt: f64) -> DropParams {
 }
 
 pub fn header(name: &str, n: u64, m: &Mode, seed: u64) -> RunHeader {
-    let header = RunHeader::of_params(name, seed, n, params(m.dt), m.cert);
-    RunHeader { preset: Some(Preset::Drop.name().into()), ..header }
+    RunHeader::of_params(name, seed, n, params(m.dt), m.cert).with_preset(Preset::Drop)
 }
 
 /// What `shared/mujoco_drops.py` writes.
