@@ -115,14 +115,12 @@ fn main() -> Result<()> {
         let project = run_timed(&pool, stone, &header(name, big, &modes[1], seed), DEFAULT_BATCH)?;
         let fast = run_timed(&pool, stone, &header(name, big, &modes[3], seed), modes[3].batch)?;
         let versus = |a: &Outcomes, b: &Outcomes| agreement(&stone.facet_flock, a, b);
-        // The two steps of one engine start from the same orientations: drops that end in the
-        // same flock at both steps.
-        let (same_mj, same_project) =
-            (versus(&mj[0].big_outcomes, &mj[1].big_outcomes).same, versus(&project.outcomes, &fast.outcomes).same);
         let big_ref = versus(&project.outcomes, &mj[0].big_outcomes);
-        let big_mj_steps = versus(&mj[1].big_outcomes, &mj[0].big_outcomes);
         let big_fast_same = versus(&fast.outcomes, &mj[1].big_outcomes);
         let big_fast_ref = versus(&fast.outcomes, &mj[0].big_outcomes);
+        // The two steps of one engine start from the same orientations: their `same` counts the
+        // drops that end in the same flock at both steps.
+        let big_mj_steps = versus(&mj[1].big_outcomes, &mj[0].big_outcomes);
         let big_steps = versus(&fast.outcomes, &project.outcomes);
         let (pb, fb) = (&project.report, &fast.report);
         let counts = |r: &DropReport| r.flock_counts(stone.flock_kinds.len());
@@ -140,8 +138,7 @@ fn main() -> Result<()> {
             "unsettled": [pb.unsettled, fb.unsettled, mj[0].big.unsettled, mj[1].big.unsettled],
             "ref": agreement_json(&big_ref), "mj_steps": agreement_json(&big_mj_steps),
             "fast_same": agreement_json(&big_fast_same), "fast_ref": agreement_json(&big_fast_ref),
-            "steps": agreement_json(&big_steps), "same_mj": same_mj,
-            "same_project": same_project,
+            "steps": agreement_json(&big_steps), "same_mj": big_mj_steps.same, "same_project": big_steps.same,
             "flocks": pb.flocks.iter().map(|f| json!({
                 "id": f.id, "kind": kind(f.id), "static": fixed(f.static_probability, 3),
                 "cells": [cell(pb, f.id), cell(&mj[0].big, f.id), cell(fb, f.id), cell(&mj[1].big, f.id)],
@@ -173,8 +170,7 @@ fn main() -> Result<()> {
                 "apart": big_ref.p < 0.05 && flat.iter().all(|&(_, r, m, _)| (r - m).abs() > 0.01),
             });
         }
-        let (mut ratios, mut table, mut us, mut p_modes, mut same_modes) = (vec![], vec![], vec![], vec![], vec![]);
-        let mut p_fast_same = 0.0;
+        let (mut ratios, mut table, mut p_modes, mut same_modes) = (vec![], vec![], vec![], vec![]);
         for (m, r) in modes.iter().zip(&rows) {
             let s = dts.iter().position(|&d| d == m.dt).expect("MuJoCo runs at every mode's step");
             let rate = r.rate();
@@ -182,12 +178,7 @@ fn main() -> Result<()> {
             let (rl, rs, sl, ss) = (ratio(mj[0].loop_s), ratio(mj[0].step_s), ratio(mj[s].loop_s), ratio(mj[s].step_s));
             ratios.push((rl, rs));
             let vs_same = versus(&r.outcomes, &mj[s].outcomes);
-            let (p, p_same) = (versus(&r.outcomes, &mj[0].outcomes).p, vs_same.p);
-            if s == 1 {
-                p_fast_same = p_same;
-            }
-            let us_k = r.micros_per_step();
-            us.push(us_k);
+            let (p, p_same, us_k) = (versus(&r.outcomes, &mj[0].outcomes).p, vs_same.p, r.micros_per_step());
             p_modes.push(fixed(p, 2));
             if p < worst.0 {
                 worst = (p, short);
@@ -238,7 +229,7 @@ fn main() -> Result<()> {
         }
         let step_us = |s: usize| 1e6 * mj[s].step_s / mj[s].steps;
         let loop_us = 1e6 * mj[0].loop_s / mj[0].steps;
-        lead.push(us[0] / step_us(0));
+        lead.push(rows[0].micros_per_step() / step_us(0));
         longer.push(mj[0].report.mean_time.total_cmp(&rows[0].report.mean_time));
         negative |= loop_us < step_us(0);
         totals[0] += (mj[0].warned + mj[1].warned) as u64;
@@ -251,8 +242,8 @@ fn main() -> Result<()> {
         ctx.push(json!({
             "name": name, "short": short, "rows": table, "mj_rows": mj_table, "checks": checks, "sample": sample,
             "ratios": ratios.iter().map(|r| json!({"l": fixed(r.0, 2), "s": fixed(r.1, 2)})).collect::<Vec<_>>(),
-            "us0": fixed(us[0], 2), "us1": fixed(us[1], 2), "t0": fixed(rows[0].report.mean_time, 2),
-            "t2": fixed(rows[2].report.mean_time, 2),
+            "us0": fixed(rows[0].micros_per_step(), 2), "us1": fixed(rows[1].micros_per_step(), 2),
+            "t0": fixed(rows[0].report.mean_time, 2), "t2": fixed(rows[2].report.mean_time, 2),
             "mj_step_us0": fixed(step_us(0), 2), "mj_step_us1": fixed(step_us(1), 2), "mj_loop_us0": fixed(loop_us, 2),
             "mj_t0": t(0), "mj_t1": t(1), "loop_share": fixed(100.0 * (loop_us / step_us(0) - 1.0), 0),
             "mj_loop_rate0": fixed(loop_rate(0), 1), "mj_loop_rate1": fixed(loop_rate(1), 1),
@@ -262,9 +253,9 @@ fn main() -> Result<()> {
             "recal_t": fixed(recal_report.mean_time, 2),
             "recal_warned": recal_drops.iter().filter(|d| d.warnings > 0).count(),
             "p_mj_steps": fixed(p_mj_steps, 2), "big_mj_steps_p": fixed(big_mj_steps.p, 3),
-            "mj_steps_low": big_mj_steps.p < 0.05,
-            "widest_mj_steps": widest(&shares_mj, &mj[1].big, &mj[0].big), "same_mj_big": format!("{same_mj} of {big}"),
-            "p_modes": p_modes.join(" / "), "p_fast_same": fixed(p_fast_same, 2),
+            "mj_steps_low": big_mj_steps.p < 0.05, "same_mj_big": format!("{} of {big}", big_mj_steps.same),
+            "widest_mj_steps": widest(&shares_mj, &mj[1].big, &mj[0].big),
+            "p_modes": p_modes.join(" / "), "p_fast_same": fixed(versus(&rows[3].outcomes, &mj[1].outcomes).p, 2),
             "same_flock": [same_modes[1], same_modes[2]],
             "big_ref_same": format!("{} of {}", big_ref.same, big_ref.both),
             "big_ref_p": fixed(big_ref.p, 3), "ref_low": big_ref.p < 0.05, "widest": widest(&shares, pb, &mj[0].big),
@@ -272,7 +263,7 @@ fn main() -> Result<()> {
             "widest_fast_same": widest(&fast_shares, fb, &mj[1].big),
             "big_fast_ref_p": fixed(big_fast_ref.p, 3), "fast_ref_low": big_fast_ref.p < 0.05,
             "big_steps_p": fixed(big_steps.p, 3), "steps_low": big_steps.p < 0.05,
-            "same_project_big": format!("{same_project} of {big}"),
+            "same_project_big": format!("{} of {big}", big_steps.same),
             "big_unsettled": format!("{} / {}", pb.unsettled, fb.unsettled),
             "flocks": flock_cells(&reports, 3),
             "kl": reports.iter().map(|r| fixed(r.fit_flocks.kl_divergence, 4)).collect::<Vec<_>>(),
