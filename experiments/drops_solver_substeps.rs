@@ -75,7 +75,7 @@ fn main() -> Result<()> {
     let mj = bench.run(big, REFERENCE_DT, None)?;
     let mut bodies = Vec::new();
     for (b, ((name, _), stone)) in bench.bodies.iter().zip(&bench.stones).enumerate() {
-        let side = MjSide::of(stone, name, &[&mj], b, REFERENCE_DT, seed);
+        let side = MjSide::of(stone, name, std::slice::from_ref(&mj), b, REFERENCE_DT, seed);
         let sub = substeps(&pool, stone, header(name, big, &mode, seed), &mode, &side)?;
         bodies.push(json!({"name": name, "sub": sub}));
     }

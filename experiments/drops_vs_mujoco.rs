@@ -53,15 +53,16 @@ fn main() -> Result<()> {
     // calibrated there) with only the step changed, as the project keeps its parameters at its
     // longer step; in the first round, an untimed check runs MuJoCo at the longer step with the
     // damping ratio calibrated again at that step (`recal`).
-    let (mut mj_rounds, mut recal) = (Vec::<[MjOut; 2]>::new(), None);
+    // MuJoCo's runs at each step, one a round.
+    let (mut mj_rounds, mut recal): ([Vec<MjOut>; 2], _) = ([Vec::new(), Vec::new()], None);
     let mut best: Vec<Vec<Option<TimedRun>>> = bodies.iter().map(|_| modes.iter().map(|_| None).collect()).collect();
     for round in 1..=REPEATS {
         let sample = if round == 1 { big } else { n };
         eprintln!("round {round} of {REPEATS}: MuJoCo at dt {} ({python} {})", step_label(dts[0]), script);
         let first = bench.run(sample, dts[0], None)?;
         eprintln!("round {round} of {REPEATS}: MuJoCo at dt {} ({python} {})", step_label(dts[1]), script);
-        mj_rounds.push([bench.run(sample, dts[1], Some(first.solref))?, first]);
-        mj_rounds.last_mut().expect("pushed").swap(0, 1);
+        mj_rounds[1].push(bench.run(sample, dts[1], Some(first.solref))?);
+        mj_rounds[0].push(first);
         if round == 1 {
             let d = step_label(dts[1]);
             eprintln!("round 1 of {REPEATS}: MuJoCo at dt {d}, damping ratio calibrated at that step (untimed check)");
@@ -76,7 +77,7 @@ fn main() -> Result<()> {
             }
         }
     }
-    let (mj0, recal) = (&mj_rounds[0], recal.expect("round 1 ran"));
+    let (mj0, recal) = ([&mj_rounds[0][0], &mj_rounds[1][0]], recal.expect("round 1 ran"));
     let mut csv = String::from(
         "body,engine,mode,batch,certificate,dt,drops,cpu_seconds,drops_per_s,ratio_vs_mujoco_loop,\
          ratio_vs_mujoco_stepping,ratio_vs_mujoco_same_dt_loop,ratio_vs_mujoco_same_dt_stepping,cpu_us_per_step,\
@@ -92,12 +93,7 @@ fn main() -> Result<()> {
     for (b, ((name, _), stone)) in bodies.iter().zip(stones).enumerate() {
         let short = ["stone", "pebble", "box"][b];
         // MuJoCo's drops at each step, classified by the project's rule; its fastest round.
-        let mj: Vec<MjSide> = (0..2)
-            .map(|s| {
-                let runs: Vec<&MjOut> = mj_rounds.iter().map(|r| &r[s]).collect();
-                MjSide::of(stone, name, &runs, b, dts[s], seed)
-            })
-            .collect();
+        let mj: Vec<MjSide> = (0..2).map(|s| MjSide::of(stone, name, &mj_rounds[s], b, dts[s], seed)).collect();
         let recal_drops = &recal.bodies[b].drops;
         let recal_report = classify(stone, name, recal_drops, dts[1], seed).0;
         let is_box = mj0[0].bodies[b].flat_restitution.is_some();

@@ -191,7 +191,7 @@ pub struct MjSide {
 impl MjSide {
     /// Body `b` of MuJoCo's `runs` at step `dt` (one per round, the first holding the sample),
     /// classified by the project's rule; the fastest round's CPU seconds.
-    pub fn of(stone: &Stone, name: &str, runs: &[&MjOut], b: usize, dt: f64, seed: u64) -> MjSide {
+    pub fn of(stone: &Stone, name: &str, runs: &[MjOut], b: usize, dt: f64, seed: u64) -> MjSide {
         let fastest = |f: fn(&MjBody) -> &Vec<f64>| {
             runs.iter().flat_map(|r| f(&r.bodies[b]).iter().copied()).fold(f64::INFINITY, f64::min)
         };
@@ -205,15 +205,14 @@ impl MjSide {
     }
 }
 
-/// The checks of MuJoCo's side for body `b`, from its `rounds` (each at both steps, the first
+/// The checks of MuJoCo's side for body `b`, from its runs at each step (one a round, the first
 /// holding the samples), its classified drops `mj` and the project's plain drops: MuJoCo's
 /// releases are the project's (the largest angle between the two engines' initial down
 /// directions, body frame, over every drop of the sample, at both steps), its mesh and placement,
 /// its replays and rounds bit for bit the same, its warnings, and how far off its facet each
 /// engine's drops came to rest.
-pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], plain: &Outcomes) -> Value {
-    let first = &rounds[0];
-    let downs = || first.iter().flat_map(|r| r.bodies[b].release_downs.iter().enumerate());
+pub fn mj_checks(bench: &Bench, rounds: &[Vec<MjOut>; 2], b: usize, mj: &[MjSide], plain: &Outcomes) -> Value {
+    let downs = || rounds.iter().flat_map(|r| r[0].bodies[b].release_downs.iter().enumerate());
     let release_angle = downs()
         .map(|(i, d)| {
             let (own, d) = (bench.release(i as u64).inverse() * -Vec3::z(), Vec3::from(*d));
@@ -221,8 +220,8 @@ pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], 
         })
         .fold(0.0f64, f64::max);
     let same_rounds = |s: usize| {
-        rounds.iter().all(|r| {
-            let (x, y) = (&r[s].bodies[b].drops, &first[s].bodies[b].drops);
+        rounds[s].iter().all(|r| {
+            let (x, y) = (&r.bodies[b].drops, &rounds[s][0].bodies[b].drops);
             x.iter().zip(y).all(|(x, y)| x.down == y.down && x.steps == y.steps)
         })
     };
@@ -230,9 +229,9 @@ pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], 
     // Median and largest height above the facet's rest of each run's settled drops.
     let rise = |o: &Outcomes| height_above_median_max(o).map(e1);
     json!({
-        "releases": downs().count(), "angle": e1(release_angle), "vertices": first[0].bodies[b].mesh_vertices,
-        "corners": bench.stones[b].body.corners.len(), "placement": e1(first[0].bodies[b].placement_error),
-        "replay": ([0, 1].map(|s| rounds.iter().all(|r| r[s].bodies[b].replay_identical))),
+        "releases": downs().count(), "angle": e1(release_angle), "vertices": rounds[0][0].bodies[b].mesh_vertices,
+        "corners": bench.stones[b].body.corners.len(), "placement": e1(rounds[0][0].bodies[b].placement_error),
+        "replay": ([0, 1].map(|s| rounds[s].iter().all(|r| r.bodies[b].replay_identical))),
         "rounds": ([0, 1].map(same_rounds)), "warned": [mj[0].warned, mj[1].warned],
         "rises": [rise(&mj[0].outcomes), rise(&mj[1].outcomes)], "plain_rise": rise(plain),
     })
