@@ -139,13 +139,12 @@ pub struct MjDrop {
 /// down direction), as outcomes of a plain run, and their summary. A drop that ended with a
 /// non-finite down direction or after a MuJoCo warning counts as not settled.
 pub fn classify(stone: &Stone, name: &str, drops: &[MjDrop], dt: f64, seed: u64) -> (DropReport, Outcomes) {
-    let mut outcomes = Outcomes::new();
-    for (i, d) in drops.iter().enumerate() {
+    let outcome = |(i, d): (usize, &MjDrop)| {
         let down = Vec3::from(d.down);
         let sane = down.iter().all(|x| x.is_finite()) && down.norm() > 0.5 && d.warnings == 0;
-        let time = d.steps as f64 * dt;
-        outcomes.insert(i as u64, outcome_at(stone, i as u64, sane.then_some(&down), d.settled, time));
-    }
+        (i as u64, outcome_at(stone, i as u64, sane.then_some(&down), d.settled, d.steps as f64 * dt))
+    };
+    let outcomes: Outcomes = drops.iter().enumerate().map(outcome).collect();
     let mode = Mode { dt, ..modes()[0].clone() };
     (summarize(&stone.model(), &header(name, drops.len() as u64, &mode, seed), &outcomes), outcomes)
 }
@@ -315,11 +314,9 @@ impl Bench {
         (input["sample_drops"], input["dt"], input["solref"]) = (json!(sample), json!(dt), json!(solref));
         let (in_path, out_path) = (tmp.join("in.json"), tmp.join("out.json"));
         std::fs::write(&in_path, serde_json::to_string(&input)?)?;
+        let one_thread = ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"].map(|var| (var, "1"));
         let mut command = Command::new(&self.python);
-        command.arg(&self.script).arg(&in_path).arg(&out_path);
-        for var in ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"] {
-            command.env(var, "1");
-        }
+        command.arg(&self.script).arg(&in_path).arg(&out_path).envs(one_thread);
         let status = command.status().with_context(|| format!("cannot run {}", self.python))?;
         anyhow::ensure!(status.success(), "{} failed ({status})", self.script.display());
         let mj: MjOut = serde_json::from_str(&std::fs::read_to_string(&out_path)?)?;
