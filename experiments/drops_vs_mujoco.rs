@@ -33,6 +33,9 @@ const REPEATS: usize = 3;
 /// MuJoCo's default contact time constant (s), the first number of solref (`mujoco_drops.py`).
 const MJ_TIMECONST: f64 = 0.02;
 const BLACK: RGBColor = RGBColor(0, 0, 0);
+/// The bodies' names under their bars in `ratio.png`.
+const BAR_NAMES: [&str; 3] =
+    ["bundled stone (581 hull vertices)", "synthetic pebble (500 hull vertices)", "box 1 × 0.8 × 0.5"];
 
 fn main() -> Result<()> {
     let (n, common) = harness::count_args(
@@ -148,11 +151,8 @@ fn main() -> Result<()> {
                 stone.body.facet_normals[f].iamax()
             };
             let pooled = |r: &DropReport, statics: bool| {
-                let mut v = [0.0; 3];
-                for f in &r.flocks {
-                    v[axis_of(f.id)] += if statics { f.static_probability } else { f.fraction };
-                }
-                v.map(|x| fixed(x, 3)).join(" / ")
+                let sums = r.pooled_flocks(3, axis_of).into_iter().map(|(f, s)| fixed(if statics { s } else { f }, 3));
+                sums.collect::<Vec<_>>().join(" / ")
             };
             // MuJoCo − project per face at the reference step, the two faces of each pair side by side.
             let mut diffs = [Vec::new(), Vec::new(), Vec::new()];
@@ -265,7 +265,7 @@ fn main() -> Result<()> {
             "kl": reports.iter().map(|r| fixed(r.fit_flocks.kl_divergence, 4)).collect::<Vec<_>>(),
         }));
         all_same &= same_modes[1] == n as usize && same_modes[2] == n as usize;
-        bars.push((short, ratios));
+        bars.push((BAR_NAMES[b], ratios));
     }
     let range = |k: usize, stepping: bool| {
         let v: Vec<f64> = bars.iter().map(|(_, r)| if stepping { r[k].1 } else { r[k].0 }).collect();
@@ -322,17 +322,12 @@ fn plot(path: &Path, modes: &[Mode], bars: &[(&str, Vec<(f64, f64)>)]) -> Result
     let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));
     let (bottom, top, right) =
         (values().fold(0.5, f64::min) * 0.8, values().fold(10.0, f64::max) * 12.0, bars.len() as f64 - 0.5);
-    let names = bars.iter().map(|b| match b.0 {
-        "stone" => "bundled stone (581 hull vertices)".into(),
-        "pebble" => "synthetic pebble (500 hull vertices)".into(),
-        other => format!("{other} 1 × 0.8 × 0.5"),
-    });
     let y = Axis::log("drops/s of the project ÷ drops/s of MuJoCo (log scale)", bottom, top)
         .format(|y| format!("{}×", rocking_stones::plot::log_tick(y)))
         .space(70);
     let loops: Vec<Vec<f64>> = bars.iter().map(|(_, v)| v.iter().map(|r| r.0).collect()).collect();
     // The reference level 1× first, so that the bars and their labels lie over it.
-    let mut chart = Chart::new(Axis::categories("", names.collect()), y)
+    let mut chart = Chart::new(Axis::categories("", bars.iter().map(|b| b.0.to_string()).collect()), y)
         .title("Drops per core: this project ÷ MuJoCo, same physics, one core")
         .dashed(&[(-0.5, 1.0), (right, 1.0)], BLACK)
         .grouped_bars(&loops, &series, bottom, 0.86);

@@ -148,6 +148,20 @@ impl DropReport {
         (0..flocks).map(|k| self.flock_count(k)).collect()
     }
 
+    /// The flocks' fractions and quasi-static probabilities summed over groups of flocks (flocks a
+    /// symmetry of the stone makes equivalent, e.g. the two opposite faces of a box): entry g is
+    /// (Σ fraction, Σ static probability) over the report's flocks f with `group(f)` = g, for
+    /// g < `groups`; a flock whose group is not below `groups` is left out.
+    pub fn pooled_flocks(&self, groups: usize, group: impl Fn(usize) -> usize) -> Vec<(f64, f64)> {
+        let mut pooled = vec![(0.0, 0.0); groups];
+        for f in &self.flocks {
+            if let Some(p) = pooled.get_mut(group(f.id)) {
+                *p = (p.0 + f.fraction, p.1 + f.static_probability);
+            }
+        }
+        pooled
+    }
+
     /// Flock `id`'s fraction with its 95 % interval as tables print it
     /// ([`FlockRow::fraction_with_ci`], `digits` decimals); "—" when the report has no row for it.
     pub fn flock_fraction_with_ci(&self, id: usize, digits: usize) -> String {
@@ -319,6 +333,19 @@ mod tests {
         // Wilson's interval of 3 in 4 at z = 1.96: (0.75 + z²/8 ± z √(3/64 + z²/64)) / (1 + z²/4).
         assert_eq!(r.flock_fraction_with_ci(0, 3), "0.750 [0.301, 0.954]");
         assert_eq!(r.flock_fraction_with_ci(2, 3), "—");
+    }
+
+    #[test]
+    fn flocks_pool_by_group() {
+        // Flocks 0 and 1 (0.75 and 0.25 of the drops, static 0.6 and 0.4); flock 2 has no row.
+        let outcomes: BTreeMap<u64, DropOutcome> =
+            [(0, 0), (1, 0), (2, 1), (3, 0)].map(|(i, f)| (i, drop(i, true, f))).into();
+        let params = Preset::Drop.params(Surface::SteelOnWood);
+        let r = summarize(&model(), &RunHeader::of_params("test", 1, 4, params, CertificateMode::None), &outcomes);
+        assert_eq!(r.pooled_flocks(2, |_| 1), vec![(0.0, 0.0), (1.0, 1.0)]);
+        assert_eq!(r.pooled_flocks(3, |k| 2 - k), vec![(0.0, 0.0), (0.25, 0.4), (0.75, 0.6)]);
+        // Flock 1 in group 1, beyond the one group asked for.
+        assert_eq!(r.pooled_flocks(1, |k| k), vec![(0.75, 0.6)]);
     }
 
     #[test]
