@@ -1,25 +1,22 @@
-//! Drops per second per core for the `drop` and `throw` presets, one drop per rapier
-//! world (plain) or many (batched, [`rocking_stones::dynamics::drops::batch`]), with full settling or
-//! the energy certificate (facet and flock level), same drops (same seed) in every mode, on the
-//! bundled stone, a ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5; every mode's
-//! outcomes are compared drop by drop with the plain mode's (batched: bit-identical; certified:
-//! same facet / flock), and the per-flock statistics of every mode are given against the
-//! quasi-static probabilities. A batch-size sweep picks `montecarlo::DEFAULT_BATCH`.
+//! Drops per second per core for the `drop` and `throw` presets on the bundled stone, a
+//! ≈500-hull-vertex synthetic pebble and a box 1 × 0.8 × 0.5: plain, batched, certified (facet and
+//! flock level) and with free flight, the same drops in every mode compared drop by drop with
+//! plain, and the batch-size sweep that picks `montecarlo::DEFAULT_BATCH`; the README's prose is
+//! `experiments/readme/drops_certificate_speed.md`.
 //!
 //! Run: `cargo run --release --example drops_certificate_speed [-- N]` (N = 1000 drops per mode;
-//! one thread, so the figures are per core) → `results/drops_certificate/`; the README's prose is
-//! `experiments/readme/drops_certificate_speed.md`.
+//! one thread, so the figures are per core) → `results/drops_certificate/`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
-#[path = "shared/cpu_time.rs"]
-mod cpu_time;
 #[path = "shared/harness.rs"]
 mod harness;
 use benchmark_bodies::benchmark_bodies;
-use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
+use rocking_stones::dynamics::drops::compare::{matching_drops, Match};
+use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
 use rocking_stones::prelude::*;
+use rocking_stones::report::drops::flock_cells;
 use rocking_stones::stats::chi_square_homogeneity;
 use serde_json::json;
 use std::fmt::Write as _;
@@ -68,8 +65,7 @@ fn header(name: &str, n: u64, seed: u64, preset: Preset, m: &Mode) -> RunHeader 
     if !m.default_step {
         params.sim.numerics.dt = REFERENCE_DT;
     }
-    let header = RunHeader::of_params(name, seed, n, params, m.cert);
-    RunHeader { preset: Some(preset.name().into()), ..header }
+    RunHeader::of_params(name, seed, n, params, m.cert).with_preset(preset)
 }
 
 fn main() -> Result<()> {
@@ -90,42 +86,34 @@ fn main() -> Result<()> {
     for (name, a) in &bodies {
         let stone = Stone::new(a, a.macro_nu(&Options::default()).0)?;
         for preset in [Preset::Drop, Preset::Throw] {
-            let run = |m: &Mode| timed(&pool, &stone, &header(name, n, seed, preset, m), m.batch);
+            let run = |m: &Mode| run_timed(&pool, &stone, &header(name, n, seed, preset, m), m.batch);
             // Plain is timed before and after the other modes, each other mode twice; the faster
             // run counts.
-            let plain_first = run(&MODES[0]);
+            let plain_first = run(&MODES[0])?;
             let mut runs = vec![];
             for m in &MODES[1..] {
-                let (first, again) = (run(m), run(m));
-                let r = if again.seconds < first.seconds { again } else { first };
-                eprintln!("{name} {preset} {}: {:.1} drops/s", m.name, n as f64 / r.seconds);
+                let r = run(m)?.faster(run(m)?);
+                eprintln!("{name} {preset} {}: {:.1} drops/s", m.name, r.rate());
                 runs.push(r);
             }
-            let plain_again = run(&MODES[0]);
-            let (first_rate, again_rate) = (n as f64 / plain_first.seconds, n as f64 / plain_again.seconds);
+            let plain_again = run(&MODES[0])?;
+            let (first_rate, again_rate) = (plain_first.rate(), plain_again.rate());
             eprintln!("{name} {preset} plain: {first_rate:.1} / {again_rate:.1} drops/s");
-            let seconds = plain_first.seconds.min(plain_again.seconds);
-            runs.insert(0, Run { seconds, ..plain_first });
+            runs.insert(0, plain_first.faster(plain_again));
             let plain = &runs[0];
             let counts =
-                |r: &Run| -> Vec<u64> { plain.report.flocks.iter().map(|f| r.report.flock_count(f.id)).collect() };
+                |r: &TimedRun| -> Vec<u64> { plain.report.flocks.iter().map(|f| r.report.flock_count(f.id)).collect() };
             let mut speedups = Vec::new();
             for (m, r) in MODES.iter().zip(&runs) {
-                let same = r
-                    .outcomes
-                    .iter()
-                    .filter(|(i, o)| {
-                        let p = &plain.outcomes[*i];
-                        match m.cert {
-                            // the reference numerics: bit for bit
-                            CertificateMode::None if m.flight == Flight::Rapier && !m.default_step => o == &p,
-                            CertificateMode::None | CertificateMode::Facet => o.facet == p.facet,
-                            CertificateMode::Flock => o.flock_in(&stone.facet_flock) == p.flock_in(&stone.facet_flock),
-                        }
-                    })
-                    .count();
+                let level = match m.cert {
+                    // the reference numerics: bit for bit
+                    CertificateMode::None if m.flight == Flight::Rapier && !m.default_step => Match::Record,
+                    CertificateMode::None | CertificateMode::Facet => Match::Facet,
+                    CertificateMode::Flock => Match::Flock,
+                };
+                let same = matching_drops(&stone.facet_flock, &r.outcomes, &plain.outcomes, level);
                 let (_, _, p_value) = chi_square_homogeneity(&counts(plain), &counts(r));
-                let (rate, speedup, rep) = (n as f64 / r.seconds, plain.seconds / r.seconds, &r.report);
+                let (rate, speedup, rep) = (r.rate(), plain.seconds / r.seconds, &r.report);
                 speedups.push(speedup);
                 let plain_rates = format!(" ({first_rate:.1} / {again_rate:.1})");
                 rows.push(json!({
@@ -151,15 +139,7 @@ fn main() -> Result<()> {
                 )?;
             }
             bars.push((format!("{}, {preset}", ["stone", "pebble", "box"][bars.len() / 2]), speedups));
-            let table: Vec<_> = (plain.report.flocks.iter())
-                .map(|f| {
-                    let cell = |r: &Run| r.report.flock(f.id).map_or("—".into(), |g| g.fraction_with_ci(3));
-                    json!({
-                        "id": f.id, "kind": format!("{:?}", f.kind).to_lowercase(),
-                        "static": fixed(f.static_probability, 3), "cells": runs.iter().map(cell).collect::<Vec<_>>(),
-                    })
-                })
-                .collect();
+            let table = flock_cells(&runs.iter().map(|r| &r.report).collect::<Vec<_>>(), 3);
             flocks.push(json!({ "body": name, "preset": preset.to_string(), "rows": table }));
         }
     }
@@ -169,9 +149,9 @@ fn main() -> Result<()> {
     let mut sweep = Vec::new();
     let mut base = None;
     for batch in [1, 4, 8, 16, 32, 64, 128] {
-        let r = timed(&pool, &stone, &header(name, n, seed, Preset::Throw, &MODES[1]), batch);
+        let r = run_timed(&pool, &stone, &header(name, n, seed, Preset::Throw, &MODES[1]), batch)?;
         let b = *base.get_or_insert(r.seconds);
-        let (rate, speedup) = (n as f64 / r.seconds, b / r.seconds);
+        let (rate, speedup) = (r.rate(), b / r.seconds);
         sweep.push(json!({ "batch": batch, "rate": fixed(rate, 1), "speedup": fixed(speedup, 2) }));
         writeln!(
             csv,
@@ -211,24 +191,11 @@ fn main() -> Result<()> {
 fn plot(out: &Results, bars: &[(String, Vec<f64>)]) -> Result<()> {
     const BLACK: RGBColor = RGBColor(0, 0, 0);
     let top = bars.iter().flat_map(|(_, v)| v.iter().copied()).fold(1.0, f64::max) * 1.15;
-    let (names, right) = (bars.iter().map(|b| b.0.clone()).collect::<Vec<_>>(), bars.len() as f64 - 0.5);
-    let category = move |x: f64| match names.get(x.round() as usize) {
-        Some(name) if (x - x.round()).abs() < 1e-6 && x > -0.5 => name.clone(),
-        _ => String::new(),
-    };
-    let mut chart = Chart::new(
-        Axis::linear("", -0.5, right).ticks(bars.len() + 1).no_grid().format(category),
-        Axis::linear("speed-up (same run, same drops)", 0.0, top),
-    )
-    .title("Drops per core: speed-up over plain (one drop per world, full settling)");
-    let w = 0.84 / PLOTTED.len() as f64;
-    for (slot, &s) in PLOTTED.iter().enumerate() {
-        let colour = series_color(slot);
-        let x0 = |k: usize| k as f64 - 0.42 + slot as f64 * w;
-        let boxes: Vec<_> = bars.iter().enumerate().map(|(k, (_, v))| (x0(k), 0.0, x0(k) + w * 0.9, v[s])).collect();
-        chart = chart.boxes(&boxes, colour, 1.0).legend(Mark::Box(colour, 1.0), MODES[s].name);
-    }
-    chart
+    let (names, right) = (bars.iter().map(|b| b.0.clone()).collect(), bars.len() as f64 - 0.5);
+    let plotted: Vec<Vec<f64>> = bars.iter().map(|(_, v)| PLOTTED.map(|s| v[s]).to_vec()).collect();
+    Chart::new(Axis::categories("", names), Axis::linear("speed-up (same run, same drops)", 0.0, top))
+        .title("Drops per core: speed-up over plain (one drop per world, full settling)")
+        .grouped_bars(&plotted, &PLOTTED.map(|s| MODES[s].name.to_string()), 0.0, 0.84)
         .line_width(&[(-0.5, 7.0), (right, 7.0)], BLACK, 1)
         .legend(Mark::Line(BLACK), "target 7×")
         .save(&out.path("speedup.png"), (1300, 640))?;

@@ -1,27 +1,23 @@
-//! Rapier's solver sub-steps (its solver iterations per step) against MuJoCo, drop by drop: the
-//! project's flock-certified + batched drops at the reference step 1/240 s with 2 to 32 solver
-//! iterations, on the releases and physics of `drops_vs_mujoco` (the MuJoCo side both share is
-//! `shared/mujoco.rs`), each compared with MuJoCo's drops at 1/240 s and with the finest count by
-//! the paired Stuart–Maxwell test. Is the default of 4 converged, and does any count agree better
-//! with MuJoCo? Untimed: the drops/s it prints are indicative.
+//! Rapier's solver sub-steps (its solver iterations per step, 2 to 32) against MuJoCo, drop by
+//! drop, on the releases and physics of `drops_vs_mujoco` (the MuJoCo side both share is
+//! `shared/mujoco.rs`); what it shows is in its README's template,
+//! `experiments/readme/drops_solver_substeps.md`.
 //!
 //! Run: `cargo run --release --example drops_solver_substeps [-- N]` (10 × N releases per body and
-//! count, N = 300; `--seed` the releases' seed, default 7) → `results/drops_solver_substeps/`; the
-//! README's prose is `experiments/readme/drops_solver_substeps.md`. Needs MuJoCo's Python bindings
-//! (`pip install mujoco`) in `python3` or in the interpreter named by `ROCKING_PYTHON`.
+//! count, N = 300; `--seed` the releases' seed, default 7) → `results/drops_solver_substeps/`. Needs
+//! MuJoCo's Python bindings (`pip install mujoco`) in `python3` or in the interpreter named by
+//! `ROCKING_PYTHON`.
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
-#[path = "shared/cpu_time.rs"]
-mod cpu_time;
 #[path = "shared/harness.rs"]
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
-use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::compare::{agreement, Agreement};
+use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
 use rocking_stones::prelude::*;
 use serde_json::{json, Value};
 
@@ -32,16 +28,16 @@ const SUBSTEPS: [usize; 5] = [2, 4, 8, 16, 32];
 /// The untimed convergence check of one body: its `drops` releases in mode `m` at each of
 /// [`SUBSTEPS`] solver iterations, compared drop by drop with MuJoCo's sample `mj` and with the
 /// finest.
-fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj: &MjSide) -> Value {
-    let runs: Vec<Run> = SUBSTEPS
+fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj: &MjSide) -> Result<Value> {
+    let runs: Vec<TimedRun> = SUBSTEPS
         .iter()
         .map(|&k| {
             eprintln!("  {}: {k} solver iterations (untimed)", h.mesh);
             let mut h = h.clone();
             h.params.sim.numerics.solver_iterations = k;
-            timed(pool, stone, &h, m.batch)
+            run_timed(pool, stone, &h, m.batch)
         })
-        .collect();
+        .collect::<Result<_, _>>()?;
     let finest = &runs[runs.len() - 1];
     let shown: Vec<usize> = (0..stone.flock_kinds.len()).filter(|&k| finest.report.flock_count(k) > 0).collect();
     let versus = |a: &Outcomes, b: &Outcomes| agreement(&stone.facet_flock, a, b);
@@ -51,16 +47,16 @@ fn substeps(pool: &rayon::ThreadPool, stone: &Stone, h: RunHeader, m: &Mode, mj:
     let last = SUBSTEPS.len() - 1;
     let default = SUBSTEPS.iter().position(|&k| k == h.params.sim.numerics.solver_iterations).expect("in SUBSTEPS");
     let converged = (0..last).find(|&i| vs[i..last].iter().all(|v| v.1.p >= 0.05)).map(|i| SUBSTEPS[i]);
-    json!({
+    Ok(json!({
         "shown": shown,
         "rows": SUBSTEPS.iter().zip(&runs).zip(&vs).map(|((k, r), (a, b))| json!({
-            "k": k, "rate": fixed(h.drops as f64 / r.seconds, 0), "mj": agreement_json(a), "fine": agreement_json(b),
+            "k": k, "rate": fixed(r.rate(), 0), "mj": agreement_json(a), "fine": agreement_json(b),
             "fr": shown.iter().map(|&f| fixed(r.report.flock_fraction(f), 4)).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
         "mj": shown.iter().map(|&f| fixed(mj.big.flock_fraction(f), 4)).collect::<Vec<_>>(),
         "default_ok": vs[default].1.p >= 0.05, "p_default": fixed(vs[default].1.p, 3), "converged": converged,
         "agree": SUBSTEPS.iter().zip(&vs).filter(|(_, v)| v.0.p >= 0.05).map(|(k, _)| k).collect::<Vec<_>>(),
-    })
+    }))
 }
 
 fn main() -> Result<()> {
@@ -79,8 +75,8 @@ fn main() -> Result<()> {
     let mj = bench.run(big, REFERENCE_DT, None)?;
     let mut bodies = Vec::new();
     for (b, ((name, _), stone)) in bench.bodies.iter().zip(&bench.stones).enumerate() {
-        let side = MjSide::of(stone, name, &[&mj], b, REFERENCE_DT, seed);
-        let sub = substeps(&pool, stone, header(name, big, &mode, seed), &mode, &side);
+        let side = MjSide::of(stone, name, std::slice::from_ref(&mj), b, REFERENCE_DT, seed);
+        let sub = substeps(&pool, stone, header(name, big, &mode, seed), &mode, &side)?;
         bodies.push(json!({"name": name, "sub": sub}));
     }
     let context = json!({

@@ -1,34 +1,29 @@
 //! Drops per second per core of this project against MuJoCo under the same physics, and the
-//! agreement of their outcome statistics, in one run on one core. Both engines drop the three
-//! benchmark bodies from the same releases (the project's orientation of each drop index, passed
-//! to MuJoCo), so the outcomes are compared drop by drop, on the timed drops and on larger untimed
-//! samples: the project at each step (1/240 s, 1/120 s) against MuJoCo at each, and MuJoCo at
-//! 1/120 s against itself at 1/240 s. The matched physics is in the README (its template) and in
-//! `shared/mujoco_drops.py`; the MuJoCo side, shared with `drops_solver_substeps` (rapier's solver
-//! sub-steps against the same MuJoCo drops), is `shared/mujoco.rs`.
+//! agreement of their outcome statistics drop by drop on the same releases; what it compares and
+//! how is in its README's template, `experiments/readme/drops_vs_mujoco.md`, the MuJoCo side in
+//! `shared/mujoco.rs` and `shared/mujoco_drops.py`.
 //!
 //! Run: `cargo run --release --example drops_vs_mujoco [-- N]` (N = 300 drops per body and mode;
-//! `--seed` the releases' seed, default 7) → `results/drops_vs_mujoco/`; the README's prose is
-//! `experiments/readme/drops_vs_mujoco.md`. Needs MuJoCo's Python bindings (`pip install mujoco`)
-//! in `python3` or in the interpreter named by `ROCKING_PYTHON`.
+//! `--seed` the releases' seed, default 7) → `results/drops_vs_mujoco/`. Needs MuJoCo's Python
+//! bindings (`pip install mujoco`) in `python3` or in the interpreter named by `ROCKING_PYTHON`.
 
 #![recursion_limit = "256"] // the README's context is one large `json!`
 
 #[path = "shared/benchmark_bodies.rs"]
 mod benchmark_bodies;
-#[path = "shared/cpu_time.rs"]
-mod cpu_time;
 #[path = "shared/harness.rs"]
 mod harness;
 #[path = "shared/mujoco.rs"]
 mod mujoco;
-use cpu_time::{timed, Run};
 use harness::{fixed, Result, Results};
 use mujoco::*;
-use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares};
+use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares, matching_drops, Match};
+use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
 use rocking_stones::dynamics::drops::simulate::flat_restitution;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
+use rocking_stones::plot::bar_slot;
 use rocking_stones::prelude::*;
+use rocking_stones::report::drops::flock_cells;
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -38,6 +33,9 @@ const REPEATS: usize = 3;
 /// MuJoCo's default contact time constant (s), the first number of solref (`mujoco_drops.py`).
 const MJ_TIMECONST: f64 = 0.02;
 const BLACK: RGBColor = RGBColor(0, 0, 0);
+/// The bodies' names under their bars in `ratio.png`.
+const BAR_NAMES: [&str; 3] =
+    ["bundled stone (581 hull vertices)", "synthetic pebble (500 hull vertices)", "box 1 × 0.8 × 0.5"];
 
 fn main() -> Result<()> {
     let (n, common) = harness::count_args(
@@ -58,15 +56,16 @@ fn main() -> Result<()> {
     // calibrated there) with only the step changed, as the project keeps its parameters at its
     // longer step; in the first round, an untimed check runs MuJoCo at the longer step with the
     // damping ratio calibrated again at that step (`recal`).
-    let (mut mj_rounds, mut recal) = (Vec::<[MjOut; 2]>::new(), None);
-    let mut best: Vec<Vec<Option<Run>>> = bodies.iter().map(|_| modes.iter().map(|_| None).collect()).collect();
+    // MuJoCo's runs at each step, one a round.
+    let (mut mj_rounds, mut recal): ([Vec<MjOut>; 2], _) = ([Vec::new(), Vec::new()], None);
+    let mut best: Vec<Vec<Option<TimedRun>>> = bodies.iter().map(|_| modes.iter().map(|_| None).collect()).collect();
     for round in 1..=REPEATS {
         let sample = if round == 1 { big } else { n };
         eprintln!("round {round} of {REPEATS}: MuJoCo at dt {} ({python} {})", step_label(dts[0]), script);
         let first = bench.run(sample, dts[0], None)?;
         eprintln!("round {round} of {REPEATS}: MuJoCo at dt {} ({python} {})", step_label(dts[1]), script);
-        mj_rounds.push([bench.run(sample, dts[1], Some(first.solref))?, first]);
-        mj_rounds.last_mut().expect("pushed").swap(0, 1);
+        mj_rounds[1].push(bench.run(sample, dts[1], Some(first.solref))?);
+        mj_rounds[0].push(first);
         if round == 1 {
             let d = step_label(dts[1]);
             eprintln!("round 1 of {REPEATS}: MuJoCo at dt {d}, damping ratio calibrated at that step (untimed check)");
@@ -75,15 +74,13 @@ fn main() -> Result<()> {
         eprintln!("round {round} of {REPEATS}: the project");
         for (b, ((name, _), stone)) in bodies.iter().zip(stones).enumerate() {
             for (k, m) in modes.iter().enumerate() {
-                let r = timed(&pool, stone, &header(name, n, m, seed), m.batch);
-                eprintln!("  {name} {}: {:.1} drops/s", m.name, nd / r.seconds);
-                if best[b][k].as_ref().is_none_or(|x| r.seconds < x.seconds) {
-                    best[b][k] = Some(r);
-                }
+                let r = run_timed(&pool, stone, &header(name, n, m, seed), m.batch)?;
+                eprintln!("  {name} {}: {:.1} drops/s", m.name, r.rate());
+                best[b][k] = Some(if let Some(fastest) = best[b][k].take() { fastest.faster(r) } else { r });
             }
         }
     }
-    let (mj0, recal) = (&mj_rounds[0], recal.expect("round 1 ran"));
+    let (mj0, recal) = ([&mj_rounds[0][0], &mj_rounds[1][0]], recal.expect("round 1 ran"));
     let mut csv = String::from(
         "body,engine,mode,batch,certificate,dt,drops,cpu_seconds,drops_per_s,ratio_vs_mujoco_loop,\
          ratio_vs_mujoco_stepping,ratio_vs_mujoco_same_dt_loop,ratio_vs_mujoco_same_dt_stepping,cpu_us_per_step,\
@@ -99,12 +96,7 @@ fn main() -> Result<()> {
     for (b, ((name, _), stone)) in bodies.iter().zip(stones).enumerate() {
         let short = ["stone", "pebble", "box"][b];
         // MuJoCo's drops at each step, classified by the project's rule; its fastest round.
-        let mj: Vec<MjSide> = (0..2)
-            .map(|s| {
-                let runs: Vec<&MjOut> = mj_rounds.iter().map(|r| &r[s]).collect();
-                MjSide::of(stone, name, &runs, b, dts[s], seed)
-            })
-            .collect();
+        let mj: Vec<MjSide> = (0..2).map(|s| MjSide::of(stone, name, &mj_rounds[s], b, dts[s], seed)).collect();
         let recal_drops = &recal.bodies[b].drops;
         let recal_report = classify(stone, name, recal_drops, dts[1], seed).0;
         let is_box = mj0[0].bodies[b].flat_restitution.is_some();
@@ -115,27 +107,26 @@ fn main() -> Result<()> {
             }
         }
         // The project's modes, their fastest round.
-        let rows: Vec<Run> = best[b].iter_mut().map(|r| r.take().expect("REPEATS ≥ 1")).collect();
+        let rows: Vec<TimedRun> = best[b].iter_mut().map(|r| r.take().expect("REPEATS ≥ 1")).collect();
         let checks = mj_checks(&bench, &mj_rounds, b, &mj, &rows[0].outcomes);
         // The larger, untimed samples: the batched project at the reference step (drop by drop
         // the plain drops), the default numerics, and MuJoCo at both steps.
-        let project = timed(&pool, stone, &header(name, big, &modes[1], seed), DEFAULT_BATCH);
-        let fast = timed(&pool, stone, &header(name, big, &modes[3], seed), modes[3].batch);
+        let project = run_timed(&pool, stone, &header(name, big, &modes[1], seed), DEFAULT_BATCH)?;
+        let fast = run_timed(&pool, stone, &header(name, big, &modes[3], seed), modes[3].batch)?;
         let versus = |a: &Outcomes, b: &Outcomes| agreement(&stone.facet_flock, a, b);
-        // The two steps of one engine start from the same orientations: drops that end in the
-        // same flock at both steps.
-        let (same_mj, same_project) =
-            (versus(&mj[0].big_outcomes, &mj[1].big_outcomes).same, versus(&project.outcomes, &fast.outcomes).same);
         let big_ref = versus(&project.outcomes, &mj[0].big_outcomes);
-        let big_mj_steps = versus(&mj[1].big_outcomes, &mj[0].big_outcomes);
         let big_fast_same = versus(&fast.outcomes, &mj[1].big_outcomes);
         let big_fast_ref = versus(&fast.outcomes, &mj[0].big_outcomes);
+        // The two steps of one engine start from the same orientations: their `same` counts the
+        // drops that end in the same flock at both steps.
+        let big_mj_steps = versus(&mj[1].big_outcomes, &mj[0].big_outcomes);
         let big_steps = versus(&fast.outcomes, &project.outcomes);
         let (pb, fb) = (&project.report, &fast.report);
         let counts = |r: &DropReport| r.flock_counts(stone.flock_kinds.len());
         let shares = chi_square_shares(&counts(pb), &counts(&mj[0].big));
         let shares_mj = chi_square_shares(&counts(&mj[1].big), &counts(&mj[0].big));
-        let kind = |k: usize| format!("{:?}", stone.flock_kinds[k]).to_lowercase();
+        let kind = |k: usize| stone.flock_kinds[k].name();
+        let cell = |r: &DropReport, k: usize| r.flock_fraction_with_ci(k, 3);
         // The flock with the largest share of χ² between two samples, its fraction in each.
         let widest = |v: &[f64], a: &DropReport, b: &DropReport| {
             let k = (0..v.len()).max_by(|&x, &y| v[x].total_cmp(&v[y])).expect("a flock");
@@ -146,8 +137,7 @@ fn main() -> Result<()> {
             "unsettled": [pb.unsettled, fb.unsettled, mj[0].big.unsettled, mj[1].big.unsettled],
             "ref": agreement_json(&big_ref), "mj_steps": agreement_json(&big_mj_steps),
             "fast_same": agreement_json(&big_fast_same), "fast_ref": agreement_json(&big_fast_ref),
-            "steps": agreement_json(&big_steps), "same_mj": same_mj,
-            "same_project": same_project,
+            "steps": agreement_json(&big_steps), "same_mj": big_mj_steps.same, "same_project": big_steps.same,
             "flocks": pb.flocks.iter().map(|f| json!({
                 "id": f.id, "kind": kind(f.id), "static": fixed(f.static_probability, 3),
                 "cells": [cell(pb, f.id), cell(&mj[0].big, f.id), cell(fb, f.id), cell(&mj[1].big, f.id)],
@@ -161,11 +151,8 @@ fn main() -> Result<()> {
                 stone.body.facet_normals[f].iamax()
             };
             let pooled = |r: &DropReport, statics: bool| {
-                let mut v = [0.0; 3];
-                for f in &r.flocks {
-                    v[axis_of(f.id)] += if statics { f.static_probability } else { f.fraction };
-                }
-                v.map(|x| fixed(x, 3)).join(" / ")
+                let sums = r.pooled_flocks(3, axis_of).into_iter().map(|(f, s)| fixed(if statics { s } else { f }, 3));
+                sums.collect::<Vec<_>>().join(" / ")
             };
             // MuJoCo − project per face at the reference step, the two faces of each pair side by side.
             let mut diffs = [Vec::new(), Vec::new(), Vec::new()];
@@ -179,27 +166,20 @@ fn main() -> Result<()> {
                 "apart": big_ref.p < 0.05 && flat.iter().all(|&(_, r, m, _)| (r - m).abs() > 0.01),
             });
         }
-        let (mut ratios, mut table, mut us, mut p_modes, mut same_modes) = (vec![], vec![], vec![], vec![], vec![]);
-        let mut p_fast_same = 0.0;
+        let (mut ratios, mut table, mut p_modes, mut same_modes) = (vec![], vec![], vec![], vec![]);
         for (m, r) in modes.iter().zip(&rows) {
             let s = dts.iter().position(|&d| d == m.dt).expect("MuJoCo runs at every mode's step");
-            let rate = nd / r.seconds;
+            let rate = r.rate();
             let ratio = |secs: f64| rate / (nd / secs);
             let (rl, rs, sl, ss) = (ratio(mj[0].loop_s), ratio(mj[0].step_s), ratio(mj[s].loop_s), ratio(mj[s].step_s));
             ratios.push((rl, rs));
             let vs_same = versus(&r.outcomes, &mj[s].outcomes);
-            let (p, p_same) = (versus(&r.outcomes, &mj[0].outcomes).p, vs_same.p);
-            if s == 1 {
-                p_fast_same = p_same;
-            }
-            let us_k = 1e6 * r.seconds / (nd * r.report.mean_time / r.report.params.sim.numerics.dt);
-            us.push(us_k);
+            let (p, p_same, us_k) = (versus(&r.outcomes, &mj[0].outcomes).p, vs_same.p, r.micros_per_step());
             p_modes.push(fixed(p, 2));
             if p < worst.0 {
                 worst = (p, short);
             }
-            let ff = &stone.facet_flock;
-            let same = r.outcomes.iter().filter(|(i, o)| o.flock_in(ff) == rows[0].outcomes[*i].flock_in(ff)).count();
+            let same = matching_drops(&stone.facet_flock, &r.outcomes, &rows[0].outcomes, Match::Flock);
             same_modes.push(same);
             let rep = &r.report;
             table.push(json!({
@@ -217,7 +197,7 @@ fn main() -> Result<()> {
             );
         }
         // The default numerics against MuJoCo at the same step.
-        let ratio = |secs: f64| nd / rows[3].seconds / (nd / secs);
+        let ratio = |secs: f64| rows[3].rate() / (nd / secs);
         ratios.push((ratio(mj[1].loop_s), ratio(mj[1].step_s)));
         let p_mj_steps = versus(&mj[1].outcomes, &mj[0].outcomes).p;
         let mut mj_table = Vec::new();
@@ -245,7 +225,7 @@ fn main() -> Result<()> {
         }
         let step_us = |s: usize| 1e6 * mj[s].step_s / mj[s].steps;
         let loop_us = 1e6 * mj[0].loop_s / mj[0].steps;
-        lead.push(us[0] / step_us(0));
+        lead.push(rows[0].micros_per_step() / step_us(0));
         longer.push(mj[0].report.mean_time.total_cmp(&rows[0].report.mean_time));
         negative |= loop_us < step_us(0);
         totals[0] += (mj[0].warned + mj[1].warned) as u64;
@@ -258,8 +238,8 @@ fn main() -> Result<()> {
         ctx.push(json!({
             "name": name, "short": short, "rows": table, "mj_rows": mj_table, "checks": checks, "sample": sample,
             "ratios": ratios.iter().map(|r| json!({"l": fixed(r.0, 2), "s": fixed(r.1, 2)})).collect::<Vec<_>>(),
-            "us0": fixed(us[0], 2), "us1": fixed(us[1], 2), "t0": fixed(rows[0].report.mean_time, 2),
-            "t2": fixed(rows[2].report.mean_time, 2),
+            "us0": fixed(rows[0].micros_per_step(), 2), "us1": fixed(rows[1].micros_per_step(), 2),
+            "t0": fixed(rows[0].report.mean_time, 2), "t2": fixed(rows[2].report.mean_time, 2),
             "mj_step_us0": fixed(step_us(0), 2), "mj_step_us1": fixed(step_us(1), 2), "mj_loop_us0": fixed(loop_us, 2),
             "mj_t0": t(0), "mj_t1": t(1), "loop_share": fixed(100.0 * (loop_us / step_us(0) - 1.0), 0),
             "mj_loop_rate0": fixed(loop_rate(0), 1), "mj_loop_rate1": fixed(loop_rate(1), 1),
@@ -269,9 +249,9 @@ fn main() -> Result<()> {
             "recal_t": fixed(recal_report.mean_time, 2),
             "recal_warned": recal_drops.iter().filter(|d| d.warnings > 0).count(),
             "p_mj_steps": fixed(p_mj_steps, 2), "big_mj_steps_p": fixed(big_mj_steps.p, 3),
-            "mj_steps_low": big_mj_steps.p < 0.05,
-            "widest_mj_steps": widest(&shares_mj, &mj[1].big, &mj[0].big), "same_mj_big": format!("{same_mj} of {big}"),
-            "p_modes": p_modes.join(" / "), "p_fast_same": fixed(p_fast_same, 2),
+            "mj_steps_low": big_mj_steps.p < 0.05, "same_mj_big": format!("{} of {big}", big_mj_steps.same),
+            "widest_mj_steps": widest(&shares_mj, &mj[1].big, &mj[0].big),
+            "p_modes": p_modes.join(" / "), "p_fast_same": fixed(versus(&rows[3].outcomes, &mj[1].outcomes).p, 2),
             "same_flock": [same_modes[1], same_modes[2]],
             "big_ref_same": format!("{} of {}", big_ref.same, big_ref.both),
             "big_ref_p": fixed(big_ref.p, 3), "ref_low": big_ref.p < 0.05, "widest": widest(&shares, pb, &mj[0].big),
@@ -279,15 +259,13 @@ fn main() -> Result<()> {
             "widest_fast_same": widest(&fast_shares, fb, &mj[1].big),
             "big_fast_ref_p": fixed(big_fast_ref.p, 3), "fast_ref_low": big_fast_ref.p < 0.05,
             "big_steps_p": fixed(big_steps.p, 3), "steps_low": big_steps.p < 0.05,
-            "same_project_big": format!("{same_project} of {big}"),
+            "same_project_big": format!("{} of {big}", big_steps.same),
             "big_unsettled": format!("{} / {}", pb.unsettled, fb.unsettled),
-            "flocks": rows[0].report.flocks.iter().map(|f| json!({"id": f.id, "kind": kind(f.id),
-            "static": fixed(f.static_probability, 3),
-                "cells": reports.iter().map(|r| cell(r, f.id)).collect::<Vec<_>>()})).collect::<Vec<_>>(),
+            "flocks": flock_cells(&reports, 3),
             "kl": reports.iter().map(|r| fixed(r.fit_flocks.kl_divergence, 4)).collect::<Vec<_>>(),
         }));
         all_same &= same_modes[1] == n as usize && same_modes[2] == n as usize;
-        bars.push((short, ratios));
+        bars.push((BAR_NAMES[b], ratios));
     }
     let range = |k: usize, stepping: bool| {
         let v: Vec<f64> = bars.iter().map(|(_, r)| if stepping { r[k].1 } else { r[k].0 }).collect();
@@ -338,48 +316,28 @@ fn main() -> Result<()> {
 /// default numerics against MuJoCo at the same step (the bar: against MuJoCo's loop; a black
 /// mark: against its stepping alone), on a log axis (a ratio and its inverse are as far from 1×).
 fn plot(path: &Path, modes: &[Mode], bars: &[(&str, Vec<(f64, f64)>)]) -> Result<()> {
-    let (r_l, d_l) = (step_label(REFERENCE_DT), step_label(fast_dt()));
-    let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l}", m.short)).collect();
-    series.push(format!("{} ÷ MuJoCo at {d_l}, the same step", modes[3].short));
+    let (r_l, d_l, loop_) = (step_label(REFERENCE_DT), step_label(modes[3].dt), "(its mj_step loop + rest check)");
+    let mut series: Vec<String> = modes.iter().map(|m| format!("{} ÷ MuJoCo at {r_l} {loop_}", m.short)).collect();
+    series.push(format!("{} ÷ MuJoCo at {d_l}, the same step {loop_}", modes[3].short));
     let values = || bars.iter().flat_map(|(_, v)| v.iter().flat_map(|r| [r.0, r.1]));
     let (bottom, top, right) =
         (values().fold(0.5, f64::min) * 0.8, values().fold(10.0, f64::max) * 12.0, bars.len() as f64 - 0.5);
-    let names: Vec<String> = bars.iter().map(|b| b.0.to_string()).collect();
-    let x = Axis::linear("", -0.5, right).no_grid().ticks(bars.len() + 1).format(move |x| {
-        let k = x.round();
-        let known = ((x - k).abs() < 1e-6 && k >= 0.0).then(|| names.get(k as usize)).flatten();
-        known.map_or(String::new(), |b| match b.as_str() {
-            "stone" => "bundled stone (581 hull vertices)".into(),
-            "pebble" => "synthetic pebble (500 hull vertices)".into(),
-            other => format!("{other} 1 × 0.8 × 0.5"),
-        })
-    });
     let y = Axis::log("drops/s of the project ÷ drops/s of MuJoCo (log scale)", bottom, top)
         .format(|y| format!("{}×", rocking_stones::plot::log_tick(y)))
         .space(70);
+    let loops: Vec<Vec<f64>> = bars.iter().map(|(_, v)| v.iter().map(|r| r.0).collect()).collect();
     // The reference level 1× first, so that the bars and their labels lie over it.
-    let mut chart = Chart::new(x, y)
+    let mut chart = Chart::new(Axis::categories("", bars.iter().map(|b| b.0.to_string()).collect()), y)
         .title("Drops per core: this project ÷ MuJoCo, same physics, one core")
-        .dashed(&[(-0.5, 1.0), (right, 1.0)], BLACK);
-    let w = 0.86 / series.len() as f64;
-    let x0 = |k: usize, slot: usize| k as f64 - 0.43 + slot as f64 * w;
-    for (slot, label) in series.iter().enumerate() {
-        let boxes: Vec<_> = bars
-            .iter()
-            .enumerate()
-            .map(|(k, (_, v))| (x0(k, slot), bottom, x0(k, slot) + w * 0.9, v[slot].0))
-            .collect();
-        chart = chart
-            .boxes(&boxes, series_color(slot), 1.0)
-            .legend(Mark::Box(series_color(slot), 1.0), format!("{label} (its mj_step loop + rest check)"));
-    }
+        .dashed(&[(-0.5, 1.0), (right, 1.0)], BLACK)
+        .grouped_bars(&loops, &series, bottom, 0.86);
     for (k, (_, v)) in bars.iter().enumerate() {
         for (slot, &(l, s)) in v.iter().enumerate() {
             // The ratio against MuJoCo's loop above each bar, the mark of the stepping alone across it.
-            let label_at = (x0(k, slot) + w * 0.05, l.max(s) * 1.3);
+            let (x0, w) = bar_slot(k, slot, series.len(), 0.86);
             chart = chart
-                .line_width(&[(x0(k, slot), s), (x0(k, slot) + w * 0.9, s)], BLACK, 3)
-                .text(format!("{l:.1}×"), label_at);
+                .line_width(&[(x0, s), (x0 + w * 0.9, s)], BLACK, 3)
+                .text(format!("{l:.1}×"), (x0 + w * 0.05, l.max(s) * 1.3));
         }
     }
     chart

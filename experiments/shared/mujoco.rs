@@ -3,7 +3,7 @@
 //! and parameters, MuJoCo's run through `shared/mujoco_drops.py` (its output, its drops
 //! classified by the project's rule) and the drop-by-drop comparison of two runs of the same
 //! releases (`dynamics::drops::compare`) for a README. Included with
-//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness`, `cpu_time` and `benchmark_bodies`.
+//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness` and `benchmark_bodies`.
 #![allow(dead_code)] // each experiment uses the part it needs
 
 use super::benchmark_bodies::benchmark_bodies;
@@ -11,7 +11,7 @@ use super::harness::{fixed, Context, Result};
 use nalgebra::UnitQuaternion;
 use rocking_stones::dynamics::drops::compare::Agreement;
 use rocking_stones::dynamics::drops::launch::outcome_at;
-use rocking_stones::dynamics::drops::montecarlo::summarize;
+use rocking_stones::dynamics::drops::montecarlo::{height_above_median_max, summarize};
 use rocking_stones::prelude::*;
 use serde::Deserialize;
 use serde_json::{json, Value};
@@ -31,14 +31,10 @@ pub const SAMPLE_FACTOR: u64 = 10;
 
 pub type Outcomes = BTreeMap<u64, DropOutcome>;
 
-/// The project's default drop step, `Preset::largest_stable_dt` (1/120 s).
-pub fn fast_dt() -> f64 {
-    Preset::Drop.largest_stable_dt()
-}
-
-/// The steps MuJoCo runs at: the reference step (the benchmark protocol) and the project's default step.
+/// The steps MuJoCo runs at: the reference step (the benchmark protocol) and the project's default
+/// drop step, `Preset::largest_stable_dt` (1/120 s).
 pub fn mj_dts() -> [f64; 2] {
-    [REFERENCE_DT, fast_dt()]
+    [REFERENCE_DT, Preset::Drop.largest_stable_dt()]
 }
 
 /// "1/240 s" for dt = 1/240 s.
@@ -61,17 +57,17 @@ pub struct Mode {
 /// the default numerics (flock-certified + batched at [`Preset::largest_stable_dt`]).
 pub fn modes() -> [Mode; 4] {
     let mode = |name: String, short: String, batch, cert, dt| Mode { name, short, batch, cert, dt };
-    let (b, f, d) = (DEFAULT_BATCH, CertificateMode::Flock, step_label(fast_dt()));
+    let (b, f, fast) = (DEFAULT_BATCH, CertificateMode::Flock, Preset::Drop.largest_stable_dt());
     [
         mode("plain".into(), "plain".into(), 1, CertificateMode::None, REFERENCE_DT),
         mode("batched".into(), "batched".into(), b, CertificateMode::None, REFERENCE_DT),
         mode("flock-certified + batched".into(), "flock-cert. + batched".into(), b, f, REFERENCE_DT),
         mode(
-            format!("flock-certified + batched, default numerics (dt {d})"),
-            format!("flock-cert. + batched, default numerics (dt {d})"),
+            format!("flock-certified + batched, default numerics (dt {})", step_label(fast)),
+            format!("flock-cert. + batched, default numerics (dt {})", step_label(fast)),
             b,
             f,
-            fast_dt(),
+            fast,
         ),
     ]
 }
@@ -92,8 +88,7 @@ pub fn params(dt: f64) -> DropParams {
 }
 
 pub fn header(name: &str, n: u64, m: &Mode, seed: u64) -> RunHeader {
-    let header = RunHeader::of_params(name, seed, n, params(m.dt), m.cert);
-    RunHeader { preset: Some(Preset::Drop.name().into()), ..header }
+    RunHeader::of_params(name, seed, n, params(m.dt), m.cert).with_preset(Preset::Drop)
 }
 
 /// What `shared/mujoco_drops.py` writes.
@@ -144,13 +139,12 @@ pub struct MjDrop {
 /// down direction), as outcomes of a plain run, and their summary. A drop that ended with a
 /// non-finite down direction or after a MuJoCo warning counts as not settled.
 pub fn classify(stone: &Stone, name: &str, drops: &[MjDrop], dt: f64, seed: u64) -> (DropReport, Outcomes) {
-    let mut outcomes = Outcomes::new();
-    for (i, d) in drops.iter().enumerate() {
+    let outcome = |(i, d): (usize, &MjDrop)| {
         let down = Vec3::from(d.down);
         let sane = down.iter().all(|x| x.is_finite()) && down.norm() > 0.5 && d.warnings == 0;
-        let time = d.steps as f64 * dt;
-        outcomes.insert(i as u64, outcome_at(stone, i as u64, sane.then_some(&down), d.settled, time));
-    }
+        (i as u64, outcome_at(stone, i as u64, sane.then_some(&down), d.settled, d.steps as f64 * dt))
+    };
+    let outcomes: Outcomes = drops.iter().enumerate().map(outcome).collect();
     let mode = Mode { dt, ..modes()[0].clone() };
     (summarize(&stone.model(), &header(name, drops.len() as u64, &mode, seed), &outcomes), outcomes)
 }
@@ -179,20 +173,6 @@ pub fn agreement_json(c: &Agreement) -> Value {
     json!({"same": c.same, "both": c.both, "chi2": chi2, "dof": c.dof, "p": p})
 }
 
-/// Median and largest `height_above` (h(final down) − R_F, R_max) of the settled outcomes: how
-/// far off its stable facet's normal a drop ended (0 when flat on it); `{:.1e}` each.
-pub fn rise(outcomes: &Outcomes) -> [String; 2] {
-    let mut h: Vec<f64> = outcomes.values().filter(|o| o.settled).filter_map(|o| o.height_above).collect();
-    h.sort_by(f64::total_cmp);
-    let at = |i: Option<usize>| i.and_then(|i| h.get(i)).map_or(f64::NAN, |x| *x);
-    [at(Some(h.len() / 2)), at(h.len().checked_sub(1))].map(|x| format!("{x:.1e}"))
-}
-
-/// Flock `k`'s fraction of a report with its 95 % interval, "—" if it has no such flock.
-pub fn cell(r: &DropReport, k: usize) -> String {
-    r.flock(k).map_or("—".into(), |g| g.fraction_with_ci(3))
-}
-
 /// MuJoCo at one step, for one body: the timed drops, the larger sample (which holds them), the
 /// fastest round's CPU s of the loop and of the stepping alone, the timed drops' steps, and the
 /// sample's drops with a MuJoCo warning.
@@ -210,7 +190,7 @@ pub struct MjSide {
 impl MjSide {
     /// Body `b` of MuJoCo's `runs` at step `dt` (one per round, the first holding the sample),
     /// classified by the project's rule; the fastest round's CPU seconds.
-    pub fn of(stone: &Stone, name: &str, runs: &[&MjOut], b: usize, dt: f64, seed: u64) -> MjSide {
+    pub fn of(stone: &Stone, name: &str, runs: &[MjOut], b: usize, dt: f64, seed: u64) -> MjSide {
         let fastest = |f: fn(&MjBody) -> &Vec<f64>| {
             runs.iter().flat_map(|r| f(&r.bodies[b]).iter().copied()).fold(f64::INFINITY, f64::min)
         };
@@ -224,15 +204,14 @@ impl MjSide {
     }
 }
 
-/// The checks of MuJoCo's side for body `b`, from its `rounds` (each at both steps, the first
+/// The checks of MuJoCo's side for body `b`, from its runs at each step (one a round, the first
 /// holding the samples), its classified drops `mj` and the project's plain drops: MuJoCo's
 /// releases are the project's (the largest angle between the two engines' initial down
 /// directions, body frame, over every drop of the sample, at both steps), its mesh and placement,
 /// its replays and rounds bit for bit the same, its warnings, and how far off its facet each
 /// engine's drops came to rest.
-pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], plain: &Outcomes) -> Value {
-    let first = &rounds[0];
-    let downs = || first.iter().flat_map(|r| r.bodies[b].release_downs.iter().enumerate());
+pub fn mj_checks(bench: &Bench, rounds: &[Vec<MjOut>; 2], b: usize, mj: &[MjSide], plain: &Outcomes) -> Value {
+    let downs = || rounds.iter().flat_map(|r| r[0].bodies[b].release_downs.iter().enumerate());
     let release_angle = downs()
         .map(|(i, d)| {
             let (own, d) = (bench.release(i as u64).inverse() * -Vec3::z(), Vec3::from(*d));
@@ -240,16 +219,18 @@ pub fn mj_checks(bench: &Bench, rounds: &[[MjOut; 2]], b: usize, mj: &[MjSide], 
         })
         .fold(0.0f64, f64::max);
     let same_rounds = |s: usize| {
-        rounds.iter().all(|r| {
-            let (x, y) = (&r[s].bodies[b].drops, &first[s].bodies[b].drops);
+        rounds[s].iter().all(|r| {
+            let (x, y) = (&r.bodies[b].drops, &rounds[s][0].bodies[b].drops);
             x.iter().zip(y).all(|(x, y)| x.down == y.down && x.steps == y.steps)
         })
     };
     let e1 = |x: f64| format!("{x:.1e}");
+    // Median and largest height above the facet's rest of each run's settled drops.
+    let rise = |o: &Outcomes| height_above_median_max(o).map(e1);
     json!({
-        "releases": downs().count(), "angle": e1(release_angle), "vertices": first[0].bodies[b].mesh_vertices,
-        "corners": bench.stones[b].body.corners.len(), "placement": e1(first[0].bodies[b].placement_error),
-        "replay": ([0, 1].map(|s| rounds.iter().all(|r| r[s].bodies[b].replay_identical))),
+        "releases": downs().count(), "angle": e1(release_angle), "vertices": rounds[0][0].bodies[b].mesh_vertices,
+        "corners": bench.stones[b].body.corners.len(), "placement": e1(rounds[0][0].bodies[b].placement_error),
+        "replay": ([0, 1].map(|s| rounds[s].iter().all(|r| r.bodies[b].replay_identical))),
         "rounds": ([0, 1].map(same_rounds)), "warned": [mj[0].warned, mj[1].warned],
         "rises": [rise(&mj[0].outcomes), rise(&mj[1].outcomes)], "plain_rise": rise(plain),
     })
@@ -333,11 +314,9 @@ impl Bench {
         (input["sample_drops"], input["dt"], input["solref"]) = (json!(sample), json!(dt), json!(solref));
         let (in_path, out_path) = (tmp.join("in.json"), tmp.join("out.json"));
         std::fs::write(&in_path, serde_json::to_string(&input)?)?;
+        let one_thread = ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"].map(|var| (var, "1"));
         let mut command = Command::new(&self.python);
-        command.arg(&self.script).arg(&in_path).arg(&out_path);
-        for var in ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"] {
-            command.env(var, "1");
-        }
+        command.arg(&self.script).arg(&in_path).arg(&out_path).envs(one_thread);
         let status = command.status().with_context(|| format!("cannot run {}", self.python))?;
         anyhow::ensure!(status.success(), "{} failed ({status})", self.script.display());
         let mj: MjOut = serde_json::from_str(&std::fs::read_to_string(&out_path)?)?;

@@ -332,3 +332,99 @@ where
         .map_err(e)?;
     Ok(())
 }
+
+/// One flock of a table that sets drop runs of one stone side by side, as the experiments'
+/// READMEs print it (serialised with `static` for the probability).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct FlockCells {
+    /// The flock's id.
+    pub id: usize,
+    /// Its type ([`crate::equilibria::Kind::name`]: stable, unstable, saddle).
+    pub kind: &'static str,
+    /// Its quasi-static probability, with the table's decimals.
+    #[serde(rename = "static")]
+    pub static_probability: String,
+    /// Per run, its fraction with the 95 % interval
+    /// ([`crate::dynamics::drops::montecarlo::DropReport::flock_fraction_with_ci`], "—" where the
+    /// run has no row for it).
+    pub cells: Vec<String>,
+}
+
+/// The rows of a table of drop runs of one stone side by side: one [`FlockCells`] per flock of
+/// the first report (its rows, in its order), with a cell per report, every number with `digits`
+/// decimals; no rows without a report.
+pub fn flock_cells(reports: &[&crate::dynamics::drops::montecarlo::DropReport], digits: usize) -> Vec<FlockCells> {
+    let Some(first) = reports.first() else { return Vec::new() };
+    let row = |f: &crate::dynamics::drops::montecarlo::FlockRow| FlockCells {
+        id: f.id,
+        kind: f.kind.name(),
+        static_probability: format!("{:.digits$}", f.static_probability),
+        cells: reports.iter().map(|r| r.flock_fraction_with_ci(f.id, digits)).collect(),
+    };
+    first.flocks.iter().map(row).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::certificate::CertificateMode;
+    use crate::dynamics::drops::launch::DropOutcome;
+    use crate::dynamics::drops::montecarlo::{summarize, RunHeader};
+    use crate::dynamics::drops::params::Preset;
+    use crate::dynamics::stone::StaticModel;
+    use crate::dynamics::surface::Surface;
+    use crate::equilibria::Kind;
+    use crate::Vec3;
+
+    #[test]
+    fn a_flock_table_has_the_first_runs_flocks_and_a_cell_per_run() {
+        // Two stable facets in flocks 0 and 1 (static 0.7, 0.3) and a saddle flock 2 no drop reaches.
+        let model = StaticModel {
+            facet_normals: vec![Vec3::x(), Vec3::y()],
+            facet_equilibrium: vec![Some(0), Some(1)],
+            facet_flock: vec![Some(0), Some(1)],
+            flock_kinds: vec![Kind::Stable, Kind::Stable, Kind::Saddle],
+            facet_probability: vec![0.7, 0.3],
+            nu: 0.0,
+        };
+        let run = |facets: &[u32]| {
+            let drop = |(i, &facet): (usize, &u32)| DropOutcome {
+                index: i as u64,
+                settled: true,
+                facet: Some(facet),
+                flock: None,
+                time: 1.0,
+                certified: false,
+                height_above: Some(0.0),
+                deepest_penetration: 0.0,
+            };
+            let outcomes = facets.iter().enumerate().map(drop).map(|o| (o.index, o)).collect();
+            let header = RunHeader::of_params(
+                "t",
+                1,
+                facets.len() as u64,
+                Preset::Drop.params(Surface::SteelOnWood),
+                CertificateMode::None,
+            );
+            summarize(&model, &header, &outcomes)
+        };
+        // All four drops in flock 0 in the first run; one in four in the second.
+        let (a, b) = (run(&[0, 0, 0, 0]), run(&[0, 1, 1, 1]));
+        let rows = flock_cells(&[&a, &b], 2);
+        // Wilson at z = 1.96: 4 of 4 → [0.51, 1.00], 0 of 4 → [0.00, 0.49], 1 of 4 → [0.05, 0.70].
+        let want = |id, p: &str, cells: [&str; 2]| FlockCells {
+            id,
+            kind: "stable",
+            static_probability: p.into(),
+            cells: cells.map(String::from).to_vec(),
+        };
+        assert_eq!(
+            rows,
+            vec![
+                want(0, "0.70", ["1.00 [0.51, 1.00]", "0.25 [0.05, 0.70]"]),
+                want(1, "0.30", ["0.00 [0.00, 0.49]", "0.75 [0.30, 0.95]"]),
+            ]
+        );
+        assert!(flock_cells(&[], 2).is_empty());
+    }
+}

@@ -7,6 +7,8 @@
 //!   outcomes ([`crate::stats::stuart_maxwell`]), and how many drops end in the same flock.
 //! * [`chi_square_shares`] — which flocks drive the difference between two runs' per-flock
 //!   counts: each one's share of Pearson's χ² of homogeneity.
+//! * [`matching_drops`] — how many drops end alike in both runs: the same outcome record, facet
+//!   or flock ([`Match`]).
 
 use crate::dynamics::drops::launch::DropOutcome;
 use crate::stats::stuart_maxwell;
@@ -82,6 +84,34 @@ pub fn chi_square_shares(a: &[u64], b: &[u64]) -> Vec<f64> {
     chi.iter().map(|c| 100.0 * c / total).collect()
 }
 
+/// What of two outcomes of the same release [`matching_drops`] compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Match {
+    /// The whole outcome record: facet, flock, times and heights (floats as values).
+    Record,
+    /// The facet it ended on (none in both counts as the same).
+    Facet,
+    /// The flock it ended in ([`DropOutcome::flock_in`]; none in both counts as the same).
+    Flock,
+}
+
+/// The drops of run `a` whose outcome in run `b` of the same releases (the same drop index)
+/// matches at `level`, flocks by `facet_flock` (facet index → flock id); drops missing from `b`
+/// do not count. Unlike [`agreement`], every drop counts, settled or not.
+pub fn matching_drops(
+    facet_flock: &[Option<usize>],
+    a: &BTreeMap<u64, DropOutcome>,
+    b: &BTreeMap<u64, DropOutcome>,
+    level: Match,
+) -> usize {
+    let same = |x: &DropOutcome, y: &DropOutcome| match level {
+        Match::Record => x == y,
+        Match::Facet => x.facet == y.facet,
+        Match::Flock => x.flock_in(facet_flock) == y.flock_in(facet_flock),
+    };
+    a.iter().filter(|(i, x)| b.get(i).is_some_and(|y| same(x, y))).count()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -139,6 +169,18 @@ mod tests {
         let r = agreement(&FACET_FLOCK, &a, &b);
         assert_eq!((r.same, r.both, r.dof), (1, 2, 1));
         assert!((r.chi2 - 1.0).abs() < 1e-12); // McNemar (1 − 0)² / (1 + 0)
+    }
+
+    #[test]
+    fn drops_match_by_record_facet_or_flock() {
+        let a = run(&[(true, 0), (true, 1), (true, 2), (false, 3)]);
+        let mut b = a.clone();
+        // Drop 1 ends on facet 2 (the same flock 1), drop 3 lasts longer, drop 2 is missing.
+        b.insert(1, DropOutcome { facet: Some(2), ..a[&1] });
+        b.insert(3, DropOutcome { time: 2.0, ..a[&3] });
+        b.remove(&2);
+        let count = |level| matching_drops(&FACET_FLOCK, &a, &b, level);
+        assert_eq!([count(Match::Record), count(Match::Facet), count(Match::Flock)], [1, 2, 3]);
     }
 
     #[test]

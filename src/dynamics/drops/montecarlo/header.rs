@@ -126,6 +126,13 @@ impl RunHeader {
         }
     }
 
+    /// This header with `preset` named as the one its parameters started from, by its name alone
+    /// ([`crate::dynamics::drops::params::Preset::name`], no surface): the runs of experiments
+    /// that start from a preset and change some of its parameters.
+    pub fn with_preset(self, preset: crate::dynamics::drops::params::Preset) -> RunHeader {
+        RunHeader { preset: Some(preset.name().into()), ..self }
+    }
+
     /// The fields (other than the shard) in which `other` differs from this header: empty when
     /// both belong to the same run.
     pub fn differences(&self, other: &RunHeader) -> Vec<String> {
@@ -189,4 +196,22 @@ pub fn fingerprint(mesh: &crate::mesh::TriMesh) -> String {
     mesh.vertices.iter().flat_map(|p| p.coords.iter().copied().collect::<Vec<_>>()).for_each(|x| eat(x.to_bits()));
     mesh.triangles.iter().flatten().for_each(|&i| eat(i as u64));
     format!("{h:016x}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::drops::params::Preset;
+    use crate::dynamics::surface::Surface;
+
+    #[test]
+    fn a_header_names_the_preset_it_started_from() {
+        let params = Preset::Drop.params(Surface::SteelOnWood);
+        let header = RunHeader::of_params("pebble", 7, 30, params, CertificateMode::Flock);
+        assert_eq!(header.preset, None);
+        let named = header.clone().with_preset(Preset::Throw);
+        assert_eq!(named.preset.as_deref(), Some("throw"));
+        // Nothing else changes: the two are the same run.
+        assert!(named.differences(&header).is_empty());
+    }
 }

@@ -15,14 +15,18 @@
 //!   skips the indices already in the file.
 //! * **Statistics.** Wilson score intervals (95 %) per facet and per flock; Pearson's χ² and the
 //!   Kullback–Leibler divergence of the empirical distribution from the static one.
+//! * **Timing.** A run timed by the CPU time of the one thread that runs it ([`run_timed`]):
+//!   drops per second per core on a machine shared with other jobs.
 
 pub mod checkpoint;
 pub mod header;
 pub mod summary;
+pub mod timed;
 
 pub use checkpoint::{check_outcomes, merge, read_partial, Checkpoint};
 pub use header::{fingerprint, RunHeader, Shard, FORMAT};
-pub use summary::{summarize, DropReport, FacetRow, Fit, FlockRow};
+pub use summary::{height_above_median_max, summarize, DropReport, FacetRow, Fit, FlockRow};
+pub use timed::{run_timed, thread_cpu_seconds, TimedRun};
 
 use crate::dynamics::certificate::certificate;
 use crate::dynamics::drops::batch::simulate_batch;

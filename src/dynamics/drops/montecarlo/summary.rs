@@ -147,6 +147,37 @@ impl DropReport {
     pub fn flock_counts(&self, flocks: usize) -> Vec<u64> {
         (0..flocks).map(|k| self.flock_count(k)).collect()
     }
+
+    /// The flocks' fractions and quasi-static probabilities summed over groups of flocks (flocks a
+    /// symmetry of the stone makes equivalent, e.g. the two opposite faces of a box): entry g is
+    /// (Σ fraction, Σ static probability) over the report's flocks f with `group(f)` = g, for
+    /// g < `groups`; a flock whose group is not below `groups` is left out.
+    pub fn pooled_flocks(&self, groups: usize, group: impl Fn(usize) -> usize) -> Vec<(f64, f64)> {
+        let mut pooled = vec![(0.0, 0.0); groups];
+        for f in &self.flocks {
+            if let Some(p) = pooled.get_mut(group(f.id)) {
+                *p = (p.0 + f.fraction, p.1 + f.static_probability);
+            }
+        }
+        pooled
+    }
+
+    /// Flock `id`'s fraction with its 95 % interval as tables print it
+    /// ([`FlockRow::fraction_with_ci`], `digits` decimals); "—" when the report has no row for it.
+    pub fn flock_fraction_with_ci(&self, id: usize, digits: usize) -> String {
+        self.flock(id).map_or("—".into(), |f| f.fraction_with_ci(digits))
+    }
+}
+
+/// How far off their stable facet's normal the settled drops of a run came to rest: the median
+/// (of an even count, the upper of the two middle values) and the largest
+/// [`DropOutcome::height_above`] (R_max; 0 for a drop flat on its facet) of the settled outcomes
+/// that have one; NaN for each when none has.
+pub fn height_above_median_max(outcomes: &BTreeMap<u64, DropOutcome>) -> [f64; 2] {
+    let mut h: Vec<f64> = outcomes.values().filter(|o| o.settled).filter_map(|o| o.height_above).collect();
+    h.sort_by(f64::total_cmp);
+    let at = |i: Option<usize>| i.and_then(|i| h.get(i)).map_or(f64::NAN, |x| *x);
+    [at(Some(h.len() / 2)), at(h.len().checked_sub(1))]
 }
 
 impl FlockRow {
@@ -299,5 +330,36 @@ mod tests {
         assert_eq!(r.flock_counts(3), vec![3, 1, 0]);
         let row = FlockRow { fraction: 0.25, ci95: (0.0456, 0.6994), ..r.flocks[1].clone() };
         assert_eq!(row.fraction_with_ci(3), "0.250 [0.046, 0.699]");
+        // Wilson's interval of 3 in 4 at z = 1.96: (0.75 + z²/8 ± z √(3/64 + z²/64)) / (1 + z²/4).
+        assert_eq!(r.flock_fraction_with_ci(0, 3), "0.750 [0.301, 0.954]");
+        assert_eq!(r.flock_fraction_with_ci(2, 3), "—");
+    }
+
+    #[test]
+    fn flocks_pool_by_group() {
+        // Flocks 0 and 1 (0.75 and 0.25 of the drops, static 0.6 and 0.4); flock 2 has no row.
+        let outcomes: BTreeMap<u64, DropOutcome> =
+            [(0, 0), (1, 0), (2, 1), (3, 0)].map(|(i, f)| (i, drop(i, true, f))).into();
+        let params = Preset::Drop.params(Surface::SteelOnWood);
+        let r = summarize(&model(), &RunHeader::of_params("test", 1, 4, params, CertificateMode::None), &outcomes);
+        assert_eq!(r.pooled_flocks(2, |_| 1), vec![(0.0, 0.0), (1.0, 1.0)]);
+        assert_eq!(r.pooled_flocks(3, |k| 2 - k), vec![(0.0, 0.0), (0.25, 0.4), (0.75, 0.6)]);
+        // Flock 1 in group 1, beyond the one group asked for.
+        assert_eq!(r.pooled_flocks(1, |k| k), vec![(0.75, 0.6)]);
+    }
+
+    #[test]
+    fn heights_above_the_facet_of_the_settled_drops() {
+        let at =
+            |i: u64, settled: bool, h: Option<f64>| (i, DropOutcome { height_above: h, settled, ..drop(i, true, 0) });
+        // Settled with heights 0.3, 0.1, 0.2 and 0.4 (the median of four: the upper middle one);
+        // unsettled (5.0) and certified (no height) drops are left out.
+        let mut o: BTreeMap<u64, DropOutcome> =
+            [at(0, true, Some(0.3)), at(1, true, Some(0.1)), at(2, false, Some(5.0)), at(3, true, None)].into();
+        o.extend([at(4, true, Some(0.2)), at(5, true, Some(0.4))]);
+        assert_eq!(height_above_median_max(&o), [0.3, 0.4]);
+        o.remove(&5);
+        assert_eq!(height_above_median_max(&o), [0.2, 0.3]);
+        assert!(height_above_median_max(&BTreeMap::new()).iter().all(|x| x.is_nan()));
     }
 }
