@@ -21,7 +21,7 @@ use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares, mat
 use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
 use rocking_stones::dynamics::drops::simulate::flat_restitution;
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
-use rocking_stones::plot::bar_slot;
+use rocking_stones::plot::BarSlot;
 use rocking_stones::prelude::*;
 use rocking_stones::report::drops::flock_cells;
 use serde_json::{json, Value};
@@ -334,7 +334,8 @@ fn plot(path: &Path, modes: &[Mode], bars: &[(&str, Vec<(f64, f64)>)]) -> Result
     for (k, (_, v)) in bars.iter().enumerate() {
         for (slot, &(l, s)) in v.iter().enumerate() {
             // The ratio against MuJoCo's loop above each bar, the mark of the stepping alone across it.
-            let (x0, w) = bar_slot(k, slot, series.len(), 0.86);
+            let b = BarSlot { slot, slots: series.len(), width: 0.86 };
+            let (x0, w) = (b.left(k), b.slot_width());
             chart = chart
                 .line_width(&[(x0, s), (x0 + w * 0.9, s)], BLACK, 3)
                 .text(format!("{l:.1}×"), (x0 + w * 0.05, l.max(s) * 1.3));

@@ -87,10 +87,8 @@ fn plot(out: &Results, name: &str, reports: &[DropReport]) -> Result<()> {
         let values: Vec<f64> = (0..flocks.len()).map(value).collect();
         let ci: Vec<_> =
             (0..flocks.len()).filter_map(|k| row(k).map(|g| (slot.centre(k), g.ci95.0, g.ci95.1))).collect();
-        chart = chart
-            .legend(Mark::Box(colour, 1.0), label)
-            .grouped_bars(&values, slot, colour)
-            .y_bars(&ci, RGBColor(0, 0, 0));
+        chart =
+            chart.legend(Mark::Box(colour, 1.0), label).slot_bars(&values, slot, colour).y_bars(&ci, RGBColor(0, 0, 0));
     }
     let slug: String = name.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
     chart

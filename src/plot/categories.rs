@@ -1,7 +1,11 @@
-//! Category charts in the house style: an axis that names categories at the integers 0, 1, …,
-//! bars side by side in a group at each category, and dashed lines of any width on log–log axes.
+//! Category charts in the house style: an axis that names categories at the integers 0, 1, …
+//! ([`Axis::categories`]), bars of several series side by side in a group at each category, each
+//! where its [`BarSlot`] puts it so that marks drawn over a bar can find it
+//! ([`Chart::slot_bars`] for one series, [`Chart::grouped_bars`] for all of them with their
+//! legend), and dashed lines of any width on log–log axes.
 
 use super::chart::{Axis, Chart};
+use super::{series_color, Mark};
 use plotters::style::RGBColor;
 
 impl Axis {
@@ -36,6 +40,11 @@ impl BarSlot {
         k as f64 - self.width / 2.0 + self.slot as f64 * (self.width / self.slots as f64)
     }
 
+    /// The width of a slot: width / slots (the bar is 0.9 of it).
+    pub fn slot_width(&self) -> f64 {
+        self.width / self.slots as f64
+    }
+
     /// The middle of this series' bar at category `k` (where its error bar stands).
     pub fn centre(&self, k: usize) -> f64 {
         self.left(k) + 0.45 * (self.width / self.slots as f64)
@@ -43,16 +52,37 @@ impl BarSlot {
 
     /// The bar `(x0, 0, x1, value)` at category `k`.
     pub fn bar(&self, k: usize, value: f64) -> (f64, f64, f64, f64) {
-        (self.left(k), 0.0, self.left(k) + self.width / self.slots as f64 * 0.9, value)
+        self.bar_from(k, 0.0, value)
+    }
+
+    /// The bar `(x0, base, x1, value)` at category `k`: from `base` (the bottom of a log axis, say)
+    /// up or down to `value`.
+    pub fn bar_from(&self, k: usize, base: f64, value: f64) -> (f64, f64, f64, f64) {
+        (self.left(k), base, self.left(k) + self.width / self.slots as f64 * 0.9, value)
     }
 }
 
 impl Chart {
     /// One series of grouped bars: `values[k]` as a bar from 0 at category k, in the place of
     /// `slot`, filled with `color`.
-    pub fn grouped_bars(self, values: &[f64], slot: BarSlot, color: RGBColor) -> Self {
+    pub fn slot_bars(self, values: &[f64], slot: BarSlot, color: RGBColor) -> Self {
         let bars: Vec<_> = values.iter().enumerate().map(|(k, &v)| slot.bar(k, v)).collect();
         self.boxes(&bars, color, 1.0)
+    }
+
+    /// Every series of grouped bars, with its legend: `values[k][s]` is the bar of series `s` at
+    /// category `k`, from `base` up (or down) to it, in the [`BarSlot`] `s` of `series.len()`
+    /// across `width`; series `s` filled with [`series_color`]`(s)`, its legend entry a box of
+    /// that colour and `series[s]`. A category with no value for a series has no bar for it.
+    pub fn grouped_bars(mut self, values: &[Vec<f64>], series: &[String], base: f64, width: f64) -> Self {
+        for (s, label) in series.iter().enumerate() {
+            let slot = BarSlot { slot: s, slots: series.len(), width };
+            let bar = |(k, v): (usize, &Vec<f64>)| v.get(s).map(|&y| slot.bar_from(k, base, y));
+            let boxes: Vec<_> = values.iter().enumerate().filter_map(bar).collect();
+            let color = series_color(s);
+            self = self.boxes(&boxes, color, 1.0).legend(Mark::Box(color, 1.0), label.clone());
+        }
+        self
     }
 
     /// A dashed line `width` pixels wide through `points` on log–log axes, drawn as solid
@@ -120,6 +150,25 @@ mod tests {
         assert!((x0 - 1.6).abs() < 1e-12 && (x1 - 1.78).abs() < 1e-12 && y0 == 0.0 && y1 == 0.5);
         assert!((last.left(2) - 2.2).abs() < 1e-12);
         assert!((last.centre(2) - 2.29).abs() < 1e-12);
+        assert!((last.slot_width() - 0.2).abs() < 1e-12);
+        // From the bottom of a log axis: the same edges, the base where it is asked.
+        assert_eq!(last.bar_from(2, 0.5, 3.0), (last.left(2), 0.5, last.bar(2, 3.0).2, 3.0));
+    }
+
+    #[test]
+    fn a_grouped_bar_chart_names_its_categories_and_series() {
+        let names = vec!["granite".to_string(), "basalt".to_string()];
+        let series = ["drops".to_string(), "throws".to_string()];
+        let chart = Chart::new(Axis::categories("rock", names), Axis::linear("speed-up", 0.0, 3.0));
+        let svg = svg_of(chart.grouped_bars(&[vec![1.0, 2.0], vec![2.5]], &series, 0.0, 0.8));
+        // Each category under its tick once, each series in the legend once.
+        for text in ["granite", "basalt", "drops", "throws"] {
+            assert_eq!(svg.matches(text).count(), 1, "{text}");
+        }
+        // Three bars (basalt has no throw) beside the two legend boxes, in the series' colours.
+        let fill = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        assert_eq!(svg.matches(&fill(series_color(0))).count(), 3);
+        assert_eq!(svg.matches(&fill(series_color(1))).count(), 2);
     }
 
     #[test]

@@ -361,9 +361,6 @@ pub fn legend_height(lines: u32) -> u32 {
     12 + 24 * lines
 }
 
-mod grouped;
-pub use grouped::bar_slot;
-
 #[cfg(test)]
 mod tests {
     use super::*;
