@@ -303,6 +303,66 @@ pub fn ensemble_brier(truths: &[&[bool]], members: u64) -> f64 {
     perfect / k_perfect.max(1) as f64
 }
 
+/// The smallest and the largest of `values` (NaN values ignored, as [`f64::min`] and
+/// [`f64::max`] do); (∞, −∞) when there is none.
+pub fn min_max(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values.into_iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
+}
+
+/// The root mean square √(Σ xᵢ² / n) of `x` (NaN for no data): the rms of differences, residuals
+/// or biases.
+pub fn root_mean_square(x: &[f64]) -> f64 {
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+/// The Mann–Whitney probability that a random value of `a` is smaller than a random value of `b`,
+/// ties counting ½: (#{aᵢ < bⱼ} + ½ #{aᵢ = bⱼ}) / (|a| |b|), the area under the ROC curve of
+/// "smaller means `a`". ½ for no separation, 1 when every `a` is below every `b`; NaN when either
+/// sample is empty. Infinite values rank as numbers (∞ = ∞ is a tie).
+pub fn mann_whitney_auc(a: &[f64], b: &[f64]) -> f64 {
+    let score = |x: f64, y: f64| if x == y { 0.5 } else { f64::from(u8::from(x < y)) };
+    let s: f64 = a.iter().flat_map(|&x| b.iter().map(move |&y| score(x, y))).sum();
+    let n = (a.len() * b.len()) as f64;
+    if n > 0.0 {
+        s / n
+    } else {
+        f64::NAN
+    }
+}
+
+/// The binomial log-likelihood Σ kᵢ ln qᵢ + (nᵢ − kᵢ) ln(1 − qᵢ) of the observed successes
+/// `observed` = (kᵢ, nᵢ) under the probabilities `p` (paired in order), each qᵢ = pᵢ kept inside
+/// [ε, 1 − ε] (`eps` = ε), so that a model probability of 0 or 1 (a Monte Carlo estimate that
+/// saw no success) costs a finite amount. The binomial coefficients, which do not depend on p,
+/// are left out.
+pub fn binomial_log_likelihood(observed: &[(f64, f64)], p: &[f64], eps: f64) -> f64 {
+    let term = |(&(k, n), &q): (&(f64, f64), &f64)| {
+        let q = q.clamp(eps, 1.0 - eps);
+        k * q.ln() + (n - k) * (1.0 - q).ln()
+    };
+    observed.iter().zip(p).map(term).sum()
+}
+
+/// The x at which the piecewise-linear curve through `points` (in order of x) first crosses
+/// `level` upwards: the first segment with y₀ < `level` ≤ y₁, interpolated linearly,
+/// x₀ + (level − y₀)/(y₁ − y₀) · (x₁ − x₀). None if it never does.
+pub fn upward_crossing(points: &[(f64, f64)], level: f64) -> Option<f64> {
+    points.windows(2).find(|w| w[0].1 < level && w[1].1 >= level).map(|w| {
+        let ((x0, a), (x1, b)) = (w[0], w[1]);
+        x0 + (level - a) / (b - a) * (x1 - x0)
+    })
+}
+
+/// The five-number summary of `x` without interpolation: the smallest value, the order
+/// statistics at positions ⌊n/4⌋, ⌊n/2⌋ and ⌊3n/4⌋ of the sorted values (0-based: the lower
+/// quartile, the median, the upper quartile) and the largest; None for no data.
+pub fn five_numbers(x: &[f64]) -> Option<[f64; 5]> {
+    let mut v = x.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some([*v.first()?, v[n / 4], v[n / 2], v[3 * n / 4], v[n - 1]])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -438,5 +498,57 @@ mod tests {
             })
             .sum();
         assert!((exact - q * (1.0 - q) * (1.0 + 1.0 / n as f64)).abs() < 1e-14, "{exact}");
+    }
+
+    #[test]
+    fn min_max_and_rms_match_hand_values() {
+        assert_eq!(min_max([3.0, -1.5, f64::NAN, 2.0]), (-1.5, 3.0));
+        assert_eq!(min_max(std::iter::empty()), (f64::INFINITY, f64::NEG_INFINITY));
+        // √((9 + 16 + 0 + 1)/4) = √6.5.
+        assert!((root_mean_square(&[3.0, -4.0, 0.0, 1.0]) - 6.5f64.sqrt()).abs() < 1e-15);
+        assert!(root_mean_square(&[]).is_nan());
+    }
+
+    #[test]
+    fn mann_whitney_auc_counts_pairs_and_ties() {
+        // a = (1, 3), b = (2, 3, ∞): pairs (1,2) (1,3) (1,∞) (3,∞) are below, (3,3) a tie, (3,2)
+        // above: (4 + ½)/6 = 0.75.
+        assert_eq!(mann_whitney_auc(&[1.0, 3.0], &[2.0, 3.0, f64::INFINITY]), 0.75);
+        assert_eq!(mann_whitney_auc(&[1.0, 2.0], &[5.0]), 1.0);
+        assert_eq!(mann_whitney_auc(&[5.0], &[1.0, 2.0]), 0.0);
+        assert_eq!(mann_whitney_auc(&[f64::INFINITY], &[f64::INFINITY]), 0.5);
+        assert!(mann_whitney_auc(&[], &[1.0]).is_nan());
+    }
+
+    #[test]
+    fn binomial_log_likelihood_matches_a_hand_computation() {
+        // 3 of 10 at p = 0.3: 3 ln 0.3 + 7 ln 0.7 = −6.108643…; 0 of 4 at p = 0 is clamped to
+        // ε = 0.01: 4 ln 0.99.
+        let ll = binomial_log_likelihood(&[(3.0, 10.0), (0.0, 4.0)], &[0.3, 0.0], 0.01);
+        let hand = 3.0 * 0.3f64.ln() + 7.0 * 0.7f64.ln() + 4.0 * 0.99f64.ln();
+        assert!((ll - hand).abs() < 1e-14 && (ll - 4.0 * 0.99f64.ln() + 6.108_643).abs() < 1e-6, "{ll}");
+        // The maximum over p is at the observed fraction.
+        let at = |p: f64| binomial_log_likelihood(&[(3.0, 10.0)], &[p], 1e-9);
+        assert!(at(0.3) > at(0.29) && at(0.3) > at(0.31));
+    }
+
+    #[test]
+    fn upward_crossing_interpolates_the_first_rise() {
+        // y = 0.1, 0.3, 0.7, 0.2, 0.9 at x = 0 … 4: ½ is crossed upward between x = 1 and 2 at
+        // 1 + 0.2/0.4 = 1.5 (the later rise between 3 and 4 is not the first).
+        let pts = [(0.0, 0.1), (1.0, 0.3), (2.0, 0.7), (3.0, 0.2), (4.0, 0.9)];
+        assert_eq!(upward_crossing(&pts, 0.5), Some(1.5));
+        // Already above at the start: the first rise from below counts (3 → 4 for 0.25).
+        let x = upward_crossing(&pts[2..], 0.25).unwrap();
+        assert!((x - (3.0 + 0.05 / 0.7)).abs() < 1e-12, "{x}");
+        assert_eq!(upward_crossing(&pts, 0.95), None);
+    }
+
+    #[test]
+    fn five_numbers_are_order_statistics() {
+        // Sorted 1 … 8: positions 2, 4 and 6 (0-based) hold 3, 5 and 7.
+        assert_eq!(five_numbers(&[8.0, 1.0, 5.0, 3.0, 7.0, 2.0, 6.0, 4.0]), Some([1.0, 3.0, 5.0, 7.0, 8.0]));
+        assert_eq!(five_numbers(&[2.5]), Some([2.5; 5]));
+        assert_eq!(five_numbers(&[]), None);
     }
 }
