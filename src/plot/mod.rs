@@ -7,9 +7,13 @@
 //! `render!` is the one place that picks the backend (SVG for a `.svg`
 //! path, PNG otherwise) and turns plotters' errors into [`crate::Error::Plot`].
 
+mod category;
 mod chart;
+mod intervals;
 mod reliability;
+pub use category::{bar, bar_centre};
 pub use chart::{Axis, Chart, Figure, Marker};
+pub use intervals::wilson_bars;
 /// The colour of every series (`RGBColor(r, g, b)`), so that a program drawing through [`Chart`]
 /// can name its own colour without depending on plotters.
 pub use plotters::style::RGBColor;
