@@ -55,6 +55,25 @@ impl Threshold {
         }
     }
 
+    /// The kind as a CSV writes it: "below", "at" or "above".
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Threshold::Below(_) => "below",
+            Threshold::At(_) => "at",
+            Threshold::Above(_) => "above",
+        }
+    }
+
+    /// A threshold as a sortable number: its value where it is at most that (`Below`, `At`),
+    /// ∞ where it lies above the grid (`Above`) or there is none; the order in which a smaller
+    /// threshold means a less robust equilibrium.
+    pub fn rank(t: Option<Threshold>) -> f64 {
+        match t {
+            Some(Threshold::Below(x) | Threshold::At(x)) => x,
+            Some(Threshold::Above(_)) | None => f64::INFINITY,
+        }
+    }
+
     /// First crossing of ½ by `p` over the increasing grid `x`, interpolated linearly in p
     /// against log x (`log`) or x.
     pub fn crossing(x: &[f64], p: &[f64], log: bool) -> Option<Threshold> {
