@@ -1,20 +1,16 @@
-//! Validation on three 3D-printed dice thrown by hand (`data/printed_shapes/`: Baktash et al.,
-//! "Putting Rigid Bodies to Rest", ACM TOG 2025); nothing is fitted to these data. Each stable
-//! facet of a hull (with the printed solid's centre of mass) counts for the outcome whose listed
-//! normal is nearest; the quasi-static basins, the calibrated `throw` preset (its own numerics,
-//! then rapier's flight) and the `drop` preset predict the outcome frequencies, scored by the total
-//! variation distance TV = ½ Σ |p_pred − p_meas| against the TV of sampling noise alone
-//! (parametric bootstrap), Pearson's χ² and the two-sample χ² of homogeneity.
+//! Validation on three 3D-printed dice thrown by hand (`data/printed_shapes/`); nothing is
+//! fitted to these data. The quasi-static basins, the calibrated `throw` and the `drop` preset
+//! predict the outcome frequencies, scored by the total variation distance against its noise.
 //!
 //! Run: `cargo run --release --example printed_shapes [-- N [DATA_DIR]]` (N = 2000 throws per
 //! shape and predictor, seed 1; DATA_DIR = `data/printed_shapes`) → `results/printed_shapes/`;
 //! the README's prose is `experiments/readme/printed_shapes.md`.
 
 use anyhow::ensure;
-use rocking_stones::plot::{colors::GREY, OKABE_ITO};
+use rocking_stones::plot::{bar, bar_centre, colors::GREY, wilson_bars, OKABE_ITO};
 use rocking_stones::prelude::*;
 use rocking_stones::stats::{chi_square_homogeneity, mean, wilson};
-use rocking_stones::study::outcomes::{frequencies, score, total_variation, Score, ThrownShape};
+use rocking_stones::study::outcomes::{by_outcome, frequencies, score, total_variation, ByOutcome, Score, ThrownShape};
 use rocking_stones::tipping::TippingPolar;
 use serde_json::{json, Value};
 use std::{collections::BTreeMap, path::Path, path::PathBuf, time::Instant};
@@ -93,23 +89,6 @@ fn judge(shape: &Shape, j: usize, p: Vec<f64>, sim: Option<(Vec<u64>, u64, (u64,
     Pred { score: s, csv, readme, sim, p }
 }
 
-/// Weights over the stable facets `(facet, outcome, matches no listed normal)` (probabilities or
-/// counts) gathered by outcome: the frequencies, the share on the unmatched facets, and the
-/// frequencies without those facets (renormalised) when there are any.
-fn by_outcome(mapped: &[(u32, usize, bool)], k: usize, w: &BTreeMap<u32, f64>) -> (Vec<f64>, f64, Option<Vec<f64>>) {
-    let w = |f: u32| w.get(&f).copied().unwrap_or(0.0);
-    let total: f64 = mapped.iter().map(|m| w(m.0)).sum();
-    let (mut p, mut listed) = (vec![0.0; k], vec![0.0; k]);
-    for &(f, outcome, poor) in mapped {
-        p[outcome] += w(f) / total;
-        listed[outcome] += if poor { 0.0 } else { w(f) };
-    }
-    let unlisted: f64 = mapped.iter().filter(|m| m.2).map(|m| w(m.0)).sum::<f64>() / total;
-    let listed_total: f64 = listed.iter().sum();
-    let listed_only = mapped.iter().any(|m| m.2) && listed_total > 0.0;
-    (p, unlisted, listed_only.then(|| listed.iter().map(|x| x / listed_total).collect()))
-}
-
 /// A p-value as a person reads it.
 fn p_text(p: f64) -> String {
     match p {
@@ -134,7 +113,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
     // The tilt (degrees) that brings G's vertical over the nearest edge of facet `f` (toppling).
     let topple_tilt = |f: u32| -> Result<f64> {
         let (normal, g) = (&analysis.hull.facets[f as usize].normal, &analysis.mass.center_of_mass);
-        Ok(TippingPolar::new(&analysis.hull.vertices, g, normal, 0.0)?.minimum().0.atan().to_degrees())
+        Ok(TippingPolar::new(&analysis.hull.vertices, g, normal, 0.0)?.tipping_tilt_deg())
     };
     let vec3 = |v: &Vec3, d: usize| format!("({:+.d$}, {:+.d$}, {:+.d$})", v.x, v.y, v.z);
     let angles: Vec<(usize, f64)> = facets.iter().map(|s| m.nearest(&s.normal)).collect();
@@ -178,7 +157,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
     let p_meas = m.frequencies();
     let (mut preds, mut unlisted) = (Vec::new(), Vec::new());
     for (j, weight) in runs.iter().take(4).enumerate() {
-        let (p, share, listed_only) = by_outcome(&mapped, k, weight);
+        let ByOutcome { p, unlisted: share, listed_only } = by_outcome(&mapped, k, weight);
         let mut counts = vec![0u64; k];
         weight.iter().for_each(|(f, c)| counts[stable[f]] += *c as u64);
         let sim = (j > 0).then(|| (counts.clone(), counts.iter().sum(), (info[j - 1].0, info[j - 1].1)));
@@ -202,7 +181,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         }
         freqs.push(json!({"id": id, "cells": cells}));
     }
-    let size_tv = |i: usize| f3(total_variation(&by_outcome(&mapped, k, &runs[i]).0, &p_meas));
+    let size_tv = |i: usize| f3(total_variation(&by_outcome(&mapped, k, &runs[i]).p, &p_meas));
     let (a, b) = (&preds[1].sim.as_ref().expect("simulated").0, &preds[2].sim.as_ref().expect("simulated").0);
     let (chi2, _, p) = chi_square_homogeneity(a, b);
     let numerics = [
@@ -273,53 +252,39 @@ fn main() -> Result<()> {
 /// (95 % Monte Carlo intervals); last panel, the TV of each predictor with its noise level.
 fn plot(out: &Results, shapes: &[Shape], preds: &[&Vec<Pred>]) -> Result<()> {
     let black = OKABE_ITO[0];
-    // A category axis: the names at the integer positions, nothing between them.
-    let categories = |label: &str, names: Vec<String>| {
-        let axis = Axis::linear(label, -0.5, names.len() as f64 - 0.5).ticks(4 * names.len() + 1).no_grid();
-        axis.format(move |x| {
-            names
-                .get(x.round() as usize)
-                .filter(|_| (x - x.round()).abs() < 1e-6 && x > -0.5)
-                .cloned()
-                .unwrap_or_default()
-        })
-    };
-    // The centre of bar `slot` of `slots` side by side at category `i`, and a box 0.9 slot wide.
-    let at = |slots: usize, slot: usize, i: usize| i as f64 - 0.4 + 0.8 / slots as f64 * (slot as f64 + 0.5);
-    let bar = |x: f64, half_width: f64, y: f64| (x - half_width, 0.0, x + half_width, y);
     // 95 % Wilson intervals of `counts` out of `n` at bar `slot` of 5.
-    let whiskers = |slot: usize, counts: &[u64], n: u64| -> Vec<_> {
-        counts.iter().enumerate().map(|(i, &c)| (at(5, slot, i), wilson(c, n, 1.96).0, wilson(c, n, 1.96).1)).collect()
+    let whiskers = |slot: usize, counts: &[u64], n: u64| {
+        wilson_bars(counts.iter().enumerate().map(|(i, &c)| (bar_centre(i, 5, slot), c, n)))
     };
     let mut panels = Vec::new();
     for (s, preds) in shapes.iter().zip(preds) {
         let (measured, k) = (whiskers(0, &s.die.outcomes.counts, s.die.outcomes.throws), s.die.outcomes.ids.len());
         let top = measured.iter().map(|m| m.2).chain(preds.iter().flat_map(|p| p.p.clone())).fold(0.0, f64::max);
         let y = Axis::linear("frequency", 0.0, ((top * 1.1) * 10.0).ceil() / 10.0);
-        let x = categories("outcome (id of outcomes.csv)", s.die.outcomes.ids.clone());
+        let x = Axis::categories("outcome (id of outcomes.csv)", s.die.outcomes.ids.clone());
         let mut chart = Chart::new(x, y).title(format!("{} (N = {} hand throws)", s.name, s.die.outcomes.throws));
         for (slot, pred) in preds.iter().enumerate() {
-            let boxes: Vec<_> = (0..k).map(|i| bar(at(5, slot + 1, i), 0.072, pred.p[i])).collect();
+            let boxes: Vec<_> = (0..k).map(|i| bar(bar_centre(i, 5, slot + 1), 0.072, pred.p[i])).collect();
             chart = chart.boxes(&boxes, series_color(slot), 0.85);
             if let Some((counts, total, _)) = &pred.sim {
                 chart = chart.y_bars(&whiskers(slot + 1, counts, *total), GREY);
             }
         }
         let dots: Vec<_> =
-            s.die.outcomes.frequencies().into_iter().enumerate().map(|(i, p)| (at(5, 0, i), p)).collect();
+            s.die.outcomes.frequencies().into_iter().enumerate().map(|(i, p)| (bar_centre(i, 5, 0), p)).collect();
         panels.push(chart.y_bars(&measured, black).dots(&dots, black));
     }
     // Last panel: TV per shape and predictor, with the noise level.
     let top = preds.iter().flat_map(|p| p.iter()).map(|p| p.score.tv.max(p.score.noise_q95)).fold(0.0f64, f64::max);
     let y = Axis::linear("TV = ½ Σ |p_pred − p_meas|", 0.0, ((top * 1.15) * 20.0).ceil() / 20.0);
-    let mut chart = Chart::new(categories("die", shapes.iter().map(|s| s.name.to_string()).collect()), y)
+    let mut chart = Chart::new(Axis::categories("die", shapes.iter().map(|s| s.name.to_string()).collect()), y)
         .title("total variation distance to the measurement");
     for slot in 0..4 {
         let boxes: Vec<_> =
-            preds.iter().enumerate().map(|(i, p)| bar(at(4, slot, i), 0.09, p[slot].score.tv)).collect();
+            preds.iter().enumerate().map(|(i, p)| bar(bar_centre(i, 4, slot), 0.09, p[slot].score.tv)).collect();
         chart = chart.boxes(&boxes, series_color(slot), 0.85);
         for (i, q) in preds.iter().map(|p| p[slot].score.noise_q95).enumerate() {
-            chart = chart.line(&[(at(4, slot, i) - 0.1, q), (at(4, slot, i) + 0.1, q)], black);
+            chart = chart.line(&[(bar_centre(i, 4, slot) - 0.1, q), (bar_centre(i, 4, slot) + 0.1, q)], black);
         }
     }
     panels.push(chart);
