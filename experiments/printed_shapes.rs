@@ -189,10 +189,8 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         fixed(chi2, 1),
         p_text(p),
     ];
-    let extent = [0, 1, 2].map(|i| {
-        let x = || analysis.mesh.vertices.iter().map(|v| v[i]);
-        fixed(x().fold(f64::NEG_INFINITY, f64::max) - x().fold(f64::INFINITY, f64::min), 2)
-    });
+    let (lo, hi) = analysis.mesh.bounding_box().context("an empty mesh")?;
+    let extent = [0, 1, 2].map(|i| fixed(hi[i] - lo[i], 2));
     let far = |nm: &&Vec3| facets.iter().all(|s| angle_deg(&s.normal, nm) >= POOR_MATCH_DEG);
     let (qs, th) = (&preds[0], &preds[1]);
     let readme = json!({
