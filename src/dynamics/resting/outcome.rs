@@ -179,3 +179,19 @@ impl Curve {
         Curve { leave50: Threshold::of(&x, &leave, log), topple50: Threshold::of(&x, &topple, log), points }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thresholds_rank_by_what_they_bound_and_name_their_kind() {
+        let (below, at, above) = (Threshold::Below(1e-6), Threshold::At(3e-4), Threshold::Above(1.0));
+        assert_eq!([below, at, above].map(|t| t.kind_name()), ["below", "at", "above"]);
+        // At most 10⁻⁶ and 3·10⁻⁴ rank as those values; above the grid or never: ∞.
+        assert_eq!(
+            [Some(below), Some(at), Some(above), None].map(Threshold::rank),
+            [1e-6, 3e-4, f64::INFINITY, f64::INFINITY]
+        );
+    }
+}
