@@ -1,26 +1,21 @@
-//! Calibration of the `throw` preset on real dice: square cuboid steel dice y × y × x thrown by
-//! hand, `data/cuboid_dice_throws.csv` (Mathematical Gazette 97, note 97.16, Table 1: seven of its
-//! fifteen dice). Calibration, not validation: the seven dice are the data the throw is fitted to.
-//!
-//! On a grid of release height H, rms spin Ω and horizontal speed v every die is thrown N times
-//! (common random numbers) and the binomial log-likelihood of the measured counts,
-//! ln L = Σ_dice k ln p + (n − k) ln(1 − p), is maximised; its Monte Carlo noise is measured by
-//! re-running the best point with another seed and 4N throws, and the grid points within twice
-//! that noise of the best are the calibrated range (the README template,
-//! `experiments/readme/cuboid_dice.md`, gives the model and the readings).
+//! Calibration of the `throw` preset on seven real cuboid dice (`data/cuboid_dice_throws.csv`):
+//! the binomial log-likelihood of the measured counts maximised over a grid of release height H,
+//! rms spin Ω and horizontal speed v. Calibration, not validation.
 //!
 //! Run: `cargo run --release --example cuboid_dice [-- N [H,… [Ω,… [v,…]]]]` (N = 400, as
 //! the committed results; the default grid was refined from coarser grids over H 0.5–16,
-//! Ω 0–45, v 1–8) → `results/cuboid_dice/`.
+//! Ω 0–45, v 1–8) → `results/cuboid_dice/`; the README's prose is `experiments/readme/cuboid_dice.md`.
 
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Common, Context, Parser, Result, Results};
 use rocking_stones::dynamics::drops::params::{THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
+use rocking_stones::plot::wilson_bars;
 use rocking_stones::prelude::*;
-use rocking_stones::stats::{chi_square_homogeneity, wilson};
+use rocking_stones::stats::{binomial_log_likelihood, chi_square_homogeneity, chi_square_tail, min_max};
+use rocking_stones::stats::{root_mean_square, wilson};
+use rocking_stones::study::outcomes::share_on;
 use serde_json::json;
-use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -46,8 +41,7 @@ fn die(x: f64) -> Result<(Stone, f64)> {
 /// The drops (and the count) that end on a square face, and the quasi-static fraction.
 fn p_square(stone: &Stone, p: DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
     let (report, _) = run_and_summarize(stone, &RunHeader::of_params("die", seed, n, p, CertificateMode::Facet));
-    let square = || report.facets.iter().filter(|f| f.normal.z.abs() > 0.99);
-    (square().map(|f| f.count).sum(), report.facet_drops, square().map(|f| f.static_probability).sum())
+    share_on(&report, |normal| normal.z.abs() > 0.99)
 }
 
 fn throw(h: f64, spin: f64, v: f64, r_max_m: f64) -> DropParams {
@@ -57,12 +51,10 @@ fn throw(h: f64, spin: f64, v: f64, r_max_m: f64) -> DropParams {
     p
 }
 
+/// The binomial log-likelihood of the measured counts under the square-face probabilities `p`.
 fn log_likelihood(dice: &[Die], p: &[f64]) -> f64 {
-    let term = |(d, &q): (&Die, &f64)| {
-        let (q, k) = (q.clamp(1e-4, 1.0 - 1e-4), (d.p * d.n as f64).round());
-        k * q.ln() + (d.n as f64 - k) * (1.0 - q).ln()
-    };
-    dice.iter().zip(p).map(term).sum()
+    let observed: Vec<(f64, f64)> = dice.iter().map(|d| ((d.p * d.n as f64).round(), d.n as f64)).collect();
+    binomial_log_likelihood(&observed, p, 1e-4)
 }
 
 /// At one die: the calibrated throw's p and its 95 % band (lo, hi), the residual (σ), the drop
@@ -71,7 +63,7 @@ type Fit = (f64, f64, f64, f64, f64, f64);
 
 /// Root mean square of `f(row) − measured` over the dice.
 fn rms(dice: &[Die], f: impl Fn(usize) -> f64) -> f64 {
-    (dice.iter().enumerate().map(|(k, d)| (f(k) - d.p).powi(2)).sum::<f64>() / dice.len() as f64).sqrt()
+    root_mean_square(&dice.iter().enumerate().map(|(k, d)| f(k) - d.p).collect::<Vec<_>>())
 }
 
 /// The values of one axis of the grid (an alias, so that clap takes it as one argument).
@@ -142,8 +134,7 @@ fn main() -> Result<()> {
     let (mut rows, mut counts, mut residuals, mut chi2) = (Vec::new(), Vec::new(), Vec::new(), 0.0);
     for (d, (s, r)) in dice.iter().zip(&stones) {
         let (k, m, qs) = p_square(s, throw(best.0, best.1, best.2, *r), 4 * n, seed + 1);
-        let mut dp = Preset::Drop.params(Surface::SteelOnWood);
-        Surface::SteelOnWood.scaled(&mut dp.sim.contact, *r);
+        let dp = Preset::Drop.params_at_size(Surface::SteelOnWood, *r)?;
         let (kd, md, _) = p_square(s, dp, 2 * n, seed + 2);
         drops += 6 * n;
         let (q, (lo, hi), pd) = (k as f64 / m as f64, wilson(k, m, 1.96), kd as f64 / md as f64);
@@ -190,7 +181,7 @@ fn main() -> Result<()> {
         let chi2: f64 = per_die.iter().map(|x| x.1).sum();
         others.push(json!({
             "flight": flight.to_string(), "inv_dt": fixed(1.0 / REFERENCE_DT, 0), "chi2": fixed(chi2, 1),
-            "p": fixed(1.0 - ChiSquared::new(7.0)?.cdf(chi2), 2), "rms": fixed(rms(&dice, |k| per_die[k].0), 3),
+            "p": fixed(chi_square_tail(chi2, 7), 2), "rms": fixed(rms(&dice, |k| per_die[k].0), 3),
             "seconds": fixed(t.elapsed().as_secs_f64(), 1),
         }));
     }
@@ -201,8 +192,7 @@ fn main() -> Result<()> {
     let noise_band = 2.0 * (best.3 - ll_fit).abs().max(2.0);
     let within = || grid.iter().filter(|g| g.3 >= best.3 - noise_band);
     let span = |pick: fn(&(f64, f64, f64, f64)) -> f64, name: &str, at: f64| {
-        let (lo, hi) =
-            (within().map(pick).fold(f64::INFINITY, f64::min), within().map(pick).fold(f64::NEG_INFINITY, f64::max));
+        let (lo, hi) = min_max(within().map(pick));
         json!({ "name": name, "best": at.to_string(), "lo": lo.to_string(), "hi": hi.to_string() })
     };
     plot(&out, &dice, &rows)?;
@@ -250,12 +240,7 @@ fn plot(out: &Results, dice: &[Die], rows: &[Fit]) -> Result<()> {
     let curve = |f: fn(&Fit) -> f64| -> Vec<(f64, f64)> { dice.iter().zip(rows).map(|(d, r)| (d.x, f(r))).collect() };
     let band: Vec<(f64, f64)> = curve(|r| r.2).into_iter().chain(curve(|r| r.1).into_iter().rev()).collect();
     let measured: Vec<(f64, f64)> = dice.iter().map(|d| (d.x, d.p)).collect();
-    let wilson_bars: Vec<_> = (dice.iter())
-        .map(|d| {
-            let (lo, hi) = wilson((d.p * d.n as f64).round() as u64, d.n, 1.96);
-            (d.x, lo, hi)
-        })
-        .collect();
+    let bars = wilson_bars(dice.iter().map(|d| (d.x, (d.p * d.n as f64).round() as u64, d.n)));
     Chart::new(
         Axis::linear("x / y (long side over square side)", 0.3, 2.8),
         Axis::linear("P(lands on a square face)", 0.0, 1.0),
@@ -265,7 +250,7 @@ fn plot(out: &Results, dice: &[Die], rows: &[Fit]) -> Result<()> {
     .line(&curve(|r| r.5), basins)
     .line(&curve(|r| r.4), drop)
     .line(&curve(|r| r.0), throw)
-    .y_bars(&wilson_bars, BLACK)
+    .y_bars(&bars, BLACK)
     .dots(&measured, BLACK)
     .legend(Mark::LineDot(BLACK), "measured (hand throws, 95 % Wilson interval)")
     .legend(Mark::Line(throw), "calibrated throw")

@@ -1,21 +1,14 @@
-//! Paper Figure 11, dynamically: a synthetic pebble with a rocking equilibrium, one regular and
-//! one rocking stable micro-equilibrium side by side, and how each responds to pushes and spins
-//! of growing energy ε = KE / (m g R_max).
-//!
-//! The pebble: the first seed of `generate::pebble([1, 0.75, 0.5], roughness 0.02, 600 points)`
-//! whose hierarchy (at the automatic macro ν) has a rocking equilibrium that stays at rest in the
-//! simulation with a basin barrier of at least 10⁻⁴ m g R_max (a convincingly balanced one, not
-//! a marginal dip). The regular equilibrium is the stone's deepest (smallest R), the rocking
-//! one the rocking equilibrium with the highest basin barrier ([`default_pair`]).
+//! Paper Figure 11, dynamically: a regular and a rocking stable micro-equilibrium of one synthetic
+//! pebble under pushes and spins of growing energy ε = KE / (m g R_max). The regular one is the
+//! stone's deepest (smallest R), the rocking one the rocking equilibrium with the highest basin
+//! barrier ([`default_pair`]).
 //!
 //! Run: `cargo run --release --example fig11_rocking_vs_regular` → `results/fig11_rocking_vs_regular/`;
 //! the README's prose is `experiments/readme/fig11_rocking_vs_regular.md`.
 
 use rocking_stones::dynamics::pushes::{self, Family, PerturbConfig};
-use rocking_stones::dynamics::resting::outcome::Threshold;
 use rocking_stones::dynamics::resting::{default_pair, RestingParams};
-use rocking_stones::dynamics::stone::{resting_orientation, Class};
-use rocking_stones::planar::{self, Point2};
+use rocking_stones::dynamics::stone::Class;
 use rocking_stones::prelude::*;
 use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
@@ -73,11 +66,7 @@ fn main() -> Result<()> {
         reports.push(r);
     }
     // The panels: pushes then spins, each the regular then the rocking equilibrium.
-    let class = |c: Class, loud: bool| match c {
-        Class::Regular => "regular",
-        Class::Rocking if loud => "ROCKING",
-        Class::Rocking => "rocking",
-    };
+    let loud = |c: Class| if c == Class::Rocking { "ROCKING" } else { c.name() };
     let panels: Vec<_> = (reports.iter())
         .flat_map(|r| r.equilibria.iter().map(move |e| (r, e)))
         .map(|(r, e)| {
@@ -85,7 +74,7 @@ fn main() -> Result<()> {
             report::perturb::Panel {
                 title: format!(
                     "{}: eq {} (facet {}, {} flock), {}",
-                    class(q.class, true),
+                    loud(q.class),
                     q.index,
                     q.facet,
                     q.flock_kind,
@@ -105,46 +94,19 @@ fn main() -> Result<()> {
     let title = "Regular vs rocking: pushes (top) and spins about the contact (bottom)";
     report::perturb::plot_curves(&out.path("fig11_robustness_push_and_spin.png"), title, eps, true, &panels)?;
 
-    // Side views of the stone resting on each equilibrium (the photos of the paper's Figure 11):
-    // the outline of the hull seen along y in its resting orientation, the ground, G and the
-    // contact point straight below it.
-    let (g, red) = (analysis.mass.center_of_mass, RGBColor(200, 40, 40));
+    // Side views of the stone resting on each equilibrium (the photos of the paper's Figure 11).
     let mut poses = Vec::new();
     for i in [regular, rocking] {
         let s = &stone.stable()[i];
-        let q = resting_orientation(&stone.body.facet_normals[s.facet as usize]);
-        let seen = |p: &rocking_stones::Point3| {
-            let w = q * ((p - g) / stone.body.r_max) + Vec3::new(0.0, 0.0, s.r_normalised);
-            Point2::new(w.x, w.z)
-        };
-        let hull = planar::Polygon::convex_hull(&analysis.hull.vertices.iter().map(seen).collect::<Vec<_>>())?;
-        let outline: Vec<(f64, f64)> = hull.vertices.iter().chain(hull.vertices.first()).map(|p| (p.x, p.y)).collect();
-        let (black, top) = (RGBColor(0, 0, 0), (0.0, s.r_normalised));
         let title = format!(
             "{} equilibrium {} (facet {}): {:?} flock {}",
-            class(s.class, false),
+            s.class.name(),
             s.index,
             s.facet,
             s.flock_kind,
             s.flock
         );
-        let text = format!(
-            "G, R = {:.4} R_max; barriers: basin {:.1e}, flock {:.1e} m g R_max",
-            s.r_normalised, s.basin_exit.epsilon, s.flock_exit.epsilon
-        );
-        poses.push(
-            Chart::new(
-                Axis::linear("x / R_max", -1.2, 1.2).no_grid(),
-                Axis::linear("z / R_max", -0.15, 2.05).no_grid(),
-            )
-            .title(title)
-            .polygon(&outline, RGBColor(190, 175, 150), 1.0)
-            .line_width(&outline, black, 1)
-            .line(&[(-1.2, 0.0), (1.2, 0.0)], black)
-            .line_width(&[(0.0, 0.0), top], red, 1)
-            .markers_sized(&[top], red, Marker::Dot, 5)
-            .text(text, (-1.15, 1.95)),
-        );
+        poses.push(report::perturb::resting_pose(&analysis, &stone, i, title)?);
     }
     let title = "The pebble resting on its regular and its rocking equilibrium (side view)";
     Figure::new(title, 2, poses).save(&out.path("fig11_poses.png"), (1200, 520))?;
@@ -155,14 +117,8 @@ fn main() -> Result<()> {
         report::perturb::write_thresholds_csv(&out.path(&format!("thresholds_{}.csv", r.family.name())), r)?;
     }
 
-    let th = |t: &Option<Threshold>| match t {
-        None => "–".into(),
-        Some(Threshold::Below(x)) => format!("≤ {x:.2e}"),
-        Some(Threshold::At(x)) => format!("{x:.2e}"),
-        Some(Threshold::Above(x)) => format!("> {x:.2e}"),
-    };
     let opt = |x: Option<f64>, f: fn(f64) -> String| x.map_or("–".into(), f);
-    let (e2, f1) = (|x: f64| format!("{x:.2e}"), |x: f64| format!("{x:.1}"));
+    let rows = reports.iter().flat_map(|r| r.equilibria.iter().map(|e| report::perturb::robustness_row(r.family, e)));
     let p = &reports[0].params.sim;
     out.readme(
         include_str!("readme/fig11_rocking_vs_regular.md"),
@@ -180,24 +136,7 @@ fn main() -> Result<()> {
             "rolling": format!("{:.1e}", p.contact.rolling_resistance),
             "rest_time": p.rest.rest_time.to_string(),
             "max_time": p.numerics.max_time.to_string(),
-            "rows": reports.iter().flat_map(|r| r.equilibria.iter().map(move |e| (r, e))).map(|(r, e)| {
-                let q = &e.equilibrium;
-                let went: Vec<_> = e.destinations.iter().map(|d| format!("{} ({:?}): {}", d.0, d.1, d.2)).collect();
-                [
-                    r.family.name().to_string(),
-                    format!("{} (facet {})", q.index, q.facet),
-                    format!("{:?}", q.class),
-                    format!("{} ({:?})", q.flock, q.flock_kind),
-                    e2(q.basin_exit.epsilon),
-                    th(&e.eps50_micro),
-                    opt(e.ratio_micro, f1),
-                    e2(q.flock_exit.epsilon),
-                    th(&e.eps50_flock),
-                    opt(e.ratio_flock, f1),
-                    opt(e.first_topple, e2),
-                    went.join(", "),
-                ]
-            }).collect::<Vec<_>>(),
+            "rows": rows.collect::<Vec<_>>(),
             "checks": reports.iter().map(|r| {
                 let b = &r.barrier_check;
                 json!({

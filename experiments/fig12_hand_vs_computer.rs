@@ -1,13 +1,6 @@
-//! Paper Figure 12 and Table 2: hand experiments against computed (synthetic) ones.
-//!
-//! * Synthetic populations for all 22 Table 2 samples (50 pebbles each, the samples' mean c/b
-//!   and c/a), counted at the ν fitted to the hand columns and at the paper's 0.0035:
-//!   E(S), E(U) against c/b and c/a with logarithmic trend lines and their R² (Fig. 12A), σ
-//!   against E (Fig. 12B), computed against hand.
-//! * The dynamic experimenter: the 5 scanned samples (20 synthetic pebbles each, as the paper's
-//!   computer experiments), each pebble set down 5, 20 and 100 times from 0.05 R_max.
-//! * A field study of the scanned quarry stones in `data/meshes` with a metadata CSV, as
-//!   `rocking study FOLDER --meta META.csv --dynamic` would write it, Zingg diagram included.
+//! Paper Figure 12 and Table 2: the hand experiments against synthetic populations of all 22
+//! samples, the dynamic experimenter on the 5 scanned samples, and a field study of the scanned
+//! quarry stones in `data/meshes`.
 //!
 //! Run: `cargo run --release --example fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`;
 //! the README's prose is `experiments/readme/fig12_hand_vs_computer.md`.
@@ -91,31 +84,19 @@ fn main() -> Result<()> {
 fn comparison(rows: &[Comparison], nu: f64, name: &str, what: &str) -> Value {
     let t = study::trends(rows);
     let describe = |f: Option<rocking_stones::stats::LogFit>| f.map_or("—".into(), |f| f.describe());
-    let trends = [
-        ("E(S) vs c/b", t.hand_es_cb, t.sim_es_cb),
-        ("E(S) vs c/a", t.hand_es_ca, t.sim_es_ca),
-        ("E(U) vs c/b", t.hand_eu_cb, t.sim_eu_cb),
-        ("E(U) vs c/a", t.hand_eu_ca, t.sim_eu_ca),
-        ("σ(S) vs E(S)", t.hand_sd_s, t.sim_sd_s),
-        ("σ(U) vs E(U)", t.hand_sd_u, t.sim_sd_u),
-    ];
     let f2 = |x: f64| format!("{x:.2}");
     let four = |v: [f64; 4]| v.map(f2).join(" ");
-    let n = rows.len() as f64;
     // Synthetic − hand of each moment over the samples: mean and rms.
-    let diffs = (0..4).map(|k| {
-        let d = || rows.iter().map(move |r| r.sim.as_array()[k] - r.hand[k]);
-        json!({"bias": format!("{:+.2}", d().sum::<f64>() / n), "rms": f2((d().map(|x| x * x).sum::<f64>() / n).sqrt())})
-    });
+    let diffs = study::differences(rows).map(|(bias, rms)| json!({"bias": format!("{bias:+.2}"), "rms": f2(rms)}));
     json!({
         "name": name,
         "what": what,
         "nu": format!("{nu:.2e}"),
-        "trends": trends.map(|(label, h, c)| [label.to_string(), describe(h), describe(c)]),
+        "trends": t.relations().map(|(label, h, c)| [label.to_string(), describe(h), describe(c)]),
         "rise": t.hand_es_cb.zip(t.sim_es_cb).map(|(h, c)| json!({
             "hand": f2(h.slope), "sim": f2(c.slope), "hand_r2": f2(h.r2), "sim_r2": f2(c.r2),
         })),
-        "diff": diffs.collect::<Vec<_>>(),
+        "diff": diffs,
         "rows": rows.iter().map(|r| [
             r.id.clone(),
             f2(r.hand_c_over_b),
@@ -206,12 +187,7 @@ fn field_study(out: &Results, root: &Path) -> Result<Value> {
     let (mut study, _) = study::run_files(&files, Some(&meta), &opts, &|| {})?;
     eprintln!("field study: {:.1} s", t.elapsed().as_secs_f64());
     // Paths in the CSV relative to the repository, as a user running from it would see them.
-    for p in &mut study.pebbles {
-        p.file = p.file.replace(&format!("{}/", root.display()), "");
-        if let Ok(c) = &mut p.result {
-            c.report.file = p.file.clone();
-        }
-    }
+    study.relative_to(root);
     let summaries = study::summarize(&study);
     report::study::write_pebbles_csv(&study, File::create(dir.join("pebbles.csv"))?)?;
     report::study::write_samples_csv(&study, &summaries, File::create(dir.join("samples.csv"))?)?;

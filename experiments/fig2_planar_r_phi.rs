@@ -44,7 +44,7 @@ fn main() -> Result<()> {
     )?;
     // Each micro-equilibrium: φ (wrapped), R, its kind, its flock and the flock's kind.
     let eqs: Vec<(f64, f64, Kind, usize, Kind)> = (an.equilibria.points.iter().enumerate())
-        .map(|(i, p)| (wrap(p.phi), p.r, p.kind, flocks.membership[i], flocks.flocks[flocks.membership[i]].kind))
+        .map(|(i, p)| (wrap(p.phi), p.r, p.kind, flocks.membership[i], flocks.kind_of(i)))
         .collect();
     let name = |k: Kind| k.name().to_string();
     out.csv(

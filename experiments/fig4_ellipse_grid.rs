@@ -31,8 +31,7 @@ fn main() -> Result<()> {
             let t = |v: usize| v.to_string();
             csv.push([t(k), t(n), a.to_string(), t(s), t(u), t(ms), t(mu), t(limit(a)?)]);
             row.push(s);
-            let mut outline: Vec<(f64, f64)> = an.polygon.vertices.iter().map(|p| (p.x, p.y)).collect();
-            outline.push(outline[0]);
+            let outline = an.polygon.closed_outline();
             let chart = Chart::new(bare(-2.2, 2.2), bare(-1.3, 1.3))
                 .title(format!("k = {k} (N = {n}), a = {a}: S = {s}"))
                 .line_width(&outline, RGBColor(0, 0, 0), 1);

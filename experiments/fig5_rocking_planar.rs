@@ -26,7 +26,6 @@ fn main() -> Result<()> {
     let flocks = an.flocks_at(report.nu);
     let eq = &an.equilibria.points;
     let m = eq.len();
-    let flock_kind = |i: usize| flocks.flocks[flocks.membership[i]].kind;
     // Depth of the potential well of a stable point (over R_max; only stable points have one).
     let depth = |i: usize| an.equilibria.well_depth(i).unwrap_or(f64::NAN);
     // The three: the regular stable point at the bottom of a stable flock (smallest R), a
@@ -35,7 +34,7 @@ fn main() -> Result<()> {
     let pick = |keep: &dyn Fn(usize) -> bool, key: &dyn Fn(usize) -> f64| {
         (0..m).filter(|&i| keep(i)).max_by(|&a, &b| key(a).total_cmp(&key(b)).then(b.cmp(&a)))
     };
-    let rocks = |i: usize| eq[i].kind == Kind::Stable && flock_kind(i) != Kind::Stable;
+    let rocks = |i: usize| eq[i].kind == Kind::Stable && flocks.kind_of(i) != Kind::Stable;
     let regular =
         pick(&|i| eq[i].kind == Kind::Stable && !rocks(i), &|i| -eq[i].r).context("no regular stable point")?;
     let rocking = pick(&rocks, &depth).context("no rocking equilibrium: choose a < √2 and k large enough")?;
@@ -55,7 +54,7 @@ fn main() -> Result<()> {
             PlanarSite::Vertex(v) => ("vertex", v),
         };
         let d = if e.kind == Kind::Stable { format!("{:.4e}", depth(i)) } else { String::new() };
-        let (kind, flock, fk) = (e.kind.name(), flocks.membership[i], flock_kind(i).name());
+        let (kind, flock, fk) = (e.kind.name(), flocks.membership[i], flocks.kind_of(i).name());
         csv += &format!("{i},{kind},{site},{si},{:.8},{:.12},{flock},{fk},{d},{role}\n", e.phi, e.r);
     }
     out.write("fig5_equilibria.csv", csv)?;
@@ -101,7 +100,7 @@ fn main() -> Result<()> {
         let d = if eq[i].kind == Kind::Stable { format!("{:.3e}", depth(i)) } else { "— (a maximum)".into() };
         rows.push(serde_json::json!({
             "title": title, "site": format!("{:?}", eq[i].site), "phi": format!("{:.4}", eq[i].phi),
-            "r": format!("{:.6}", eq[i].r), "flock": format!("{:?}", flock_kind(i)), "depth": d,
+            "r": format!("{:.6}", eq[i].r), "flock": format!("{:?}", flocks.kind_of(i)), "depth": d,
         }));
     }
     let title = format!("Discretised ellipse 1 : {A}, N = {n}. Dots: vermillion stable, orange rocking, blue unstable");

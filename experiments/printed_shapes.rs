@@ -1,20 +1,16 @@
-//! Validation on three 3D-printed dice thrown by hand (`data/printed_shapes/`: Baktash et al.,
-//! "Putting Rigid Bodies to Rest", ACM TOG 2025); nothing is fitted to these data. Each stable
-//! facet of a hull (with the printed solid's centre of mass) counts for the outcome whose listed
-//! normal is nearest; the quasi-static basins, the calibrated `throw` preset (its own numerics,
-//! then rapier's flight) and the `drop` preset predict the outcome frequencies, scored by the total
-//! variation distance TV = ½ Σ |p_pred − p_meas| against the TV of sampling noise alone
-//! (parametric bootstrap), Pearson's χ² and the two-sample χ² of homogeneity.
+//! Validation on three 3D-printed dice thrown by hand (`data/printed_shapes/`); nothing is
+//! fitted to these data. The quasi-static basins, the calibrated `throw` and the `drop` preset
+//! predict the outcome frequencies, scored by the total variation distance against its noise.
 //!
 //! Run: `cargo run --release --example printed_shapes [-- N [DATA_DIR]]` (N = 2000 throws per
 //! shape and predictor, seed 1; DATA_DIR = `data/printed_shapes`) → `results/printed_shapes/`;
 //! the README's prose is `experiments/readme/printed_shapes.md`.
 
 use anyhow::ensure;
-use rocking_stones::plot::{colors::GREY, OKABE_ITO};
+use rocking_stones::plot::{colors::GREY, wilson_bars, BarSlot, OKABE_ITO};
 use rocking_stones::prelude::*;
 use rocking_stones::stats::{chi_square_homogeneity, mean, wilson};
-use rocking_stones::study::outcomes::{frequencies, score, total_variation, Score, ThrownShape};
+use rocking_stones::study::outcomes::{by_outcome, frequencies, score, total_variation, ByOutcome, Score, ThrownShape};
 use rocking_stones::tipping::TippingPolar;
 use serde_json::{json, Value};
 use std::{collections::BTreeMap, path::Path, path::PathBuf, time::Instant};
@@ -93,23 +89,6 @@ fn judge(shape: &Shape, j: usize, p: Vec<f64>, sim: Option<(Vec<u64>, u64, (u64,
     Pred { score: s, csv, readme, sim, p }
 }
 
-/// Weights over the stable facets `(facet, outcome, matches no listed normal)` (probabilities or
-/// counts) gathered by outcome: the frequencies, the share on the unmatched facets, and the
-/// frequencies without those facets (renormalised) when there are any.
-fn by_outcome(mapped: &[(u32, usize, bool)], k: usize, w: &BTreeMap<u32, f64>) -> (Vec<f64>, f64, Option<Vec<f64>>) {
-    let w = |f: u32| w.get(&f).copied().unwrap_or(0.0);
-    let total: f64 = mapped.iter().map(|m| w(m.0)).sum();
-    let (mut p, mut listed) = (vec![0.0; k], vec![0.0; k]);
-    for &(f, outcome, poor) in mapped {
-        p[outcome] += w(f) / total;
-        listed[outcome] += if poor { 0.0 } else { w(f) };
-    }
-    let unlisted: f64 = mapped.iter().filter(|m| m.2).map(|m| w(m.0)).sum::<f64>() / total;
-    let listed_total: f64 = listed.iter().sum();
-    let listed_only = mapped.iter().any(|m| m.2) && listed_total > 0.0;
-    (p, unlisted, listed_only.then(|| listed.iter().map(|x| x / listed_total).collect()))
-}
-
 /// A p-value as a person reads it.
 fn p_text(p: f64) -> String {
     match p {
@@ -134,7 +113,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
     // The tilt (degrees) that brings G's vertical over the nearest edge of facet `f` (toppling).
     let topple_tilt = |f: u32| -> Result<f64> {
         let (normal, g) = (&analysis.hull.facets[f as usize].normal, &analysis.mass.center_of_mass);
-        Ok(TippingPolar::new(&analysis.hull.vertices, g, normal, 0.0)?.minimum().0.atan().to_degrees())
+        Ok(TippingPolar::new(&analysis.hull.vertices, g, normal, 0.0)?.tipping_tilt_deg())
     };
     let vec3 = |v: &Vec3, d: usize| format!("({:+.d$}, {:+.d$}, {:+.d$})", v.x, v.y, v.z);
     let angles: Vec<(usize, f64)> = facets.iter().map(|s| m.nearest(&s.normal)).collect();
@@ -178,7 +157,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
     let p_meas = m.frequencies();
     let (mut preds, mut unlisted) = (Vec::new(), Vec::new());
     for (j, weight) in runs.iter().take(4).enumerate() {
-        let (p, share, listed_only) = by_outcome(&mapped, k, weight);
+        let ByOutcome { p, unlisted: share, listed_only } = by_outcome(&mapped, k, weight);
         let mut counts = vec![0u64; k];
         weight.iter().for_each(|(f, c)| counts[stable[f]] += *c as u64);
         let sim = (j > 0).then(|| (counts.clone(), counts.iter().sum(), (info[j - 1].0, info[j - 1].1)));
@@ -202,7 +181,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         }
         freqs.push(json!({"id": id, "cells": cells}));
     }
-    let size_tv = |i: usize| f3(total_variation(&by_outcome(&mapped, k, &runs[i]).0, &p_meas));
+    let size_tv = |i: usize| f3(total_variation(&by_outcome(&mapped, k, &runs[i]).p, &p_meas));
     let (a, b) = (&preds[1].sim.as_ref().expect("simulated").0, &preds[2].sim.as_ref().expect("simulated").0);
     let (chi2, _, p) = chi_square_homogeneity(a, b);
     let numerics = [
@@ -210,10 +189,8 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
         fixed(chi2, 1),
         p_text(p),
     ];
-    let extent = [0, 1, 2].map(|i| {
-        let x = || analysis.mesh.vertices.iter().map(|v| v[i]);
-        fixed(x().fold(f64::NEG_INFINITY, f64::max) - x().fold(f64::INFINITY, f64::min), 2)
-    });
+    let (lo, hi) = analysis.mesh.bounding_box().context("an empty mesh")?;
+    let extent = [0, 1, 2].map(|i| fixed(hi[i] - lo[i], 2));
     let far = |nm: &&Vec3| facets.iter().all(|s| angle_deg(&s.normal, nm) >= POOR_MATCH_DEG);
     let (qs, th) = (&preds[0], &preds[1]);
     let readme = json!({
@@ -273,23 +250,16 @@ fn main() -> Result<()> {
 /// (95 % Monte Carlo intervals); last panel, the TV of each predictor with its noise level.
 fn plot(out: &Results, shapes: &[Shape], preds: &[&Vec<Pred>]) -> Result<()> {
     let black = OKABE_ITO[0];
-    // A category axis: the names at the integer positions, nothing between them.
+    // Bar `slot` of `slots` side by side across 0.8 of each category, centred in its slot; a
+    // category axis with three blank ticks between names.
+    let place = |slots: usize, slot: usize| BarSlot { slot, slots, width: 0.8 };
     let categories = |label: &str, names: Vec<String>| {
-        let axis = Axis::linear(label, -0.5, names.len() as f64 - 0.5).ticks(4 * names.len() + 1).no_grid();
-        axis.format(move |x| {
-            names
-                .get(x.round() as usize)
-                .filter(|_| (x - x.round()).abs() < 1e-6 && x > -0.5)
-                .cloned()
-                .unwrap_or_default()
-        })
+        let n = names.len();
+        Axis::categories(label, names).ticks(4 * n + 1)
     };
-    // The centre of bar `slot` of `slots` side by side at category `i`, and a box 0.9 slot wide.
-    let at = |slots: usize, slot: usize, i: usize| i as f64 - 0.4 + 0.8 / slots as f64 * (slot as f64 + 0.5);
-    let bar = |x: f64, half_width: f64, y: f64| (x - half_width, 0.0, x + half_width, y);
     // 95 % Wilson intervals of `counts` out of `n` at bar `slot` of 5.
-    let whiskers = |slot: usize, counts: &[u64], n: u64| -> Vec<_> {
-        counts.iter().enumerate().map(|(i, &c)| (at(5, slot, i), wilson(c, n, 1.96).0, wilson(c, n, 1.96).1)).collect()
+    let whiskers = |slot: usize, counts: &[u64], n: u64| {
+        wilson_bars(counts.iter().enumerate().map(|(i, &c)| (place(5, slot).slot_centre(i), c, n)))
     };
     let mut panels = Vec::new();
     for (s, preds) in shapes.iter().zip(preds) {
@@ -299,14 +269,20 @@ fn plot(out: &Results, shapes: &[Shape], preds: &[&Vec<Pred>]) -> Result<()> {
         let x = categories("outcome (id of outcomes.csv)", s.die.outcomes.ids.clone());
         let mut chart = Chart::new(x, y).title(format!("{} (N = {} hand throws)", s.name, s.die.outcomes.throws));
         for (slot, pred) in preds.iter().enumerate() {
-            let boxes: Vec<_> = (0..k).map(|i| bar(at(5, slot + 1, i), 0.072, pred.p[i])).collect();
+            let boxes: Vec<_> = (0..k).map(|i| place(5, slot + 1).centred(i, 0.072, pred.p[i])).collect();
             chart = chart.boxes(&boxes, series_color(slot), 0.85);
             if let Some((counts, total, _)) = &pred.sim {
                 chart = chart.y_bars(&whiskers(slot + 1, counts, *total), GREY);
             }
         }
-        let dots: Vec<_> =
-            s.die.outcomes.frequencies().into_iter().enumerate().map(|(i, p)| (at(5, 0, i), p)).collect();
+        let dots: Vec<_> = s
+            .die
+            .outcomes
+            .frequencies()
+            .into_iter()
+            .enumerate()
+            .map(|(i, p)| (place(5, 0).slot_centre(i), p))
+            .collect();
         panels.push(chart.y_bars(&measured, black).dots(&dots, black));
     }
     // Last panel: TV per shape and predictor, with the noise level.
@@ -316,10 +292,11 @@ fn plot(out: &Results, shapes: &[Shape], preds: &[&Vec<Pred>]) -> Result<()> {
         .title("total variation distance to the measurement");
     for slot in 0..4 {
         let boxes: Vec<_> =
-            preds.iter().enumerate().map(|(i, p)| bar(at(4, slot, i), 0.09, p[slot].score.tv)).collect();
+            preds.iter().enumerate().map(|(i, p)| place(4, slot).centred(i, 0.09, p[slot].score.tv)).collect();
         chart = chart.boxes(&boxes, series_color(slot), 0.85);
         for (i, q) in preds.iter().map(|p| p[slot].score.noise_q95).enumerate() {
-            chart = chart.line(&[(at(4, slot, i) - 0.1, q), (at(4, slot, i) + 0.1, q)], black);
+            chart = chart
+                .line(&[(place(4, slot).slot_centre(i) - 0.1, q), (place(4, slot).slot_centre(i) + 0.1, q)], black);
         }
     }
     panels.push(chart);

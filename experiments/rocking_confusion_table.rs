@@ -1,16 +1,6 @@
-//! Rocking vs regular, statically and dynamically, over many stones (paper §4.1).
-//!
-//! Static class (paper): a stable micro-equilibrium in a stable flock is regular, in an
-//! unstable or saddle flock rocking (`hierarchy.rocking_at(ν)` at the stone's automatic ν).
-//! Dynamic class (this project): rocking if pushes (or spins) of energy ε* = ν·m g R_max or less
-//! topple it out of its flock at least half of the time (ε₅₀(flock) ≤ ε*), regular otherwise
-//! (see `dynamics::pushes`). The table also gives the classes at ε* = 10 ν, and the
-//! threshold-free AUC: the probability that a random rocking equilibrium has a smaller ε₅₀(flock)
-//! than a random regular one (Mann–Whitney, ties ½).
-//!
-//! Stones: synthetic pebbles (`generate::pebble`, 600 points, several axes, roughness and
-//! seeds) and the real quarry stones of `data/meshes` (IBOIS, EPFL; MIT licence, see
-//! `data/meshes/SOURCES.md`). Every stable micro-equilibrium that stays at rest in the simulation.
+//! Rocking vs regular over many stones (paper §4.1): the paper's static class of every stable
+//! micro-equilibrium against its dynamic class from pushes and spins (ε₅₀(flock) ≤ ε*), on
+//! synthetic pebbles and the real quarry stones of `data/meshes`.
 //!
 //! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`;
 //! the README's prose is `experiments/readme/rocking_confusion_table.md`.
@@ -18,15 +8,17 @@
 #[path = "shared/harness.rs"]
 mod harness;
 use harness::{fixed, Context, Result, Results};
-use rocking_stones::dynamics::pushes::{self, dynamic_class, Confusion, Family, PerturbConfig, PerturbReport};
+use rocking_stones::dynamics::pushes::{self, dynamic_class, rocking_auc, Confusion, Family, PerturbConfig};
+use rocking_stones::dynamics::pushes::{PerturbReport, Robustness};
 use rocking_stones::dynamics::resting::outcome::Threshold;
 use rocking_stones::dynamics::resting::RestingParams;
 use rocking_stones::dynamics::stone::Class;
 use rocking_stones::prelude::*;
 use rocking_stones::report::perturb::{plot_thresholds, threshold_points};
-use rocking_stones::stats::{log_grid, GridSize};
+use rocking_stones::stats::{five_numbers, log_grid, min_max, GridSize};
+use rocking_stones::study;
 use serde_json::{json, Value};
-use std::path::PathBuf;
+use std::path::Path;
 
 const TRIALS: u32 = 30;
 /// R_max of the synthetic pebbles (m), as in `fig11_rocking_vs_regular`.
@@ -57,14 +49,10 @@ fn inputs() -> Result<Vec<(String, &'static str, Analysis)>> {
             inputs.push((name, "synthetic", Analysis::of_solid(mesh, rep, &Options::default())?));
         }
     }
-    let mut real: Vec<PathBuf> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes"))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.file_name().is_some_and(|f| f.to_string_lossy().starts_with("stone_")))
-        .collect();
-    real.sort();
-    for p in real {
+    let meshes = study::mesh_files(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes")))?;
+    for p in meshes.iter().filter(|p| study::pebble_id(p).starts_with("stone_")) {
         let name = p.file_name().context("a mesh file name")?.to_string_lossy().into_owned();
-        inputs.push((name, "real", Analysis::of_file(&p, &Options::default())?));
+        inputs.push((name, "real", Analysis::of_file(p, &Options::default())?));
     }
     Ok(inputs)
 }
@@ -120,64 +108,39 @@ fn main() -> Result<()> {
     out.readme(include_str!("readme/rocking_confusion_table.md"), context(&runs, seed))
 }
 
-/// ε₅₀(flock) as a sortable number (a bound for censored values; ∞ above the grid).
-fn rank_value(t: &Option<Threshold>) -> f64 {
-    match t {
-        Some(Threshold::Below(x)) | Some(Threshold::At(x)) => *x,
-        Some(Threshold::Above(_)) | None => f64::INFINITY,
-    }
-}
-
 /// The runs of stones of `kind` (all if `None`).
 fn of_kind<'a>(runs: &'a [StoneRun], kind: Option<&'a str>) -> impl Iterator<Item = &'a StoneRun> {
     runs.iter().filter(move |r| kind.is_none_or(|k| r.kind == k))
 }
 
-/// P(ε₅₀ of a rocking equilibrium < ε₅₀ of a regular one), ties ½, over equilibria at rest.
-fn auc(runs: &[StoneRun], family: usize, kind: Option<&str>) -> (f64, usize, usize) {
-    let (mut rock, mut reg) = (Vec::new(), Vec::new());
-    for r in of_kind(runs, kind) {
-        for e in r.reports[family].equilibria.iter().filter(|e| e.rest.stays) {
-            let v = rank_value(&e.eps50_flock);
-            match e.equilibrium.class {
-                Class::Rocking => rock.push(v),
-                Class::Regular => reg.push(v),
-            }
-        }
-    }
-    let score = |a: f64, b: f64| if a == b { 0.5 } else { f64::from(u8::from(a < b)) };
-    let s: f64 = rock.iter().flat_map(|&a| reg.iter().map(move |&b| score(a, b))).sum();
-    let n = (rock.len() * reg.len()) as f64;
-    (if n > 0.0 { s / n } else { f64::NAN }, rock.len(), reg.len())
+/// The equilibria of family `family` of the runs of stones of `kind` (all if `None`).
+fn equilibria<'a>(runs: &'a [StoneRun], family: usize, kind: Option<&'a str>) -> impl Iterator<Item = &'a Robustness> {
+    of_kind(runs, kind).flat_map(move |r| &r.reports[family].equilibria)
 }
 
 fn confusion(runs: &[StoneRun], family: usize, factor: f64, kind: Option<&str>) -> Confusion {
     let mut c = Confusion::default();
     for r in of_kind(runs, kind) {
-        let star = r.reports[family].epsilon_star * factor;
-        for e in &r.reports[family].equilibria {
-            c.add(e.equilibrium.class, if e.rest.stays { dynamic_class(e.eps50_flock, star) } else { None });
-        }
+        c.merge(&Confusion::of(&r.reports[family].equilibria, r.reports[family].epsilon_star * factor));
     }
     c
 }
 
 /// One row per equilibrium: its static barriers and, per family, ε₅₀ and the dynamic classes.
 fn csv_rows(runs: &[StoneRun]) -> Vec<Vec<String>> {
-    let lower = |x: &dyn std::fmt::Debug| format!("{x:?}").to_lowercase();
     let e4 = |x: f64| format!("{x:.4e}");
     let th = |t: &Option<Threshold>| t.map_or(String::new(), |t| e4(t.value()));
-    let kind = |t: &Option<Threshold>| t.map_or(String::new(), |t| lower(&t).split('(').next().unwrap_or("").into());
+    let kind = |t: &Option<Threshold>| t.map_or("", |t| t.kind_name()).to_string();
     let mut rows = Vec::new();
     for r in runs {
         for (ep, es) in r.reports[0].equilibria.iter().zip(&r.reports[1].equilibria) {
             let (q, stays) = (&ep.equilibrium, ep.rest.stays);
-            let class = |e: &pushes::Robustness, f: f64| match dynamic_class(e.eps50_flock, r.stone.nu * f) {
-                Some(c) if stays => lower(&c),
+            let class = |e: &Robustness, f: f64| match dynamic_class(e.eps50_flock, r.stone.nu * f) {
+                Some(c) if stays => c.name().to_string(),
                 _ => String::new(),
             };
             let mut row = vec![r.name.clone(), r.kind.into(), e4(r.stone.nu), q.index.to_string()];
-            row.extend([q.facet.to_string(), q.flock.to_string(), lower(&q.flock_kind), lower(&q.class)]);
+            row.extend([q.facet.to_string(), q.flock.to_string(), q.flock_kind.to_string(), q.class.to_string()]);
             row.extend([stays.to_string(), e4(q.basin_exit.epsilon), e4(q.flock_exit.epsilon)]);
             for e in [ep, es] {
                 let f = e.eps50_flock;
@@ -206,7 +169,7 @@ fn context(runs: &[StoneRun], seed: u64) -> Value {
                 json!({ "title": title, "agreement": fixed(100.0 * c.agreement(), 0), "c": c })
             });
             let aucs = [(None, "all"), (Some("synthetic"), "synthetic"), (Some("real"), "real")].map(|(k, label)| {
-                let (a, rock, reg) = auc(runs, fi, k);
+                let (a, rock, reg) = rocking_auc(equilibria(runs, fi, k));
                 json!({ "label": label, "auc": fixed(a, 3), "rock": rock, "reg": reg })
             });
             json!({ "name": name, "tables": tables, "aucs": aucs })
@@ -220,14 +183,13 @@ fn context(runs: &[StoneRun], seed: u64) -> Value {
             let (q, nu) = (&e.equilibrium, r.stone.nu);
             if dynamic_class(e.eps50_flock, nu).is_some_and(|d| d != q.class) {
                 let eps50 = e.eps50_flock.map_or(f64::NAN, |t| t.value());
-                let kind = format!("{:?}", q.flock_kind).to_lowercase();
+                let kind = q.flock_kind.to_string();
                 dis.push((r.kind, q.class == Class::Rocking, q.flock_exit.epsilon / nu, eps50 / nu, kind));
             }
         }
     }
     let range = |v: Vec<f64>| {
-        let (lo, hi) =
-            (v.iter().cloned().fold(f64::INFINITY, f64::min), v.iter().cloned().fold(f64::NEG_INFINITY, f64::max));
+        let (lo, hi) = min_max(v);
         format!("{lo:.2}–{hi:.2}")
     };
     let mut kinds: Vec<String> = dis.iter().map(|d| d.4.clone()).collect();
@@ -253,16 +215,14 @@ fn context(runs: &[StoneRun], seed: u64) -> Value {
     let mut ratios = Vec::new();
     for (fi, family) in [(0, "push"), (1, "spin")] {
         for class in [Class::Regular, Class::Rocking] {
-            let mut v: Vec<f64> = (runs.iter().flat_map(|r| r.reports[fi].equilibria.iter()))
+            let v: Vec<f64> = (equilibria(runs, fi, None))
                 .filter(|e| e.equilibrium.class == class)
                 .filter_map(|e| e.ratio_flock)
                 .collect();
-            v.sort_by(f64::total_cmp);
-            if let (Some(&lo), Some(&hi)) = (v.first(), v.last()) {
-                let at = |k: usize| fixed(v[k], 1);
+            if let Some([lo, q1, median, q3, hi]) = five_numbers(&v).map(|q| q.map(|x| fixed(x, 1))) {
                 ratios.push(json!({
-                    "family": family, "class": format!("{class:?}"), "n": v.len(), "median": at(v.len() / 2),
-                    "q1": at(v.len() / 4), "q3": at(3 * v.len() / 4), "lo": fixed(lo, 1), "hi": fixed(hi, 1),
+                    "family": family, "class": format!("{class:?}"), "n": v.len(), "median": median,
+                    "q1": q1, "q3": q3, "lo": lo, "hi": hi,
                 }));
             }
         }

@@ -1,8 +1,6 @@
-//! Speed of the static analysis: load → check → mass → hull → facets →
-//! equilibria → Morse–Smale graph → hierarchy, on synthetic pebbles from 10³ to 10⁶ vertices
-//! and on the 98k-vertex Bennu model. The hull is also timed against parry3d's quickhull on the
-//! same points (f32, no exact predicates) as an in-run baseline; figures are reported as times
-//! and as ratios to that baseline and to the smallest input.
+//! Speed of the static analysis stage by stage (load → check → mass → hull → facets → equilibria
+//! → Morse–Smale graph → hierarchy) on synthetic pebbles of 10³ to 10⁶ vertices and on real
+//! models, beside parry3d's f32 quickhull (no exact predicates) on the same points.
 //!
 //! Run: `cargo run --release --example static_scaling` → `results/static_scaling/`; the README's
 //! prose is `experiments/readme/static_scaling.md`.
@@ -15,7 +13,7 @@ use rocking_stones::morse_smale::MorseSmaleGraph;
 use rocking_stones::plot::style;
 use rocking_stones::prelude::*;
 use rocking_stones::solid::MassProperties;
-use rocking_stones::stats::log_fit;
+use rocking_stones::stats::{log_fit, min_max};
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -165,8 +163,8 @@ fn main() -> Result<()> {
 
 /// Time of the stages mass … hierarchy and the total against n (log–log), parry3d's hull dashed.
 fn plot(out: &Results, peb: &[&Row]) -> Result<()> {
-    let all = peb.iter().flat_map(|r| r.seconds[2..].iter().copied().chain([r.parry_hull])).filter(|&t| t > 0.0);
-    let (lo, hi) = all.fold((f64::INFINITY, 0.0f64), |(lo, hi), t| (lo.min(t), hi.max(t)));
+    let (lo, hi) =
+        min_max(peb.iter().flat_map(|r| r.seconds[2..].iter().copied().chain([r.parry_hull])).filter(|&t| t > 0.0));
     let (lo, hi) = (10f64.powf((lo * 0.8).log10().floor()), 10f64.powf((hi * 1.25).log10().ceil()));
     let curve = |f: &dyn Fn(&Row) -> f64| peb.iter().map(|r| (r.vertices as f64, f(r).max(lo))).collect::<Vec<_>>();
     let mut chart =

@@ -1,17 +1,16 @@
-//! Fitting the hand experimenter's ν to the paper's Table 2 (§3) with synthetic pebble
-//! populations (`study::fit_table2`: 50 pebbles per sample, counted on a log grid of ν, the χ² of
-//! the hand columns E(S), E(U), σ(S), σ(U), a Δχ² interval and a bootstrap), and what the fitted
-//! ν depends on: the roughness amplitude (0.01 … 0.8; the best is the base case), then at the base
-//! roughness the resolution, the spread of the ratios, the seed, the 5 scanned samples alone, the
+//! Fitting the hand experimenter's ν to the paper's Table 2 with synthetic pebble populations
+//! (`study::fit_table2`), and what the fitted ν depends on: the roughness (the best is the base
+//! case), the resolution, the spread of the ratios, the seed, the 5 scanned samples alone, the
 //! stable columns alone and no ratio calibration.
 //!
 //! Run: `cargo run --release --example table2_fit_nu` → `results/table2_fit_nu/`; the README's
 //! prose is `experiments/readme/table2_fit_nu.md`.
 
 use rocking_stones::analysis::PAPER_NU;
-use rocking_stones::plot::{log_tick, style};
+use rocking_stones::plot::style;
 use rocking_stones::prelude::*;
-use rocking_stones::stats::sample_sd;
+use rocking_stones::report::nu_fit::loss_chart;
+use rocking_stones::stats::{min_max, sample_sd};
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
 use serde_json::json;
 use std::fmt::Display;
@@ -111,7 +110,9 @@ fn main() -> Result<()> {
         if group != "roughness" {
             fits.insert(0, (format!("base ({} points, spread {})", base.points, base.spread), &b));
         }
-        let chart = loss_chart(&format!("Misfit χ²(ν) to Table 2's hand counts, {what}"), &fits);
+        let (title, y) =
+            (format!("Misfit χ²(ν) to Table 2's hand counts, {what}"), "χ² over 22 samples × 4 statistics (log scale)");
+        let chart = loss_chart(&title, y, &fits);
         for ext in ["png", "svg"] {
             chart.clone().save(&out.path(&format!("loss_{group}.{ext}")), (1000, 680))?;
         }
@@ -147,8 +148,7 @@ fn main() -> Result<()> {
     let of =
         |g: &str, f: fn(&NuFit) -> f64| runs.iter().filter(|r| r.group == g).map(|r| f(&r.fit)).collect::<Vec<_>>();
     let e2 = |(lo, hi): (f64, f64)| [format!("{lo:.2e}"), format!("{hi:.2e}")];
-    let range =
-        |v: Vec<f64>| e2((v.iter().cloned().fold(f64::INFINITY, f64::min), v.iter().cloned().fold(0.0, f64::max)));
+    let range = |v: Vec<f64>| e2(min_max(v));
     let seeds: Vec<f64> = std::iter::once(b.nu).chain(of("seed", |f| f.nu)).collect();
     let seed_sd = sample_sd(&seeds.iter().map(|x| x.log10()).collect::<Vec<_>>());
     let chis: Vec<f64> = std::iter::once(b.chi2_min).chain(of("seed", |f| f.chi2_min)).collect();
@@ -188,41 +188,4 @@ fn main() -> Result<()> {
         "points_range": range(with_base("points")), "spread_range": range(with_base("spread")),
     });
     out.readme(include_str!("readme/table2_fit_nu.md"), context)
-}
-
-/// χ²(ν) curves of several fits (log–log), the fitted ν̂ marked on each, the paper's ν dashed:
-/// Okabe–Ito series colours, series beyond the 8th dashed.
-fn loss_chart(title: &str, fits: &[(String, &NuFit)]) -> Chart {
-    let xs = || fits.iter().flat_map(|f| f.1.grid.iter().copied());
-    let ys = || fits.iter().flat_map(|f| f.1.chi2.iter().copied()).filter(|y| *y > 0.0 && y.is_finite());
-    let (x0, x1) = (xs().fold(f64::INFINITY, f64::min), xs().fold(0.0, f64::max));
-    let (y0, y1) = (ys().fold(f64::INFINITY, f64::min).max(1e-3), ys().fold(0.0, f64::max).max(1.0));
-    let (ylo, yhi) = (y0 / 1.3, y1 * 1.3);
-    // Label only 1, 2, 3, 5 × 10ᵏ: the 6 … 9 × 10ᵏ ticks crowd each other on a log axis.
-    let sparse = |y: f64| {
-        let m = y / 10f64.powf(y.log10().floor());
-        let shown = [1.0, 2.0, 3.0, 5.0].iter().any(|d| (m - d).abs() < 0.02) || m > 9.98;
-        if shown {
-            log_tick(y)
-        } else {
-            String::new()
-        }
-    };
-    let mut chart = Chart::new(
-        Axis::log("ν, merging tolerance (fraction of R_max, log scale)", x0, x1).no_grid(),
-        Axis::log("χ² over 22 samples × 4 statistics (log scale)", ylo, yhi).no_grid().format(sparse),
-    )
-    .title(title)
-    .legend(Mark::Dashed(colors::GREY), format!("paper: ν = {PAPER_NU}"))
-    .dashed(&[(PAPER_NU, ylo), (PAPER_NU, yhi)], colors::GREY);
-    for (k, (label, f)) in fits.iter().enumerate() {
-        let (color, text) = (series_color(k), format!("{label}: best ν = {}", log_tick(f.nu)));
-        let pts: Vec<(f64, f64)> = f.grid.iter().zip(&f.chi2).map(|(x, y)| (*x, y.max(y0))).collect();
-        chart = match k < 8 {
-            true => chart.legend(Mark::Line(color), text).line(&pts, color),
-            false => chart.legend(Mark::Dashed(color), text).dashed(&pts, color),
-        };
-        chart = chart.markers_sized(&[(f.nu, f.chi2_min.max(y0))], color, Marker::Dot, style::MARKER + 1);
-    }
-    chart
 }

@@ -1,21 +1,16 @@
-//! The thick coin: a cylinder of height h and diameter d (a prism over a regular
-//! 32-gon), P(lands on its edge) against h/d, under the calibrated `throw` and the
-//! `quasi-static` preset, beside the quasi-static basin probability and two published
-//! predictions:
-//!
-//! * the quasi-static (solid-angle) coin is fair three ways — P(edge) = 1/3 — at
-//!   h/d = 1/(2√2) ≈ 0.354 (the edge's share of the sphere of directions around G);
-//! * a vigorously flipped coin that lands where its angular momentum leaves it (Yong &
-//!   Mahadevan, Am. J. Phys. 79, 1195 (2011)) is fair at h/d = 1/√3 ≈ 0.577.
-//!
-//! Neither is a calibration target; they bracket what a physical throw should give.
+//! The thick coin: P(lands on its edge) against h/d of a prism over a regular 32-gon, under the
+//! calibrated `throw` and the `quasi-static` preset, beside the quasi-static basins and two
+//! published fair-coin ratios, neither a calibration target: the solid-angle coin, fair at
+//! h/d = 1/(2√2) (the edge's share of the directions around G), and the vigorously flipped coin of
+//! Yong & Mahadevan (Am. J. Phys. 79, 1195 (2011)), fair at 1/√3.
 //!
 //! Run: `cargo run --release --example thick_coin [-- N]` (N = 300 per point and preset) →
 //! `results/thick_coin/`; the README's prose is `experiments/readme/thick_coin.md`.
 
-use rocking_stones::mesh::TriMesh;
+use rocking_stones::planar::Polygon;
 use rocking_stones::prelude::*;
-use rocking_stones::stats::wilson;
+use rocking_stones::stats::{min_max, upward_crossing, wilson};
+use rocking_stones::study::outcomes::share_on;
 
 #[path = "shared/harness.rs"]
 mod harness;
@@ -23,34 +18,10 @@ use harness::{fixed, Result, Results};
 
 const SIDES: usize = 32;
 
-/// A prism of height `h` over the regular `SIDES`-gon inscribed in a circle of diameter 1.
-fn coin(h: f64) -> TriMesh {
-    let mut v = Vec::new();
-    for z in [-0.5 * h, 0.5 * h] {
-        for k in 0..SIDES {
-            let t = std::f64::consts::TAU * k as f64 / SIDES as f64;
-            v.push(Point3::new(0.5 * t.cos(), 0.5 * t.sin(), z));
-        }
-    }
-    let n = SIDES as u32;
-    let mut t = Vec::new();
-    for k in 1..n - 1 {
-        t.push([0, k + 1, k]); // bottom, facing −z
-        t.push([n, n + k, n + k + 1]); // top, facing +z
-    }
-    for k in 0..n {
-        let j = (k + 1) % n;
-        t.push([k, j, n + j]);
-        t.push([k, n + j, n + k]);
-    }
-    TriMesh::new(v, t)
-}
-
 /// (edge count, drops, quasi-static P(edge)).
 fn p_edge(stone: &Stone, p: DropParams, n: u64, seed: u64) -> (u64, u64, f64) {
     let (r, _) = run_and_summarize(stone, &RunHeader::of_params("coin", seed, n, p, CertificateMode::Facet));
-    let edge = || r.facets.iter().filter(|f| f.normal.z.abs() < 0.5);
-    (edge().map(|f| f.count).sum(), r.facet_drops, edge().map(|f| f.static_probability).sum())
+    share_on(&r, |normal| normal.z.abs() < 0.5)
 }
 
 /// One h/d: the basin probability, then each preset's P(edge) with its 95 % Wilson interval.
@@ -68,7 +39,8 @@ fn main() -> Result<()> {
     let ratios = [0.1, 0.2, 0.3, 0.354, 0.45, 0.577, 0.7, 0.85, 1.0];
     let mut rows = Vec::new();
     for &hd in &ratios {
-        let (mesh, rep) = coin(hd).into_solid_boundary()?;
+        // A prism of height h/d over the regular `SIDES`-gon inscribed in a circle of diameter 1.
+        let (mesh, rep) = Polygon::regular(SIDES, 0.5, 0.0)?.prism(hd).into_solid_boundary()?;
         let a = Analysis::of_solid(mesh, rep, &Options::default())?;
         let stone = Stone::new(&a, 0.0035)?;
         let share = |preset: Preset| {
@@ -91,18 +63,13 @@ fn main() -> Result<()> {
     )?;
     plot(&out, &rows)?;
     // h/d where a curve crosses P = 1/3, interpolated linearly between grid points.
-    let cross = |f: &dyn Fn(&Row) -> f64| {
-        rows.windows(2).find(|w| f(&w[0]) < 1.0 / 3.0 && f(&w[1]) >= 1.0 / 3.0).map(|w| {
-            let (a, b) = (f(&w[0]), f(&w[1]));
-            w[0].hd + (1.0 / 3.0 - a) / (b - a) * (w[1].hd - w[0].hd)
-        })
-    };
+    let cross =
+        |f: &dyn Fn(&Row) -> f64| upward_crossing(&rows.iter().map(|r| (r.hd, f(r))).collect::<Vec<_>>(), 1.0 / 3.0);
     let fmt = |x: Option<f64>| x.map_or("not on the grid".to_string(), |v| format!("{v:.3}"));
     let throw_fair = cross(&|r| r.throw.0);
     // Thin coins: does the throw's P(edge) stay up where a round coin's would vanish (rim rolling)?
     let thin: Vec<f64> = rows.iter().filter(|r| r.hd <= 0.36).map(|r| r.throw.0).collect();
-    let (thin_lo, thin_hi) =
-        (thin.iter().copied().fold(f64::INFINITY, f64::min), thin.iter().copied().fold(0.0, f64::max));
+    let (thin_lo, thin_hi) = min_max(thin.iter().copied());
     let f3 = |x: f64| fixed(x, 3);
     out.readme(include_str!("readme/thick_coin.md"),
         serde_json::json!({

@@ -116,6 +116,14 @@ impl TippingPolar {
             .fold((f64::INFINITY, 0.0), |best, x| if x.0 < best.0 { x } else { best })
     }
 
+    /// The smallest tilt of the ground, in degrees, that tips the stone: tilting the ground by β
+    /// loads the stone as a horizontal acceleration g tan β does, so it is atan of the minimum
+    /// tan α ([`TippingPolar::minimum`]) — the tilt that brings G's vertical over the nearest
+    /// side of the support polygon.
+    pub fn tipping_tilt_deg(&self) -> f64 {
+        self.minimum().0.atan().to_degrees()
+    }
+
     /// The polar as data (module docs): tolerance, height and support polygon in metres
     /// (lengths × `metres_per_unit`, the size of one input unit in metres, > 0), the minimum
     /// tan α (dimensionless, in g) with its azimuth in degrees in [0, 360), and the curve
@@ -229,6 +237,15 @@ mod tests {
                 Point3::new(f(0, a), f(1, b), f(2, c))
             })
             .collect()
+    }
+
+    #[test]
+    fn a_cube_tips_over_at_a_tilt_of_45_degrees() {
+        let cube = TippingPolar::new(&block(1.0, 1.0, 1.0), &Point3::origin(), &-Vec3::z(), 0.0).unwrap();
+        assert!((cube.tipping_tilt_deg() - 45.0).abs() < 1e-12);
+        // A block twice as tall as wide: tan β = ½.
+        let tall = TippingPolar::new(&block(0.5, 0.8, 1.0), &Point3::origin(), &-Vec3::z(), 0.0).unwrap();
+        assert!((tall.tipping_tilt_deg() - 0.5f64.atan().to_degrees()).abs() < 1e-12);
     }
 
     #[test]

@@ -51,6 +51,14 @@ pub struct Flocks {
     pub flocks: Vec<Flock>,
 }
 
+impl Flocks {
+    /// The type of the flock of node `node` (a stable node in an unstable or saddle flock is a
+    /// rocking equilibrium).
+    pub fn kind_of(&self, node: usize) -> Kind {
+        self.flocks[self.membership[node]].kind
+    }
+}
+
 impl Hierarchy {
     /// The arcs of G(0) sorted by (weight, min index, max index).
     fn sorted_arcs(&self) -> Vec<(f64, usize, usize)> {
@@ -107,9 +115,7 @@ impl Hierarchy {
     /// The rocking equilibria at ν: stable nodes whose flock is not a stable flock (sorted).
     pub fn rocking_at(&self, nu: f64) -> Vec<usize> {
         let f = self.flocks_at(nu);
-        (0..self.nodes.len())
-            .filter(|&i| self.nodes[i].kind == Kind::Stable && f.flocks[f.membership[i]].kind != Kind::Stable)
-            .collect()
+        (0..self.nodes.len()).filter(|&i| self.nodes[i].kind == Kind::Stable && f.kind_of(i) != Kind::Stable).collect()
     }
 }
 

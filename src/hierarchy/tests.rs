@@ -181,6 +181,9 @@ fn flocks_by_hand_planar() {
     assert_eq!((f.flocks[1].stable, f.flocks[1].unstable), (1, 2));
     assert_eq!(f.flocks[1].root, 1);
     assert_eq!(h.rocking_at(0.05), vec![2], "the dip beside the peak is a rocking equilibrium");
+    let kinds: Vec<Kind> = (0..6).map(|i| f.kind_of(i)).collect();
+    use Kind::{Stable, Unstable};
+    assert_eq!(kinds, [Stable, Unstable, Unstable, Unstable, Stable, Unstable], "the dip 2 is in 1's unstable flock");
     // ν = 0: every node its own flock, no rocking.
     let f0 = h.flocks_at(0.0);
     assert_eq!(f0.membership, vec![0, 1, 2, 3, 4, 5]);

@@ -3,7 +3,8 @@
 //! boundary.
 
 use super::{cross, Point2, Rotate, Vec2};
-use crate::{Error, Result};
+use crate::mesh::TriMesh;
+use crate::{Error, Point3, Result};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -160,6 +161,34 @@ impl Polygon {
         self.vertices.iter().map(|p| g + (p - self.centroid).rotate_by(angle)).collect()
     }
 
+    /// The outline as a line chart draws it: the vertices as (x, y), counter-clockwise, the first
+    /// repeated at the end to close it.
+    pub fn closed_outline(&self) -> Vec<(f64, f64)> {
+        self.vertices.iter().chain(self.vertices.first()).map(|p| (p.x, p.y)).collect()
+    }
+
+    /// The right prism of height `height` over the polygon, a closed triangle mesh: vertex k
+    /// (k < n) is polygon vertex k at z = −height/2, vertex n + k the same at z = +height/2; the
+    /// bottom fanned from vertex 0 facing −z, the top from vertex n facing +z, side k two
+    /// triangles (k, k + 1, n + k + 1) and (k, n + k + 1, n + k), every triangle counter-clockwise
+    /// seen from outside. A regular polygon gives a thick coin (a cylinder's prism).
+    pub fn prism(&self, height: f64) -> TriMesh {
+        let layer = |z: f64| self.vertices.iter().map(move |p| Point3::new(p.x, p.y, z));
+        let vertices: Vec<Point3> = layer(-0.5 * height).chain(layer(0.5 * height)).collect();
+        let n = self.vertices.len() as u32;
+        let mut t = Vec::new();
+        for k in 1..n - 1 {
+            t.push([0, k + 1, k]); // bottom, facing −z
+            t.push([n, n + k, n + k + 1]); // top, facing +z
+        }
+        for k in 0..n {
+            let j = (k + 1) % n;
+            t.push([k, j, n + j]);
+            t.push([k, n + j, n + k]);
+        }
+        TriMesh::new(vertices, t)
+    }
+
     /// The rigid motion that rests the plate on the boundary point `contact` on the ground
     /// y = 0: with u = contact − G, a rotation about G by θ = −π/2 − atan2(u_y, u_x) turns u
     /// straight down, then a translation puts G at (0, |u|), so the contact goes to the origin.
@@ -194,5 +223,25 @@ mod tests {
             assert!((p.y - y).abs() < 1e-14, "{p}");
         }
         assert!(((v[0] - v[1]).norm() - 2.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_prism_is_a_closed_solid_of_area_times_height() {
+        // The 2 × 1 rectangle centred at the origin, 3 high: volume 6, G at the origin, inertia
+        // about z of a 2 × 1 × 3 box: V (2² + 1²)/12 = 2.5.
+        let rect = [(-1.0, -0.5), (1.0, -0.5), (1.0, 0.5), (-1.0, 0.5)].map(|(x, y)| Point2::new(x, y));
+        let mesh = Polygon::new(rect.to_vec()).unwrap().prism(3.0);
+        let poly = Polygon::new(rect.to_vec()).unwrap();
+        assert_eq!(poly.closed_outline(), [(-1.0, -0.5), (1.0, -0.5), (1.0, 0.5), (-1.0, 0.5), (-1.0, -0.5)]);
+        assert_eq!((mesh.vertices.len(), mesh.triangles.len()), (8, 12));
+        assert_eq!((mesh.vertices[1], mesh.vertices[6]), (Point3::new(1.0, -0.5, -1.5), Point3::new(1.0, 0.5, 1.5)));
+        let (solid, _) = mesh.into_solid_boundary().unwrap();
+        let m = crate::solid::MassProperties::of(&solid).unwrap();
+        assert!((m.volume - 6.0).abs() < 1e-12 && m.center_of_mass.coords.norm() < 1e-12, "{m:?}");
+        assert!((m.inertia[(2, 2)] - 2.5).abs() < 1e-12, "{}", m.inertia);
+        // A regular 32-gon of circumradius ½: the area of the polygon times the height.
+        let coin = Polygon::regular(32, 0.5, 0.0).unwrap();
+        let m = crate::solid::MassProperties::of(&coin.prism(0.2)).unwrap();
+        assert!((m.volume - 0.2 * coin.area).abs() < 1e-12, "{}", m.volume);
     }
 }

@@ -8,8 +8,10 @@
 //! path, PNG otherwise) and turns plotters' errors into [`crate::Error::Plot`].
 
 mod chart;
+mod intervals;
 mod reliability;
 pub use chart::{Axis, Chart, Figure, Marker};
+pub use intervals::wilson_bars;
 /// The colour of every series (`RGBColor(r, g, b)`), so that a program drawing through [`Chart`]
 /// can name its own colour without depending on plotters.
 pub use plotters::style::RGBColor;

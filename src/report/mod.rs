@@ -8,11 +8,13 @@
 //! * [`shake`] — shaking runs, field-rock runs, ensembles and batches: summaries, fragility CSV
 //!   and plots, the fragility surface, ground-motion records.
 //! * [`study`] — field studies: pebble/sample/comparison CSVs, tables, Zingg and Figure 12 plots.
+//! * [`nu_fit`] — fits of ν to hand counts: their χ²(ν) curves.
 
 pub mod analysis;
 pub mod drops;
 pub mod html;
 pub mod names;
+pub mod nu_fit;
 pub mod perturb;
 pub mod planar;
 pub mod shake;

@@ -85,6 +85,18 @@ impl Study {
         }
         Ok(odd)
     }
+
+    /// Name every pebble's file relative to `root`, as a user running from `root` names it: the
+    /// prefix `root/` is removed from each file name, in the pebble and in its report.
+    pub fn relative_to(&mut self, root: &Path) {
+        let prefix = format!("{}/", root.display());
+        for p in &mut self.pebbles {
+            p.file = p.file.replace(&prefix, "");
+            if let Ok(c) = &mut p.result {
+                c.report.file = p.file.clone();
+            }
+        }
+    }
 }
 
 /// Options of a field study.
@@ -271,4 +283,33 @@ pub fn summarize(study: &Study) -> Vec<SampleSummary> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn files_are_named_relative_to_the_root() {
+        let (mesh, repairs) = crate::generate::cuboid(1.0, 2.0, 3.0).into_solid_boundary().unwrap();
+        let a = Analysis::of_solid(mesh, repairs, &Options::default()).unwrap();
+        let pebble = |file: &str, result| Pebble {
+            id: "p".into(),
+            sample: String::new(),
+            meta: vec![],
+            file: file.into(),
+            result,
+        };
+        let counted = Counted::of(&a, "/data/scans/a.ply", &Options::default(), PAPER_NU, None, 0).unwrap();
+        let pebbles = vec![
+            pebble("/data/scans/a.ply", Ok(counted)),
+            pebble("/data/scans/b.ply", Err("unreadable".into())),
+            pebble("/elsewhere/c.ply", Err("unreadable".into())),
+        ];
+        let mut study = Study { nu: PAPER_NU, meta_columns: vec![], pebbles, dynamic: false };
+        study.relative_to(Path::new("/data"));
+        let files: Vec<&str> = study.pebbles.iter().map(|p| p.file.as_str()).collect();
+        assert_eq!(files, ["scans/a.ply", "scans/b.ply", "/elsewhere/c.ply"]);
+        assert_eq!(study.pebbles[0].result.as_ref().unwrap().report.file, "scans/a.ply");
+    }
 }

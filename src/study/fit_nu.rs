@@ -7,7 +7,7 @@ use super::synthetic::{synthetic_study, PopulationParams, SampleTarget};
 use super::{CountCurve, Moments};
 use crate::analysis::PAPER_NU;
 use crate::rng::item_rng;
-use crate::stats::{log_fit, log_grid, sample_sd, GridSize, LogFit};
+use crate::stats::{log_fit, log_grid, mean, root_mean_square, sample_sd, GridSize, LogFit};
 use crate::{Error, Result};
 use rand::RngExt;
 use rand_distr::StandardNormal;
@@ -434,6 +434,16 @@ pub fn compare(hand: &[HandSample], study: &Study, nu: f64) -> Vec<Comparison> {
         .collect()
 }
 
+/// How far the synthetic statistics sit from the hand ones over the samples of a comparison:
+/// for each of [E(S), E(U), σ(S), σ(U)] the mean (the bias) and the root mean square of
+/// synthetic − hand; NaN for no rows.
+pub fn differences(rows: &[Comparison]) -> [(f64, f64); 4] {
+    std::array::from_fn(|k| {
+        let d: Vec<f64> = rows.iter().map(|r| r.sim.as_array()[k] - r.hand[k]).collect();
+        (mean(&d), root_mean_square(&d))
+    })
+}
+
 /// The trend lines of Figure 12 for hand and computed statistics.
 #[derive(Clone, Debug, Serialize)]
 pub struct Trends {
@@ -463,6 +473,21 @@ pub struct Trends {
     pub sim_sd_u: Option<LogFit>,
 }
 
+impl Trends {
+    /// The six relations of Figure 12, named ("E(S) vs c/b", …, "σ(U) vs E(U)"), each with its
+    /// hand and its computed trend: E(S) and E(U) against c/b and c/a (12A), σ against E (12B).
+    pub fn relations(&self) -> [(&'static str, Option<LogFit>, Option<LogFit>); 6] {
+        [
+            ("E(S) vs c/b", self.hand_es_cb, self.sim_es_cb),
+            ("E(S) vs c/a", self.hand_es_ca, self.sim_es_ca),
+            ("E(U) vs c/b", self.hand_eu_cb, self.sim_eu_cb),
+            ("E(U) vs c/a", self.hand_eu_ca, self.sim_eu_ca),
+            ("σ(S) vs E(S)", self.hand_sd_s, self.sim_sd_s),
+            ("σ(U) vs E(U)", self.hand_sd_u, self.sim_sd_u),
+        ]
+    }
+}
+
 /// Fit the logarithmic trends of a comparison (computed against the synthetic pebbles' measured
 /// ratios).
 pub fn trends(rows: &[Comparison]) -> Trends {
@@ -480,5 +505,54 @@ pub fn trends(rows: &[Comparison]) -> Trends {
         hand_sd_u: f(&|r| (r.hand[1], r.hand[3])),
         sim_sd_s: f(&|r| (r.sim.es, r.sim.sd_s)),
         sim_sd_u: f(&|r| (r.sim.eu, r.sim.sd_u)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn differences_are_the_bias_and_rms_of_synthetic_minus_hand() {
+        let row = |hand: [f64; 4], sim: [f64; 4]| Comparison {
+            id: "x".into(),
+            hand_c_over_b: 0.5,
+            hand_c_over_a: 0.4,
+            sim_c_over_b: 0.5,
+            sim_c_over_a: 0.4,
+            hand,
+            sim: Moments { n: 10, es: sim[0], eu: sim[1], sd_s: sim[2], sd_u: sim[3] },
+            paper_computer: None,
+        };
+        // E(S) off by +1 and −3: bias −1, rms √5; E(U) off by +2 twice; σ exact.
+        let rows = [row([2.0, 3.0, 1.0, 1.0], [3.0, 5.0, 1.0, 1.0]), row([4.0, 3.0, 1.0, 1.0], [1.0, 5.0, 1.0, 1.0])];
+        let d = differences(&rows);
+        assert_eq!((d[0].0, d[1], d[2], d[3]), (-1.0, (2.0, 2.0), (0.0, 0.0), (0.0, 0.0)));
+        assert!((d[0].1 - 5f64.sqrt()).abs() < 1e-15);
+        assert!(differences(&[])[0].0.is_nan());
+    }
+
+    #[test]
+    fn the_relations_pair_each_hand_trend_with_its_computed_one() {
+        // Hand E(S) = 1 + 2 ln(c/b) exactly, computed flat; E(U) against c/a likewise.
+        let row = |cb: f64, es: f64| Comparison {
+            id: "x".into(),
+            hand_c_over_b: cb,
+            hand_c_over_a: cb / 2.0,
+            sim_c_over_b: cb,
+            sim_c_over_a: cb / 2.0,
+            hand: [es, es, 1.0, 1.0],
+            sim: Moments { n: 10, es: 3.0, eu: 3.0, sd_s: 1.0, sd_u: 1.0 },
+            paper_computer: None,
+        };
+        let rows: Vec<Comparison> = [0.3, 0.5, 0.8].iter().map(|&cb: &f64| row(cb, 1.0 + 2.0 * cb.ln())).collect();
+        let r = trends(&rows).relations();
+        assert_eq!(r.map(|x| x.0)[..3], ["E(S) vs c/b", "E(S) vs c/a", "E(U) vs c/b"]);
+        let (hand, sim) = (r[0].1.unwrap(), r[0].2.unwrap());
+        assert!((hand.slope - 2.0).abs() < 1e-12 && (hand.intercept - 1.0).abs() < 1e-12, "{hand:?}");
+        assert!(sim.slope.abs() < 1e-12 && (sim.intercept - 3.0).abs() < 1e-12, "{sim:?}");
+        // E(S) against c/a = c/b / 2: the same slope, intercept 1 + 2 ln 2.
+        assert!((r[1].1.unwrap().intercept - (1.0 + 2.0 * 2f64.ln())).abs() < 1e-12);
+        assert_eq!(r[5].0, "σ(U) vs E(U)");
     }
 }

@@ -22,12 +22,14 @@
 //!   impossible, p-value 0); for a simulated predictor, the two-sample χ² of homogeneity of the
 //!   measured and simulated counts.
 
+use crate::dynamics::drops::montecarlo::DropReport;
 use crate::error::{Error, Result};
 use crate::rng::item_rng;
 use crate::stats::{chi_square, chi_square_homogeneity, mean};
 use crate::{Point3, Vec3};
 use rand::Rng;
 use rand_distr::{Binomial, Distribution};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The measured outcomes of one object: ids, the outward normals of each outcome's facets (unit
@@ -218,6 +220,46 @@ pub fn score(measured: &MeasuredOutcomes, p: &[f64], simulated: Option<&[u64]>, 
     }
 }
 
+/// A predictor's weights over the stable facets of a hull gathered by measured outcome
+/// ([`by_outcome`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ByOutcome {
+    /// The frequency of each outcome: the weights of its facets over the total weight.
+    pub p: Vec<f64>,
+    /// The share of the weight on facets that match no listed normal well.
+    pub unlisted: f64,
+    /// The frequencies without those facets (the rest renormalised), when there are any and
+    /// some weight is left.
+    pub listed_only: Option<Vec<f64>>,
+}
+
+/// Gather the weights `w` (probabilities or counts, by facet; a facet absent from `w` weighs 0)
+/// of the stable facets `mapped` = (facet, its outcome among `k`, whether it matches no listed
+/// normal well — see [`MeasuredOutcomes::nearest`]) by outcome.
+pub fn by_outcome(mapped: &[(u32, usize, bool)], k: usize, w: &BTreeMap<u32, f64>) -> ByOutcome {
+    let w = |f: u32| w.get(&f).copied().unwrap_or(0.0);
+    let total: f64 = mapped.iter().map(|m| w(m.0)).sum();
+    let (mut p, mut listed) = (vec![0.0; k], vec![0.0; k]);
+    for &(f, outcome, poor) in mapped {
+        p[outcome] += w(f) / total;
+        listed[outcome] += if poor { 0.0 } else { w(f) };
+    }
+    let unlisted: f64 = mapped.iter().filter(|m| m.2).map(|m| w(m.0)).sum::<f64>() / total;
+    let listed_total: f64 = listed.iter().sum();
+    let listed_only = mapped.iter().any(|m| m.2) && listed_total > 0.0;
+    ByOutcome { p, unlisted, listed_only: listed_only.then(|| listed.iter().map(|x| x / listed_total).collect()) }
+}
+
+/// What a drop run predicts for an outcome made of the hull facets whose outward normal (mesh
+/// frame) satisfies `on` (the square faces of a die, the rim of a coin): the drops that came to
+/// rest on those facets, the drops whose facet was determined (their frequency's denominator,
+/// [`DropReport::facet_drops`]) and the facets' quasi-static probability (the sum of their basin
+/// areas over 4π).
+pub fn share_on(report: &DropReport, on: impl Fn(&Vec3) -> bool) -> (u64, u64, f64) {
+    let facets = || report.facets.iter().filter(|f| on(&f.normal));
+    (facets().map(|f| f.count).sum(), report.facet_drops, facets().map(|f| f.static_probability).sum())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -295,5 +337,40 @@ mod tests {
             let e = MeasuredOutcomes::read(&path).unwrap_err().to_string();
             assert!(e.contains("outcomes.csv"), "{e}");
         }
+    }
+
+    #[test]
+    fn facet_weights_gather_by_outcome() {
+        // Facets 4 and 7 are outcome 0, facet 9 outcome 1 but a poor match; counts 3, 1, 4 (and a
+        // facet 5 outside the map, ignored).
+        let mapped = [(4, 0, false), (7, 0, false), (9, 1, true)];
+        let w = BTreeMap::from([(4, 3.0), (7, 1.0), (9, 4.0), (5, 10.0)]);
+        let g = by_outcome(&mapped, 2, &w);
+        assert_eq!((g.p, g.unlisted, g.listed_only), (vec![0.5, 0.5], 0.5, Some(vec![1.0, 0.0])));
+        // Every facet well matched: nothing unlisted, no second set of frequencies.
+        let g = by_outcome(&[(4, 1, false), (7, 0, false)], 2, &w);
+        assert_eq!((g.p, g.unlisted, g.listed_only), (vec![0.25, 0.75], 0.0, None));
+    }
+
+    #[test]
+    fn a_drop_run_shares_its_drops_between_an_outcome_and_the_rest() {
+        use crate::analysis::{Analysis, Options};
+        use crate::dynamics::certificate::CertificateMode;
+        use crate::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
+        use crate::dynamics::drops::params::Preset;
+        use crate::dynamics::stone::Stone;
+        use crate::dynamics::surface::Surface;
+        // A flat box 1 × 1 × 0.5: its two square faces (normal ±z) and its four sides.
+        let (mesh, repairs) = crate::generate::cuboid(1.0, 1.0, 0.5).into_solid_boundary().unwrap();
+        let stone = Stone::new(&Analysis::of_solid(mesh, repairs, &Options::default()).unwrap(), 0.0035).unwrap();
+        let params = Preset::Drop.params(Surface::SteelOnWood);
+        let (report, _) =
+            run_and_summarize(&stone, &RunHeader::of_params("box", 1, 40, params, CertificateMode::Facet));
+        let (square, n, p_square) = share_on(&report, |v| v.z.abs() > 0.99);
+        let (side, n_side, p_side) = share_on(&report, |v| v.z.abs() <= 0.99);
+        assert_eq!((square + side, n, n_side), (n, report.facet_drops, report.facet_drops));
+        assert!(n > 30 && square > side, "{square} of {n} on the square faces");
+        // The basins cover the sphere; the square faces of a flat box hold most of it.
+        assert!((p_square + p_side - 1.0).abs() < 1e-9 && p_square > 0.5, "{p_square} {p_side}");
     }
 }

@@ -83,7 +83,7 @@ pub mod robustness;
 pub mod trial;
 
 pub use kick::{kick, Family};
-pub use robustness::{dynamic_class, robustness, BarrierCheck, Confusion, Robustness};
+pub use robustness::{dynamic_class, robustness, rocking_auc, BarrierCheck, Confusion, Robustness};
 pub use trial::{stream_index, trial, Trial};
 
 use crate::dynamics::resting::{grid_trials, RestingParams, SettleCheck};
@@ -204,17 +204,15 @@ pub fn report(
     cfg: &PerturbConfig,
 ) -> PerturbReport {
     let epsilon_star = cfg.epsilon_star.unwrap_or(stone.nu);
-    let mut confusion = Confusion::default();
     let equilibria: Vec<Robustness> = starts
         .iter()
         .zip(checks)
         .map(|(&s, c)| {
             let mine: Vec<Trial> = trials.iter().filter(|t| t.start == s).copied().collect();
-            let r = robustness(stone, s, c, &cfg.epsilons, &mine, epsilon_star);
-            confusion.add(r.equilibrium.class, r.dynamic_class);
-            r
+            robustness(stone, s, c, &cfg.epsilons, &mine, epsilon_star)
         })
         .collect();
+    let confusion = Confusion::of(&equilibria, epsilon_star);
     PerturbReport {
         family: cfg.family,
         seed: cfg.seed,

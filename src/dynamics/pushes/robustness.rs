@@ -8,6 +8,7 @@ use crate::dynamics::resting::outcome::{Curve, CurvePoint, Outcome, Threshold};
 use crate::dynamics::resting::SettleCheck;
 use crate::dynamics::stone::{Class, StableEquilibrium, Stone};
 use crate::equilibria::Kind;
+use crate::stats::mann_whitney_auc;
 use serde::Serialize;
 
 /// The robustness of one stable micro-equilibrium.
@@ -122,6 +123,18 @@ impl Confusion {
         self.undecided += o.undecided;
     }
 
+    /// The matrix of `equilibria` with the dynamic class read at `epsilon_star`
+    /// ([`dynamic_class`] of ε₅₀(flock)); an equilibrium the stone does not stay at rest on is
+    /// undecided. At the run's own ε* it is the run's [`Confusion`]; at another one (10 ε*, say)
+    /// it is how the classes agree under a coarser or finer experimenter.
+    pub fn of<'a>(equilibria: impl IntoIterator<Item = &'a Robustness>, epsilon_star: f64) -> Confusion {
+        let mut c = Confusion::default();
+        for e in equilibria {
+            c.add(e.equilibrium.class, if e.rest.stays { dynamic_class(e.eps50_flock, epsilon_star) } else { None });
+        }
+        c
+    }
+
     /// Fraction of decided equilibria whose classes agree.
     pub fn agreement(&self) -> f64 {
         let agree = self.regular_as_regular + self.rocking_as_rocking;
@@ -143,6 +156,23 @@ pub fn dynamic_class(eps50_flock: Option<Threshold>, epsilon_star: f64) -> Optio
         Threshold::Above(x) if x >= epsilon_star => Some(Class::Regular),
         Threshold::Above(_) => None,
     }
+}
+
+/// How well ε₅₀(flock) separates the static classes, without a threshold ε*: the probability
+/// that a random statically rocking equilibrium has a smaller ε₅₀(flock) than a random regular
+/// one ([`mann_whitney_auc`], ties ½; a threshold above the grid, or none, ranks as ∞,
+/// [`Threshold::rank`]), over the equilibria the stone stays at rest on; with the numbers of
+/// rocking and regular equilibria it compared. 1: every rocking equilibrium topples more easily
+/// than every regular one; ½: no separation; NaN if either class is empty.
+pub fn rocking_auc<'a>(equilibria: impl IntoIterator<Item = &'a Robustness>) -> (f64, usize, usize) {
+    let (mut rocking, mut regular) = (Vec::new(), Vec::new());
+    for e in equilibria.into_iter().filter(|e| e.rest.stays) {
+        match e.equilibrium.class {
+            Class::Rocking => rocking.push(Threshold::rank(e.eps50_flock)),
+            Class::Regular => regular.push(Threshold::rank(e.eps50_flock)),
+        }
+    }
+    (mann_whitney_auc(&rocking, &regular), rocking.len(), regular.len())
 }
 
 /// Summarise the trials of one start equilibrium.
@@ -195,5 +225,75 @@ pub fn robustness(
         first_leave,
         first_topple,
         destinations,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::stone::Exit;
+
+    /// An equilibrium of static class `class` with ε₅₀(flock) `eps50`, at rest or not.
+    fn robust(class: Class, eps50: Option<Threshold>, stays: bool) -> Robustness {
+        let exit = Exit { epsilon: 1e-3, facet: None, equilibrium: None, flock: None };
+        let equilibrium = StableEquilibrium {
+            index: 0,
+            facet: 0,
+            r: 1.0,
+            r_normalised: 1.0,
+            flock: 0,
+            flock_kind: Kind::Stable,
+            class,
+            basin_exit: exit,
+            flock_exit: exit,
+            uplift_acceleration: 0.5,
+        };
+        let rest = SettleCheck { stays, tilt: 0.0, sink: 0.0, speed: 0.0, angular_speed: 0.0, facet_reached: 0 };
+        Robustness {
+            equilibrium,
+            rest,
+            curve: vec![],
+            eps50_micro: None,
+            eps50_flock: eps50,
+            first_leave: None,
+            first_topple: None,
+            ratio_micro: None,
+            ratio_flock: None,
+            destinations: vec![],
+            dynamic_class: None,
+        }
+    }
+
+    #[test]
+    fn confusion_reads_the_dynamic_class_at_the_given_epsilon_star() {
+        let (at, above) = (|x| Some(Threshold::At(x)), |x| Some(Threshold::Above(x)));
+        let eqs = [
+            robust(Class::Rocking, at(1e-4), true),
+            robust(Class::Rocking, at(1e-2), true),
+            robust(Class::Regular, above(1e-1), true),
+            robust(Class::Regular, at(1e-4), false),
+        ];
+        // At ε* = 10⁻³: rocking→rocking, rocking→regular, regular→regular, one not at rest.
+        let c = Confusion::of(&eqs, 1e-3);
+        let counts = [c.rocking_as_rocking, c.rocking_as_regular, c.regular_as_regular, c.regular_as_rocking];
+        assert_eq!((counts, c.undecided), ([1, 1, 1, 0], 1));
+        // At ε* = 10⁻¹ both rocking ones topple below it; `Above(10⁻¹)` is still regular.
+        let c = Confusion::of(&eqs, 1e-1);
+        assert_eq!((c.rocking_as_rocking, c.rocking_as_regular, c.regular_as_regular), (2, 0, 1));
+    }
+
+    #[test]
+    fn rocking_auc_compares_every_rocking_with_every_regular_equilibrium() {
+        let at = |x| Some(Threshold::At(x));
+        let eqs = [
+            robust(Class::Rocking, at(1e-4), true),
+            robust(Class::Rocking, Some(Threshold::Above(1.0)), true),
+            robust(Class::Regular, at(1e-2), true),
+            robust(Class::Regular, None, true),
+            robust(Class::Regular, at(1e-6), false), // not at rest: left out
+        ];
+        // Rocking ranks (10⁻⁴, ∞) against regular (10⁻², ∞): 10⁻⁴ is below both (2), ∞ is above
+        // 10⁻² (0) and ties ∞ (½): 2.5 / 4.
+        assert_eq!(rocking_auc(&eqs), (0.625, 2, 2));
     }
 }

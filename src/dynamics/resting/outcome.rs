@@ -55,6 +55,25 @@ impl Threshold {
         }
     }
 
+    /// The kind as a CSV writes it: "below", "at" or "above".
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Threshold::Below(_) => "below",
+            Threshold::At(_) => "at",
+            Threshold::Above(_) => "above",
+        }
+    }
+
+    /// A threshold as a sortable number: its value where it is at most that (`Below`, `At`),
+    /// ∞ where it lies above the grid (`Above`) or there is none; the order in which a smaller
+    /// threshold means a less robust equilibrium.
+    pub fn rank(t: Option<Threshold>) -> f64 {
+        match t {
+            Some(Threshold::Below(x) | Threshold::At(x)) => x,
+            Some(Threshold::Above(_)) | None => f64::INFINITY,
+        }
+    }
+
     /// First crossing of ½ by `p` over the increasing grid `x`, interpolated linearly in p
     /// against log x (`log`) or x.
     pub fn crossing(x: &[f64], p: &[f64], log: bool) -> Option<Threshold> {
@@ -158,5 +177,21 @@ impl Curve {
         let leave: Vec<f64> = points.iter().map(|c| 1.0 - c.p_same).collect();
         let topple: Vec<f64> = points.iter().map(|c| c.p_toppled).collect();
         Curve { leave50: Threshold::of(&x, &leave, log), topple50: Threshold::of(&x, &topple, log), points }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thresholds_rank_by_what_they_bound_and_name_their_kind() {
+        let (below, at, above) = (Threshold::Below(1e-6), Threshold::At(3e-4), Threshold::Above(1.0));
+        assert_eq!([below, at, above].map(|t| t.kind_name()), ["below", "at", "above"]);
+        // At most 10⁻⁶ and 3·10⁻⁴ rank as those values; above the grid or never: ∞.
+        assert_eq!(
+            [Some(below), Some(at), Some(above), None].map(Threshold::rank),
+            [1e-6, 3e-4, f64::INFINITY, f64::INFINITY]
+        );
     }
 }

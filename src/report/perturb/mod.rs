@@ -2,14 +2,16 @@
 //! curve/threshold/trial CSVs and the outcome-curve and threshold plots.
 
 use super::{short_name, write_json, Folder};
-use crate::dynamics::pushes::{PerturbReport, Trial};
+use crate::dynamics::pushes::{Family, PerturbReport, Robustness, Trial};
 use crate::dynamics::resting::outcome::Threshold;
 use crate::dynamics::stone::Class;
 use std::path::{Path, PathBuf};
 
 mod plots;
+mod pose;
 
 pub use plots::{barrier_markers, panels, plot_curves, plot_thresholds, threshold_points, Panel};
+pub use pose::{resting_outline, resting_pose};
 
 fn fmt_threshold(t: &Option<Threshold>) -> String {
     match t {
@@ -18,6 +20,51 @@ fn fmt_threshold(t: &Option<Threshold>) -> String {
         Some(Threshold::At(x)) => format!("{x:.2e}"),
         Some(Threshold::Above(x)) => format!(">{x:.2e}"),
     }
+}
+
+/// A threshold as a table cell of a README: "≤ x", "x" or "> x" (x to 3 significant digits,
+/// `1.23e-4`) for [`Threshold::Below`], [`Threshold::At`] and [`Threshold::Above`]; "–" for none.
+pub fn threshold_cell(t: &Option<Threshold>) -> String {
+    match t {
+        None => "–".into(),
+        Some(Threshold::Below(x)) => format!("≤ {x:.2e}"),
+        Some(Threshold::At(x)) => format!("{x:.2e}"),
+        Some(Threshold::Above(x)) => format!("> {x:.2e}"),
+    }
+}
+
+/// One stable micro-equilibrium of a run of `family` as a row of a README table: the family,
+/// "index (facet f)", the static class, "flock (its type)", the basin barrier, ε₅₀ to leave the
+/// micro-equilibrium ([`threshold_cell`]) and its ratio to the barrier, the flock barrier, ε₅₀ to
+/// leave the flock and its ratio, the smallest ε at which a trial toppled, and where the topples
+/// went ("flock (type): count", comma-separated). Energies as `1.23e-4`, ratios to one decimal,
+/// "–" where there is none; the class and the flock types capitalised ("Rocking", "Unstable").
+pub fn robustness_row(family: Family, e: &Robustness) -> [String; 12] {
+    let q = &e.equilibrium;
+    let (e2, f1) = (|x: f64| format!("{x:.2e}"), |x: f64| format!("{x:.1}"));
+    let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("–".into(), f);
+    let went: Vec<String> =
+        e.destinations.iter().map(|d| format!("{} ({}): {}", d.0, capitalised(d.1.name()), d.2)).collect();
+    [
+        family.name().to_string(),
+        format!("{} (facet {})", q.index, q.facet),
+        capitalised(q.class.name()),
+        format!("{} ({})", q.flock, capitalised(q.flock_kind.name())),
+        e2(q.basin_exit.epsilon),
+        threshold_cell(&e.eps50_micro),
+        opt(e.ratio_micro, &f1),
+        e2(q.flock_exit.epsilon),
+        threshold_cell(&e.eps50_flock),
+        opt(e.ratio_flock, &f1),
+        opt(e.first_topple, &e2),
+        went.join(", "),
+    ]
+}
+
+/// `word` with its first letter in upper case.
+fn capitalised(word: &str) -> String {
+    let mut c = word.chars();
+    c.next().map_or(String::new(), |first| first.to_uppercase().chain(c).collect())
 }
 
 fn fmt_eps(x: f64) -> String {
@@ -203,15 +250,7 @@ pub fn write_curves_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
 pub fn write_thresholds_csv(path: &Path, r: &PerturbReport) -> crate::Result<()> {
     let th = |t: &Option<Threshold>| match t {
         None => (String::new(), String::new()),
-        Some(t) => (
-            format!("{:.6e}", t.value()),
-            match t {
-                Threshold::Below(_) => "below",
-                Threshold::At(_) => "at",
-                Threshold::Above(_) => "above",
-            }
-            .into(),
-        ),
+        Some(t) => (format!("{:.6e}", t.value()), t.kind_name().into()),
     };
     let opt = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x:.6e}"));
     crate::report::write_csv(
@@ -330,4 +369,55 @@ pub fn write_outputs(r: &PerturbReport, name: &str, dir: &Path) -> crate::Result
         }
     }
     Ok(out.written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn threshold_cells_say_which_side_of_the_grid() {
+        assert_eq!(threshold_cell(&Some(Threshold::Below(1e-6))), "≤ 1.00e-6");
+        assert_eq!(threshold_cell(&Some(Threshold::At(0.000_123_4))), "1.23e-4");
+        assert_eq!(threshold_cell(&Some(Threshold::Above(1.0))), "> 1.00e0");
+        assert_eq!(threshold_cell(&None), "–");
+    }
+
+    #[test]
+    fn a_robustness_row_reads_the_equilibrium_and_its_thresholds() {
+        use crate::dynamics::resting::SettleCheck;
+        use crate::dynamics::stone::{Exit, StableEquilibrium};
+        use crate::equilibria::Kind;
+        let exit = |epsilon| Exit { epsilon, facet: None, equilibrium: None, flock: None };
+        let equilibrium = StableEquilibrium {
+            index: 7,
+            facet: 12,
+            r: 1.0,
+            r_normalised: 0.5,
+            flock: 2,
+            flock_kind: Kind::Unstable,
+            class: Class::Rocking,
+            basin_exit: exit(2e-5),
+            flock_exit: exit(f64::INFINITY),
+            uplift_acceleration: 0.3,
+        };
+        let rest = SettleCheck { stays: true, tilt: 0.0, sink: 0.0, speed: 0.0, angular_speed: 0.0, facet_reached: 12 };
+        let e = Robustness {
+            equilibrium,
+            rest,
+            curve: vec![],
+            eps50_micro: Some(Threshold::At(3.1e-4)),
+            eps50_flock: Some(Threshold::Above(1.0)),
+            first_leave: Some(1e-4),
+            first_topple: Some(0.1),
+            ratio_micro: Some(15.5),
+            ratio_flock: None,
+            destinations: vec![(0, Kind::Stable, 3), (4, Kind::Saddle, 1)],
+            dynamic_class: None,
+        };
+        let row = robustness_row(Family::Spin, &e);
+        let want = ["spin", "7 (facet 12)", "Rocking", "2 (Unstable)", "2.00e-5", "3.10e-4", "15.5", "inf", "> 1.00e0"];
+        assert_eq!(row[..9], want.map(String::from));
+        assert_eq!(row[9..], ["–", "1.00e-1", "0 (Stable): 3, 4 (Saddle): 1"].map(String::from));
+    }
 }
