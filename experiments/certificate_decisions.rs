@@ -3,11 +3,10 @@
 //! certificate while both certificates are asked along it (what is measured, and the margin it
 //! checks: `experiments/readme/certificate_decisions.md`).
 //!
-//! Run: `cargo run --release --example certificate_decisions [-- N]` (N = 300 drops per mesh,
+//! Run: `cargo experiment certificate_decisions [-- N]` (N = 300 drops per mesh,
 //! preset and numerics) → `results/certificate_decisions/`.
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Context, Result, Results};
 use rayon::prelude::*;
 use rocking_stones::dynamics::certificate::{
@@ -78,7 +77,7 @@ fn main() -> Result<()> {
     let seed = common.seed_or(17);
     let out = Results::open("certificate_decisions", &common)?;
     let clock = std::time::Instant::now();
-    let stones: Vec<(String, Stone)> = (meshes(Path::new(env!("CARGO_MANIFEST_DIR")))?.iter())
+    let stones: Vec<(String, Stone)> = (meshes(harness::repo())?.iter())
         .map(|(name, a)| Ok((name.clone(), Stone::new(a, a.macro_nu(&Options::default()).0)?)))
         .collect::<Result<_>>()?;
     println!("{} bodies analysed in {:.0} s", stones.len(), clock.elapsed().as_secs_f64());

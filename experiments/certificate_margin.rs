@@ -2,14 +2,11 @@
 //! rest once while the certificates of a sweep of margins are asked at every step (what is
 //! measured: `experiments/readme/certificate_margin.md`).
 //!
-//! Run: `cargo run --release --example certificate_margin [-- N]` (N = 1000 drops per body and
+//! Run: `cargo experiment certificate_margin [-- N]` (N = 1000 drops per body and
 //! preset) → `results/certificate_margin/`.
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/harness.rs"]
-mod harness;
 use benchmark_bodies::benchmark_bodies;
+use experiments::{benchmark_bodies, harness};
 use harness::{fixed, Context, Result, Results};
 use rayon::prelude::*;
 use rocking_stones::dynamics::certificate::{
@@ -18,7 +15,6 @@ use rocking_stones::dynamics::certificate::{
 use rocking_stones::dynamics::drops::alone::run_alone;
 use rocking_stones::dynamics::engine::run::CERTIFICATE_EVERY;
 use rocking_stones::prelude::*;
-use std::path::Path;
 
 /// The margins swept (R_max), the default last.
 const MARGINS: [f64; 6] = [0.0, 1e-4, 3e-4, 1e-3, 2e-3, CERTIFICATE_MARGIN];
@@ -93,7 +89,7 @@ fn main() -> Result<()> {
     );
     let seed = common.seed_or(11);
     let out = Results::open("certificate_margin", &common)?;
-    let bodies = benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), false)?;
+    let bodies = benchmark_bodies(harness::repo(), false)?;
     let mut csv = String::from(
         "body,preset,level,margin_rmax,drops,decided,wrong,mean_time_every_step_s,mean_time_every_k_s,mean_time_to_rest_s\n",
     );

@@ -3,7 +3,7 @@
 //! scan every hull point), on synthetic pebbles of ~10² to 3·10⁴ hull corners, same run and
 //! initial conditions (the scenario and what is timed: `experiments/readme/collider_step_cost.md`).
 //!
-//! Run: `cargo run --release --example collider_step_cost` → `results/collider_step_cost/`.
+//! Run: `cargo experiment collider_step_cost` → `results/collider_step_cost/`.
 
 use parry3d::math::{Pose, Real, Rotation, Vector};
 use parry3d::shape::{ConvexPolyhedron, PolygonalFeature, PolygonalFeatureMap, Shape, SupportMap};
@@ -19,8 +19,7 @@ use serde_json::json;
 use std::hint::black_box;
 use std::time::Instant;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Context, Result, Results};
 
 /// Pebble generator point counts, chosen for ~10², 10³, 10⁴ and 3·10⁴ hull corners (all points are

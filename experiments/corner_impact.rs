@@ -2,7 +2,7 @@
 //! (`dynamics::engine::impulse`), at rapier's solver sub-steps 1–32: where its spin lies between
 //! them (the slip fraction φ, `PointImpact::slip_fraction`).
 //!
-//! Run: `cargo run --release --example corner_impact` → `results/corner_impact/`.
+//! Run: `cargo experiment corner_impact` → `results/corner_impact/`.
 
 use nalgebra::UnitQuaternion;
 use rocking_stones::dynamics::drops::{batch::simulate_batch, launch::Release};
@@ -11,8 +11,7 @@ use rocking_stones::dynamics::shaking::housner::block_stone;
 use rocking_stones::prelude::*;
 use rocking_stones::stats::median_range;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Context, Result, Results};
 
 const SUBSTEPS: [usize; 6] = [1, 2, 4, 8, 16, 32];

@@ -2,12 +2,11 @@
 //! the binomial log-likelihood of the measured counts maximised over a grid of release height H,
 //! rms spin Ω and horizontal speed v. Calibration, not validation.
 //!
-//! Run: `cargo run --release --example cuboid_dice [-- N [H,… [Ω,… [v,…]]]]` (N = 400, as
+//! Run: `cargo experiment cuboid_dice [-- N [H,… [Ω,… [v,…]]]]` (N = 400, as
 //! the committed results; the default grid was refined from coarser grids over H 0.5–16,
 //! Ω 0–45, v 1–8) → `results/cuboid_dice/`; the README's prose is `experiments/readme/cuboid_dice.md`.
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Common, Context, Parser, Result, Results};
 use rocking_stones::dynamics::drops::params::{THROW_HEIGHT, THROW_HORIZONTAL_SPEED, THROW_SPIN};
 use rocking_stones::plot::wilson_bars;
@@ -96,10 +95,13 @@ fn main() -> Result<()> {
     let args = Args::parse();
     let (n, seed) = (args.n, args.common.seed_or(1));
     let out = Results::open("cuboid_dice", &args.common)?;
-    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/data/cuboid_dice_throws.csv");
-    let rows = csv::ReaderBuilder::new().trim(csv::Trim::All).from_path(data).with_context(|| data.to_string())?;
+    let data = harness::repo().join("data/cuboid_dice_throws.csv");
+    let rows =
+        csv::ReaderBuilder::new().trim(csv::Trim::All).from_path(&data).with_context(|| data.display().to_string())?;
     let dice: Vec<Die> = (rows.into_deserialize::<(f64, f64, u64)>().enumerate())
-        .map(|(i, row)| row.map(|(x, p, n)| Die { x, p, n }).with_context(|| format!("{data}, record {}", i + 1)))
+        .map(|(i, row)| {
+            row.map(|(x, p, n)| Die { x, p, n }).with_context(|| format!("{}, record {}", data.display(), i + 1))
+        })
         .collect::<Result<_>>()?;
     let stones: Vec<(Stone, f64)> = dice.iter().map(|d| die(d.x)).collect::<Result<_>>()?;
     let t0 = Instant::now();

@@ -4,14 +4,11 @@
 //! plain, and the batch-size sweep that picks `montecarlo::DEFAULT_BATCH`; the README's prose is
 //! `experiments/readme/drops_certificate_speed.md`.
 //!
-//! Run: `cargo run --release --example drops_certificate_speed [-- N]` (N = 1000 drops per mode;
+//! Run: `cargo experiment drops_certificate_speed [-- N]` (N = 1000 drops per mode;
 //! one thread, so the figures are per core) → `results/drops_certificate/`.
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/harness.rs"]
-mod harness;
 use benchmark_bodies::benchmark_bodies;
+use experiments::{benchmark_bodies, harness};
 use harness::{fixed, Result, Results};
 use rocking_stones::dynamics::drops::compare::{matching_drops, Match};
 use rocking_stones::dynamics::drops::montecarlo::{run_timed, TimedRun};
@@ -20,7 +17,6 @@ use rocking_stones::report::drops::flock_cells;
 use rocking_stones::stats::chi_square_homogeneity;
 use serde_json::json;
 use std::fmt::Write as _;
-use std::path::Path;
 
 /// One mode: stones per world (1 = plain), certificate, flight, and whether it runs the
 /// preset's default step (its longest stable one, 1/120 s, `Preset::largest_stable_dt`) rather
@@ -77,7 +73,7 @@ fn main() -> Result<()> {
     let seed = common.seed_or(7);
     let out = Results::open("drops_certificate", &common)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-    let bodies = benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), true)?;
+    let bodies = benchmark_bodies(harness::repo(), true)?;
     let mut csv = String::from(
         "body,preset,mode,batch,certificate,flight,dt,drops,seconds,drops_per_s,speedup_vs_plain,mean_sim_time_s,\
          settled,certified,same_outcome_as_plain,chi2_p_flocks_vs_plain,kl_flocks\n",

@@ -3,14 +3,11 @@
 //! dt, and on M of them the contact's compression and energy rise (what is measured:
 //! `experiments/readme/drops_dt.md`).
 //!
-//! Run: `cargo run --release --example drops_dt [-- N M]` (N = 400, M = 40: the committed
+//! Run: `cargo experiment drops_dt [-- N M]` (N = 400, M = 40: the committed
 //! results) → `results/drops_dt/`.
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/harness.rs"]
-mod harness;
 use benchmark_bodies::benchmark_bodies;
+use experiments::{benchmark_bodies, harness};
 use harness::{fixed, Common, Parser, Result, Results};
 use rocking_stones::dynamics::certificate::{CompressionWatch, CERTIFICATE_MARGIN, CERTIFICATE_MAX_COMPRESSION};
 use rocking_stones::dynamics::drops::alone::simulate_observed;
@@ -54,7 +51,7 @@ fn main() -> Result<()> {
     let (n, m, seed) = (args.n, args.m, args.common.seed_or(1000));
     let out = Results::open("drops_dt", &args.common)?;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-    let bodies = benchmark_bodies(std::path::Path::new(env!("CARGO_MANIFEST_DIR")), false)?;
+    let bodies = benchmark_bodies(harness::repo(), false)?;
     let mut csv = String::from(
         "body,preset,dt,drops,unsettled,off_equilibrium,mean_time_to_rest_s,drops_per_s,chi2_vs_1_240,dof,p_value,\
          max_compression,max_compression_at_rest,max_energy_rise\n",

@@ -3,22 +3,17 @@
 //! body, preset and time step, then launches far beyond the presets (what is measured:
 //! `experiments/readme/drops_impacts.md`).
 //!
-//! Run: `cargo run --release --example drops_impacts [-- N]` (N = 300) → `results/drops_impacts/`.
+//! Run: `cargo experiment drops_impacts [-- N]` (N = 300) → `results/drops_impacts/`.
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/cpu_time.rs"]
-mod cpu_time;
-#[path = "shared/harness.rs"]
-mod harness;
 use benchmark_bodies::benchmark_bodies;
+use experiments::{benchmark_bodies, harness};
 use harness::{Result, Results};
-use rocking_stones::dynamics::drops::batch::simulate_batch;
+use rocking_stones::dynamics::drops::{batch::simulate_batch, montecarlo::thread_cpu_seconds};
 use rocking_stones::dynamics::engine::impact::{DEPTH_BOUND, IMPACT_APPROACH};
 use rocking_stones::dynamics::engine::{flight::CONTACT_CLEARANCE, run::NoCertificate};
 use rocking_stones::prelude::*;
 use rocking_stones::stats::{chi_square_homogeneity, quantile};
-use std::{fmt::Write as _, path::Path};
+use std::fmt::Write as _;
 
 /// The presets and steps (1/s) of the comparison.
 const PRESETS: [Preset; 2] = [Preset::Drop, Preset::Throw];
@@ -35,11 +30,11 @@ struct Measured {
     flocks: Vec<u64>,
 }
 
-fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
+fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Result<Measured> {
     let mut deepest = vec![f64::NAN; n as usize];
     let (mut flocks, mut settled) = (vec![0u64; stone.flock_kinds.len()], 0);
     let mut queue = (0..n).map(|i| (i, launch(&mut item_rng(seed, i), p)));
-    let clock = cpu_time::thread_cpu_seconds();
+    let clock = thread_cpu_seconds()?;
     let mut finished = |o: DropOutcome| {
         settled += u64::from(o.settled);
         deepest[o.index as usize] = o.deepest_penetration;
@@ -48,9 +43,9 @@ fn measure(stone: &Stone, p: &DropParams, seed: u64, n: u64) -> Measured {
         }
     };
     simulate_batch(stone, p, &NoCertificate, 1, &mut queue, &mut finished, &mut |_, _| {});
-    let per_s = n as f64 / (cpu_time::thread_cpu_seconds() - clock);
+    let per_s = n as f64 / (thread_cpu_seconds()? - clock);
     let over = deepest.iter().filter(|&&d| d > DEPTH_BOUND).count();
-    Measured { max: quantile(&deepest, 1.0), p99: quantile(&deepest, 0.99), over, per_s, settled, flocks }
+    Ok(Measured { max: quantile(&deepest, 1.0), p99: quantile(&deepest, 0.99), over, per_s, settled, flocks })
 }
 
 fn main() -> Result<()> {
@@ -67,7 +62,7 @@ fn main() -> Result<()> {
     let mut bars = Vec::new();
     let (mut worst_free, mut least_rapier) = (0.0f64, f64::INFINITY);
     let (mut worst_extreme, mut worst_default, mut beyond_default) = (0.0f64, 0.0f64, 0usize);
-    let bodies = benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), false)?;
+    let bodies = benchmark_bodies(harness::repo(), false)?;
     // Beyond the presets: the benchmark bodies and the box of `rocking generate box`.
     let generated = generate::cuboid(1.0, 0.75, 0.4).into_solid_boundary()?;
     let generated = Analysis::of_solid(generated.0, generated.1, &Options::default())?;
@@ -86,7 +81,7 @@ fn main() -> Result<()> {
                     (spin.unwrap_or(p.launch.spin), speed.unwrap_or(p.launch.horizontal_speed));
                 p.sim.flight.strict_impacts = strict;
                 let drops = (n / 3).max(1);
-                let Measured { max, p99, over, settled, .. } = measure(&stone, &p, beyond_seed, drops);
+                let Measured { max, p99, over, settled, .. } = measure(&stone, &p, beyond_seed, drops)?;
                 if strict {
                     worst_extreme = worst_extreme.max(max);
                 } else {
@@ -109,6 +104,7 @@ fn main() -> Result<()> {
                     (p.sim.numerics.dt, p.sim.flight.mode) = (1.0 / inv_dt, flight);
                     measure(&stone, &p, seed, n)
                 });
+                let [r, f] = [r?, f?];
                 let (_, _, p) = chi_square_homogeneity(&r.flocks, &f.flocks);
                 let preset = preset.name();
                 for (m, flight) in [(&r, Flight::Rapier), (&f, Flight::Free)] {

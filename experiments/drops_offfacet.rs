@@ -3,20 +3,17 @@
 //! the stone reaches its facet; every such drop is continued (up to 30 s more, same numerics)
 //! until it is on its equilibrium — is it the facet it was counted on?
 //!
-//! Run: `cargo run --release --example drops_offfacet [-- N]` (N = 400) → `results/drops_offfacet/`;
+//! Run: `cargo experiment drops_offfacet [-- N]` (N = 400) → `results/drops_offfacet/`;
 //! the explanation is in `experiments/readme/drops_offfacet.md`.
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/harness.rs"]
-mod harness;
 use benchmark_bodies::benchmark_bodies;
+use experiments::{benchmark_bodies, harness};
 use harness::{fixed, Result, Results};
 use rocking_stones::dynamics::drops::alone::{go_on_to_equilibrium, run_alone};
 use rocking_stones::dynamics::stone::REST_TOLERANCE;
 use rocking_stones::prelude::*;
 use rocking_stones::stats::quantile;
-use std::{fmt::Write as _, path::Path};
+use std::fmt::Write as _;
 
 fn main() -> Result<()> {
     let (n, common) = harness::count_args(
@@ -31,7 +28,7 @@ fn main() -> Result<()> {
     // Per body: its table row, and the heights above the facet when stopped and after going on.
     let (mut rows, mut hist, mut changed, mut medians) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let (mut all_off, mut all_same) = (0usize, 0usize);
-    for (name, a) in benchmark_bodies(Path::new(env!("CARGO_MANIFEST_DIR")), false)? {
+    for (name, a) in benchmark_bodies(harness::repo(), false)? {
         let stone = Stone::new(&a, 0.0035)?;
         // Each drop the speed rule ended above its facet: (height above, speed, same facet after
         // going on, seconds more, height after).

@@ -3,7 +3,7 @@
 //! grow (large faces gain): a box 2 × 1.4 × 1 and a synthetic pebble with micro-facets, per drop
 //! height and restitution, then the pebble for increasing damping.
 //!
-//! Run: `cargo run --release --example drops_quasistatic_limit` → `results/drops_quasistatic_limit/`;
+//! Run: `cargo experiment drops_quasistatic_limit` → `results/drops_quasistatic_limit/`;
 //! the README's prose is `experiments/readme/drops_quasistatic_limit.md`.
 
 use rocking_stones::dynamics::drops::montecarlo::Fit;
@@ -13,8 +13,7 @@ use rocking_stones::plot::style;
 use rocking_stones::prelude::*;
 use serde_json::json;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{cell, fixed, Result, Results};
 
 const DROPS: u64 = 2000;

@@ -2,15 +2,14 @@
 //! default preset and no certificate, at the default step and again at the reference step
 //! (`--reference`): settled fractions, times to rest, rests off the stable facet.
 //!
-//! Run: `cargo run --release --example drops_settling [-- N]` (N = 200) →
+//! Run: `cargo experiment drops_settling [-- N]` (N = 200) →
 //! `results/drops_settling/`; the README's prose is `experiments/readme/drops_settling.md`.
 
 use rocking_stones::prelude::*;
 use rocking_stones::stats::quantile;
-use std::{fmt::Write as _, path::Path, time::Instant};
+use std::{fmt::Write as _, time::Instant};
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Result, Results};
 
 fn main() -> Result<()> {
@@ -21,7 +20,7 @@ fn main() -> Result<()> {
     );
     let seed = common.seed_or(1);
     let out = Results::open("drops_settling", &common)?;
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let data = harness::repo().join("data");
     let mut meshes = rocking_stones::study::mesh_files(&data.join("meshes"))?;
     meshes.push(data.join("default_pebble.ply"));
     let p = DropParams::default();

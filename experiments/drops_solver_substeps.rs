@@ -3,17 +3,12 @@
 //! `shared/mujoco.rs`); what it shows is in its README's template,
 //! `experiments/readme/drops_solver_substeps.md`.
 //!
-//! Run: `cargo run --release --example drops_solver_substeps [-- N]` (10 × N releases per body and
+//! Run: `cargo experiment drops_solver_substeps [-- N]` (10 × N releases per body and
 //! count, N = 300; `--seed` the releases' seed, default 7) → `results/drops_solver_substeps/`. Needs
 //! MuJoCo's Python bindings (`pip install mujoco`) in `python3` or in the interpreter named by
 //! `ROCKING_PYTHON`.
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/harness.rs"]
-mod harness;
-#[path = "shared/mujoco.rs"]
-mod mujoco;
+use experiments::{harness, mujoco};
 use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::compare::{agreement, Agreement};

@@ -3,18 +3,13 @@
 //! how is in its README's template, `experiments/readme/drops_vs_mujoco.md`, the MuJoCo side in
 //! `shared/mujoco.rs` and `shared/mujoco_drops.py`.
 //!
-//! Run: `cargo run --release --example drops_vs_mujoco [-- N]` (N = 300 drops per body and mode;
+//! Run: `cargo experiment drops_vs_mujoco [-- N]` (N = 300 drops per body and mode;
 //! `--seed` the releases' seed, default 7) → `results/drops_vs_mujoco/`. Needs MuJoCo's Python
 //! bindings (`pip install mujoco`) in `python3` or in the interpreter named by `ROCKING_PYTHON`.
 
 #![recursion_limit = "256"] // the README's context is one large `json!`
 
-#[path = "shared/benchmark_bodies.rs"]
-mod benchmark_bodies;
-#[path = "shared/harness.rs"]
-mod harness;
-#[path = "shared/mujoco.rs"]
-mod mujoco;
+use experiments::{harness, mujoco};
 use harness::{fixed, Result, Results};
 use mujoco::*;
 use rocking_stones::dynamics::drops::compare::{agreement, chi_square_shares, matching_drops, Match};

@@ -2,7 +2,7 @@
 //! under an ensemble (unknown azimuth, sign), simulated and by Housner's equation, fitted with the
 //! form of Purvance, Anooshehpoor & Brune (2008); the ensemble's P scored beside yes/no forecasts
 //! on simulated truths. Prose: `experiments/readme/ensemble_fragility.md`.
-//! Run: `cargo run --release --example ensemble_fragility` → `results/ensemble_fragility/`.
+//! Run: `cargo experiment ensemble_fragility` → `results/ensemble_fragility/`.
 
 use rocking_stones::dynamics::shaking::ensemble::{draw, Draw};
 use rocking_stones::dynamics::shaking::housner::{block_stone, HousnerBlock as Block};
@@ -17,10 +17,7 @@ use rocking_stones::stats::{ensemble_brier, forecast_scores, nonnegative_range, 
 use serde_json::{json, Value};
 use std::time::Instant;
 
-#[path = "shared/harness.rs"]
-mod harness;
-#[path = "shared/rocks.rs"]
-mod rocks;
+use experiments::{harness, rocks};
 use harness::{columns, fixed, Context, Result, Results};
 use rocks::row;
 

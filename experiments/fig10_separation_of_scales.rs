@@ -2,21 +2,19 @@
 //! equilibria and the Morse–Smale graph G(0) (10A), the log ν – n(ν) staircase with its plateau
 //! (10B), the flocks at the plateau's ν (10C), and the rocking equilibria found.
 //!
-//! Run: `cargo run --release --example fig10_separation_of_scales` → `results/fig10/`; the
+//! Run: `cargo experiment fig10_separation_of_scales` → `results/fig10/`; the
 //! README's prose is `experiments/readme/fig10_separation_of_scales.md`.
 
 use rocking_stones::prelude::*;
 use rocking_stones::report::analysis::write_files;
-use std::path::Path;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Result, Results};
 
 fn main() -> Result<()> {
     let common = harness::common_args("Separation of scales on three quarry stones and a synthetic pebble.");
     let out = Results::open("fig10", &common)?;
-    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/meshes");
+    let meshes = harness::repo().join("data/meshes");
     let opts = Options::default();
     let mut runs = Vec::new();
     for name in ["E34", "AAA", "E22"] {

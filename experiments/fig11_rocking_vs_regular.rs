@@ -3,7 +3,7 @@
 //! stone's deepest (smallest R), the rocking one the rocking equilibrium with the highest basin
 //! barrier ([`default_pair`]).
 //!
-//! Run: `cargo run --release --example fig11_rocking_vs_regular` → `results/fig11_rocking_vs_regular/`;
+//! Run: `cargo experiment fig11_rocking_vs_regular` → `results/fig11_rocking_vs_regular/`;
 //! the README's prose is `experiments/readme/fig11_rocking_vs_regular.md`.
 
 use rocking_stones::dynamics::pushes::{self, Family, PerturbConfig};
@@ -14,8 +14,7 @@ use rocking_stones::report;
 use rocking_stones::stats::{log_grid, GridSize};
 use serde_json::json;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Context, Result, Results};
 
 const TRIALS: u32 = 200;

@@ -2,7 +2,7 @@
 //! samples, the dynamic experimenter on the 5 scanned samples, and a field study of the scanned
 //! quarry stones in `data/meshes`.
 //!
-//! Run: `cargo run --release --example fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`;
+//! Run: `cargo experiment fig12_hand_vs_computer` → `results/fig12_hand_vs_computer/`;
 //! the README's prose is `experiments/readme/fig12_hand_vs_computer.md`.
 
 use rocking_stones::analysis::PAPER_NU;
@@ -15,8 +15,7 @@ use serde_json::{json, Value};
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Result, Results};
 
 /// The roughness amplitudes scanned; the synthetic pebbles use the one with the lowest χ² against
@@ -28,7 +27,7 @@ const TRIALS: [u64; 3] = [5, 20, 100];
 
 fn main() -> Result<()> {
     let common = harness::common_args("Hand experiments against synthetic populations and the dynamic experimenter.");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = harness::repo();
     let out = Results::open("fig12_hand_vs_computer", &common)?;
     let hand = study::read_table2(&root.join("data/table2_hand_experiments.csv"))?;
     let base = PopulationParams { seed: common.seed_or(1), ..PopulationParams::default() };

@@ -3,7 +3,7 @@
 //!
 //! Writes results/planar/fig2_r_phi.csv, fig2_equilibria.csv, fig2_r_phi.png, fig2.md (its prose
 //! is `experiments/readme/fig2_planar_r_phi.md`).
-//! Run: `cargo run --release --example fig2_planar_r_phi`.
+//! Run: `cargo experiment fig2_planar_r_phi`.
 
 use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{ellipse_radius, FlockContents, PlanarAnalysis, Sampling};
@@ -11,8 +11,7 @@ use rocking_stones::plot::{plain, OKABE_ITO};
 use rocking_stones::prelude::*;
 use std::f64::consts::PI;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Context, Result, Results};
 
 const A: f64 = 1.2;

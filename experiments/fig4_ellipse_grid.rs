@@ -1,15 +1,14 @@
 //! Figure 4 of the paper: a grid of arc-length discretised ellipses, rows k (N = 4k − 2),
 //! columns the axis ratio a, each with its micro-equilibria marked and S written.
 //!
-//! Run: `cargo run --release --example fig4_ellipse_grid` → `results/planar/` (fig4_grid.csv,
+//! Run: `cargo experiment fig4_ellipse_grid` → `results/planar/` (fig4_grid.csv,
 //! fig4_grid.png, fig4.md); the README's prose is `experiments/readme/fig4_ellipse_grid.md`.
 
 use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{sides_for_k, table1, PlanarAnalysis, Sampling};
 use rocking_stones::prelude::*;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Context, Result, Results};
 
 const KS: [usize; 4] = [3, 6, 12, 50];

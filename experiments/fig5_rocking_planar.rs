@@ -1,7 +1,7 @@
 //! Figure 5 of the paper: a stable, a rocking and an unstable equilibrium of the discretised
 //! ellipse, each drawn resting on a ground line with G vertically above the contact point.
 //!
-//! Run: `cargo run --release --example fig5_rocking_planar` → `results/planar/`
+//! Run: `cargo experiment fig5_rocking_planar` → `results/planar/`
 //! (fig5_equilibria.csv, fig5_rocking.png, fig5.md); the README's prose is
 //! `experiments/readme/fig5_rocking_planar.md`.
 
@@ -9,8 +9,7 @@ use rocking_stones::hierarchy::Kind;
 use rocking_stones::planar::{sides_for_k, FlockContents, PlanarAnalysis, PlanarSite, Point2, Sampling};
 use rocking_stones::prelude::*;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Context, Result, Results};
 
 const A: f64 = 1.2;

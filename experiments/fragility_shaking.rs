@@ -6,7 +6,7 @@
 //! filtered noise, predominant period 0.4 s, 10 s; `ground_motion::synthetic::filtered_noise`),
 //! written to `motion.csv` and read back through the same reader as the CLI's `--motion`.
 //!
-//! Run: `cargo run --release --example fragility_shaking` → `results/fragility_shaking/`; the
+//! Run: `cargo experiment fragility_shaking` → `results/fragility_shaking/`; the
 //! README's prose is `experiments/readme/fragility_shaking.md`.
 
 use rocking_stones::dynamics::resting::outcome::Outcome;
@@ -19,10 +19,7 @@ use rocking_stones::prelude::*;
 use rocking_stones::report::shake::{self as report, pga50_cell};
 use serde_json::json;
 
-#[path = "shared/harness.rs"]
-mod harness;
-#[path = "shared/rocks.rs"]
-mod rocks;
+use experiments::{harness, rocks};
 use harness::{fixed, Context, Result, Results};
 
 const TRIALS: u32 = 40;

@@ -2,7 +2,7 @@
 //! slender block, rapier against Housner's equation; B. fragility surfaces of field rocks; C. the
 //! speed of one long record; D. the coverage of the surface's 95 % band over repeated studies.
 //!
-//! Run: `cargo run --release --example fragility_surface [-- --synthetic-studies N
+//! Run: `cargo experiment fragility_surface [-- --synthetic-studies N
 //! --ensemble-studies N --reference-members N]` → `results/fragility_surface/`; the README's
 //! prose is `experiments/readme/fragility_surface.md`.
 
@@ -20,10 +20,7 @@ use rocking_stones::{ground_motion::Record, GRAVITY as G};
 use serde_json::{json, Value};
 use std::time::Instant;
 
-#[path = "shared/harness.rs"]
-mod harness;
-#[path = "shared/rocks.rs"]
-mod rocks;
+use experiments::{harness, rocks};
 use harness::{cell, columns, fixed, timed, Common, Parser, Result, Results};
 use rocks::row;
 

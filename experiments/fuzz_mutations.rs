@@ -2,7 +2,7 @@
 //! checked and analysed with panics caught; and the time of the self-intersection check on the
 //! largest scan of `data/meshes` and on a synthetic pebble of 10⁶ triangles.
 //!
-//! Run: `cargo run --release --example fuzz_mutations [-- --timing-only]` →
+//! Run: `cargo experiment fuzz_mutations [-- --timing-only]` →
 //! `results/fuzz_mutations/`; the README's prose is `experiments/readme/fuzz_mutations.md`.
 
 use rayon::prelude::*;
@@ -13,8 +13,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Common, Context, Parser, Result, Results};
 
 const CASES: u64 = 100_000;
@@ -61,7 +60,7 @@ fn main() -> Result<()> {
     let args = Args::parse();
     let seed = args.common.seed_or(2026);
     let out = Results::open("fuzz_mutations", &args.common)?;
-    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/meshes");
+    let meshes = harness::repo().join("data/meshes");
     let tmp = tempfile::tempdir()?;
     let sources = sources(&meshes, tmp.path())?;
     let opts = Options::default();

@@ -3,7 +3,7 @@
 //! each impact of free rocking, against the closed forms, over aspect ratios and the engine's
 //! contact settings.
 //!
-//! Run: `cargo run --release --example housner_block` → `results/housner_block/`; the README's
+//! Run: `cargo experiment housner_block` → `results/housner_block/`; the README's
 //! prose is `experiments/readme/housner_block.md`.
 
 use rocking_stones::dynamics::resting::RestingParams;
@@ -12,8 +12,7 @@ use rocking_stones::dynamics::shaking::housner::{free_rocking, housner_ratio, im
 use rocking_stones::prelude::*;
 use serde_json::json;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{columns, fixed, Result, Results};
 
 /// The blocks' slenderness tan α = b/h.

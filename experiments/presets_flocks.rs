@@ -3,17 +3,15 @@
 //! calibrated `throw` (flock certificate), the flock distributions side by side with the
 //! quasi-static basin probabilities, with χ² and KL against them.
 //!
-//! Run: `cargo run --release --example presets_flocks [-- N]` (N = 1000) →
+//! Run: `cargo experiment presets_flocks [-- N]` (N = 1000) →
 //! `results/presets_flocks/`; the README's prose is `experiments/readme/presets_flocks.md`.
 
 use rocking_stones::plot::colors::{BLUE, GREEN, ORANGE, SKY};
 use rocking_stones::plot::BarSlot;
 use rocking_stones::prelude::*;
 use serde_json::json;
-use std::path::Path;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Result, Results};
 
 fn lower(x: impl std::fmt::Debug) -> String {
@@ -25,7 +23,7 @@ fn main() -> Result<()> {
         harness::count_args("Flock distributions under the three launch presets.", "Drops per preset", 1000);
     let seed = common.seed_or(1);
     let out = Results::open("presets_flocks", &common)?;
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = harness::repo();
     let (mut csv, mut meshes) = (Vec::new(), Vec::new());
     for (name, path) in [
         ("bundled stone E34", "data/default_pebble.ply"),

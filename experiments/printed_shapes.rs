@@ -2,7 +2,7 @@
 //! fitted to these data. The quasi-static basins, the calibrated `throw` and the `drop` preset
 //! predict the outcome frequencies, scored by the total variation distance against its noise.
 //!
-//! Run: `cargo run --release --example printed_shapes [-- N [DATA_DIR]]` (N = 2000 throws per
+//! Run: `cargo experiment printed_shapes [-- N [DATA_DIR]]` (N = 2000 throws per
 //! shape and predictor, seed 1; DATA_DIR = `data/printed_shapes`) → `results/printed_shapes/`;
 //! the README's prose is `experiments/readme/printed_shapes.md`.
 
@@ -13,10 +13,9 @@ use rocking_stones::stats::{chi_square_homogeneity, mean, wilson};
 use rocking_stones::study::outcomes::{by_outcome, frequencies, score, total_variation, ByOutcome, Score, ThrownShape};
 use rocking_stones::tipping::TippingPolar;
 use serde_json::{json, Value};
-use std::{collections::BTreeMap, path::Path, path::PathBuf, time::Instant};
+use std::{collections::BTreeMap, path::PathBuf, time::Instant};
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Common, Context, Parser, Result, Results};
 
 /// The shapes, in the order of the data's README.
@@ -219,7 +218,7 @@ fn run_shape(shape: &Shape, (n, seed): (u64, u64), index: usize) -> Result<(Vec<
 fn main() -> Result<()> {
     let args = Args::parse();
     let (n, seed) = (args.n, args.common.seed_or(1));
-    let data = args.data.unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("data/printed_shapes"));
+    let data = args.data.unwrap_or_else(|| harness::repo().join("data/printed_shapes"));
     let out = Results::open("printed_shapes", &args.common)?;
     let t0 = Instant::now();
     // Every input is read and checked before the first throw.

@@ -3,7 +3,7 @@
 # program per figure, table or study, each writing its CSV, plots and README.md), release build.
 #
 #   experiments/regenerate.sh            every experiment, in order (about 2–3 hours on 2 cores)
-#   experiments/regenerate.sh NAME...    only these (example names, e.g. fig11_rocking_vs_regular)
+#   experiments/regenerate.sh NAME...    only these (experiment names, e.g. fig11_rocking_vs_regular)
 #   experiments/regenerate.sh --quick    smoke test: build every experiment and run the fast ones
 #   experiments/regenerate.sh --list     the experiments, in order
 #
@@ -31,7 +31,7 @@ QUICK=(table1_planar_flocks fig2_planar_r_phi fig4_ellipse_grid fig5_rocking_pla
 case "${1:-}" in
   --list) printf '%s\n' "${ALL[@]}"; exit 0 ;;
   --quick)
-    cargo build --release --examples || exit 1
+    cargo build --release --package experiments || exit 1
     run=("${QUICK[@]}") ;;
   "") run=("${ALL[@]}") ;;
   *) run=("$@") ;;
@@ -42,7 +42,7 @@ failed=()
 for e in "${run[@]}"; do
   start=$SECONDS
   echo "== $e"
-  if cargo run --release --quiet --example "$e"; then
+  if cargo run --release --quiet --package experiments --bin "$e"; then
     echo "$(date -u +%F) $e: $((SECONDS - start)) s" | tee -a "$log"
   else
     echo "$(date -u +%F) $e: FAILED after $((SECONDS - start)) s" | tee -a "$log"

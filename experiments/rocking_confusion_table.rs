@@ -2,11 +2,10 @@
 //! micro-equilibrium against its dynamic class from pushes and spins (ε₅₀(flock) ≤ ε*), on
 //! synthetic pebbles and the real quarry stones of `data/meshes`.
 //!
-//! Run: `cargo run --release --example rocking_confusion_table` → `results/rocking_confusion_table/`;
+//! Run: `cargo experiment rocking_confusion_table` → `results/rocking_confusion_table/`;
 //! the README's prose is `experiments/readme/rocking_confusion_table.md`.
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Context, Result, Results};
 use rocking_stones::dynamics::pushes::{self, dynamic_class, rocking_auc, Confusion, Family, PerturbConfig};
 use rocking_stones::dynamics::pushes::{PerturbReport, Robustness};
@@ -18,7 +17,6 @@ use rocking_stones::report::perturb::{plot_thresholds, threshold_points};
 use rocking_stones::stats::{five_numbers, log_grid, min_max, GridSize};
 use rocking_stones::study;
 use serde_json::{json, Value};
-use std::path::Path;
 
 const TRIALS: u32 = 30;
 /// R_max of the synthetic pebbles (m), as in `fig11_rocking_vs_regular`.
@@ -49,7 +47,7 @@ fn inputs() -> Result<Vec<(String, &'static str, Analysis)>> {
             inputs.push((name, "synthetic", Analysis::of_solid(mesh, rep, &Options::default())?));
         }
     }
-    let meshes = study::mesh_files(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data/meshes")))?;
+    let meshes = study::mesh_files(&harness::repo().join("data/meshes"))?;
     for p in meshes.iter().filter(|p| study::pebble_id(p).starts_with("stone_")) {
         let name = p.file_name().context("a mesh file name")?.to_string_lossy().into_owned();
         inputs.push((name, "real", Analysis::of_file(p, &Options::default())?));

@@ -2,7 +2,7 @@
 //! → Morse–Smale graph → hierarchy) on synthetic pebbles of 10³ to 10⁶ vertices and on real
 //! models, beside parry3d's f32 quickhull (no exact predicates) on the same points.
 //!
-//! Run: `cargo run --release --example static_scaling` → `results/static_scaling/`; the README's
+//! Run: `cargo experiment static_scaling` → `results/static_scaling/`; the README's
 //! prose is `experiments/readme/static_scaling.md`.
 
 use rocking_stones::equilibria::{Equilibria, Signs, DEFAULT_DEGENERACY_TOL};
@@ -18,8 +18,7 @@ use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Result, Results};
 
 const STAGES: [&str; 9] = ["read", "check", "mass", "hull", "facets", "equilibria", "graph", "hierarchy", "total"];
@@ -104,7 +103,7 @@ fn main() -> Result<()> {
         io::write(&path, &mesh)?;
         rows.push(measure(&format!("pebble n={n}"), &path, if n >= 300_000 { 1 } else { 3 })?);
     }
-    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/meshes");
+    let meshes = harness::repo().join("data/meshes");
     for f in [
         "asteroid_101955_bennu_osirisrex2019_bin.ply",
         "comet_67P_churyumov_gerasimenko_spc_shap5_bin.ply",

@@ -4,14 +4,13 @@
 //!
 //! Writes results/planar/table1.csv, table1_convergence.csv, table1_sqrt2.csv,
 //! table1_convergence.png and table1.md (its prose is `experiments/readme/table1_planar_flocks.md`).
-//! Run: `cargo run --release --example table1_planar_flocks`.
+//! Run: `cargo experiment table1_planar_flocks`.
 
 use rocking_stones::planar::{sides_for_k, table1_scan, PlanarAnalysis, PlanarReport, Sampling, Table1Scan};
 use rocking_stones::prelude::*;
 use serde_json::json;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{Result, Results};
 
 const A_GRID: [f64; 8] = [1.02, 1.05, 1.1, 1.2, 1.3, 1.5, 2.0, 3.0];

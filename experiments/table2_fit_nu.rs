@@ -3,7 +3,7 @@
 //! case), the resolution, the spread of the ratios, the seed, the 5 scanned samples alone, the
 //! stable columns alone and no ratio calibration.
 //!
-//! Run: `cargo run --release --example table2_fit_nu` → `results/table2_fit_nu/`; the README's
+//! Run: `cargo experiment table2_fit_nu` → `results/table2_fit_nu/`; the README's
 //! prose is `experiments/readme/table2_fit_nu.md`.
 
 use rocking_stones::analysis::PAPER_NU;
@@ -15,8 +15,7 @@ use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParam
 use serde_json::json;
 use std::fmt::Display;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{cell, fixed, Result, Results};
 
 /// The roughness amplitudes scanned (the generator allows < 1).
@@ -35,7 +34,7 @@ struct Run {
 fn main() -> Result<()> {
     let common = harness::common_args("The fit of ν to Table 2 and its sensitivity to the synthetic pebbles.");
     let out = Results::open("table2_fit_nu", &common)?;
-    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/table2_hand_experiments.csv");
+    let data = harness::repo().join("data/table2_hand_experiments.csv");
     let hand = study::read_table2(&data)?;
     let scanned: Vec<HandSample> = hand.iter().filter(|h| h.computer.is_some()).cloned().collect();
     let (opts, seed) = (FitOptions::default(), common.seed_or(1));

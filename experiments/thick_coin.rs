@@ -4,7 +4,7 @@
 //! h/d = 1/(2√2) (the edge's share of the directions around G), and the vigorously flipped coin of
 //! Yong & Mahadevan (Am. J. Phys. 79, 1195 (2011)), fair at 1/√3.
 //!
-//! Run: `cargo run --release --example thick_coin [-- N]` (N = 300 per point and preset) →
+//! Run: `cargo experiment thick_coin [-- N]` (N = 300 per point and preset) →
 //! `results/thick_coin/`; the README's prose is `experiments/readme/thick_coin.md`.
 
 use rocking_stones::planar::Polygon;
@@ -12,8 +12,7 @@ use rocking_stones::prelude::*;
 use rocking_stones::stats::{min_max, upward_crossing, wilson};
 use rocking_stones::study::outcomes::share_on;
 
-#[path = "shared/harness.rs"]
-mod harness;
+use experiments::harness;
 use harness::{fixed, Result, Results};
 
 const SIDES: usize = 32;

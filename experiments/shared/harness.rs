@@ -5,14 +5,17 @@
 //! flattens [`Common`]), opens its [`Results`] folder, computes through the library, writes
 //! CSV with [`Results::csv`], plots with the library's [`rocking_stones::plot::Chart`], and
 //! renders its README with [`Results::readme`]: the prose lives in the template, the numbers
-//! come from the run. Included by each experiment with `#[path = "shared/harness.rs"] mod harness;`.
-#![allow(dead_code)] // each experiment uses the part of the harness it needs
+//! come from the run. Experiments import it as `use experiments::harness;`.
 
 pub use anyhow::{Context, Result};
-#[allow(unused_imports)] // the experiments with arguments of their own derive it; the others use common_args
 pub use clap::Parser;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+
+/// The repository's root folder, where `data/` and `results/` are.
+pub fn repo() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("the experiments package is a folder of the repository")
+}
 
 /// The arguments every experiment takes.
 #[derive(clap::Args, Debug, Clone)]
@@ -38,7 +41,7 @@ impl Common {
 /// saying `about`.
 pub fn common_args(about: &str) -> Common {
     use clap::{Args, FromArgMatches};
-    let command = Common::augment_args(clap::Command::new(env!("CARGO_CRATE_NAME"))).about(about.to_owned());
+    let command = Common::augment_args(clap::Command::new(env!("CARGO_PKG_NAME"))).about(about.to_owned());
     Common::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit())
 }
 
@@ -47,7 +50,7 @@ pub fn common_args(about: &str) -> Common {
 pub fn count_args(about: &str, count: &str, default: u64) -> (u64, Common) {
     use clap::{Arg, Args, FromArgMatches};
     let n = Arg::new("n").value_name("N").help(count.to_owned()).default_value(default.to_string());
-    let command = Common::augment_args(clap::Command::new(env!("CARGO_CRATE_NAME")));
+    let command = Common::augment_args(clap::Command::new(env!("CARGO_PKG_NAME")));
     let matches = command.arg(n.value_parser(clap::value_parser!(u64))).about(about.to_owned()).get_matches();
     let common = Common::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     (matches.get_one::<u64>("n").copied().unwrap_or(default), common)
@@ -64,7 +67,7 @@ impl Results {
     pub fn open(folder: &str, common: &Common) -> Result<Self> {
         let dir = match &common.out {
             Some(d) => d.clone(),
-            None => Path::new(env!("CARGO_MANIFEST_DIR")).join("results").join(folder),
+            None => repo().join("results").join(folder),
         };
         std::fs::create_dir_all(&dir).with_context(|| format!("cannot create the results folder {}", dir.display()))?;
         Ok(Results { dir })

@@ -2,9 +2,7 @@
 //! (`drops_vs_mujoco`, `drops_solver_substeps`): the physics matched in both, the project's modes
 //! and parameters, MuJoCo's run through `shared/mujoco_drops.py` (its output, its drops
 //! classified by the project's rule) and the drop-by-drop comparison of two runs of the same
-//! releases (`dynamics::drops::compare`) for a README. Included with
-//! `#[path = "shared/mujoco.rs"] mod mujoco;` next to `harness` and `benchmark_bodies`.
-#![allow(dead_code)] // each experiment uses the part it needs
+//! releases (`dynamics::drops::compare`) for a README.
 
 use super::benchmark_bodies::benchmark_bodies;
 use super::harness::{fixed, Context, Result};
@@ -16,7 +14,7 @@ use rocking_stones::prelude::*;
 use serde::Deserialize;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
 /// The physics both engines run (scaled frame).
@@ -159,7 +157,7 @@ pub fn python_with_mujoco(experiment: &str) -> Result<String> {
         "{experiment} needs MuJoCo's Python bindings, but `{python} -c 'import mujoco, numpy'` failed.\n\
          Install them with `{python} -m pip install mujoco` (it brings numpy), or point ROCKING_PYTHON at an \
          interpreter that has them, e.g.\n  python3 -m venv target/mujoco-venv && target/mujoco-venv/bin/pip \
-         install mujoco\n  ROCKING_PYTHON=target/mujoco-venv/bin/python cargo run --release --example \
+         install mujoco\n  ROCKING_PYTHON=target/mujoco-venv/bin/python cargo experiment \
          {experiment}"
     );
     Ok(python)
@@ -273,7 +271,7 @@ impl Bench {
     /// checking that the Python interpreter has MuJoCo.
     pub fn new(experiment: &'static str, seed: u64, n: u64, big: u64) -> Result<Bench> {
         let python = python_with_mujoco(experiment)?;
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let root = crate::harness::repo();
         let bodies = benchmark_bodies(root, true)?;
         let stones: Vec<Stone> =
             bodies.iter().map(|(_, a)| Stone::new(a, a.macro_nu(&Options::default()).0)).collect::<Result<_, _>>()?;

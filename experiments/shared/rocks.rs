@@ -1,13 +1,10 @@
 //! The rocks of the shaking experiments: a stone analysed from a mesh or from a mesh file of the
-//! repository, and rows of a CSV written with `format!`. Included by an experiment with
-//! `#[path = "shared/rocks.rs"] mod rocks;`.
-#![allow(dead_code)] // each experiment uses the part it needs
+//! repository, and rows of a CSV written with `format!`.
 
 use anyhow::Result;
 use rocking_stones::dynamics::shaking::stone_of;
 use rocking_stones::mesh::TriMesh;
 use rocking_stones::prelude::*;
-use std::path::Path;
 
 /// The stone of a closed `mesh`, its flocks at `nu` or at its macro ν.
 pub fn of_mesh(mesh: TriMesh, nu: Option<f64>) -> Result<Stone> {
@@ -18,7 +15,7 @@ pub fn of_mesh(mesh: TriMesh, nu: Option<f64>) -> Result<Stone> {
 /// The analysis of the mesh file `path` (relative to the repository) and its stone at its
 /// macro ν.
 pub fn of_file(path: &str) -> Result<(Analysis, Stone)> {
-    let a = Analysis::of_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join(path), &Options::default())?;
+    let a = Analysis::of_file(&crate::harness::repo().join(path), &Options::default())?;
     let stone = stone_of(&a, None)?;
     Ok((a, stone))
 }

@@ -13,6 +13,10 @@
 //! * [`batch`] — many independent drops in one rapier world (the same outcomes, drop by drop).
 //! * [`montecarlo`] — many drops: reproducible streams, shards, checkpoints, statistics.
 //! * [`compare`] — two runs of the same releases compared drop by drop (two numerics, two engines).
+//! * [`alone`] — one drop stepped by hand: watched after every step, or continued on to its
+//!   equilibrium after the rest rule has ended it.
+//! * [`audit`] — one drop run to rest while both certificates are asked along the way: when they
+//!   decide, whether they were right, and what their margin had to cover.
 
 pub mod alone;
 pub mod audit;
