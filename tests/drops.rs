@@ -221,19 +221,7 @@ fn damaged_or_foreign_checkpoints_are_refused_naming_file_line_and_field() {
     let model = s.model();
     let h = header(10, 3, CertificateMode::Facet);
     let stable = (0..model.facet_equilibrium.len() as u32).find(|&f| model.facet_equilibrium[f as usize].is_some());
-    let line = |index: u64, facet: u32| {
-        serde_json::to_string(&DropOutcome {
-            index,
-            settled: true,
-            facet: Some(facet),
-            flock: None,
-            time: 1.0,
-            certified: false,
-            height_above: Some(0.0),
-            deepest_penetration: 0.0,
-        })
-        .unwrap()
-    };
+    let line = |index: u64, facet: u32| serde_json::to_string(&DropOutcome::at_rest(index, facet, 1.0)).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let write = |name: &str, header: &RunHeader, lines: &[String]| {
         let path = dir.path().join(name);

@@ -388,16 +388,7 @@ mod tests {
             nu: 0.0,
         };
         let run = |facets: &[u32]| {
-            let drop = |(i, &facet): (usize, &u32)| DropOutcome {
-                index: i as u64,
-                settled: true,
-                facet: Some(facet),
-                flock: None,
-                time: 1.0,
-                certified: false,
-                height_above: Some(0.0),
-                deepest_penetration: 0.0,
-            };
+            let drop = |(i, &facet): (usize, &u32)| DropOutcome::at_rest(i as u64, facet, 1.0);
             let outcomes = facets.iter().enumerate().map(drop).map(|o| (o.index, o)).collect();
             let header = RunHeader::of_params(
                 "t",

@@ -121,14 +121,8 @@ mod tests {
 
     fn run(facets: &[(bool, u32)]) -> BTreeMap<u64, DropOutcome> {
         let outcome = |(i, &(settled, facet)): (usize, &(bool, u32))| DropOutcome {
-            index: i as u64,
             settled,
-            facet: Some(facet),
-            flock: None,
-            time: 1.0,
-            certified: false,
-            height_above: Some(0.0),
-            deepest_penetration: 0.0,
+            ..DropOutcome::at_rest(i as u64, facet, 1.0)
         };
         facets.iter().enumerate().map(outcome).map(|o| (o.index, o)).collect()
     }

@@ -45,6 +45,21 @@ pub struct DropOutcome {
 }
 
 impl DropOutcome {
+    /// Drop `index`, settled on its equilibrium on `facet` after `time` s: not certified, never
+    /// below the ground. An outcome written by hand, as a run reader is checked against.
+    pub fn at_rest(index: u64, facet: u32, time: f64) -> Self {
+        DropOutcome {
+            index,
+            settled: true,
+            facet: Some(facet),
+            flock: None,
+            time,
+            certified: false,
+            height_above: Some(0.0),
+            deepest_penetration: 0.0,
+        }
+    }
+
     /// Settled, but stopped above its stable facet by more than the contact tolerance.
     pub fn off_equilibrium(&self) -> bool {
         self.settled && self.height_above.is_some_and(|h| h > crate::dynamics::stone::REST_TOLERANCE)

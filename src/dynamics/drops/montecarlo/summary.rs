@@ -310,8 +310,7 @@ mod tests {
     }
 
     fn drop(index: u64, settled: bool, facet: u32) -> DropOutcome {
-        let (flock, time, certified, height_above, deepest_penetration) = (None, 1.0, false, Some(0.0), 0.0);
-        DropOutcome { index, settled, facet: Some(facet), flock, time, certified, height_above, deepest_penetration }
+        DropOutcome { settled, ..DropOutcome::at_rest(index, facet, 1.0) }
     }
 
     #[test]
