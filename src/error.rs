@@ -143,6 +143,10 @@ pub enum Error {
         /// What does not match.
         what: String,
     },
+    /// The CPU clock of the calling thread cannot be read: a platform without a per-thread CPU
+    /// clock, on which drops cannot be timed per core.
+    #[error("cannot read the thread's CPU clock: {0}")]
+    Clock(std::io::Error),
     /// The caller stopped a long run ([`crate::monitor::Monitor::stopped`]).
     #[error("the run was stopped before it finished")]
     Cancelled,
@@ -174,6 +178,7 @@ impl Error {
             | Error::Checkpoint(_)
             | Error::Fit(_)
             | Error::Parameter { .. }
+            | Error::Clock(_)
             | Error::Cancelled) => e,
         }
     }
@@ -200,7 +205,7 @@ impl Error {
 
     /// A short stable name of the error's kind (`io`, `parse`, `invalid-mesh`, `degenerate`,
     /// `self-intersecting`, `centre-outside-hull`, `internal-check`, `plot`, `parameter`,
-    /// `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `cancelled`), for tallies.
+    /// `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `clock`, `cancelled`), for tallies.
     pub fn kind(&self) -> &'static str {
         match self {
             Error::Io { .. } => "io",
@@ -218,6 +223,7 @@ impl Error {
             Error::Checkpoint(_) => "checkpoint",
             Error::Fit(_) => "fit",
             Error::Study { .. } => "study",
+            Error::Clock(_) => "clock",
             Error::Cancelled => "cancelled",
         }
     }

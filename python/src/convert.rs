@@ -23,7 +23,7 @@ pub(crate) fn py_err(e: Error) -> PyErr {
     let msg = e.to_string();
     match &e {
         Error::Io { error, .. } if error.kind() == std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
-        Error::Io { .. } => PyOSError::new_err(msg),
+        Error::Io { .. } | Error::Clock(_) => PyOSError::new_err(msg),
         // A parameter is named by its field name, which is the keyword argument's.
         Error::Parameter { .. }
         | Error::Unknown { .. }

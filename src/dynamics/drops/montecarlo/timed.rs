@@ -8,22 +8,14 @@ use crate::dynamics::drops::montecarlo::{run_drops_batched, summarize, DropRepor
 use crate::dynamics::stone::Stone;
 use crate::{Error, Result};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 use std::sync::Mutex;
 
-/// Where Linux keeps the scheduler's statistics of the calling thread; its first number is the
-/// thread's CPU time in nanoseconds.
-const SCHEDSTAT: &str = "/proc/thread-self/schedstat";
-
-/// CPU time of the calling thread (s): the first number of Linux's `/proc/thread-self/schedstat`
-/// (nanoseconds on the CPU) × 10⁻⁹. An [`Error::Io`] where the file cannot be read (not Linux),
-/// an [`Error::Parse`] where it does not start with a count of nanoseconds.
+/// CPU time of the calling thread (s), from the `cpu-time` crate's per-thread clock
+/// (`CLOCK_THREAD_CPUTIME_ID` on Linux and the BSDs and macOS, `GetThreadTimes` on Windows): the
+/// time the thread spent on a CPU, not the time it waited for one. [`Error::Clock`] on a platform
+/// without such a clock.
 pub fn thread_cpu_seconds() -> Result<f64> {
-    let path = PathBuf::from(SCHEDSTAT);
-    let text = std::fs::read_to_string(&path).map_err(|error| Error::Io { path: path.clone(), error })?;
-    let ns = text.split_whitespace().next().and_then(|ns| ns.parse::<f64>().ok());
-    let what = format!("expected the CPU nanoseconds of the thread first, got {text:?}");
-    Ok(ns.ok_or(Error::Parse { path, what })? * 1e-9)
+    Ok(cpu_time::ThreadTime::try_now().map_err(Error::Clock)?.as_duration().as_secs_f64())
 }
 
 /// A drop run timed by [`run_timed`]: its summary, its outcomes by drop index, and the CPU
