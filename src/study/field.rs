@@ -87,11 +87,12 @@ impl Study {
     }
 
     /// Name every pebble's file relative to `root`, as a user running from `root` names it: the
-    /// prefix `root/` is removed from each file name, in the pebble and in its report.
+    /// folders `root` that lead a file name are removed, in the pebble and in its report.
     pub fn relative_to(&mut self, root: &Path) {
-        let prefix = format!("{}/", root.display());
         for p in &mut self.pebbles {
-            p.file = p.file.replace(&prefix, "");
+            if let Ok(relative) = Path::new(&p.file).strip_prefix(root) {
+                p.file = relative.display().to_string();
+            }
             if let Ok(c) = &mut p.result {
                 c.report.file = p.file.clone();
             }
@@ -300,16 +301,16 @@ mod tests {
             file: file.into(),
             result,
         };
-        let counted = Counted::of(&a, "/data/scans/a.ply", &Options::default(), PAPER_NU, None, 0).unwrap();
+        let counted = Counted::of(&a, "field/scans/a.ply", &Options::default(), PAPER_NU, None, 0).unwrap();
         let pebbles = vec![
-            pebble("/data/scans/a.ply", Ok(counted)),
-            pebble("/data/scans/b.ply", Err("unreadable".into())),
-            pebble("/elsewhere/c.ply", Err("unreadable".into())),
+            pebble("field/scans/a.ply", Ok(counted)),
+            pebble("field/scans/b.ply", Err("unreadable".into())),
+            pebble("elsewhere/field/c.ply", Err("unreadable".into())),
         ];
         let mut study = Study { nu: PAPER_NU, meta_columns: vec![], pebbles, dynamic: false };
-        study.relative_to(Path::new("/data"));
+        study.relative_to(Path::new("field"));
         let files: Vec<&str> = study.pebbles.iter().map(|p| p.file.as_str()).collect();
-        assert_eq!(files, ["scans/a.ply", "scans/b.ply", "/elsewhere/c.ply"]);
+        assert_eq!(files, ["scans/a.ply", "scans/b.ply", "elsewhere/field/c.ply"]);
         assert_eq!(study.pebbles[0].result.as_ref().unwrap().report.file, "scans/a.ply");
     }
 }
