@@ -49,7 +49,8 @@ pub fn median_range(x: &[f64]) -> [f64; 3] {
 /// The range of non-negative values `xs` (intensity measures, periods, ratios): (the smallest,
 /// the largest), the largest at least 0; (∞, 0) for none.
 pub fn nonnegative_range(xs: impl IntoIterator<Item = f64>) -> (f64, f64) {
-    xs.into_iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)))
+    let (lo, hi) = min_max(xs);
+    (lo, hi.max(0.0))
 }
 
 /// The smallest and the largest of `values` (NaN values ignored, as [`f64::min`] and
