@@ -113,7 +113,7 @@ fn run_block(b: &Block, records: &[Record], seed: u64) -> Result<BlockResult> {
     let unit = b.r_m / (b.tan_alpha * b.tan_alpha + 1.0).sqrt();
     let mut params = rock_params(Surface::RockOnConcrete, stone.body.r_max * unit)?;
     (params.sim.contact.friction, params.sim.contact.restitution) = (FRICTION, 0.0);
-    let setup = RockSetup::with_params(&stone, Pose::Facet { id: bottom }, unit, 0.0, params);
+    let setup = RockSetup::with_params(&stone, Pose::Equilibrium { id: bottom }, unit, 0.0, params);
     let uncertainty = Uncertainty { azimuth_deg: Some([0.0, 360.0]), random_sign: true, ..Uncertainty::default() };
     let spec = EnsembleSpec { uncertainty: uncertainty.clone(), seed, members: BLOCK_MEMBERS };
     let scales: Vec<f64> = X_GRID.iter().map(|x| x * b.tan_alpha).filter(|&pga| pga <= 1.2 + 1e-9).collect();
@@ -149,11 +149,11 @@ fn run_stone(seed: u64) -> Result<(Vec<Case>, String, f64, String)> {
     let t0 = Instant::now();
     let (_, stone) = rocks::of_file("data/meshes/stone_quarry_ibois_AAA_lowres_bin.ply")?;
     let (regular, rocking) = default_poses(&stone, stone.body.r_max)?;
-    let pose = Pose::Facet { id: rocking.or(regular).context("the quarry stone has no stable pose")? };
+    let pose = Pose::Equilibrium { id: rocking.or(regular).context("the quarry stone has no stable pose")? };
     let setup = RockSetup::new(&stone, pose, 1.0, Surface::RockOnConcrete, 0.0)?;
-    let (contact_tolerance_m, azimuth_deg) = (Some([0.0, 0.002]), Some([0.0, 360.0]));
+    let (contact_tolerance_m, azimuth_deg) = (Some([0.0, 2.0]), Some([0.0, 360.0])); // as stated: in mm
     let given = Uncertainty { contact_tolerance_m, azimuth_deg, random_sign: true, ..Uncertainty::default() };
-    let uncertainty = Uncertainty::stated(&given, Surface::RockOnConcrete, 1.0, [false; 3]);
+    let uncertainty = Uncertainty::stated(&given, Surface::RockOnConcrete, [false; 3]);
     let spec = EnsembleSpec { uncertainty, seed, members: STONE_MEMBERS + STONE_TRUTHS };
     let records =
         noise_family(&Noise { components: 2, ..Noise::default() }, 1.0, &[0.2, 0.5, 1.0, 2.0], &[1], |t, _| {

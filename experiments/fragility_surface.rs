@@ -85,7 +85,7 @@ fn part_a(out: &Results) -> Result<Value> {
     let mut ideal = concrete.clone();
     (ideal.sim.contact.friction, ideal.sim.contact.restitution) = (1.0, 0.0);
     let sim = |q, ap: f64, wp: f64| -> Result<bool> {
-        let placed = place(&stone, &Pose::Facet { id: bottom }, q)?;
+        let placed = place(&stone, &Pose::Equilibrium { id: bottom }, q)?;
         // The pulse as every motion is, a record: sampled 2000 times per period.
         let tp = 2.0 * std::f64::consts::PI / wp;
         let run = shake_record(&stone, placed, q, &one_sine_pulse(ap / G, tp, tp / 2000.0)?, 0.0, r_max_m);
@@ -163,7 +163,7 @@ fn part_b(out: &Results, quarry: &Stone, records: &[Record]) -> Result<Value> {
     let mut rows = Vec::new();
     for (name, stone, id, unit) in cases {
         let Some(id) = id else { continue };
-        let (t0, pose) = (Instant::now(), Pose::Facet { id });
+        let (t0, pose) = (Instant::now(), Pose::Equilibrium { id });
         let setup = RockSetup::new(stone, pose, unit, Surface::RockOnConcrete, 0.0)?;
         let batch = run_batch(stone, &setup, records, &SCALES, None, &[], &|_| {})?;
         let secs = t0.elapsed().as_secs_f64();
@@ -187,7 +187,7 @@ fn part_b(out: &Results, quarry: &Stone, records: &[Record]) -> Result<Value> {
 /// stone (one thread), at its true size and as a 1 m rock.
 fn part_c((a, stone): &(Analysis, Stone)) -> Result<Value> {
     let (regular, _) = default_poses(stone, stone.body.r_max)?;
-    let pose = Pose::Facet { id: regular.context("the quarry stone has no regular pose")? };
+    let pose = Pose::Equilibrium { id: regular.context("the quarry stone has no regular pose")? };
     let noise = Noise { duration: 60.0, period: 0.5, dt: 1.0 / 800.0, components: 3, ..Noise::default() };
     let (rec, t_make) = timed(|| filtered_noise(&noise, 0.1, 11));
     let rec = rec?;

@@ -102,7 +102,7 @@ pub enum Error {
     /// A name that is not one of those known: a preset, a surface, a shape, a unit, a family.
     #[error("unknown {what} {given:?}: expected one of {}", .allowed.join(", "))]
     Unknown {
-        /// What kind of name was expected (`contact preset`, `acceleration unit`…).
+        /// What kind of name was expected (`contact model`, `acceleration unit`…).
         what: &'static str,
         /// The name given.
         given: String,
@@ -126,6 +126,13 @@ pub enum Error {
         pose: String,
         /// Why the stone does not stand in it, and what to choose instead.
         what: String,
+    },
+    /// A dynamic run on a mesh whose real size is neither given nor known: its result depends on
+    /// the size, and no one guess is right for dice and field rocks ([`crate::dynamics::size`]).
+    #[error("{mesh}: {}", size_unknown(&|n: &str| n.to_string()))]
+    SizeUnknown {
+        /// The mesh concerned, as reported.
+        mesh: String,
     },
     /// Results of long runs that do not belong together: a checkpoint written by a different
     /// run, or partial results that differ in their parameters or outcomes.
@@ -178,6 +185,7 @@ impl Error {
             | Error::Checkpoint(_)
             | Error::Fit(_)
             | Error::Parameter { .. }
+            | Error::SizeUnknown { .. }
             | Error::Clock(_)
             | Error::Cancelled) => e,
         }
@@ -205,7 +213,7 @@ impl Error {
 
     /// A short stable name of the error's kind (`io`, `parse`, `invalid-mesh`, `degenerate`,
     /// `self-intersecting`, `centre-outside-hull`, `internal-check`, `plot`, `parameter`,
-    /// `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `clock`, `cancelled`), for tallies.
+    /// `size-unknown`, `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `clock`, `cancelled`), for tallies.
     pub fn kind(&self) -> &'static str {
         match self {
             Error::Io { .. } => "io",
@@ -217,6 +225,7 @@ impl Error {
             Error::Check { .. } => "internal-check",
             Error::Plot { .. } => "plot",
             Error::Parameter { .. } => "parameter",
+            Error::SizeUnknown { .. } => "size-unknown",
             Error::Unknown { .. } => "unknown-name",
             Error::Motion { .. } => "motion",
             Error::Pose { .. } => "pose",
@@ -239,6 +248,7 @@ impl Error {
     pub fn spelled(&self, spell: &dyn Fn(&str) -> String) -> String {
         match self {
             Error::Parameter { name, value, expected } => format!("{} must be {expected}, got {value}", spell(name)),
+            Error::SizeUnknown { mesh } => format!("{mesh}: {}", size_unknown(spell)),
             e => e.to_string(),
         }
     }
@@ -257,6 +267,17 @@ impl Error {
     pub fn check(what: impl Into<String>) -> Self {
         Error::Check { path: MEMORY.into(), what: what.into() }
     }
+}
+
+/// What [`Error::SizeUnknown`] says, its parameters spelled by `spell`.
+fn size_unknown(spell: &dyn Fn(&str) -> String) -> String {
+    format!(
+        "its length unit is not known, and the result depends on the stone's real size (the rolling resistance \
+         relative to R_max; under shaking, the real frequencies of the motion): give {} (mm, cm, m, km, in or \
+         metres per mesh unit) or {} (R_max in metres)",
+        spell("length_unit"),
+        spell("size")
+    )
 }
 
 fn near_text(near: &Option<[f64; 3]>) -> String {

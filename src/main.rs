@@ -49,7 +49,19 @@ fn parse() -> Cli {
     Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
 }
 
+/// Printing into a closed pipe (`rocking analyze | head`) ends the program quietly, as Unix
+/// tools do, instead of a panic in `println!`: the signal's default action is restored (Rust
+/// ignores SIGPIPE, which turns the write into an error that `println!` panics on).
+fn exit_quietly_on_a_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to its default before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() {
+    exit_quietly_on_a_closed_pipe();
     let cli = parse();
     let result = match cli.command {
         Command::Analyze(a) => cmd::analyze::run_analyze(a),

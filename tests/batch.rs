@@ -31,6 +31,8 @@ fn header(drops: u64, preset: Preset, certificate: CertificateMode) -> RunHeader
         params: preset.params(Surface::SteelOnWood),
         certificate,
         preset: Some(preset.name().into()),
+        surface: Some(Surface::SteelOnWood),
+        r_max_m: None,
         center_of_mass: None,
         shard: Shard::ALL,
     }

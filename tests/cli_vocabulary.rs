@@ -24,6 +24,7 @@ fn the_old_spelling_of_the_length_unit_gives_the_same_summary() {
     for cmd in [&["analyze"][..], &["drop"], &["perturb"], &["shake"], &["study"]] {
         let (_, help, _) = rocking(&[cmd, &["--help"]].concat());
         assert!(help.contains("--length-unit <UNIT>"), "{cmd:?}: {help}");
+        assert!(help.contains("Also spelled --unit"), "{cmd:?}: {help}");
     }
 }
 
@@ -82,17 +83,286 @@ fn the_equilibrium_analyze_prints_is_the_one_shake_takes() {
     let rows: String = (0..=50).map(|i| format!("{:.2},0\n", i as f64 * 0.01)).collect();
     std::fs::write(&motion, format!("time,ax\n{rows}")).unwrap();
     let motion = motion.to_str().unwrap();
-    let pose = format!("facet:{id}");
-    let (ok, out, err) = rocking(&["shake", "--pose", &pose, "--motion", motion, "--max-time", "0.5"]);
-    assert!(ok, "{pose}: {err}");
-    assert!(out.contains(&format!("settled onto equilibrium {id} ")), "{out}");
-    // The hull facet's number is refused, and the refusal names the equilibrium on it.
-    let pose = format!("facet:{facet}");
-    let (ok, _, err) = rocking(&["shake", "--pose", &pose, "--motion", motion]);
-    assert!(!ok, "{pose} ran");
-    assert!(err.contains(&format!("hull facet {facet} holds stable micro-equilibrium {id}")), "{err}");
+    // equilibrium:ID takes the equilibrium's index, facet:F the hull facet's number: the same
+    // stone standing the same way, to the byte.
+    let shake = |pose: &str| rocking(&["shake", "--pose", pose, "--motion", motion, "--max-time", "0.5"]);
+    let (ok, by_id, err) = shake(&format!("equilibrium:{id}"));
+    assert!(ok, "{err}");
+    assert!(by_id.contains(&format!("settled onto equilibrium {id} ")), "{by_id}");
+    let (ok, by_facet, err) = shake(&format!("facet:{facet}"));
+    assert!(ok, "{err}");
+    assert_eq!(by_id, by_facet);
+    // facet:ID named an equilibrium before: not read that way silently. Hull facet `id` holds
+    // no stable equilibrium here, so the refusal says so and points to equilibrium:ID.
+    let (ok, _, err) = shake(&format!("facet:{id}"));
+    assert!(!ok, "facet:{id} ran");
+    assert!(err.contains(&format!("hull facet {id} holds no stable micro-equilibrium")), "{err}");
+    assert!(err.contains(&format!("write equilibrium:{id} for it (it rests on hull facet {facet})")), "{err}");
+    // --equilibrium takes the equilibrium's index; a facet's number is refused, naming the
+    // equilibrium on that facet.
     let (ok, _, err) = rocking(&["perturb", "--equilibrium", &facet.to_string()]);
     assert!(!ok && err.contains(&format!("hull facet {facet} holds stable micro-equilibrium {id}")), "{err}");
+}
+
+/// Every `--option` a command's help names (in its descriptions) is an option of that command:
+/// no help promises what its command refuses.
+#[test]
+fn no_help_names_an_option_its_command_does_not_take() {
+    let mut wrong = Vec::new();
+    for cmd in COMMANDS {
+        let (ok, help, err) = rocking(&[cmd, &["--help"]].concat());
+        assert!(ok, "{cmd:?}: {err}");
+        // The options it takes: the flags that start an option line (and their aliases, which
+        // clap does not list: none is named in a description).
+        let taken: Vec<String> = help
+            .lines()
+            .filter_map(|l| {
+                let t = l.trim_start();
+                let t = t.strip_prefix("-").filter(|_| t.len() > 2 && t.as_bytes()[1] != b'-').map_or(t, |_| &t[4..]);
+                t.strip_prefix("--").map(|f| f.split([' ', '<', '=', ',', '[']).next().unwrap_or("").to_string())
+            })
+            .collect();
+        // Another command's options, in its own words (`rocking drop --shard …`), and the other
+        // spellings of an option ("also spelled --unit") are not this command's promises.
+        let own: String = help
+            .split('`')
+            .enumerate()
+            .filter(|(k, part)| k % 2 == 0 || !(part.starts_with("rocking ") || part.contains("--pose")))
+            .map(|(_, part)| part)
+            .collect::<Vec<_>>()
+            .join(" ");
+        let own = own.split_whitespace().collect::<Vec<_>>().join(" ").replace("spelled --", "spelled ");
+        for word in own.split(|c: char| !(c.is_ascii_alphanumeric() || c == '-')) {
+            if let Some(name) = word.strip_prefix("--").filter(|n| !n.is_empty()) {
+                if !taken.iter().any(|t| t == name) {
+                    wrong.push(format!("rocking {}: --{name}", cmd.join(" ")));
+                }
+            }
+        }
+    }
+    wrong.dedup();
+    assert!(wrong.is_empty(), "options named in a help that the command does not take:\n{}", wrong.join("\n"));
+}
+
+/// The commands and subcommands whose help is read.
+const COMMANDS: [&[&str]; 13] = [
+    &[],
+    &["analyze"],
+    &["generate"],
+    &["planar"],
+    &["planar", "ellipse"],
+    &["planar", "regular"],
+    &["drop"],
+    &["merge"],
+    &["perturb"],
+    &["shake"],
+    &["study"],
+    &["study", "synthetic"],
+    &["study", "fit-nu"],
+];
+
+/// The file names `-o` promises in a help text (`x.png/.svg` is x.png and x.svg), in `part` of it.
+fn promised(part: &str) -> std::collections::BTreeSet<String> {
+    let mut out = std::collections::BTreeSet::new();
+    for word in part.split(|c: char| c.is_whitespace() || c == ',' || c == ';' || c == '(' || c == ')' || c == ':') {
+        let word = word.trim_end_matches('.');
+        let Some((stem, exts)) = word.split_once('.') else { continue };
+        if stem.is_empty() || !stem.chars().all(|c| c.is_ascii_lowercase() || c == '_') {
+            continue;
+        }
+        for ext in exts.split("/.") {
+            if ["json", "jsonl", "csv", "png", "svg", "ply", "html"].contains(&ext) {
+                out.insert(format!("{stem}.{ext}"));
+            }
+        }
+    }
+    out
+}
+
+/// The help text of `-o` of `rocking ARGS`, on one line: its option line and the description
+/// lines under it, up to the next option.
+fn output_help(args: &[&str]) -> String {
+    let (_, help, _) = rocking(&[args, &["--help"]].concat());
+    let lines: Vec<&str> = help.lines().collect();
+    let start = lines.iter().position(|l| l.trim_start().starts_with("-o, --output")).expect("an -o option");
+    let is_option = |l: &str| l.starts_with("  -") && !l.starts_with("   ");
+    let end = lines[start + 1..].iter().position(|l| is_option(l)).map_or(lines.len(), |k| start + 1 + k);
+    lines[start..end].join(" ").split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The files a run wrote into `dir`.
+fn written(dir: &std::path::Path) -> std::collections::BTreeSet<String> {
+    std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect()
+}
+
+#[test]
+fn every_output_folder_holds_the_files_its_help_lists() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let run = |args: &[&str]| {
+        let (ok, _, err) = rocking(args);
+        assert!(ok, "{args:?}: {err}");
+    };
+    run(&["analyze", "-o", &out("analyze")]);
+    assert_eq!(written(dir.path().join("analyze").as_path()), promised(&output_help(&["analyze"])));
+    run(&["drop", "-n", "4", "-o", &out("drop")]);
+    assert_eq!(written(dir.path().join("drop").as_path()), promised(&output_help(&["drop"])));
+    let part = out("part.jsonl");
+    run(&["drop", "-n", "4", "--checkpoint", &part]);
+    run(&["merge", &part, "-o", &out("merge")]);
+    assert_eq!(written(dir.path().join("merge").as_path()), promised(&output_help(&["merge"])));
+    run(&["perturb", "--equilibrium", "0", "-n", "1", "--eps-steps", "1", "-o", &out("perturb")]);
+    assert_eq!(written(dir.path().join("perturb").as_path()), promised(&output_help(&["perturb"])));
+    // shake: one sentence of its -o help per kind of run.
+    let help = output_help(&["shake"]);
+    let sentence = |start: &str| {
+        let from = help.find(start).unwrap_or_else(|| panic!("{start:?} in {help}"));
+        let rest = &help[from..];
+        rest[..rest.find(". ").map_or(rest.len(), |k| k + 1)].to_string()
+    };
+    let records = dir.path().join("records");
+    std::fs::create_dir(&records).unwrap();
+    let rows: String =
+        (0..=100).map(|i| format!("{:.2},{:.4}\n", i as f64 * 0.01, 0.05 * (i as f64 * 0.3).sin())).collect();
+    std::fs::write(records.join("a.csv"), format!("time,ax\n{rows}")).unwrap();
+    let motion = records.join("a.csv");
+    let motion = motion.to_str().unwrap();
+    let records = records.to_str().unwrap();
+    run(&["shake", "-n", "1", "--pga-steps", "1", "-o", &out("sweep")]);
+    assert_eq!(written(dir.path().join("sweep").as_path()), promised(&sentence("A sweep")));
+    run(&["shake", "--pose", "equilibrium:10", "--motion", motion, "-o", &out("one")]);
+    assert_eq!(written(dir.path().join("one").as_path()), promised(&sentence("One record")));
+    run(&["shake", "--pose", "equilibrium:10", "--motion", motion, "--ensemble", "2", "-o", &out("ensemble")]);
+    assert_eq!(written(dir.path().join("ensemble").as_path()), promised(&sentence("An ensemble")));
+    run(&["shake", "--pose", "equilibrium:10", "--records", records, "--scales", "0.5,1", "-o", &out("batch")]);
+    let batch = sentence("A batch");
+    let with_ensemble = promised(&batch[batch.find("with --ensemble").unwrap()..]);
+    let plain: std::collections::BTreeSet<String> = promised(&batch).difference(&with_ensemble).cloned().collect();
+    assert_eq!(written(dir.path().join("batch").as_path()), plain);
+    let args = ["shake", "--pose", "equilibrium:10", "--records", records, "--scales", "0.5,1", "--ensemble", "2"];
+    run(&[&args[..], &["-o", &out("batch_ensemble")]].concat());
+    assert_eq!(written(dir.path().join("batch_ensemble").as_path()), promised(&batch));
+}
+
+/// The same unit-less mesh is refused by every command that simulates, with the same sentence,
+/// and runs as the bundled stone once its unit is given — by any of the unit's spellings.
+#[test]
+fn one_size_rule_for_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("mystone.ply");
+    std::fs::write(&mesh, rocking_stones::bundled::PLY).unwrap();
+    let mesh = mesh.to_str().unwrap();
+    let scans = dir.path().join("scans");
+    std::fs::create_dir(&scans).unwrap();
+    std::fs::write(scans.join("mystone.ply"), rocking_stones::bundled::PLY).unwrap();
+    let scans = scans.to_str().unwrap();
+    let motion = dir.path().join("still.csv");
+    std::fs::write(&motion, "time,ax\n0,0\n0.01,0\n0.02,0\n").unwrap();
+    let motion = motion.to_str().unwrap();
+    let study_out = dir.path().join("study").to_str().unwrap().to_string();
+    const SAYS: &str = "its length unit is not known, and the result depends on the stone's real size";
+    const HOW: &str = "give --length-unit (mm, cm, m, km, in or metres per mesh unit) or --size (R_max in metres)";
+    for args in [
+        &["drop", mesh, "-n", "1"][..],
+        &["perturb", mesh, "--equilibrium", "10", "-n", "1", "--eps-steps", "1"],
+        &["shake", mesh, "-n", "1", "--pga-steps", "1"],
+        &["shake", mesh, "--pose", "equilibrium:10", "--motion", motion],
+        &["study", scans, "--dynamic", "--trials", "1", "-o", &study_out],
+    ] {
+        let (ok, _, err) = rocking(args);
+        assert!(!ok, "{args:?} ran");
+        assert!(err.contains(SAYS) && err.contains(HOW), "{args:?}: {err}");
+    }
+    // Given in millimetres (or --unit mm, or as R_max), the copy is the bundled stone.
+    let bundled = rocking(&["drop", "-n", "3", "--json"]).1;
+    for unit in [&["--length-unit", "mm"][..], &["--unit", "mm"], &["--length-unit", "0.001"]] {
+        let (ok, copy, err) = rocking(&[&["drop", mesh, "-n", "3", "--json"][..], unit].concat());
+        assert!(ok, "{unit:?}: {err}");
+        let strip = |t: &str| t.replace(mesh, "MESH").replace(rocking_stones::bundled::NAME, "MESH");
+        assert_eq!(strip(&copy), strip(&bundled), "{unit:?}");
+    }
+    // One set of unit names: a name outside it is refused by every command alike.
+    for cmd in [&["analyze", mesh][..], &["drop", mesh], &["perturb", mesh], &["shake", mesh]] {
+        let (ok, _, err) = rocking(&[cmd, &["--length-unit", "meters"]].concat());
+        assert!(!ok && err.contains("--length-unit must be mm, cm, m, km, in or a positive number"), "{cmd:?}: {err}");
+    }
+}
+
+/// Options in real units: the summary prints the default in both forms, and giving back the
+/// printed SI value runs with the default (to rounding).
+#[test]
+fn options_take_the_stone_s_real_units() {
+    let params = |args: &[&str]| {
+        let (ok, out, err) = rocking(&[args, &["--json"]].concat());
+        assert!(ok, "{args:?}: {err}");
+        serde_json::from_str::<serde_json::Value>(&out).unwrap()["params"].clone()
+    };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-3 * b.abs();
+    let default = params(&["perturb", "--equilibrium", "10", "-n", "1", "--eps-steps", "1"]);
+    // 1/240 s of the scaled body is 1.7595 ms for R_max = 178.323 mm; 120 Hz is 284.17 Hz.
+    let perturb = ["perturb", "--equilibrium", "10", "-n", "1", "--eps-steps", "1"];
+    let options = ["--dt", "0.0017595", "--contact-frequency", "284.17", "--rolling-resistance-mm", "0.1"];
+    let given = params(&[&perturb[..], &options].concat());
+    assert!(close(given["contact_frequency"].as_f64().unwrap(), default["contact_frequency"].as_f64().unwrap()));
+    for key in ["dt", "rolling_resistance", "max_time", "friction"] {
+        let (g, d) = (given["sim"][key].as_f64().unwrap(), default["sim"][key].as_f64().unwrap());
+        assert!(close(g, d), "{key}: {given} vs {default}");
+    }
+    let drop = params(&["drop", "-n", "1", "--spin", "59.2", "--horizontal-speed", "1.69", "--max-time", "25.34"]);
+    let default = params(&["drop", "-n", "1"]);
+    for key in ["spin", "horizontal_speed", "max_time"] {
+        assert!(close(drop[key].as_f64().unwrap(), default[key].as_f64().unwrap()), "{key}: {drop} vs {default}");
+    }
+    // A value out of range is told back in the unit it was given in.
+    let (ok, _, err) = rocking(&["perturb", "--max-time", "-2"]);
+    assert!(!ok && err.contains("--max-time must be positive and finite, got -2 s"), "{err}");
+    // The former spellings whose unit changed say what replaced them.
+    let dir = tempfile::tempdir().unwrap();
+    let motion = dir.path().join("still.csv");
+    std::fs::write(&motion, "time,ax\n0,0\n0.01,0\n0.02,0\n").unwrap();
+    let motion = motion.to_str().unwrap();
+    for (args, says) in [
+        (&["drop", "--rolling-resistance", "0.02"][..], "--rolling-resistance-mm"),
+        (&["drop", "--torsional-friction", "0.02"], "--torsional-friction-mm"),
+        (
+            &["shake", "--pose", "equilibrium:10", "--motion", motion, "--ensemble", "2", "--contact-tolerance", "2"],
+            "--contact-tolerance-mm",
+        ),
+    ] {
+        let (ok, _, err) = rocking(args);
+        assert!(!ok && err.contains(says), "{args:?}: {err}");
+    }
+}
+
+/// `--certificate` takes none, facet or flock on drop and perturb alike.
+#[test]
+fn the_certificate_takes_the_same_values_everywhere() {
+    for cmd in [&["drop", "-n", "2"][..], &["perturb", "--equilibrium", "10", "-n", "1", "--eps-steps", "1"]] {
+        for mode in ["none", "facet", "flock"] {
+            let (ok, _, err) = rocking(&[cmd, &["--certificate", mode]].concat());
+            assert!(ok, "{cmd:?} {mode}: {err}");
+        }
+        let (ok, _, err) = rocking(&[cmd, &["--certificate", "always"]].concat());
+        assert!(!ok && err.contains("expected one of none, facet, flock"), "{cmd:?}: {err}");
+    }
+}
+
+/// A merged run prints what the run it merges prints, SI values included.
+#[test]
+fn merge_prints_what_drop_prints() {
+    let dir = tempfile::tempdir().unwrap();
+    let part = |i: usize| dir.path().join(format!("part{i}.jsonl")).to_str().unwrap().to_string();
+    for i in 0..2 {
+        let shard = format!("{i}/2");
+        let (ok, _, err) = rocking(&["drop", "-n", "6", "--shard", &shard, "--checkpoint", &part(i)]);
+        assert!(ok, "{err}");
+    }
+    let (ok, merged, err) = rocking(&["merge", &part(0), &part(1)]);
+    assert!(ok, "{err}");
+    let (ok, whole, err) = rocking(&["drop", "-n", "6"]);
+    assert!(ok, "{err}");
+    assert_eq!(merged, whole);
+    assert!(merged.contains(" = 1.69 m/s") && merged.contains("for R_max = 178.3 mm"), "{merged}");
 }
 
 /// The options of `rocking ARGS --help` that have no description.
@@ -126,21 +396,7 @@ fn undescribed(args: &[&str]) -> (Vec<String>, usize) {
 
 #[test]
 fn every_option_of_every_command_is_described() {
-    let commands: [&[&str]; 13] = [
-        &[],
-        &["analyze"],
-        &["generate"],
-        &["planar"],
-        &["planar", "ellipse"],
-        &["planar", "regular"],
-        &["drop"],
-        &["merge"],
-        &["perturb"],
-        &["shake"],
-        &["study"],
-        &["study", "synthetic"],
-        &["study", "fit-nu"],
-    ];
+    let commands = COMMANDS;
     let mut all = Vec::new();
     let mut counted = 0;
     for cmd in commands {
@@ -180,4 +436,22 @@ fn the_drop_summary_gives_the_launch_as_multiples_and_for_the_real_stone() {
     // No number printed with all its binary digits.
     assert!(out.contains("rolling resistance 0.001122 R_max"), "{out}");
     assert!(!out.split(|c: char| !(c.is_ascii_digit() || c == '.')).any(|w| w.len() > 12), "{out}");
+}
+
+/// A reader that stops early (`rocking analyze | head -1`) ends the program quietly, without a
+/// panic.
+#[test]
+fn a_closed_pipe_ends_the_program_quietly() {
+    use std::io::Read;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rocking"))
+        .args(["analyze", "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked") && !err.contains("Broken pipe"), "{err}");
 }

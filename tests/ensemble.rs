@@ -22,7 +22,7 @@ fn spec(uncertainty: Uncertainty, seed: u64, members: u64) -> EnsembleSpec {
 }
 
 fn block_setup(s: &Stone) -> RockSetup {
-    RockSetup::new(s, Pose::Facet { id: bottom(s) }, 0.25, Surface::StoneOnStone, 0.3).unwrap()
+    RockSetup::new(s, Pose::Equilibrium { id: bottom(s) }, 0.25, Surface::StoneOnStone, 0.3).unwrap()
 }
 
 #[test]
@@ -87,7 +87,7 @@ fn the_base_contact_tolerance_moves_the_pivot_as_the_tipping_polar_says() {
     let s = bevelled_block(rise);
     let mut p: RestingParams = rock_params(Surface::RockOnConcrete, s.body.r_max).unwrap();
     (p.sim.contact.friction, p.sim.contact.restitution) = (1.0, 0.0);
-    let setup = RockSetup::with_params(&s, Pose::Facet { id: bottom(&s) }, 1.0, 0.0, p.clone());
+    let setup = RockSetup::with_params(&s, Pose::Equilibrium { id: bottom(&s) }, 1.0, 0.0, p.clone());
     let facet = base_facet(&s, &setup).unwrap();
     let down = s.body.facet_normals[facet as usize];
     let corners: Vec<Point3> = s.body.corners.iter().map(|c| Point3::from(c * s.body.r_max)).collect();

@@ -61,17 +61,17 @@ fn a_motion_that_cannot_drive_a_run_is_named() {
 fn a_pose_the_stone_cannot_stand_in_is_refused_with_the_ones_it_can() {
     let s = stone(generate::cuboid(1.0, 0.8, 0.6));
     let p = rock_params(Surface::RockOnConcrete, 0.5).unwrap();
-    let e = place(&s, &Pose::Facet { id: 999 }, &p).err().expect("facet 999 accepted");
+    let e = place(&s, &Pose::Equilibrium { id: 999 }, &p).err().expect("facet 999 accepted");
     match &e {
         Error::Pose { pose, what } => {
-            assert_eq!(pose, "facet:999");
-            assert!(what.contains("stable ones:"), "{what}");
+            assert_eq!(pose, "equilibrium:999");
+            assert!(what.contains("stable ones (with their hull facets):"), "{what}");
             assert!(what.contains(&bottom(&s).to_string()), "{what}");
         }
         other => panic!("expected a pose error, got {other:?}"),
     }
     assert_eq!(e.kind(), "pose");
-    assert!(place(&s, &Pose::Facet { id: bottom(&s) }, &p).is_ok());
+    assert!(place(&s, &Pose::Equilibrium { id: bottom(&s) }, &p).is_ok());
 }
 
 #[test]

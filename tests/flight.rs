@@ -42,6 +42,8 @@ fn header(drops: u64, preset: Preset, flight: Flight, certificate: CertificateMo
         params,
         certificate,
         preset: Some(preset.name().into()),
+        surface: None,
+        r_max_m: None,
         center_of_mass: None,
         shard: Shard::ALL,
     }
@@ -169,13 +171,19 @@ fn default_numerics_are_free_flight_at_the_presets_longest_stable_step_and_optio
     let reference = cli_params(&["--reference"]);
     assert_eq!((reference["flight"].as_str(), reference["dt"].as_f64()), (Some("free"), Some(REFERENCE_DT)));
     assert!(Preset::Throw.largest_stable_dt() > REFERENCE_DT);
-    let pinned = cli_params(&["--reference", "--flight", "rapier", "--dt", "0.005"]);
-    assert_eq!((pinned["flight"].as_str(), pinned["dt"].as_f64()), (Some("rapier"), Some(0.005)));
+    // Options are in real seconds for the stone's size: the bundled stone's R_max = 178.3 mm
+    // turns 1 ms into 1 ms / √0.1783 of the scaled body.
+    let pinned = cli_params(&["--reference", "--flight", "rapier", "--dt", "0.001"]);
+    let r_max_m: f64 = 0.178323;
+    assert_eq!(pinned["flight"].as_str(), Some("rapier"));
+    let dt = pinned["dt"].as_f64().unwrap();
+    assert!((dt - 0.001 / r_max_m.sqrt()).abs() < 1e-6 * dt, "{dt}");
     // The solver's sub-steps: 4 unless given.
     assert_eq!(default["solver_iterations"].as_u64(), Some(4));
     assert_eq!(cli_params(&["--solver-iterations", "16"])["solver_iterations"].as_u64(), Some(16));
     // A step may be given as a fraction; one that is not a positive finite time is refused.
-    assert_eq!(cli_params(&["--dt", "1/120"])["dt"].as_f64(), Some(1.0 / 120.0));
+    let dt = cli_params(&["--dt", "1/2000"])["dt"].as_f64().unwrap();
+    assert!((dt - 1.0 / 2000.0 / r_max_m.sqrt()).abs() < 1e-6 * dt, "{dt}");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rocking")).args(["drop", "--dt", "1/0"]).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains("--dt must be a positive time step"), "{err}");
@@ -513,7 +521,7 @@ fn a_rock_under_a_two_g_record_stays_within_the_depth_bound() {
     let record = Record::new("two g", dt, accel).unwrap();
     let mut worst: f64 = 0.0;
     for id in [3, 10] {
-        let setup = RockSetup::new(&s, Pose::Facet { id }, 1e-3, Surface::RockOnConcrete, 0.4).unwrap();
+        let setup = RockSetup::new(&s, Pose::Equilibrium { id }, 1e-3, Surface::RockOnConcrete, 0.4).unwrap();
         let run = run_record(&s, &setup, &record, 1.0).unwrap();
         assert!(run.motion.pga_g > 2.0, "the record's PGA: {} g", run.motion.pga_g);
         let d = run.rock.deepest_penetration;

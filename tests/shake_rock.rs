@@ -21,7 +21,7 @@ use std::f64::consts::PI;
 
 /// Shake `s` (R_max = `r_max_m` metres) standing on its bottom face with `motion`.
 fn shake(s: &Stone, p: &RestingParams, motion: &Record, r_max_m: f64) -> RockRun {
-    let placed = place(s, &Pose::Facet { id: bottom(s) }, p).unwrap();
+    let placed = place(s, &Pose::Equilibrium { id: bottom(s) }, p).unwrap();
     shake_record(s, placed, p, motion, 0.0, r_max_m)
 }
 
@@ -64,8 +64,9 @@ fn a_sweep_trial_is_the_field_run_of_the_same_stone() {
         assert_eq!(trial.time * r_max_m.sqrt(), run.time_s, "{amp} g");
         let along_y = Record::new("y", m.dt, m.accel.iter().map(|a| [0.0, a[0], 0.0]).collect()).unwrap();
         let turned =
-            shake_record(&s, place(&s, &Pose::Facet { id: bottom(&s) }, &p).unwrap(), &p, &m, PI / 2.0, r_max_m);
-        let y = shake_record(&s, place(&s, &Pose::Facet { id: bottom(&s) }, &p).unwrap(), &p, &along_y, 0.0, r_max_m);
+            shake_record(&s, place(&s, &Pose::Equilibrium { id: bottom(&s) }, &p).unwrap(), &p, &m, PI / 2.0, r_max_m);
+        let y =
+            shake_record(&s, place(&s, &Pose::Equilibrium { id: bottom(&s) }, &p).unwrap(), &p, &along_y, 0.0, r_max_m);
         assert_eq!(turned.outcome, y.outcome);
         assert!((turned.max_tilt_deg - y.max_tilt_deg).abs() <= 1e-6 * y.max_tilt_deg.max(1e-3), "{amp} g");
     }
@@ -249,7 +250,8 @@ fn as_scanned_pose_settles_or_is_refused() {
     assert!((placed.settling_tilt.to_degrees() - 10.0).abs() < 0.5, "{}", placed.settling_tilt.to_degrees());
     assert!("quat:0,0,0,0".parse::<Pose>().is_err());
     assert!("facet:x".parse::<Pose>().is_err());
-    assert_eq!("facet:3".parse::<Pose>().unwrap(), Pose::Facet { id: 3 });
+    assert_eq!("equilibrium:3".parse::<Pose>().unwrap(), Pose::Equilibrium { id: 3 });
+    assert_eq!("facet:3".parse::<Pose>().unwrap(), Pose::HullFacet { facet: 3 });
 }
 
 /// The one-sine pulse (Zhang & Makris 2001 "type A", a_g = a_p sin ω_p t for one period) on a
@@ -316,7 +318,7 @@ fn a_record_as_at2_and_as_csv_gives_identical_runs() {
     assert_eq!(from_at2.dt, from_csv.dt);
     assert_eq!(from_at2.accel, from_csv.accel);
     let s = stone(generate::cuboid(1.0, 0.6, 2.0));
-    let setup = RockSetup::new(&s, Pose::Facet { id: bottom(&s) }, 0.4, Surface::RockOnConcrete, 0.3).unwrap();
+    let setup = RockSetup::new(&s, Pose::Equilibrium { id: bottom(&s) }, 0.4, Surface::RockOnConcrete, 0.3).unwrap();
     let a = run_record(&s, &setup, &from_at2, 1.5).unwrap();
     let b = run_record(&s, &setup, &from_csv, 1.5).unwrap();
     assert!(a.rock.max_tilt_deg > 0.1, "the record should rock the block ({}°)", a.rock.max_tilt_deg);
@@ -333,7 +335,7 @@ fn batches_are_independent_of_the_thread_count() {
         .iter()
         .map(|&seed| filtered_noise(&Noise { duration: 4.0, components: 2, ..Noise::default() }, 1.0, seed).unwrap())
         .collect();
-    let setup = RockSetup::new(&s, Pose::Facet { id: bottom(&s) }, 0.3, Surface::RockOnConcrete, 0.5).unwrap();
+    let setup = RockSetup::new(&s, Pose::Equilibrium { id: bottom(&s) }, 0.3, Surface::RockOnConcrete, 0.5).unwrap();
     let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
     let scales = [0.2, 0.45, 0.8];
     let one = pool(1).install(|| run_batch(&s, &setup, &recs, &scales, None, &[], &|_| {})).unwrap();
@@ -508,7 +510,8 @@ fn options_that_do_not_apply_are_refused() {
     refused(&["shake", "--records", "dir"], "--pose");
     refused(&["shake", "--scales", "1,2"], "--pose");
     refused(&["perturb", "--length-unit", "mm", "--size", "0.2"], "--size");
-    refused(&["perturb", "--preset", "gravel"], "expected one of surface, damped");
+    refused(&["perturb", "--contact-model", "gravel"], "expected one of surface, damped");
+    refused(&["perturb", "--preset", "damped"], "--contact-model surface|damped");
     // The library names a parameter by its field; the command line by its flag.
     refused(&["perturb", "--dt", "1"], "error: --dt must be");
     refused(
@@ -520,7 +523,7 @@ fn options_that_do_not_apply_are_refused() {
         "'--solver-iterations <SOLVER_ITERATIONS>': expected a whole number, at least 1",
     );
     refused(&["perturb", "--solver-iterations", "2000"], "error: --solver-iterations must be in 1..=1000");
-    refused(&["shake", "--length-unit", "yard"], "error: --length-unit must be mm, cm, m, km");
+    refused(&["shake", "--length-unit", "yard"], "--length-unit must be mm, cm, m, km, in");
     refused(&["perturb", "--size=-2"], "error: --size must be a positive length");
     refused(&["drop", "-n", "1", "--restitution", "1.5"], "error: --restitution must be in [0, 1], got 1.5");
     // The bundled stone at its true size, on the default surface pair.

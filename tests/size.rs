@@ -1,7 +1,6 @@
-//! No silent size: a dynamics command on a mesh whose length unit is neither given nor known
-//! says on standard error, before running, what it assumed, and its JSON records it; a size that
-//! is not plausible for a stone is warned about; the bundled stone (in millimetres) needs no
-//! option.
+//! No guessed size: a dynamics command runs a mesh at the size it is given (a length unit or
+//! R_max) or knows (the bundled stone, in millimetres), and refuses a mesh without one; a size
+//! that is not plausible for a stone is warned about; the JSON records the real R_max.
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -29,86 +28,64 @@ fn copy_and_record(dir: &Path) -> (String, String) {
     (mesh.to_str().unwrap().to_string(), rec.to_str().unwrap().to_string())
 }
 
-const NOTE: &str = "its length unit is not known; assuming metres (R_max = 178.3 m)";
-const HOW: &str = "give --length-unit mm|cm|m|km or --size R_MAX_M.";
 const IMPLAUSIBLE: &str = "R_max = 178.3 m is outside the plausible sizes of a stone, a pebble or a field rock \
                            (R_max 2 mm to 20 m)";
 
 #[test]
-fn a_copy_of_the_bundled_stone_without_a_unit_is_said_to_be_assumed_in_metres_and_flagged() {
+fn a_field_rock_runs_at_the_size_it_is_given_and_an_implausible_one_is_flagged() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, rec) = copy_and_record(dir.path());
     let shake = |extra: &[&str]| {
         let mut args = vec!["shake"];
         args.extend_from_slice(extra);
-        args.extend_from_slice(&["--pose", "facet:3", "--motion", &rec, "--columns", "time_s,ax_g", "--json"]);
-        let (ok, j, err) = rocking(&args);
-        assert!(ok, "{err}");
-        (j, err)
+        args.extend_from_slice(&["--pose", "equilibrium:3", "--motion", &rec, "--columns", "time_s,ax_g", "--json"]);
+        rocking(&args)
     };
-    // The copy, no unit: metres assumed and said, first thing on standard error, with what it
-    // implies and how to change it; 178 m is flagged; the JSON records it. The 178 m rock stands.
-    let (j, err) = shake(&[&mesh]);
-    let first = err.lines().next().unwrap_or("");
-    assert!(first.starts_with("note: ") && first.contains(&format!("mystone.ply: {NOTE}")), "{err}");
-    assert!(first.contains("rolling resistance") && first.ends_with(HOW), "{err}");
-    assert!(err.lines().any(|l| l.starts_with("warning: ") && l.contains(IMPLAUSIBLE)), "{err}");
-    assert_eq!(j["size_assumed"], true);
-    assert!((j["r_max_m"].as_f64().unwrap() - 178.323).abs() < 1e-3, "{}", j["r_max_m"]);
-    assert_eq!(j["overturned"], false);
+    // The copy without a unit is refused before anything runs.
+    let (ok, j, err) = shake(&[&mesh]);
+    assert!(!ok && j.is_null(), "{err}");
+    assert!(err.contains("mystone.ply: its length unit is not known"), "{err}");
     // The copy in millimetres: nothing to say, and the very run of the bundled stone, which
     // overturns.
-    let (mm, err) = shake(&[&mesh, "--length-unit", "mm"]);
-    assert!(!err.contains("note:") && !err.contains("warning:"), "{err}");
+    let (ok, mm, err) = shake(&[&mesh, "--length-unit", "mm"]);
+    assert!(ok && !err.contains("warning:"), "{err}");
     assert_eq!(mm["size_assumed"], false);
     assert!((mm["r_max_m"].as_f64().unwrap() - 0.178323).abs() < 1e-6, "{}", mm["r_max_m"]);
     assert_eq!(mm["overturned"], true);
     // The bundled stone needs no option: its millimetres are known.
-    let (bundled, err) = shake(&[]);
-    assert!(!err.contains("note:") && !err.contains("warning:"), "{err}");
+    let (ok, bundled, err) = shake(&[]);
+    assert!(ok && !err.contains("warning:"), "{err}");
     assert_eq!(bundled, mm);
-    // Given in metres, nothing is assumed but 178 m is still flagged.
-    let (m, err) = shake(&[&mesh, "--length-unit", "m"]);
-    assert!(!err.contains("note:") && err.contains(IMPLAUSIBLE), "{err}");
+    // Given in metres, the copy is a 178 m rock: flagged, and it stands (the same motion is
+    // slow for it).
+    let (ok, m, err) = shake(&[&mesh, "--length-unit", "m"]);
+    assert!(ok && err.contains(IMPLAUSIBLE), "{err}");
     assert_eq!((&m["size_assumed"], &m["overturned"]), (&false.into(), &false.into()));
+    assert!((m["r_max_m"].as_f64().unwrap() - 178.323).abs() < 1e-3);
 }
 
 #[test]
-fn drop_and_perturb_state_the_size_they_assume() {
+fn drop_and_perturb_run_at_the_given_size() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, _) = copy_and_record(dir.path());
-    // drop assumes R_max = 1 cm (the presets' reference size, plausible): said, not flagged.
-    let (ok, j, err) = rocking(&["drop", &mesh, "-n", "1", "--json"]);
-    assert!(ok, "{err}");
-    let first = err.lines().next().unwrap_or("");
-    assert!(
-        first.starts_with("note: ")
-            && first.contains("mystone.ply: its real size is not known; assuming R_max = 10 mm"),
-        "{err}"
-    );
-    assert!(first.ends_with(HOW) && !err.contains("warning:"), "{err}");
-    assert_eq!((j["size_assumed"].as_bool(), j["r_max_m"].as_f64()), (Some(true), Some(0.01)));
-    // steel-on-wood's rolling-resistance length (0.2 mm) over R_max.
+    // --size is R_max in metres: steel-on-wood's rolling-resistance length (0.2 mm) over it.
+    let (ok, j, err) = rocking(&["drop", &mesh, "-n", "1", "--size", "0.01", "--json"]);
+    assert!(ok && !err.contains("warning:"), "{err}");
+    assert_eq!((j["size_assumed"].as_bool(), j["r_max_m"].as_f64()), (Some(false), Some(0.01)));
     assert!((j["params"]["rolling_resistance"].as_f64().unwrap() - 0.02).abs() < 1e-12, "{}", j["params"]);
     // The bundled stone is dropped at its known size, silently.
     let (ok, j, err) = rocking(&["drop", "-n", "1", "--json"]);
-    assert!(ok && !err.contains("note:") && !err.contains("warning:"), "{err}");
-    assert_eq!(j["size_assumed"], false);
+    assert!(ok && !err.contains("warning:"), "{err}");
     assert!((j["r_max_m"].as_f64().unwrap() - 0.178323).abs() < 1e-6);
-    // --size is a given size.
-    let (ok, j, err) = rocking(&["drop", &mesh, "-n", "1", "--size", "0.05", "--json"]);
-    assert!(ok && !err.contains("note:"), "{err}");
-    assert_eq!((j["size_assumed"].as_bool(), j["r_max_m"].as_f64()), (Some(false), Some(0.05)));
-    // perturb assumes metres, as shake.
-    let args = ["perturb", &mesh, "--equilibrium", "3", "-n", "1", "--eps-steps", "1", "--json"];
+    // perturb in metres: flagged as shake is.
+    let args = ["perturb", &mesh, "--length-unit", "m", "--equilibrium", "3", "-n", "1", "--eps-steps", "1", "--json"];
     let (ok, j, err) = rocking(&args);
-    assert!(ok && err.contains(NOTE) && err.contains(IMPLAUSIBLE), "{err}");
-    assert_eq!(j["size_assumed"], true);
+    assert!(ok && err.contains(IMPLAUSIBLE), "{err}");
     assert!((j["r_max_m"].as_f64().unwrap() - 178.323).abs() < 1e-3);
 }
 
 #[test]
-fn the_study_says_the_size_its_experimenter_sets_pebbles_down_at() {
+fn the_study_needs_the_scans_unit_only_for_its_simulated_experimenter() {
     let dir = tempfile::tempdir().unwrap();
     let scans = dir.path().join("scans");
     std::fs::create_dir(&scans).unwrap();
@@ -117,27 +94,25 @@ fn the_study_says_the_size_its_experimenter_sets_pebbles_down_at() {
     let scans = scans.to_str().unwrap();
     let out = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
     let (ok, _, err) = rocking(&["study", scans, "--dynamic", "--trials", "1", "-o", &out("a")]);
-    assert!(ok, "{err}");
-    assert!(err.contains("the scans' length unit is not known") && err.contains("R_max = 10 mm"), "{err}");
+    assert!(!ok && err.contains("(the scans): its length unit is not known"), "{err}");
     let (ok, _, err) = rocking(&["study", scans, "--dynamic", "--trials", "1", "--length-unit", "m", "-o", &out("b")]);
-    assert!(ok && !err.contains("note:") && err.contains(IMPLAUSIBLE), "{err}");
+    assert!(ok && err.contains(IMPLAUSIBLE), "{err}");
     let (ok, _, err) = rocking(&["study", scans, "--dynamic", "--trials", "1", "--length-unit", "mm", "-o", &out("c")]);
-    assert!(ok && !err.contains("note:") && !err.contains("warning:"), "{err}");
+    assert!(ok && !err.contains("warning:"), "{err}");
     // The static study needs no size.
     let (ok, _, err) = rocking(&["study", scans, "-o", &out("d")]);
-    assert!(ok && !err.contains("note:"), "{err}");
+    assert!(ok, "{err}");
 }
 
 #[test]
-fn the_help_says_what_the_size_defaults_to_and_where_it_does_not_matter() {
+fn the_help_says_the_size_is_needed_and_where_it_does_not_matter() {
     let help = |cmd: &str| {
         let out = Command::new(env!("CARGO_BIN_EXE_rocking")).args([cmd, "--help"]).output().unwrap();
         String::from_utf8_lossy(&out.stdout).split_whitespace().collect::<Vec<_>>().join(" ")
     };
-    for cmd in ["shake", "perturb"] {
+    for cmd in ["drop", "shake", "perturb"] {
         let h = help(cmd);
-        assert!(h.contains("m is assumed, and the command says so before running"), "{cmd}: {h}");
+        assert!(h.contains("Needed for every mesh but the bundled stone (millimetres)"), "{cmd}: {h}");
     }
-    assert!(help("drop").contains("R_max = 1 cm (the presets' reference size, a die) is assumed"));
     assert!(help("analyze").contains("no count, ν, flock or basin depends on the real size"));
 }

@@ -182,7 +182,7 @@ fn cli_summaries_use_user_facing_names() {
     assert!(out.contains("mesh units³"), "{out}");
 
     for cert in ["none", "facet", "flock"] {
-        let (ok, out, err) = rocking(&["drop", cube, "-n", "1", "--certificate", cert]);
+        let (ok, out, err) = rocking(&["drop", cube, "--size", "0.01", "-n", "1", "--certificate", cert]);
         assert!(ok, "{err}");
         assert_readable(&format!("drop --certificate {cert}"), &out);
         assert!(out.contains("1 of 1 drop "), "{out}");

@@ -297,18 +297,19 @@ def drop(
     """Drop the stone ``n`` times in rapier3d, as ``rocking drop MESH -n N --seed S --preset P
     --surface S``; drop i depends only on (seed, i).
 
-    ``preset`` and ``surface`` choose the parameters as the CLI does (``size``: R_max of the real
-    stone in metres, scaling the contact like ``--size``, or ``length_unit``; default the bundled
-    stone's 178 mm, for any other mesh R_max = 1 cm, assumed with a ``UserWarning``, as is an
-    R_max outside 2 mm–20 m); ``**params`` override single ones, as
-    the CLI's options: height, horizontal_speed, spin, spin_distribution, friction, restitution,
-    rolling_resistance, torsional_friction, linear_damping, angular_damping, dt,
-    solver_iterations, max_time, rest_linear_speed, rest_angular_speed, rest_time, flight
+    ``preset`` (the launch protocol) and ``surface`` choose the parameters as the CLI does; the
+    real size is ``size`` (R_max in metres) or ``length_unit`` ("mm", "cm", "m", "km", "in" or
+    metres per unit), needed for every mesh but the bundled stone (a ``ValueError`` says so), and
+    an R_max outside 2 mm–20 m is warned about. ``**params`` override single ones, as the CLI's
+    options, in real units for the stone's size: height (R_max), horizontal_speed (m/s), spin
+    (rad/s), spin_distribution, friction, restitution, rolling_resistance_mm,
+    torsional_friction_mm (mm), linear_damping, angular_damping (1/s), dt, max_time (s),
+    solver_iterations, rest_linear_speed (m/s), rest_angular_speed (rad/s), rest_time (s), flight
     (``"free"``, the default: exact landings and sub-stepped impacts, so no impact starts inside
     the ground, or ``"rapier"``: contacts found at rapier's step boundaries; the CLI's
-    ``--flight``). The time step is the preset's longest stable one (1/120 s); ``reference=True``
-    is the CLI's ``--reference``: free flight at the reference step 1/240 s it is checked against
-    (``**params`` still override it). ``fast=True`` (the old ``--fast``, now the default) is
+    ``--flight``). The time step is the preset's longest stable one, 0.0261 √(R_max/g);
+    ``reference=True`` is the CLI's ``--reference``: free flight at half that step, the one it is
+    checked against (``**params`` still override it). ``fast=True`` (the old ``--fast``, now the default) is
     accepted so that older scripts run.
     Releases the GIL; Ctrl-C raises KeyboardInterrupt within a fraction of a second.
     ``threads``: threads of this run (default: ``RAYON_NUM_THREADS`` or all cores).
@@ -327,8 +328,8 @@ def perturb(
     eps_max: float = 1.0,
     eps_steps: int = 16,
     epsilon_star: Optional[float] = None,
-    certificate: bool = False,
-    preset: Optional[Literal["surface", "damped"]] = None,
+    certificate: Union[Literal["none", "facet", "flock"], bool, None] = None,
+    contact_model: Optional[Literal["surface", "damped"]] = None,
     surface: Optional[Literal["stone-on-stone", "rock-on-concrete", "rock-on-steel", "steel-on-wood"]] = None,
     length_unit: Union[str, float, None] = None,
     size: Optional[float] = None,
@@ -340,12 +341,14 @@ def perturb(
 ) -> DynamicsResult:
     """Push or spin the stone resting on its stable micro-equilibria, as ``rocking perturb``:
     P(same), P(same flock), P(toppled) against ε = E/(m g R_max), thresholds and static barriers.
-    The contact of drops and field rocks: ``preset`` "surface" (default) or "damped" (the
+    The contact of drops and field rocks: ``contact_model`` "surface" (default) or "damped" (the
     overdamped reference), ``surface`` (default "stone-on-stone"), the real size by
-    ``length_unit`` (mm, cm, m, km or metres per unit; default mm for the bundled stone, m
-    otherwise, assumed with a ``UserWarning``) or ``size`` (R_max in metres); an R_max outside
-    2 mm–20 m is warned about; ``to_dict()`` has ``r_max_m`` and ``size_assumed``. ``**params``: friction, restitution,
-    rolling_resistance, dt, max_time, contact_frequency, settle_time, hold_time, rest thresholds."""
+    ``length_unit`` (mm, cm, m, km, in or metres per unit) or ``size`` (R_max in metres), needed
+    for every mesh but the bundled stone; an R_max outside 2 mm–20 m is warned about;
+    ``to_dict()`` has ``r_max_m``. ``certificate``: "none" (default), "facet" (or True) or
+    "flock", as ``--certificate``. ``**params`` in real units: friction, restitution,
+    rolling_resistance_mm (mm), dt, max_time (s), contact_frequency (Hz), settle_time, hold_time,
+    rest_time (s), rest_linear_speed (m/s), rest_angular_speed (rad/s)."""
 
 def shake(
     mesh: Union[_MeshLike, Analysis, None] = None,
@@ -360,7 +363,7 @@ def shake(
     azimuth: Optional[float] = None,
     trials: int = 40,
     seed: int = 1,
-    preset: Optional[Literal["surface", "damped"]] = None,
+    contact_model: Optional[Literal["surface", "damped"]] = None,
     surface: Optional[Literal["stone-on-stone", "rock-on-concrete", "rock-on-steel", "steel-on-wood"]] = None,
     length_unit: Union[str, float, None] = None,
     size: Optional[float] = None,
@@ -372,13 +375,16 @@ def shake(
 ) -> DynamicsResult:
     """Shake the ground under the resting stone, as ``rocking shake``: fragility curves.
     ``pulse=(amplitude g, frequency Hz of the real stone, cycles)`` or ``motion=`` a CSV (read
-    with ``columns``, ``accel_unit``) or 1–3 .AT2 files; the contact and size as for ``perturb``."""
+    with ``columns``, ``accel_unit``) or 1–3 .AT2 files; ``azimuth`` degrees from the x axis of
+    the stone as it stands (default: random per trial); the contact and size as for
+    ``perturb``."""
 
 def shake_rock(
     mesh: Union[_MeshLike, Analysis, None] = None,
     *,
     pose: str,
     length_unit: Union[str, float, None] = None,
+    size: Optional[float] = None,
     motion: Union[str, "os.PathLike[str]", Sequence[Union[str, "os.PathLike[str]"]], None] = None,
     accel: Optional[Any] = None,
     dt: Optional[float] = None,
@@ -395,18 +401,18 @@ def shake_rock(
     name: Optional[str] = None,
 ) -> Dict[str, Any]:
     """A field rock at true size under one ground motion, as ``rocking shake --pose ... --json``:
-    ``pose`` "as-scanned", "facet:ID" or "quat:w,x,y,z"; ``length_unit`` default mm for the
-    bundled stone, m otherwise (assumed with a ``UserWarning``; the dict's ``size_assumed``);
-    ``motion`` a CSV or 1–3 .AT2 files, or
-    ``accel`` an (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s; ``azimuth`` degrees of the
-    record's x axis (default 0). Returns overturned, max_tilt_deg, slide_m, pga_g, pgv_m_s,
+    ``pose`` "as-scanned", "equilibrium:ID" (the index ``analyze`` prints), "facet:F" (the hull
+    facet it rests on) or "quat:w,x,y,z"; ``length_unit`` or ``size`` as for ``perturb``, needed
+    for every mesh but the bundled stone; ``motion`` a CSV or 1–3 .AT2 files, or ``accel`` an
+    (n,) / (n, k ≤ 3) array in m/s² every ``dt`` s; ``azimuth`` degrees of the record's x axis
+    from the rock's x axis as it stands (default 0). Returns overturned, max_tilt_deg, slide_m, pga_g, pgv_m_s,
     pgv_over_pga_s, ...
 
     ``ensemble=N`` (``--ensemble N --seed SEED``): N members drawing what ``uncertainty`` leaves
     unknown; returns the ensemble dict instead: probability {members, settled, overturned,
     p_overturn, interval95}, sensitivity [{input, measure, correlation}], tipping [...],
     members [{draw, run}], with record, scale, pga_g, ..., seed, uncertainty. ``uncertainty``
-    keys (all optional): contact_tolerance T or (low, high) in mesh units; azimuth (low, high)
+    keys (all optional): contact_tolerance_mm T or (low, high) in mm; azimuth (low, high)
     degrees or "unknown"; random_sign bool; friction, restitution (low, high);
     rolling_resistance_mm (low, high) in mm. Friction, restitution and rolling resistance not
     given range over the surface pair's published ranges."""
@@ -428,8 +434,8 @@ def study(
 ) -> Study:
     """Field study over a folder of scans, as ``rocking study FOLDER --meta META``: one row per
     pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``. ``dynamic=True`` adds the
-    simulated hand experimenter, who sets each pebble down at its real size with ``length_unit``
-    (the scans' unit), else as a stone of R_max = 1 cm, which a ``UserWarning`` says."""
+    simulated hand experimenter, who sets each pebble down at its real size: ``length_unit`` (the
+    scans' unit) is then needed."""
 
 def generate(
     shape: Literal[

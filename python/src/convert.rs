@@ -26,6 +26,7 @@ pub(crate) fn py_err(e: Error) -> PyErr {
         Error::Io { .. } | Error::Clock(_) => PyOSError::new_err(msg),
         // A parameter is named by its field name, which is the keyword argument's.
         Error::Parameter { .. }
+        | Error::SizeUnknown { .. }
         | Error::Unknown { .. }
         | Error::Motion { .. }
         | Error::Pose { .. }

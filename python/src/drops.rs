@@ -13,7 +13,7 @@ use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::drops::launch::DropOutcome;
 use rocking_stones::dynamics::drops::montecarlo::{self, DropReport, DropRun, RunHeader, DEFAULT_BATCH};
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
-use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
+use rocking_stones::dynamics::size::RealSize;
 use rocking_stones::dynamics::stone::Stone as Body;
 use rocking_stones::dynamics::surface::Surface;
 
@@ -179,12 +179,13 @@ fn share_columns(d: &Bound<'_, PyDict>, rows: impl Iterator<Item = (u64, f64, (f
 /// preset: "quasi-static", "drop" or "throw" (the CLI's default); surface: "steel-on-wood" (the
 /// default), "stone-on-stone", "rock-on-concrete", "rock-on-steel"; size: R_max of the real
 /// stone in metres (scales the contact as --size does), or length_unit: the mesh's unit ("mm",
-/// "cm", "m", "km" or metres per unit); default: the bundled stone's R_max = 178 mm, for any
-/// other mesh R_max = 1 cm, assumed with a UserWarning (as is a size outside R_max 2 mm to 20 m).
-/// **params override single parameters, as the CLI's options: height, horizontal_speed, spin,
-/// spin_distribution, friction, restitution, rolling_resistance, torsional_friction,
-/// linear_damping, angular_damping, dt, solver_iterations, max_time, rest_linear_speed,
-/// rest_angular_speed, rest_time, flight ("free", the default: exact landings and sub-stepped
+/// "cm", "m", "km", "in" or metres per unit); needed for every mesh but the bundled stone
+/// (R_max = 178 mm); a size outside R_max 2 mm to 20 m is told with a UserWarning.
+/// **params override single parameters, as the CLI's options, in real units for the stone's
+/// size: height (R_max), horizontal_speed (m/s), spin (rad/s), spin_distribution, friction,
+/// restitution, rolling_resistance_mm, torsional_friction_mm (mm), linear_damping,
+/// angular_damping (1/s), dt (s), solver_iterations, max_time (s), rest_linear_speed (m/s),
+/// rest_angular_speed (rad/s), rest_time (s), flight ("free", the default: exact landings and sub-stepped
 /// impacts, or "rapier": contacts found at rapier's step boundaries; the CLI's --flight).
 /// certificate: "none", "facet" or "flock" (energy certificate that ends decided drops early).
 /// reference: the CLI's --reference (free flight at the reference step 1/240 s, the one the
@@ -228,14 +229,17 @@ pub(crate) fn drop_stone(
     let certificate: CertificateMode = enum_from_str("certificate", certificate, "'none', 'facet', 'flock'")?;
     let stone = analysed(py, mesh, name, nu)?;
     let body = py.detach(|| Body::new(&stone.analysis, stone.nu())).map_err(py_err)?;
-    let real = real_size(py, &stone.name, body.body.r_max, length_unit, size, ASSUMED_DROP_SIZE)?;
+    let real = real_size(py, &stone.name, body.body.r_max, length_unit, size)?;
     let mut base = preset.params_for(surface, Some(real.r_max_m)).map_err(py_err)?;
     if reference {
         preset.reference(&mut base);
     }
-    let p: DropParams = with_params("drop", &base, params)?;
+    let p: DropParams = with_params("drop", &base, params, &real)?;
     p.check().map_err(py_err)?;
-    let header = RunHeader::new(&stone.name, &stone.analysis.mesh, seed, n, p, certificate, (preset, surface));
+    let header = RunHeader {
+        r_max_m: Some(real.r_max_m),
+        ..RunHeader::new(&stone.name, &stone.analysis.mesh, seed, n, p, certificate, (preset, surface))
+    };
     let progress = progress.map(|f| (f, n));
     let outcomes =
         interruptible(py, threads, progress, |control| DropRun::new(&body, &header).run(DEFAULT_BATCH, control))?

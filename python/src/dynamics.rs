@@ -11,7 +11,7 @@ use numpy::PyReadonlyArray2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rocking_stones::dynamics::size::{RealSize, Size, ASSUMED_UNIT};
+use rocking_stones::dynamics::size::{RealSize, Size};
 use rocking_stones::dynamics::surface::Surface;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -72,37 +72,44 @@ fn dynamics_result(
     })
 }
 
-/// The parameters of a resting run as the CLI makes them (`--preset`, `--surface`,
-/// `--length-unit` / `--size`), then the keyword overrides (DropParams fields go into `sim`).
+/// The parameters of a resting run as the CLI makes them (`--contact-model`, `--surface`, the
+/// real size), then the keyword overrides in real units (DropParams fields go into `sim`).
+/// `preset=` named the contact model before `contact_model=` did: refused, naming it.
 fn resting_params(
     what: &str,
+    contact_model: Option<&str>,
     preset: Option<&str>,
     surface: Option<&str>,
     default_surface: Surface,
-    r_max_m: f64,
+    size: &RealSize,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<rocking_stones::dynamics::resting::RestingParams> {
     use rocking_stones::dynamics::resting::{RestingParams, RestingPreset};
-    let preset: RestingPreset = preset.unwrap_or("surface").parse().map_err(py_err)?;
+    if let Some(p) = preset {
+        return Err(PyValueError::new_err(format!(
+            "{what}: preset= is drop's launch protocol; the contact of a resting run is contact_model= \
+             ('surface' or 'damped'), got preset={p:?}"
+        )));
+    }
+    let model: RestingPreset = contact_model.unwrap_or("surface").parse().map_err(py_err)?;
     let surface: Surface = surface.map_or(Ok(default_surface), str::parse).map_err(py_err)?;
-    let base = RestingParams::of(preset, surface, r_max_m).map_err(py_err)?;
-    let p: RestingParams = with_params(what, &base, params)?;
+    let base = RestingParams::of(model, surface, size.r_max_m).map_err(py_err)?;
+    let p: RestingParams = with_params(what, &base, params, size)?;
     p.check().map_err(py_err)?;
     Ok(p)
 }
 
 /// The real size of the stone `name` whose R_max is `r_max` mesh units, as the CLI's
 /// `--length-unit` / `--size`: `size=` (R_max in metres) or `length_unit=` (a name or metres per
-/// unit) if given, else the bundled stone's millimetres, else `assumed`
-/// ([`RealSize::resolve`]); an assumed size, and one that is not plausible for a stone, are
-/// told with a `UserWarning` before the run.
+/// unit) if given, else the bundled stone's millimetres, else refused (a `ValueError` saying
+/// why, [`RealSize::resolve`]); a size that is not plausible for a stone is told with a
+/// `UserWarning` before the run.
 pub(crate) fn real_size(
     py: Python<'_>,
     name: &str,
     r_max: f64,
     length_unit: Option<&Bound<'_, PyAny>>,
     size: Option<f64>,
-    assumed: Size,
 ) -> PyResult<RealSize> {
     let given = match (length_unit, size) {
         (Some(_), Some(_)) => return Err(PyValueError::new_err("give length_unit= or size=, not both")),
@@ -110,23 +117,32 @@ pub(crate) fn real_size(
         (Some(u), None) => Some(Size::Unit(length_unit_m(u)?)),
         (None, None) => None,
     };
-    let real = RealSize::resolve(name, r_max, given, assumed).map_err(py_err)?;
-    if let Some(note) = real.assumption(name) {
-        warn(py, &format!("{note}; pass length_unit='mm'|'cm'|'m'|'km' or size=R_MAX_M."))?;
-    }
+    let real = RealSize::resolve(name, r_max, given)
+        .map_err(|e| PyValueError::new_err(e.spelled(&|n: &str| format!("{n}="))))?;
     if let Some(warning) = real.implausibility(name) {
         warn(py, &format!("{warning}."))?;
     }
     Ok(real)
 }
 
-/// `length_unit=`: "mm", "cm", "m", "km" or metres per mesh unit (a number or its text).
+/// `length_unit=`: "mm", "cm", "m", "km", "in" or metres per mesh unit (a number or its text).
 pub(crate) fn length_unit_m(u: &Bound<'_, PyAny>) -> PyResult<f64> {
-    use rocking_stones::dynamics::shaking::parse_length_unit;
-    match u.extract::<f64>() {
-        Ok(x) => parse_length_unit(&x.to_string()).map_err(py_err),
-        Err(_) => parse_length_unit(&u.extract::<String>()?).map_err(py_err),
+    use rocking_stones::mesh::unit::LengthUnit;
+    let text = match u.extract::<f64>() {
+        Ok(x) => x.to_string(),
+        Err(_) => u.extract::<String>()?,
+    };
+    text.parse::<LengthUnit>().map(|u| u.metres).map_err(py_err)
+}
+
+/// `certificate=` of `perturb`: "none", "facet", "flock", or a bool (False: none, True: facet).
+fn certificate_mode(c: Option<&Bound<'_, PyAny>>) -> PyResult<rocking_stones::dynamics::certificate::CertificateMode> {
+    use rocking_stones::dynamics::certificate::CertificateMode;
+    let Some(c) = c else { return Ok(CertificateMode::None) };
+    if let Ok(b) = c.extract::<bool>() {
+        return Ok(if b { CertificateMode::Facet } else { CertificateMode::None });
     }
+    enum_from_str("certificate", &c.extract::<String>()?, "'none', 'facet', 'flock'")
 }
 
 /// A `UserWarning` with `message`, raised at the caller's line.
@@ -136,13 +152,15 @@ pub(crate) fn warn(py: Python<'_>, message: &str) -> PyResult<()> {
 }
 
 /// Push or spin the stone resting on its stable micro-equilibria, as `rocking perturb`;
-/// returns a `DynamicsResult` whose to_dict() is the CLI's --json. preset: "surface" (default)
-/// or "damped"; surface: the pair (default "stone-on-stone"); length_unit= or size=: the real
-/// size (default mm for the bundled stone; m otherwise, assumed with a UserWarning, as is a
-/// size outside R_max 2 mm to 20 m). **params: friction, restitution,
-/// rolling_resistance, dt, max_time, contact_frequency, settle_time, hold_time, rest thresholds.
+/// returns a `DynamicsResult` whose to_dict() is the CLI's --json. contact_model: "surface"
+/// (default) or "damped"; surface: the pair (default "stone-on-stone"); length_unit= or size=:
+/// the real size (needed for every mesh but the bundled stone; a size outside R_max 2 mm to 20 m
+/// is told with a UserWarning). certificate: "none" (default), "facet" (also True) or "flock".
+/// **params in real units for the stone's size, as the CLI's options: friction, restitution,
+/// rolling_resistance_mm, dt (s), max_time (s), contact_frequency (Hz), settle_time, hold_time,
+/// rest_time (s), rest_linear_speed (m/s), rest_angular_speed (rad/s).
 #[pyfunction]
-#[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = false, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(signature = (mesh = None, *, equilibria = None, flock = None, family = "push", trials = 40, seed = 1, eps_min = 1e-5, eps_max = 1.0, eps_steps = 16, epsilon_star = None, certificate = None, contact_model = None, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn perturb(
     py: Python<'_>,
@@ -156,7 +174,8 @@ pub(crate) fn perturb(
     eps_max: f64,
     eps_steps: usize,
     epsilon_star: Option<f64>,
-    certificate: bool,
+    certificate: Option<&Bound<'_, PyAny>>,
+    contact_model: Option<&str>,
     preset: Option<&str>,
     surface: Option<&str>,
     length_unit: Option<&Bound<'_, PyAny>>,
@@ -173,8 +192,9 @@ pub(crate) fn perturb(
     }
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
-    let params = resting_params("perturb", preset, surface, Surface::StoneOnStone, real.r_max_m, params)?;
+    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size)?;
+    let params = resting_params("perturb", contact_model, preset, surface, Surface::StoneOnStone, &real, params)?;
+    let certificate = certificate_mode(certificate)?;
     let params = rocking_stones::dynamics::resting::RestingParams { certificate, ..params };
     let cfg = PerturbConfig {
         params,
@@ -196,10 +216,11 @@ pub(crate) fn perturb(
 /// Shake the ground under the resting stone, as `rocking shake`: fragility curves; returns a
 /// `DynamicsResult`. pulse=(amplitude in g, frequency in Hz of the real stone, cycles) or
 /// motion= a CSV (read with `columns` and `accel_unit`) or one to three .AT2 paths; the default
-/// sweeps 2 sine cycles at 2/√R_max Hz up to 1 g. preset, surface, length_unit / size and
-/// **params as for `perturb`.
+/// sweeps 2 sine cycles at 0.639 cycles per √(R_max/g) up to 1 g. azimuth: degrees from the x
+/// axis of the stone as it stands (the CLI's --azimuth). contact_model, surface, length_unit /
+/// size and **params as for `perturb`.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, *, equilibria = None, pulse = None, motion = None, columns = "1,2", accel_unit = "g", pga_max = None, pga_steps = 20, azimuth = None, trials = 40, seed = 1, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
+#[pyo3(signature = (mesh = None, *, equilibria = None, pulse = None, motion = None, columns = "1,2", accel_unit = "g", pga_max = None, pga_steps = 20, azimuth = None, trials = 40, seed = 1, contact_model = None, preset = None, surface = None, length_unit = None, size = None, nu = None, name = None, threads = None, progress = None, **params))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shake(
     py: Python<'_>,
@@ -214,6 +235,7 @@ pub(crate) fn shake(
     azimuth: Option<f64>,
     trials: u32,
     seed: u64,
+    contact_model: Option<&str>,
     preset: Option<&str>,
     surface: Option<&str>,
     length_unit: Option<&Bound<'_, PyAny>>,
@@ -230,9 +252,9 @@ pub(crate) fn shake(
     }
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size, ASSUMED_UNIT)?;
+    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size)?;
     let r_max_m = real.r_max_m;
-    let params = resting_params("shake", preset, surface, Surface::StoneOnStone, r_max_m, params)?;
+    let params = resting_params("shake", contact_model, preset, surface, Surface::StoneOnStone, &real, params)?;
     let real_dt = params.sim.numerics.dt * r_max_m.sqrt();
     let (motion, default_sweep) = match (pulse, motion) {
         (Some((a, f, c)), _) => (sh::sine_pulse(a, f, c, real_dt).map_err(py_err)?, false),
@@ -297,13 +319,14 @@ fn read_motion_arg(
 /// restitution and rolling resistance not given range over the `surface` pair's published
 /// ranges. The members run in parallel; Ctrl-C stops the members not yet started.
 #[pyfunction]
-#[pyo3(signature = (mesh = None, *, pose, length_unit = None, motion = None, accel = None, dt = None, columns = "1,2", accel_unit = "g", baseline = None, azimuth = None, surface = "rock-on-concrete", scale = 1.0, ensemble = None, uncertainty = None, seed = 1, nu = None, name = None))]
+#[pyo3(signature = (mesh = None, *, pose, length_unit = None, size = None, motion = None, accel = None, dt = None, columns = "1,2", accel_unit = "g", baseline = None, azimuth = None, surface = "rock-on-concrete", scale = 1.0, ensemble = None, uncertainty = None, seed = 1, nu = None, name = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shake_rock<'py>(
     py: Python<'py>,
     mesh: Option<&Bound<'py, PyAny>>,
     pose: &str,
     length_unit: Option<&Bound<'py, PyAny>>,
+    size: Option<f64>,
     motion: Option<&Bound<'py, PyAny>>,
     accel: Option<&Bound<'py, PyAny>>,
     dt: Option<f64>,
@@ -365,14 +388,15 @@ pub(crate) fn shake_rock<'py>(
     };
     let s = analysed(py, mesh, name, nu)?;
     let stone = py.detach(|| rocking_stones::dynamics::stone::Stone::new(&s.analysis, s.nu())).map_err(py_err)?;
-    let real = real_size(py, &s.name, stone.body.r_max, length_unit, None, ASSUMED_UNIT)?;
+    let real = real_size(py, &s.name, stone.body.r_max, length_unit, size)?;
+    let pose = pose.resolved(&stone).map_err(py_err)?;
     let sized = |setup: RockSetup| RockSetup { size_assumed: Some(real.assumed()), ..setup };
     let unit = real.length_unit_m;
     if let (Some(members), Some(given)) = (ensemble, given) {
         let setup = sized(RockSetup::new(&stone, pose, unit, surface, azimuth).map_err(py_err)?);
         // As the command line (`ensemble_spec` of `rocking shake`): nothing is pinned, since
         // shake_rock takes no friction / restitution / rolling-resistance override.
-        let uncertainty = Uncertainty::stated(&given, surface, setup.length_unit_m, [false; 3]);
+        let uncertainty = Uncertainty::stated(&given, surface, [false; 3]);
         let spec = EnsembleSpec { uncertainty, seed, members };
         spec.check().map_err(py_err)?;
         // Ctrl-C stops the members not yet started (`interruptible`).
@@ -388,7 +412,7 @@ pub(crate) fn shake_rock<'py>(
 
 /// The keys of `shake_rock`'s `uncertainty=` dict.
 const UNCERTAINTY_KEYS: [&str; 6] =
-    ["contact_tolerance", "azimuth", "random_sign", "friction", "restitution", "rolling_resistance_mm"];
+    ["contact_tolerance_mm", "azimuth", "random_sign", "friction", "restitution", "rolling_resistance_mm"];
 
 /// `uncertainty=` of `shake_rock` as the command line's `given` uncertainty (user units: the
 /// mesh's length unit, degrees, mm), each range checked and named by its key.
@@ -419,7 +443,12 @@ fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::
             .extract()
             .map_err(|_| PyValueError::new_err(format!("uncertainty= keys must be strings, got {}", repr(&k))))?;
         match key.as_str() {
-            "contact_tolerance" => given.contact_tolerance_m = Some(range(&key, &v, true)?),
+            "contact_tolerance_mm" => given.contact_tolerance_m = Some(range(&key, &v, true)?),
+            "contact_tolerance" => {
+                return Err(PyValueError::new_err(
+                    "uncertainty[\"contact_tolerance\"] (in the mesh's unit) is now uncertainty[\"contact_tolerance_mm\"], in mm",
+                ))
+            }
             "azimuth" => {
                 given.azimuth_deg = Some(match v.extract::<String>() {
                     Ok(s) if s == "unknown" => [0.0, 360.0],
@@ -453,7 +482,11 @@ fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::
     // The ranges in the user's units (scaling by a positive unit keeps them valid), named by key.
     given.check().map_err(|e| {
         PyValueError::new_err(e.spelled(&|name| {
-            let key = if name == "rolling_resistance" { "rolling_resistance_mm" } else { name };
+            let key = match name {
+                "rolling_resistance" => "rolling_resistance_mm",
+                "contact_tolerance" => "contact_tolerance_mm",
+                other => other,
+            };
             format!("uncertainty[{key:?}]")
         }))
     })?;

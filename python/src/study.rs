@@ -8,8 +8,6 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rocking_stones::analysis::{check_nu, Report, PAPER_NU};
-use rocking_stones::dynamics::size::format_length;
-use rocking_stones::dynamics::size::REFERENCE_R_MAX_M;
 use std::path::PathBuf;
 
 /// A field study: one row per scan with the columns of `pebbles.csv`.
@@ -100,8 +98,8 @@ impl PyStudy {
 /// A field study over a folder of scans, as `rocking study FOLDER --meta META`; returns a
 /// `Study` with one row per pebble (the columns of pebbles.csv). dynamic=True adds the
 /// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble), each pebble
-/// set down at its real size with `length_unit=` (the scans' unit: "mm", "cm", "m", "km" or
-/// metres per unit), else as a stone of R_max = 1 cm, which a UserWarning says.
+/// set down at its real size, given by `length_unit=` (the scans' unit: "mm", "cm", "m", "km",
+/// "in" or metres per unit), which it needs.
 #[pyfunction]
 #[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, length_unit = None, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
@@ -135,17 +133,8 @@ pub(crate) fn study(
         let length_unit_m = match length_unit {
             Some(u) => Some(crate::dynamics::length_unit_m(u)?),
             None => {
-                crate::dynamics::warn(
-                    py,
-                    &format!(
-                        "{}: the scans' length unit is not known; the simulated experimenter sets every pebble down as \
-                         a stone of R_max = {}. The dynamic counts depend on the real size (the rolling resistance \
-                         δ/R_max); pass length_unit='mm'|'cm'|'m'|'km'.",
-                        folder.display(),
-                        format_length(REFERENCE_R_MAX_M)
-                    ),
-                )?;
-                None
+                let e = rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()) };
+                return Err(PyValueError::new_err(e.spelled(&|n: &str| format!("{n}="))));
             }
         };
         Some(Experimenter { trials, params, seed, length_unit_m })

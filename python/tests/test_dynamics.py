@@ -18,8 +18,8 @@ def box_file(tmp_path_factory):
 
 
 def test_drop_with_a_seed_gives_the_cli_counts(cli, box_file):
-    d = rs.drop(str(box_file), n=20, seed=7)
-    expected = cli.json(["drop", str(box_file), "-n", "20", "--seed", "7"])
+    d = rs.drop(str(box_file), n=20, seed=7, size=0.01)
+    expected = cli.json(["drop", str(box_file), "-n", "20", "--seed", "7", "--size", "0.01"])
     assert d.to_dict() == expected
     assert d.drops == 20 and d.settled + d.unsettled == 20
     assert list(d.facets["count"]) == [f["count"] for f in expected["facets"]]
@@ -35,27 +35,36 @@ def test_drop_with_a_seed_gives_the_cli_counts(cli, box_file):
 
 
 def test_drop_parameters_map_to_the_cli_options(cli, box_file):
-    d = rs.drop(box_file, 12, 3, certificate="none", height=1.0, restitution=0.4, friction=0.3)
+    d = rs.drop(box_file, 12, 3, certificate="none", height=1.0, restitution=0.4, friction=0.3, size=0.01,
+                dt=0.0005, spin=200.0, rolling_resistance_mm=0.1)
     expected = cli.json(["drop", str(box_file), "-n", "12", "--seed", "3", "--certificate", "none",
-                         "--height", "1", "--restitution", "0.4", "--friction", "0.3"])
+                         "--height", "1", "--restitution", "0.4", "--friction", "0.3", "--size", "0.01",
+                         "--dt", "0.0005", "--spin", "200", "--rolling-resistance-mm", "0.1"])
     assert d.to_dict() == expected
     assert d.certified == 0
+    # Times, spins and lengths in real units for R_max = 1 cm: 0.5 ms is 0.005 s of the scaled body,
+    # 200 rad/s is 20 rad/s of it, δ = 0.1 mm is 0.01 R_max.
+    p = expected["params"]
+    assert (p["dt"], p["spin"], p["rolling_resistance"]) == pytest.approx((0.005, 20.0, 0.01), rel=1e-12)
+    with pytest.raises(TypeError, match="rolling_resistance_mm"):
+        rs.drop(box_file, 1, size=0.01, rolling_resistance=0.02)
 
 
 def test_flight_is_the_cli_flight_option(cli, box_file):
-    d = rs.drop(box_file, 16, 4, flight="rapier")
-    expected = cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--flight", "rapier"])
+    d = rs.drop(box_file, 16, 4, flight="rapier", size=0.01)
+    expected = cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--flight", "rapier", "--size", "0.01"])
     assert d.to_dict() == expected
     assert expected["params"]["flight"] == "rapier"
-    default = rs.drop(box_file, 16, 4)
+    default = rs.drop(box_file, 16, 4, size=0.01)
     assert default.to_dict()["params"]["flight"] == "free"
     assert default.to_dict()["params"]["dt"] == pytest.approx(1 / 120)
-    assert rs.drop(box_file, 16, 4, fast=True).to_dict() == default.to_dict()
-    reference = rs.drop(box_file, 16, 4, reference=True)
-    assert reference.to_dict() == cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--reference"])
+    assert rs.drop(box_file, 16, 4, fast=True, size=0.01).to_dict() == default.to_dict()
+    reference = rs.drop(box_file, 16, 4, reference=True, size=0.01)
+    assert reference.to_dict() == cli.json(["drop", str(box_file), "-n", "16", "--seed", "4", "--reference",
+                                            "--size", "0.01"])
     assert reference.to_dict()["params"]["dt"] == pytest.approx(1 / 240)
     with pytest.raises(ValueError, match="exclude each other"):
-        rs.drop(box_file, 4, 4, reference=True, fast=True)
+        rs.drop(box_file, 4, 4, reference=True, fast=True, size=0.01)
 
 
 def test_presets_and_surfaces_are_the_cli_ones(cli, box_file):
@@ -68,13 +77,13 @@ def test_presets_and_surfaces_are_the_cli_ones(cli, box_file):
 
 def test_drops_do_not_depend_on_threads_or_chunks(box_file):
     a = rs.analyze(box_file)
-    one = rs.drop(a, 40, 11, threads=1)
-    two = rs.drop(a, 40, 11, threads=2)
+    one = rs.drop(a, 40, 11, threads=1, size=0.01)
+    two = rs.drop(a, 40, 11, threads=2, size=0.01)
     assert one.to_dict() == two.to_dict()
     for k in one.outcomes:
         np.testing.assert_array_equal(one.outcomes[k], two.outcomes[k])
     # Drop i depends only on (seed, i): the first 10 of a longer run are a run of 10.
-    ten = rs.drop(a, 10, 11)
+    ten = rs.drop(a, 10, 11, size=0.01)
     np.testing.assert_array_equal(ten.outcomes["facet"], one.outcomes["facet"][:10])
 
 
@@ -98,17 +107,22 @@ def test_basins_of_a_box_favour_the_large_faces(box_file):
 
 
 def test_perturb_is_the_cli_report(cli, box_file):
-    p = rs.perturb(box_file, equilibria=[0], trials=2, eps_steps=2, eps_min=1e-3, eps_max=0.5)
+    p = rs.perturb(box_file, equilibria=[0], trials=2, eps_steps=2, eps_min=1e-3, eps_max=0.5, length_unit="m",
+                   certificate="flock", max_time=10.0)
     expected = cli.json(["perturb", str(box_file), "--equilibrium", "0", "-n", "2", "--eps-steps", "2",
-                         "--eps-min", "1e-3", "--eps-max", "0.5"])
+                         "--eps-min", "1e-3", "--eps-max", "0.5", "--length-unit", "m", "--certificate", "flock",
+                         "--max-time", "10"])
     assert p.to_dict() == expected
+    with pytest.raises(ValueError, match="contact_model"):
+        rs.perturb(box_file, length_unit="m", preset="damped")
     assert len(p.trials["epsilon"]) == 4
 
 
 def test_shake_is_the_cli_report(cli, box_file):
-    s = rs.shake(box_file, equilibria=[0], trials=2, pga_max=0.8, pga_steps=2)
+    s = rs.shake(box_file, equilibria=[0], trials=2, pga_max=0.8, pga_steps=2, length_unit="m",
+                 contact_model="damped")
     expected = cli.json(["shake", str(box_file), "--equilibrium", "0", "-n", "2", "--pga-max", "0.8",
-                         "--pga-steps", "2"])
+                         "--pga-steps", "2", "--length-unit", "m", "--contact-model", "damped"])
     assert s.to_dict() == expected
     assert len(s.trials["pga"]) == 4
 
@@ -119,15 +133,15 @@ def test_shake_rock_is_the_cli_run(cli, box_file, tmp_path):
     a = np.where(t <= 0.5, 0.4 * np.sin(2 * np.pi * 2 * t), 0.0)
     rec = tmp_path / "pulse.csv"
     rec.write_text("time_s,ax_g\n" + "".join(f"{x:.3f},{y:.9f}\n" for x, y in zip(t, a)))
-    args = ["--pose", "facet:0", "--length-unit", "cm", "--columns", "time_s,ax_g", "--azimuth", "30"]
+    args = ["--pose", "equilibrium:0", "--length-unit", "cm", "--columns", "time_s,ax_g", "--azimuth", "30"]
     expected = cli.json(["shake", str(box_file), "--motion", str(rec), *args])
-    r = rs.shake_rock(box_file, pose="facet:0", length_unit="cm", motion=rec, columns="time_s,ax_g", azimuth=30)
+    r = rs.shake_rock(box_file, pose="equilibrium:0", length_unit="cm", motion=rec, columns="time_s,ax_g", azimuth=30)
     assert r == expected
     assert set(r) >= {"overturned", "max_tilt_deg", "pga_g", "pgv_m_s", "slide_m"}
     # The same numbers as an array in m/s²: the same run (the CSV's interval is read from printed
     # times, so it may differ from 0.005 in the last bit: numbers agree to 1e-6, not bit for bit).
     values = np.array([float(f"{y:.9f}") for y in a]) * 9.81
-    b = rs.shake_rock(box_file, pose="facet:0", length_unit=0.01, accel=values, dt=0.005, azimuth=30)
+    b = rs.shake_rock(box_file, pose="equilibrium:0", length_unit=0.01, accel=values, dt=0.005, azimuth=30)
     assert b["record"] == "accel" and set(b) == set(r)
     for k, v in r.items():
         if isinstance(v, bool) or not isinstance(v, (int, float)):
@@ -135,13 +149,13 @@ def test_shake_rock_is_the_cli_run(cli, box_file, tmp_path):
         else:
             assert b[k] == pytest.approx(v, rel=1e-6, abs=1e-9), k
     with pytest.raises(ValueError, match="not both"):
-        rs.shake_rock(box_file, pose="facet:0", motion=rec, accel=values, dt=0.005)
+        rs.shake_rock(box_file, pose="equilibrium:0", motion=rec, accel=values, dt=0.005)
     with pytest.raises(ValueError, match="pose"):
         rs.shake_rock(box_file, pose="upright", motion=rec)
 
 
 # Ensembles of a field rock: the 1 cm box (tips at 0.5 g) under 2 cycles at 2 Hz.
-ROCK = dict(pose="facet:0", length_unit="cm", columns="time_s,ax_g")
+ROCK = dict(pose="equilibrium:0", length_unit="cm", columns="time_s,ax_g")
 
 
 def pulse_csv(path, amplitude=0.7):
@@ -154,18 +168,18 @@ def pulse_csv(path, amplitude=0.7):
 
 def test_shake_rock_ensemble_is_the_cli_ensemble(cli, box_file, tmp_path):
     rec = pulse_csv(tmp_path / "pulse.csv")
-    base = ["shake", str(box_file), "--pose", "facet:0", "--length-unit", "cm", "--motion", str(rec),
+    base = ["shake", str(box_file), "--pose", "equilibrium:0", "--length-unit", "cm", "--motion", str(rec),
             "--columns", "time_s,ax_g"]
-    expected = cli.json([*base, "--ensemble", "2", "--seed", "3", "--contact-tolerance", "0.001"])
-    r = rs.shake_rock(box_file, motion=rec, ensemble=2, seed=3, uncertainty={"contact_tolerance": 0.001}, **ROCK)
+    expected = cli.json([*base, "--ensemble", "2", "--seed", "3", "--contact-tolerance-mm", "0.01"])
+    r = rs.shake_rock(box_file, motion=rec, ensemble=2, seed=3, uncertainty={"contact_tolerance_mm": 0.01}, **ROCK)
     assert r == expected
     assert r["probability"]["members"] == 2 and r["uncertainty"]["contact_tolerance_m"][0] == 0.0
     # Every key against its option (δ in mm on both sides).
-    expected = cli.json([*base, "--ensemble", "3", "--seed", "4", "--contact-tolerance", "0.0005,0.002",
+    expected = cli.json([*base, "--ensemble", "3", "--seed", "4", "--contact-tolerance-mm", "0.005,0.02",
                          "--azimuth-range", "10,80", "--random-sign", "--friction-range", "0.4,0.6",
                          "--restitution-range", "0.1,0.3", "--rolling-resistance-range", "0.05,0.1",
                          "--surface", "rock-on-steel", "--scales", "1.5"])
-    u = {"contact_tolerance": (0.0005, 0.002), "azimuth": (10, 80), "random_sign": True, "friction": [0.4, 0.6],
+    u = {"contact_tolerance_mm": (0.005, 0.02), "azimuth": (10, 80), "random_sign": True, "friction": [0.4, 0.6],
          "restitution": (0.1, 0.3), "rolling_resistance_mm": (0.05, 0.1)}
     r = rs.shake_rock(box_file, motion=rec, ensemble=3, seed=4, uncertainty=u, surface="rock-on-steel", scale=1.5,
                       **ROCK)
@@ -194,7 +208,7 @@ def test_shake_rock_ensemble_draws_depend_only_on_the_seed(box_file, tmp_path):
 
 def test_shake_rock_ensemble_dict(box_file, tmp_path):
     rec = pulse_csv(tmp_path / "pulse.csv")
-    u = {"contact_tolerance": (0.0005, 0.002), "azimuth": "unknown", "random_sign": True, "friction": (0.4, 0.6),
+    u = {"contact_tolerance_mm": (0.005, 0.02), "azimuth": "unknown", "random_sign": True, "friction": (0.4, 0.6),
          "restitution": (0.1, 0.3), "rolling_resistance_mm": (0.05, 0.1)}
     r = rs.shake_rock(box_file, motion=rec, ensemble=8, seed=2, uncertainty=u, **ROCK)
     assert set(r) >= {"record", "scale", "pga_g", "seed", "uncertainty", "probability", "sensitivity", "tipping",
@@ -208,7 +222,7 @@ def test_shake_rock_ensemble_dict(box_file, tmp_path):
     assert 0 <= lo <= p["p_overturn"] <= hi <= 1
     assert p["p_overturn"] == sum(m["run"]["settled"] and m["run"]["overturned"] for m in r["members"]) / p["settled"]
     tol = r["uncertainty"]["contact_tolerance_m"]
-    assert tol == pytest.approx([0.0005e-2, 0.002e-2], rel=1e-12)
+    assert tol == pytest.approx([0.005e-3, 0.02e-3], rel=1e-12)
     assert r["uncertainty"]["azimuth_deg"] == [0.0, 360.0]
     for k, m in enumerate(r["members"]):
         assert set(m) == {"draw", "run"}
@@ -248,8 +262,10 @@ def test_shake_rock_ensemble_bad_input(box_file, tmp_path):
         shake(ensemble=2, uncertainty={"restitution": (0.2, 1.5)})
     with pytest.raises(ValueError, match="rolling_resistance_mm"):
         shake(ensemble=2, uncertainty={"rolling_resistance_mm": (0.2, 0.1)})
-    with pytest.raises(ValueError, match="contact_tolerance"):
-        shake(ensemble=2, uncertainty={"contact_tolerance": -0.001})
+    with pytest.raises(ValueError, match="contact_tolerance_mm"):
+        shake(ensemble=2, uncertainty={"contact_tolerance_mm": -0.001})
+    with pytest.raises(ValueError, match="is now"):
+        shake(ensemble=2, uncertainty={"contact_tolerance": 0.001})
     with pytest.raises(ValueError, match="friction"):
         shake(ensemble=2, uncertainty={"friction": (0.1, 0.2, 0.3)})
     with pytest.raises(ValueError, match="friction"):
@@ -266,32 +282,31 @@ def test_shake_rock_ensemble_bad_input(box_file, tmp_path):
         shake(ensemble=0)
 
 
-def test_an_assumed_size_is_told_with_a_warning_and_recorded(cli, tmp_path):
+def test_a_mesh_without_a_size_is_refused_as_the_cli_refuses_it(cli, tmp_path):
     import warnings
     from pathlib import Path
 
     # A byte-identical copy of the bundled stone under another name: its unit is not known.
     copy = tmp_path / "mystone.ply"
     copy.write_bytes((Path(__file__).resolve().parents[2] / "data" / "default_pebble.ply").read_bytes())
-    with pytest.warns(UserWarning) as told:
-        d = rs.drop(copy, 1)
-    said = [str(w.message) for w in told]
-    assert any("mystone.ply: its real size is not known; assuming R_max = 10 mm" in m for m in said), said
-    assert (d.to_dict()["size_assumed"], d.to_dict()["r_max_m"]) == (True, 0.01)
-    assert d.to_dict() == cli.json(["drop", str(copy), "-n", "1"])
     rec = pulse_csv(tmp_path / "pulse.csv", amplitude=0.3)
-    rock = dict(pose="facet:3", motion=rec, columns="time_s,ax_g")
-    with pytest.warns(UserWarning) as told:
-        r = rs.shake_rock(copy, **rock)
-    said = [str(w.message) for w in told]
-    assert any("its length unit is not known; assuming metres (R_max = 178.3 m)" in m for m in said), said
-    assert any("R_max = 178.3 m is outside the plausible sizes" in m for m in said), said
-    assert r["size_assumed"] is True and r["r_max_m"] == pytest.approx(178.323, abs=1e-3)
-    # In millimetres, and the bundled stone itself: nothing to say, and the same run.
+    rock = dict(pose="equilibrium:3", motion=rec, columns="time_s,ax_g")
+    for run in (lambda: rs.drop(copy, 1), lambda: rs.perturb(copy, equilibria=[3], trials=1, eps_steps=1),
+                lambda: rs.shake(copy, trials=1, pga_steps=1), lambda: rs.shake_rock(copy, **rock)):
+        with pytest.raises(ValueError, match="mystone.ply: its length unit is not known.*give length_unit= "
+                                             r"\(mm, cm, m, km, in or metres per mesh unit\) or size="):
+            run()
+    # In metres: run, and told that 178 m is not a stone's size.
+    with pytest.warns(UserWarning, match="R_max = 178.3 m is outside the plausible sizes"):
+        r = rs.shake_rock(copy, length_unit="m", **rock)
+    assert r["size_assumed"] is False and r["r_max_m"] == pytest.approx(178.323, abs=1e-3)
+    # In millimetres, and the bundled stone itself: nothing to say, and the same run, by either
+    # pose: the equilibrium's index or the hull facet it rests on.
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         mm = rs.shake_rock(copy, length_unit="mm", **rock)
         bundled = rs.shake_rock(**rock)
-    assert mm == bundled and mm["size_assumed"] is False
-    assert mm == cli.json(["shake", str(copy), "--length-unit", "mm", "--pose", "facet:3", "--motion", str(rec),
+        facet = rs.shake_rock(**{**rock, "pose": "facet:200"})
+    assert mm == bundled == facet and mm["size_assumed"] is False
+    assert mm == cli.json(["shake", str(copy), "--length-unit", "mm", "--pose", "equilibrium:3", "--motion", str(rec),
                            "--columns", "time_s,ax_g"])

@@ -90,14 +90,16 @@ def test_bad_inputs():
 def test_bad_drop_parameters():
     box = rs.generate("box")
     with pytest.raises(TypeError, match="unknown parameter \"bounce\""):
-        rs.drop(box, 1, bounce=1.0)
+        rs.drop(box, 1, size=0.01, bounce=1.0)
     with pytest.raises(ValueError, match="restitution must be in"):
-        rs.drop(box, 1, restitution=2.0)
+        rs.drop(box, 1, size=0.01, restitution=2.0)
     with pytest.raises(ValueError, match="preset"):
-        rs.drop(box, 1, preset="gravel")
+        rs.drop(box, 1, size=0.01, preset="gravel")
     with pytest.raises(ValueError, match="size"):
         rs.drop(box, 1, size=-1.0)
-    with pytest.raises(ValueError, match="preset"):
-        rs.perturb(box, preset="gravel")
+    with pytest.raises(ValueError, match="length_unit= .*or size="):
+        rs.drop(box, 1)
+    with pytest.raises(ValueError, match="contact model"):
+        rs.perturb(box, size=0.01, contact_model="gravel")
     with pytest.raises(ValueError, match="certificate must be one of"):
-        rs.drop(box, 1, certificate="maybe")
+        rs.drop(box, 1, size=0.01, certificate="maybe")

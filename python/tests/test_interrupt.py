@@ -18,7 +18,7 @@ import signal, sys, rocking_stones as rs
 signal.signal(signal.SIGINT, signal.default_int_handler)
 a = rs.analyze(rs.generate("pebble", n=400, seed=1))
 print("ready", flush=True)
-rs.drop(a, n=10**6, seed=1)
+rs.drop(a, n=10**6, seed=1, size=0.01)
 """
 
 
@@ -58,7 +58,7 @@ def test_drops_release_the_gil():
     t = threading.Thread(target=count)
     t.start()
     start = time.monotonic()
-    rs.drop(a, n=300, seed=1, threads=1)
+    rs.drop(a, n=300, seed=1, threads=1, size=0.01)
     elapsed = time.monotonic() - start
     done.set()
     t.join()
@@ -71,7 +71,7 @@ def test_drops_release_the_gil():
 def test_progress_is_reported_and_can_stop_a_run():
     a = rs.analyze(rs.generate("box"))
     seen = []
-    d = rs.drop(a, n=300, seed=1, progress=lambda done, total: seen.append((done, total)))
+    d = rs.drop(a, n=300, seed=1, size=0.01, progress=lambda done, total: seen.append((done, total)))
     assert seen and seen[-1] == (300, 300) and all(t == 300 for _, t in seen)
     assert [x for x, _ in seen] == sorted(x for x, _ in seen)
     assert d.drops == 300
@@ -83,7 +83,7 @@ def test_progress_is_reported_and_can_stop_a_run():
         raise Stop
 
     try:
-        rs.drop(a, n=10**6, seed=1, progress=stop)
+        rs.drop(a, n=10**6, seed=1, size=0.01, progress=stop)
     except Stop:
         pass
     else:

@@ -27,16 +27,18 @@ pub struct Args {
     /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal), in (0, 1e-3].
     #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = super::parse_coplanar_tol)]
     pub coplanar_tol: f64,
-    /// Write report.json, plots (n(ν), hull picture), a flock-coloured PLY and report.html (the
-    /// summary, the plots and an interactive 3D view of the hull) into this folder.
+    /// Write into this folder: report.json, n_nu.png/.svg (n(ν)), hull.png/.svg (the hull by
+    /// flock), hull_flocks.ply (flock-coloured, for MeshLab or ParaView) and report.html (the
+    /// summary, the plots and an interactive 3D view of the hull).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Length unit of the mesh coordinates (mm, cm, m, in, …): labels volume (unit³), area
-    /// (unit²), G, axes and R in the summary and report.html. Default: "mesh units" ("mm" for the
-    /// bundled stone). A label only: no count, ν, flock or basin depends on the real size (the
-    /// dynamics commands do, and take --length-unit / --size). Also spelled --unit.
-    #[arg(long = "length-unit", alias = "unit", value_name = "UNIT")]
-    pub length_unit: Option<String>,
+    /// Length unit of the mesh coordinates (mm, cm, m, km, in or a number of metres per unit):
+    /// labels volume (unit³), area (unit²), G, axes and R in the summary and report.html.
+    /// Default: "mesh units" ("mm" for the bundled stone). A label only: no count, ν, flock or
+    /// basin depends on the real size (the dynamics commands do, and need it). Also spelled
+    /// --unit.
+    #[arg(long = "length-unit", alias = "unit", value_name = "UNIT", value_parser = super::parse_length_unit)]
+    pub length_unit: Option<rocking_stones::mesh::unit::LengthUnit>,
     /// CSV file for a batch (several files or a folder); default: standard output.
     #[arg(long)]
     pub csv: Option<PathBuf>,
@@ -118,7 +120,7 @@ fn single(path: Option<&PathBuf>, args: &Args, opts: &Options) -> Result<()> {
     let (analysis, name) = load_analysis(path.map(|p| p.as_path()), opts)?;
     warn(&name, &analysis.repairs);
     let report = analysis.report(&name, opts);
-    let unit = super::default_unit(&name, args.length_unit.as_ref());
+    let unit = super::default_unit(&name, args.length_unit);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

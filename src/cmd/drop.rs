@@ -9,7 +9,7 @@ use rocking_stones::dynamics::drops::montecarlo::{
 };
 use rocking_stones::dynamics::drops::params::{DropParams, Preset};
 use rocking_stones::dynamics::engine::params::Flight;
-use rocking_stones::dynamics::size::{RealSize, ASSUMED_DROP_SIZE};
+use rocking_stones::dynamics::size::{RealSize, Size};
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use std::path::PathBuf;
@@ -32,51 +32,50 @@ pub struct Args {
     /// basins). Every parameter below overrides the preset's value.
     #[arg(long, default_value = "throw", value_parser = parse_preset)]
     pub preset: Preset,
-    /// Surface pair setting friction, restitution and rolling resistance: steel-on-wood,
-    /// stone-on-stone, rock-on-concrete, rock-on-steel.
+    /// Surface pair setting friction, restitution and rolling resistance: steel-on-wood (the
+    /// default: the table the throw is calibrated on, steel dice on wood), stone-on-stone,
+    /// rock-on-concrete, rock-on-steel.
     #[arg(long, default_value = "steel-on-wood", value_parser = parse_surface)]
     pub surface: Surface,
-    /// The stone's real size as R_max in metres: the surface's rolling-resistance length is
-    /// divided by it. Default: the bundled stone's (R_max = 178 mm); for any other mesh
-    /// R_max = 1 cm (the presets' reference size, a die) is assumed, and the command says so
-    /// before running. A size outside R_max 2 mm to 20 m is warned about.
-    #[arg(long, value_name = "R_MAX_M")]
-    pub size: Option<f64>,
-    /// The mesh's length unit (mm, cm, m, km or metres per unit), instead of --size; default as
-    /// --size's.
-    #[arg(long, value_name = "UNIT", conflicts_with = "size")]
-    pub length_unit: Option<String>,
-    /// Release height of the lowest point above the ground, in R_max (default: the preset's).
-    #[arg(long)]
+    #[command(flatten)]
+    pub size: super::SizeArgs,
+    /// Release height of the lowest point above the ground, in units of R_max (default: the
+    /// preset's: 2 for throw, 1 for drop).
+    #[arg(long, value_name = "R_MAX")]
     pub height: Option<f64>,
-    /// Horizontal release speed V in m/s at R_max = 1 m: V/3.13 √(g R_max), V·√(R_max / 1 m) m/s
-    /// for the real stone (default: the preset's).
-    #[arg(long)]
+    /// Horizontal release speed in m/s for the stone's real size (default: the preset's,
+    /// 1.28 √(g R_max) for throw: 1.69 m/s for the bundled stone, 0.4 m/s for R_max = 1 cm).
+    #[arg(long, value_name = "M_S")]
     pub horizontal_speed: Option<f64>,
-    /// Release angular speed W in rad/s at R_max = 1 m: W/3.13 √(g/R_max), W/√(R_max / 1 m) rad/s
-    /// for the real stone; rms for the Gaussian law of the presets (default: the preset's).
-    #[arg(long)]
+    /// Release angular speed in rad/s for the stone's real size, the rms of the presets'
+    /// Gaussian law (default: the preset's, 7.98 √(g/R_max) for throw: 59 rad/s for the bundled
+    /// stone, 250 rad/s for R_max = 1 cm).
+    #[arg(long, value_name = "RAD_S")]
     pub spin: Option<f64>,
     #[command(flatten)]
     pub contact: super::ContactArgs,
-    /// Torsional-friction length δ_t / R_max (default: the preset's).
-    #[arg(long)]
-    pub torsional_friction: Option<f64>,
-    /// Global linear velocity damping C in 1/s at R_max = 1 m: C/3.13 √(g/R_max); 0 except in
-    /// the quasi-static preset.
-    #[arg(long)]
+    /// Torsional-friction length δ_t in mm: the torque about the normal on a single contact
+    /// point is at most δ_t times the normal force (default: the rolling-resistance length).
+    #[arg(long, value_name = "MM")]
+    pub torsional_friction_mm: Option<f64>,
+    /// Replaced by --torsional-friction-mm (δ_t in mm instead of δ_t/R_max).
+    #[arg(long, hide = true, allow_hyphen_values = true)]
+    pub torsional_friction: Option<String>,
+    /// Global linear velocity damping in 1/s (default 0: it would slow a stone in flight; only
+    /// the quasi-static preset damps, 3.19 √(g/R_max)).
+    #[arg(long, value_name = "PER_S")]
     pub linear_damping: Option<f64>,
-    /// Global angular velocity damping C in 1/s at R_max = 1 m: C/3.13 √(g/R_max); 0 except in
-    /// the quasi-static preset.
-    #[arg(long)]
+    /// Global angular velocity damping in 1/s (default 0, as --linear-damping).
+    #[arg(long, value_name = "PER_S")]
     pub angular_damping: Option<f64>,
-    /// Time step T in s at R_max = 1 m, a number or a fraction such as 1/240: 3.13 T √(R_max/g),
-    /// T·√(R_max / 1 m) s for the real stone (default: the preset's longest stable step, 1/120).
-    #[arg(long, value_parser = parse_step)]
+    /// Time step in seconds of real time, a number or a fraction such as 1/2000 (default: the
+    /// preset's longest stable step, 0.0261 √(R_max/g): 3.5 ms for the bundled stone, 0.83 ms for
+    /// R_max = 1 cm; --reference halves it).
+    #[arg(long, value_name = "S", value_parser = parse_step)]
     pub dt: Option<f64>,
-    /// Time cap per drop T in s at R_max = 1 m: 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the
-    /// real stone (default: the preset's).
-    #[arg(long)]
+    /// Time cap per drop in seconds of real time (default: the preset's, 188 √(R_max/g): 25 s
+    /// for the bundled stone, 6 s for R_max = 1 cm).
+    #[arg(long, value_name = "S")]
     pub max_time: Option<f64>,
     /// Rapier's solver sub-steps per time step (default 4). Impacts are completed by the contact
     /// law whatever this is, so the per-flock statistics at 4 are those at 32 on the bundled
@@ -111,8 +110,8 @@ pub struct Args {
     /// to the reference numerics; kept so that older command lines run.
     #[arg(long, hide = true)]
     pub fast: bool,
-    /// End drops early once the energy certificate decides the facet (facet), the flock (flock),
-    /// or never (none).
+    /// End drops early by the energy certificate: once the final facet is certain (facet), once
+    /// the final flock is (flock), or never (none).
     #[arg(long, default_value = "facet", value_parser = parse_certificate)]
     pub certificate: CertificateMode,
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
@@ -136,7 +135,8 @@ pub struct Args {
     /// Continue the run recorded in --checkpoint, skipping the drops it already holds.
     #[arg(long, requires = "checkpoint")]
     pub resume: bool,
-    /// Write drops.json, the bar plots (per flock, per facet) and report.html into this folder.
+    /// Write into this folder: drops.json, drops_flocks.png/.svg and drops_facets.png/.svg (bar
+    /// plots per flock and per stable facet, against the static probabilities) and report.html.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }
@@ -173,12 +173,7 @@ pub fn parse_flight(s: &str) -> std::result::Result<Flight, String> {
 }
 
 pub fn parse_certificate(s: &str) -> std::result::Result<CertificateMode, String> {
-    match s {
-        "none" => Ok(CertificateMode::None),
-        "facet" => Ok(CertificateMode::Facet),
-        "flock" => Ok(CertificateMode::Flock),
-        _ => Err(format!("unknown certificate {s:?}: expected none, facet or flock")),
-    }
+    s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
 #[derive(clap::Args)]
@@ -196,38 +191,43 @@ pub struct MergeArgs {
     /// Print the merged report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
-    /// Write drops.json, the bar plots (per flock, per facet) and report.html of the merged run
-    /// into this folder.
+    /// Write the merged run's files into this folder, as `rocking drop` writes them: drops.json,
+    /// drops_flocks.png/.svg, drops_facets.png/.svg and report.html.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }
 
-/// The parameters of the run for a stone of real size R_max = `r_max_m` metres.
-fn params(a: &Args, r_max_m: f64) -> Result<DropParams> {
-    let mut p = a.preset.params_for(a.surface, Some(r_max_m))?;
+/// The parameters of the run for a stone of real size `size`: the preset's, with every option
+/// given in real units turned into the scaled frame.
+fn params(a: &Args, size: &RealSize) -> Result<DropParams> {
+    let mut p = a.preset.params_for(a.surface, Some(size.r_max_m))?;
     if a.reference {
         a.preset.reference(&mut p);
+    }
+    if let Some(v) = &a.torsional_friction {
+        bail!("--torsional-friction (δ_t/R_max) is now --torsional-friction-mm, the length δ_t in mm (got {v})");
     }
     let set = |field: &mut f64, v: Option<f64>| {
         if let Some(v) = v {
             *field = v;
         }
     };
+    let real = |name: &str, v: Option<f64>| super::scaled(size, name, v);
     set(&mut p.launch.height, a.height);
-    set(&mut p.launch.horizontal_speed, a.horizontal_speed);
-    set(&mut p.launch.spin, a.spin);
-    a.contact.apply(&mut p.sim.contact);
-    set(&mut p.sim.contact.torsional_friction, a.torsional_friction);
-    set(&mut p.sim.contact.linear_damping, a.linear_damping);
-    set(&mut p.sim.contact.angular_damping, a.angular_damping);
-    set(&mut p.sim.numerics.dt, a.dt);
-    set(&mut p.sim.numerics.max_time, a.max_time);
+    set(&mut p.launch.horizontal_speed, real("horizontal_speed", a.horizontal_speed));
+    set(&mut p.launch.spin, real("spin", a.spin));
+    a.contact.apply(&mut p.sim.contact, size)?;
+    set(&mut p.sim.contact.torsional_friction, super::scaled_mm(size, a.torsional_friction_mm));
+    set(&mut p.sim.contact.linear_damping, real("linear_damping", a.linear_damping));
+    set(&mut p.sim.contact.angular_damping, real("angular_damping", a.angular_damping));
+    set(&mut p.sim.numerics.dt, real("dt", a.dt));
+    set(&mut p.sim.numerics.max_time, real("max_time", a.max_time));
     p.sim.numerics.solver_iterations = a.solver_iterations.unwrap_or(p.sim.numerics.solver_iterations);
     if let Some(flight) = a.flight {
         p.sim.flight.mode = flight;
     }
     p.sim.flight.strict_impacts = a.strict_impacts;
-    p.check()?;
+    p.check().map_err(|e| super::in_real_units(e, size))?;
     Ok(p)
 }
 
@@ -240,11 +240,12 @@ pub fn run_drop(args: Args) -> Result<()> {
     let (analysis, name) = load_analysis(args.mesh.as_deref(), &opts)?;
     let (nu, _) = analysis.macro_nu(&opts);
     let stone = Stone::new(&analysis, nu)?;
-    let size = super::real_size(&name, stone.body.r_max, args.length_unit.as_deref(), args.size, ASSUMED_DROP_SIZE)?;
-    let p = params(&args, size.r_max_m)?;
+    let size = args.size.real_size(&name, stone.body.r_max)?;
+    let p = params(&args, &size)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     let header = RunHeader {
         center_of_mass: args.center_of_mass.map(|c| [c.x, c.y, c.z]),
+        r_max_m: Some(size.r_max_m),
         shard,
         ..RunHeader::new(name, &analysis.mesh, args.seed, args.drops, p, args.certificate, (args.preset, args.surface))
     };
@@ -308,7 +309,11 @@ pub fn run_merge(args: MergeArgs) -> Result<()> {
         };
         eprintln!("note: {missing} of {} drops are not in these partial results{shards}", header.drops);
     }
-    emit(&summarize(&model, &header, &outcomes), None, args.json, args.output.as_deref(), &analysis, nu)
+    // The size the shards were run at, recorded in their header (none in files of earlier
+    // versions: the summary then gives scaled values only).
+    let size = header.r_max_m.map(|r| RealSize::resolve(&header.mesh, stone.body.r_max, Some(Size::RMax(r))));
+    let size = size.transpose()?;
+    emit(&summarize(&model, &header, &outcomes), size.as_ref(), args.json, args.output.as_deref(), &analysis, nu)
 }
 
 /// The JSON of a drop run: the report, and the stone's real size with whether it was assumed

@@ -6,7 +6,8 @@ pub mod planar;
 pub mod shake;
 pub mod study;
 
-use rocking_stones::dynamics::size::{RealSize, Size};
+use rocking_stones::dynamics::size::{dimension, Dimension, RealSize, Size};
+use rocking_stones::mesh::unit::LengthUnit;
 use std::path::{Path, PathBuf};
 
 /// The progress bar of every long command: `n` steps, counted as `what` ("drops", "trials", or
@@ -75,30 +76,86 @@ pub fn emit<R: serde::Serialize>(
     Ok(())
 }
 
-/// The real size of the stone `name` whose R_max is `r_max` mesh units: `--size` (R_max in
-/// metres) or `--length-unit` if given, else the bundled stone's millimetres, else `assumed`
-/// ([`RealSize::resolve`]). What was assumed, and a size that is not plausible for a stone, are
-/// said on standard error before anything runs.
-pub fn real_size(
-    name: &str,
-    r_max: f64,
-    length_unit: Option<&str>,
-    size: Option<f64>,
-    assumed: Size,
-) -> anyhow::Result<RealSize> {
-    let given = match (size, length_unit) {
-        (Some(r), _) => Some(Size::RMax(r)),
-        (None, Some(u)) => Some(Size::Unit(rocking_stones::dynamics::shaking::parse_length_unit(u)?)),
-        (None, None) => None,
-    };
-    let real = RealSize::resolve(name, r_max, given, assumed)?;
-    if let Some(note) = real.assumption(name) {
-        eprintln!("note: {note}; give --length-unit mm|cm|m|km or --size R_MAX_M.");
+/// How a dynamics command is told the stone's real size (every command that simulates, and
+/// `study --dynamic`): a length unit or R_max. The bundled stone knows its size; any other mesh
+/// without one is refused ([`rocking_stones::dynamics::size`] says why).
+#[derive(clap::Args, Clone, Default)]
+pub struct SizeArgs {
+    /// The mesh's length unit: mm, cm, m, km, in or a number of metres per unit. The stone's
+    /// real size, on which every dynamic result depends (the rolling resistance relative to R_max;
+    /// under shaking, the real frequencies of the motion). Needed for every mesh but the bundled
+    /// stone (millimetres). Also spelled --unit.
+    #[arg(long = "length-unit", alias = "unit", value_name = "UNIT", value_parser = parse_length_unit, conflicts_with = "size")]
+    pub length_unit: Option<LengthUnit>,
+    /// The stone's real size as R_max in metres (the largest distance from G to the hull),
+    /// instead of --length-unit.
+    #[arg(long, value_name = "R_MAX_M")]
+    pub size: Option<f64>,
+}
+
+impl SizeArgs {
+    /// The size as given, if it was.
+    pub fn given(&self) -> Option<Size> {
+        match (self.size, self.length_unit) {
+            (Some(r), _) => Some(Size::RMax(r)),
+            (None, Some(u)) => Some(Size::Unit(u.metres)),
+            (None, None) => None,
+        }
     }
-    if let Some(warning) = real.implausibility(name) {
-        eprintln!("warning: {warning}.");
+
+    /// The real size of the stone `name` whose R_max is `r_max` mesh units: the one given, else
+    /// the bundled stone's, else refused ([`RealSize::resolve`]). A size that is not plausible for
+    /// a stone is warned about on standard error before anything runs.
+    pub fn real_size(&self, name: &str, r_max: f64) -> anyhow::Result<RealSize> {
+        let real = RealSize::resolve(name, r_max, self.given()).map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;
+        if let Some(warning) = real.implausibility(name) {
+            eprintln!("warning: {warning}.");
+        }
+        Ok(real)
     }
-    Ok(real)
+}
+
+/// A length unit (`mm`, `cm`, `m`, `km`, `in` or metres per unit), checked as the library checks it.
+pub fn parse_length_unit(s: &str) -> std::result::Result<LengthUnit, String> {
+    s.parse::<LengthUnit>().map_err(|e| e.spelled(&flag))
+}
+
+/// An option given in real SI units for the stone of size `size` (its library name `name`, of a
+/// [`dimension`]), as the number the scaled parameters hold.
+pub fn scaled(size: &RealSize, name: &str, value: Option<f64>) -> Option<f64> {
+    value.map(|v| dimension(name).map_or(v, |d| size.scaled(d, v)))
+}
+
+/// An option given in millimetres (a rolling-resistance or torsional-friction length), as the
+/// scaled parameter δ / R_max of the stone of size `size`.
+pub fn scaled_mm(size: &RealSize, value_mm: Option<f64>) -> Option<f64> {
+    value_mm.map(|v| size.scaled(Dimension::Length, v * 1e-3))
+}
+
+/// A parameter error of the scaled frame told in the option's real units for the stone of size
+/// `size`: `--max-time must be positive and finite, got -2` for `--max-time -2`, not the scaled
+/// number the check saw. Other errors as they are.
+pub fn in_real_units(e: rocking_stones::Error, size: &RealSize) -> anyhow::Error {
+    if let rocking_stones::Error::Parameter { name, value, expected } = &e {
+        if let (Some(d), Ok(v)) = (dimension(name), value.parse::<f64>()) {
+            let real = size.real(d, v);
+            let (real, unit) = match (d, name.as_str()) {
+                (Dimension::Length, _) => (real * 1e3, " mm"),
+                (Dimension::Time, _) => (real, " s"),
+                (Dimension::Speed, _) => (real, " m/s"),
+                (Dimension::Rate, "spin" | "rest_angular_speed") => (real, " rad/s"),
+                (Dimension::Rate, "contact_frequency") => (real, " Hz"),
+                (Dimension::Rate, _) => (real, " 1/s"),
+            };
+            let number = rocking_stones::report::names::number;
+            let scaled = match d {
+                Dimension::Time => format!(" = {} √(R_max/g)", number(v * rocking_stones::GRAVITY.sqrt(), 4)),
+                _ => String::new(),
+            };
+            return anyhow::anyhow!("{} must be {expected}, got {}{unit}{scaled}", flag(name), number(real, 6));
+        }
+    }
+    anyhow::anyhow!(e.spelled(&flag))
 }
 
 /// The contact overrides of every command that simulates (each defaults to the surface pair's).
@@ -110,23 +167,39 @@ pub struct ContactArgs {
     /// Restitution coefficient in [0, 1] (default: the surface pair's).
     #[arg(long)]
     pub restitution: Option<f64>,
-    /// Rolling-resistance length δ / R_max (torque ≤ δ N at the contact); default: the surface
-    /// pair's δ over the stone's real R_max.
-    #[arg(long)]
-    pub rolling_resistance: Option<f64>,
+    /// Rolling-resistance length δ in mm: the contact's rolling torque is at most δ times the
+    /// normal force (default: the surface pair's, e.g. 0.2 mm steel on wood, 0.1 mm rock on
+    /// concrete).
+    #[arg(long, value_name = "MM")]
+    pub rolling_resistance_mm: Option<f64>,
+    /// Replaced by --rolling-resistance-mm (δ in mm instead of δ/R_max).
+    #[arg(long, hide = true, allow_hyphen_values = true)]
+    pub rolling_resistance: Option<String>,
 }
 
 impl ContactArgs {
-    /// Set the overrides given on `contact`.
-    pub fn apply(&self, contact: &mut rocking_stones::dynamics::engine::params::ContactParams) {
+    /// Set the overrides given on `contact`, for a stone of real size `size`.
+    pub fn apply(
+        &self,
+        contact: &mut rocking_stones::dynamics::engine::params::ContactParams,
+        size: &RealSize,
+    ) -> anyhow::Result<()> {
+        if let Some(v) = &self.rolling_resistance {
+            anyhow::bail!(
+                "--rolling-resistance (δ/R_max) is now --rolling-resistance-mm, the length δ in mm: {v} R_max is {} mm \
+                 for this stone",
+                v.parse::<f64>().map_or("?".into(), |x| format!("{}", x * size.r_max_m * 1e3))
+            );
+        }
         contact.friction = self.friction.unwrap_or(contact.friction);
         contact.restitution = self.restitution.unwrap_or(contact.restitution);
-        contact.rolling_resistance = self.rolling_resistance.unwrap_or(contact.rolling_resistance);
+        contact.rolling_resistance = scaled_mm(size, self.rolling_resistance_mm).unwrap_or(contact.rolling_resistance);
+        Ok(())
     }
 
     /// Which of friction, restitution and rolling resistance are given.
     pub fn pinned(&self) -> [bool; 3] {
-        [self.friction.is_some(), self.restitution.is_some(), self.rolling_resistance.is_some()]
+        [self.friction.is_some(), self.restitution.is_some(), self.rolling_resistance_mm.is_some()]
     }
 }
 
@@ -181,9 +254,9 @@ pub fn hull_view(
 
 /// The length unit that labels a mesh's lengths: the one given, else millimetres for the bundled
 /// stone (it knows its unit), else "mesh units".
-pub fn default_unit(name: &str, given: Option<&String>) -> rocking_stones::report::names::Unit {
+pub fn default_unit(name: &str, given: Option<LengthUnit>) -> rocking_stones::report::names::Unit {
     let known = rocking_stones::bundled::is_bundled(name).then(|| "mm".to_string());
-    rocking_stones::report::names::Unit(given.cloned().or(known))
+    rocking_stones::report::names::Unit(given.map(|u| u.label()).or(known))
 }
 
 /// The command line's spelling of a library parameter (`max_time` → `--max-time`); the
@@ -210,6 +283,8 @@ pub fn flag(name: &str) -> String {
     };
     if let Some(b) = built {
         b.to_string()
+    } else if matches!(name, "rolling_resistance" | "torsional_friction") {
+        format!("--{}-mm", name.replace('_', "-"))
     } else if NO_OPTION.contains(&name) {
         format!("the {} (no option)", name.replace('_', " "))
     } else {

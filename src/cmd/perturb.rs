@@ -4,9 +4,10 @@
 use super::analyze::load_analysis;
 use anyhow::{bail, Result};
 use rocking_stones::analysis::{check_nu, Analysis, Options};
+use rocking_stones::dynamics::certificate::CertificateMode;
 use rocking_stones::dynamics::pushes::{self, Family, PerturbConfig};
 use rocking_stones::dynamics::resting::{RestingParams, RestingPreset};
-use rocking_stones::dynamics::size::{RealSize, ASSUMED_UNIT};
+use rocking_stones::dynamics::size::RealSize;
 use rocking_stones::dynamics::stone::Stone;
 use rocking_stones::dynamics::surface::Surface;
 use rocking_stones::report;
@@ -14,47 +15,43 @@ use rocking_stones::stats::{log_grid, GridSize};
 use std::path::{Path, PathBuf};
 
 /// Simulation parameters shared by `rocking perturb` and `rocking shake`: the contact of every
-/// run that starts at rest (the surface pair at the stone's real size) and its overrides.
+/// run that starts at rest (the surface pair at the stone's real size) and its overrides, in real
+/// units for the stone's size.
 #[derive(clap::Args, Clone)]
 pub struct SimArgs {
-    /// Contact: `surface` (the surface pair of --surface at the stone's real size, with rolling
-    /// resistance through the contact: the physics of drops and field rocks) or `damped` (the
-    /// overdamped reference of the former results: friction 0.6, restitution 0.2, global
-    /// angular damping 1 s⁻¹; ignores --surface and the size).
-    #[arg(long, default_value = "surface", value_parser = parse_resting_preset)]
-    pub preset: RestingPreset,
+    /// Contact model: `surface` (the surface pair of --surface at the stone's real size, with
+    /// rolling resistance through the contact: the physics of drops and field rocks) or `damped`
+    /// (the overdamped reference of the former results: friction 0.6, restitution 0.2, global
+    /// angular damping 0.319 √(g/R_max); ignores --surface and the size).
+    #[arg(long, default_value = "surface", value_parser = parse_contact_model)]
+    pub contact_model: RestingPreset,
+    /// Replaced by --contact-model (`--preset` is `rocking drop`'s launch protocol).
+    #[arg(long, hide = true)]
+    pub preset: Option<String>,
     /// Surface pair: stone-on-stone, rock-on-concrete, rock-on-steel, steel-on-wood. Default:
-    /// stone-on-stone (a stone on rock); with `shake --pose`, rock-on-concrete (a shake table).
+    /// stone-on-stone (a stone resting on rock); with `shake --pose`, rock-on-concrete (a field
+    /// rock on a shake table's concrete). The summary says which was used.
     #[arg(long, value_parser = parse_surface)]
     pub surface: Option<Surface>,
-    /// The mesh's length unit (mm, cm, m, km or metres per unit): the stone's real size, on which
-    /// the result depends (the rolling resistance δ/R_max; with shaking, the real frequencies of
-    /// the motion). Default: mm for the bundled stone (a 30 cm quarry stone, R_max = 178 mm);
-    /// for any other mesh m is assumed, and the command says so before running. A size outside
-    /// R_max 2 mm to 20 m is warned about.
-    #[arg(long, value_name = "UNIT", conflicts_with = "size")]
-    pub length_unit: Option<String>,
-    /// The stone's real size as R_max in metres (the largest distance from G to the hull),
-    /// instead of --length-unit; default as --length-unit's.
-    #[arg(long, value_name = "R_MAX_M")]
-    pub size: Option<f64>,
+    #[command(flatten)]
+    pub size: super::SizeArgs,
     #[command(flatten)]
     pub contact: super::ContactArgs,
-    /// Time step T in s at R_max = 1 m: 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the real
-    /// stone (default 1/240).
-    #[arg(long)]
+    /// Time step in seconds of real time (default 0.0131 √(R_max/g): 1.76 ms for the bundled
+    /// stone, 4.2 ms for R_max = 1 m).
+    #[arg(long, value_name = "S")]
     pub dt: Option<f64>,
-    /// Time cap per trial after the perturbation / the motion, T in s at R_max = 1 m:
-    /// 3.13 T √(R_max/g), T·√(R_max / 1 m) s for the real stone (default 20).
-    #[arg(long)]
+    /// Time cap per trial after the perturbation or the motion, in seconds of real time (default
+    /// 62.6 √(R_max/g): 8.4 s for the bundled stone, 20 s for R_max = 1 m).
+    #[arg(long, value_name = "S")]
     pub max_time: Option<f64>,
     /// Rapier's solver sub-steps per time step (default 4; more cost in proportion, as for
     /// `rocking drop`).
     #[arg(long, value_parser = super::at_least::<usize, 1>)]
     pub solver_iterations: Option<usize>,
-    /// Natural frequency F of the soft contact constraints in Hz at R_max = 1 m:
-    /// F/3.13 cycles per √(R_max/g), F/√(R_max / 1 m) Hz for the real stone (default 120).
-    #[arg(long)]
+    /// Natural frequency of the soft contact constraints in Hz for the stone's real size
+    /// (default 38.3 cycles per √(R_max/g): 284 Hz for the bundled stone, 120 Hz for R_max = 1 m).
+    #[arg(long, value_name = "HZ")]
     pub contact_frequency: Option<f64>,
     /// ν at which flocks are read (default: the automatic plateau, else 0.0035).
     #[arg(long, value_parser = super::parse_nu)]
@@ -67,24 +64,27 @@ pub struct SimArgs {
 
 impl SimArgs {
     /// The stone's real size: --size, --length-unit, else the bundled stone's millimetres, else
-    /// metres, said on standard error when assumed or implausible ([`super::real_size`]). Call it
-    /// once per run.
+    /// refused ([`super::SizeArgs::real_size`]). Call it once per run.
     pub fn real_size(&self, stone: &Stone, name: &str) -> Result<RealSize> {
-        super::real_size(name, stone.body.r_max, self.length_unit.as_deref(), self.size, ASSUMED_UNIT)
+        self.size.real_size(name, stone.body.r_max)
     }
 
     /// The parameters of the run for a stone of real size `size`, the surface defaulting to
-    /// `default_surface`, with every override given.
+    /// `default_surface`, with every override given (in real units) turned into the scaled frame.
     pub fn params(&self, size: &RealSize, default_surface: Surface) -> Result<RestingParams> {
+        if self.preset.is_some() {
+            bail!("--preset is `rocking drop`'s launch protocol; the contact of perturb and shake is --contact-model surface|damped");
+        }
         let surface = self.surface.unwrap_or(default_surface);
-        let mut p = RestingParams::of(self.preset, surface, size.r_max_m)?;
+        let mut p = RestingParams::of(self.contact_model, surface, size.r_max_m)?;
+        let real = |name: &str, v: Option<f64>| super::scaled(size, name, v);
         let sim = &mut p.sim;
-        self.contact.apply(&mut sim.contact);
-        sim.numerics.dt = self.dt.unwrap_or(sim.numerics.dt);
-        sim.numerics.max_time = self.max_time.unwrap_or(sim.numerics.max_time);
+        self.contact.apply(&mut sim.contact, size)?;
+        sim.numerics.dt = real("dt", self.dt).unwrap_or(sim.numerics.dt);
+        sim.numerics.max_time = real("max_time", self.max_time).unwrap_or(sim.numerics.max_time);
         sim.numerics.solver_iterations = self.solver_iterations.unwrap_or(sim.numerics.solver_iterations);
-        p.contact_frequency = self.contact_frequency.unwrap_or(p.contact_frequency);
-        p.check()?;
+        p.contact_frequency = real("contact_frequency", self.contact_frequency).unwrap_or(p.contact_frequency);
+        p.check().map_err(|e| super::in_real_units(e, size))?;
         Ok(p)
     }
 
@@ -136,14 +136,17 @@ pub struct Args {
     /// macro-scale ν).
     #[arg(long)]
     pub epsilon_star: Option<f64>,
-    /// End trials as soon as the energy certificate decides their outcome (faster; the
-    /// static-barrier check then proves nothing).
-    #[arg(long)]
-    pub certificate: bool,
+    /// End trials early by the energy certificate: once the final facet is certain or the stone
+    /// has certainly left its flock (facet; also the bare `--certificate`), only once it has
+    /// certainly left its flock (flock), or never (none, the default: the static-barrier check
+    /// proves nothing with a certificate).
+    #[arg(long, value_name = "MODE", default_value = "none", num_args = 0..=1, default_missing_value = "facet", value_parser = super::drop::parse_certificate)]
+    pub certificate: CertificateMode,
     /// Print the report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
-    /// Write perturb.json, CSVs (curves, thresholds, trials), plots and report.html into this folder.
+    /// Write into this folder: perturb.json, curves.csv, thresholds.csv, trials.csv,
+    /// robustness.png/.svg and thresholds.png/.svg (when a trial ran) and report.html.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     #[command(flatten)]
@@ -184,7 +187,7 @@ fn parse_family(s: &str) -> std::result::Result<Family, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 
-fn parse_resting_preset(s: &str) -> std::result::Result<RestingPreset, String> {
+fn parse_contact_model(s: &str) -> std::result::Result<RestingPreset, String> {
     s.parse().map_err(|e: rocking_stones::Error| e.spelled(&super::flag))
 }
 

@@ -31,7 +31,9 @@ pub struct Args {
     #[arg(long, value_name = "FILE", num_args = 1..=3)]
     pub motion: Vec<PathBuf>,
     /// Field rock: how it stands — as-scanned (mesh frame = world frame, +z up; put down and
-    /// settled), facet:ID (a stable micro-equilibrium) or quat:w,x,y,z.
+    /// settled), equilibrium:ID (a stable micro-equilibrium, as `analyze` numbers them),
+    /// facet:F (the stable micro-equilibrium on hull facet F, the number `analyze` prints beside
+    /// it) or quat:w,x,y,z (the mesh rotated, then put down and settled).
     #[arg(long, value_parser = parse_pose)]
     pub pose: Option<shaking::Pose>,
     /// CSV records: columns `time,ax[,ay[,az]]` by header name or number from 1.
@@ -56,16 +58,19 @@ pub struct Args {
     pub resume: bool,
     /// Sweep the peak ground acceleration from PGA_MAX/STEPS to PGA_MAX (g), scaling the motion
     /// to each: fragility curves. Without a motion the default is a sweep up to 1 g of 2 sine
-    /// cycles at 2/√(R_max / 1 m) Hz (0.639 cycles per √(R_max/g)); with --pulse or
-    /// --motion and no --pga-max, the motion is run at its own amplitude only.
+    /// cycles at 0.639 cycles per √(R_max/g) (4.7 Hz for the bundled stone, 2 Hz for
+    /// R_max = 1 m); with --pulse or --motion and no --pga-max, the motion is run at its own
+    /// amplitude only.
     #[arg(long, conflicts_with = "pose")]
     pub pga_max: Option<f64>,
     /// Number of PGAs of the sweep.
     #[arg(long, default_value_t = 20, conflicts_with = "pose", value_parser = super::at_least::<usize, 1>)]
     pub pga_steps: usize,
-    /// Shake along this azimuth (degrees, in the frame of the resting stone) instead of a
-    /// random azimuth per trial. With --pose: the azimuth (degrees, world frame) of the
-    /// records' x axis (default 0).
+    /// Azimuth of the motion's x axis, degrees counter-clockwise from the x axis of the stone
+    /// as it stands: the mesh's own x axis as scanned, or, standing on an equilibrium, the mesh
+    /// turned by the smallest rotation that brings that facet down. One frame for every mode:
+    /// without --pose it replaces the random azimuth of each trial; with --pose it is the
+    /// records' azimuth (default 0).
     #[arg(long, allow_hyphen_values = true)]
     pub azimuth: Option<f64>,
     /// Trials per equilibrium and PGA.
@@ -78,13 +83,16 @@ pub struct Args {
     /// draws the uncertain inputs below uniformly from their ranges; the result is P(overturn)
     /// with its 95 % interval and the inputs it is most sensitive to. Friction, restitution and
     /// rolling resistance range over the surface pair's published ranges unless pinned (--friction,
-    /// --restitution, --rolling-resistance) or given (--friction-range, …).
+    /// --restitution, --rolling-resistance-mm) or given (--friction-range, …).
     #[arg(long, value_name = "N", requires = "pose", value_parser = super::at_least::<u64, 1>)]
     pub ensemble: Option<u64>,
-    /// Ensemble: base-contact tolerance in the mesh's length unit, T (uniform in [0, T]) or
-    /// LOW,HIGH: hull corners within it of the base plane carry load (the collider's base is
-    /// flattened onto that plane; mass and pose unchanged).
+    /// Ensemble: base-contact tolerance in mm, T (uniform in [0, T]) or LOW,HIGH: hull corners
+    /// within it of the base plane carry load (the collider's base is flattened onto that plane;
+    /// mass and pose unchanged).
     #[arg(long, value_name = "T|LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
+    pub contact_tolerance_mm: Option<String>,
+    /// Replaced by --contact-tolerance-mm (in mm instead of the mesh's unit).
+    #[arg(long, hide = true, allow_hyphen_values = true)]
     pub contact_tolerance: Option<String>,
     /// Ensemble: azimuth of the records' x axis, degrees: LOW,HIGH, or `unknown` (0–360).
     #[arg(
@@ -105,14 +113,25 @@ pub struct Args {
     #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
     pub restitution_range: Option<String>,
     /// Ensemble: rolling-resistance length range LOW,HIGH in mm.
-    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
-    pub rolling_resistance_range: Option<String>,
+    #[arg(
+        long,
+        alias = "rolling-resistance-range",
+        value_name = "LOW,HIGH",
+        requires = "ensemble",
+        allow_hyphen_values = true
+    )]
+    pub rolling_resistance_range_mm: Option<String>,
     #[command(flatten)]
     pub sim: SimArgs,
     /// Print the report as JSON instead of the summary.
     #[arg(long)]
     pub json: bool,
-    /// Write shake.json, fragility.csv, trials.csv, fragility.png/.svg and report.html into this folder.
+    /// Write the run's files into this folder. A sweep (no --pose): shake.json, fragility.csv,
+    /// trials.csv, fragility.png/.svg, report.html. One record (--pose): runs.csv. An ensemble
+    /// (--pose --ensemble): ensemble.json, members.csv, tipping_polar.png, report.html. A batch
+    /// (--records, or several --scales): shake_batch.json, runs.jsonl (the journal --resume
+    /// reads), runs.csv, fragility_surface.png, tipping_polar.png, report.html, and with
+    /// --ensemble probabilities.csv and contours.csv.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
 }
@@ -200,6 +219,7 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         bail!("--scales must be numbers ≥ 0, e.g. 0.5,1,2");
     }
     let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let pose = pose.resolved(&stone)?;
     let azimuth = args.azimuth.unwrap_or(0.0).to_radians();
     let size = args.sim.real_size(&stone, &name)?;
     let params = args.sim.params(&size, Surface::RockOnConcrete)?;
@@ -208,7 +228,7 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         size_assumed: Some(size.assumed()),
         ..RockSetup::with_params(&stone, pose, size.length_unit_m, azimuth, params)
     };
-    let ensemble = ensemble_spec(&args, &setup)?;
+    let ensemble = ensemble_spec(&args)?;
     if let (Some(e), [record], [scale]) = (&ensemble, &records[..], &args.scales[..]) {
         let bar = super::progress_bar(e.members, "members");
         let run = shaking::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
@@ -291,15 +311,18 @@ fn parse_range(flag: &str, s: &str, from_zero: bool) -> Result<[f64; 2]> {
 }
 
 /// The ensemble of the command line: the surface pair's contact ranges unless pinned or given,
-/// the base-contact tolerance from mesh units to metres, the azimuth range or `unknown`.
-fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shaking::EnsembleSpec>> {
+/// the base-contact tolerance and δ from mm to metres, the azimuth range or `unknown`.
+fn ensemble_spec(args: &Args) -> Result<Option<shaking::EnsembleSpec>> {
     let Some(members) = args.ensemble else { return Ok(None) };
+    if let Some(t) = &args.contact_tolerance {
+        bail!("--contact-tolerance (in the mesh's unit) is now --contact-tolerance-mm, in mm (got {t})");
+    }
     let range = |flag: &str, s: &Option<String>| s.as_deref().map(|s| parse_range(flag, s, false)).transpose();
     let given = shaking::Uncertainty {
         contact_tolerance_m: args
-            .contact_tolerance
+            .contact_tolerance_mm
             .as_deref()
-            .map(|s| parse_range("contact-tolerance", s, true))
+            .map(|s| parse_range("contact-tolerance-mm", s, true))
             .transpose()?,
         azimuth_deg: match args.azimuth_range.as_deref() {
             Some("unknown") => Some([0.0, 360.0]),
@@ -310,17 +333,18 @@ fn ensemble_spec(args: &Args, setup: &RockSetup) -> Result<Option<shaking::Ensem
         random_sign: args.random_sign,
         friction: range("friction-range", &args.friction_range)?,
         restitution: range("restitution-range", &args.restitution_range)?,
-        rolling_resistance_m: range("rolling-resistance-range", &args.rolling_resistance_range)?,
+        rolling_resistance_m: range("rolling-resistance-range-mm", &args.rolling_resistance_range_mm)?,
     };
-    // Check the ranges as given (mesh units, mm), named by their flags.
+    // Check the ranges as given (mm), named by their flags.
     let flag = |n: &str| match n {
-        "contact_tolerance" => "--contact-tolerance".to_string(),
+        "contact_tolerance" => "--contact-tolerance-mm".to_string(),
+        "rolling_resistance" => "--rolling-resistance-range-mm".to_string(),
         other => format!("--{}-range", other.replace('_', "-")),
     };
     given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;
     let surface = args.sim.surface.unwrap_or(Surface::RockOnConcrete);
     let pinned = args.sim.contact.pinned();
-    let uncertainty = shaking::Uncertainty::stated(&given, surface, setup.length_unit_m, pinned);
+    let uncertainty = shaking::Uncertainty::stated(&given, surface, pinned);
     let spec = shaking::EnsembleSpec { uncertainty, seed: args.seed, members };
     spec.check().map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;
     Ok(Some(spec))

@@ -39,9 +39,9 @@ pub enum Sub {
 pub struct DynamicArgs {
     /// Also run the simulated hand experimenter: set each pebble down `--trials` times in random
     /// orientations and count the distinct stable flocks found (dynamic S; unstable positions
-    /// cannot be found by setting a pebble down). Each pebble is set down as a stone of
-    /// R_max = 1 cm (the rolling resistance δ/R_max depends on the size), unless the scans'
-    /// --length-unit is given; the static counts do not depend on the size.
+    /// cannot be found by setting a pebble down). The dynamic counts depend on the pebbles' real
+    /// size (the rolling resistance relative to R_max): scans need their length unit given;
+    /// synthetic pebbles are made at R_max = 1 cm. The static counts do not depend on the size.
     #[arg(long)]
     pub dynamic: bool,
     /// Set-downs per pebble.
@@ -92,11 +92,11 @@ pub struct BatchArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub dynamic: DynamicArgs,
-    /// With --dynamic: the scans' length unit (mm, cm, m, km or metres per unit), so that each
-    /// pebble is set down at its real size. Default: every pebble is set down as R_max = 1 cm
-    /// whatever its mesh size, and the command says so before running.
-    #[arg(long, value_name = "UNIT", requires = "dynamic")]
-    pub length_unit: Option<String>,
+    /// With --dynamic: the scans' length unit (mm, cm, m, km, in or a number of metres per
+    /// unit), so that each pebble is set down at its real size; needed with --dynamic (the static
+    /// counts do not depend on the size). Also spelled --unit.
+    #[arg(long = "length-unit", alias = "unit", value_name = "UNIT", requires = "dynamic", value_parser = super::parse_length_unit)]
+    pub length_unit: Option<rocking_stones::mesh::unit::LengthUnit>,
 }
 
 /// Population options shared by `synthetic` and `fit-nu`.
@@ -256,17 +256,11 @@ fn batch(args: BatchArgs) -> Result<()> {
     }
     let files = study::mesh_files(folder)?;
     let meta = args.meta.as_deref().map(Metadata::read).transpose()?;
-    let length_unit_m =
-        args.length_unit.as_deref().map(rocking_stones::dynamics::shaking::parse_length_unit).transpose()?;
+    let length_unit_m = args.length_unit.map(|u| u.metres);
     let experimenter = args.dynamic.experimenter()?.map(|e| Experimenter { length_unit_m, ..e });
     if experimenter.is_some() && length_unit_m.is_none() {
-        eprintln!(
-            "note: {}: the scans' length unit is not known; the simulated experimenter sets every pebble down as a \
-             stone of R_max = {}. The dynamic counts depend on the real size (the rolling resistance δ/R_max); give \
-             --length-unit mm|cm|m|km.",
-            folder.display(),
-            format_length(REFERENCE_R_MAX_M)
-        );
+        let e = rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()) };
+        anyhow::bail!(e.spelled(&super::flag));
     }
     let opts = StudyOptions {
         analysis: Options { nu: None, coplanar_tol: args.coplanar_tol, ..Options::default() },

@@ -52,6 +52,18 @@ impl CertificateMode {
     }
 }
 
+impl std::str::FromStr for CertificateMode {
+    type Err = crate::Error;
+
+    /// `none`, `facet` or `flock`: the same names for drops and pushes.
+    fn from_str(s: &str) -> crate::Result<CertificateMode> {
+        [CertificateMode::None, CertificateMode::Facet, CertificateMode::Flock]
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| crate::Error::unknown("certificate", s, &["none", "facet", "flock"]))
+    }
+}
+
 /// Safety margin added to the energy level before asking the merge tree, in units of R_max: the
 /// body sinks into the ground by the contact's compression (the certificate is asked only up to
 /// [`CERTIFICATE_MAX_COMPRESSION`]), so h(down) can be above z_G, and hence above L, by that

@@ -1,16 +1,24 @@
 //! The real size of a stone: the one place every dynamics command and the Python binding decide
-//! it, and say how they did.
+//! it, and the conversion of options given in real units into the scaled frame the engine runs in.
 //!
 //! A mesh's coordinates carry no unit, but a dynamic result does depend on the real size: the
 //! contact's rolling-resistance length δ is divided by R_max, and a ground motion's real
 //! frequencies meet the stone at √R_max (every other group is Froude-invariant, see
-//! [`crate::dynamics::drops::params`]). The static pipeline (equilibria, flocks, ν, basins) does not. So the size
-//! is either **given** (a length unit or R_max), **known** (the bundled stone is in millimetres)
-//! or **assumed** (the command's default) — and an assumed size is never silent:
-//! [`RealSize::assumption`] is the sentence the command line and the Python binding show before
-//! running, and [`RealSize::implausibility`] flags a size outside [`PLAUSIBLE_R_MAX_M`] however it
-//! was decided.
+//! [`crate::dynamics::engine::params`]). The static pipeline (equilibria, flocks, ν, basins) does
+//! not. So the size is either **given** (a length unit, [`crate::mesh::unit`], or R_max) or
+//! **known** (the bundled stone is in millimetres); otherwise a dynamic run is refused
+//! ([`Error::SizeUnknown`]) rather than run at a guess. No one guess is right: scans of dice and
+//! pebbles come in millimetres, field scans in metres, and a die taken for metres rolls as an
+//! 8 m boulder with a rolling resistance a thousand times too small for it. Asking costs one
+//! option; a wrong guess silently changes the answer. [`RealSize::implausibility`] still flags a
+//! size outside [`PLAUSIBLE_R_MAX_M`], however it was decided.
+//!
+//! Options of the commands are given in real units for the stone's real size (s, m/s, rad/s,
+//! Hz, 1/s; rolling resistance in mm): [`RealSize::scaled`] turns them into the numbers of the
+//! scaled body (R_max = 1 m, g = 9.81 m/s²) the engine's parameters hold, [`RealSize::real`]
+//! back for printing.
 
+use crate::mesh::unit::LengthUnit;
 use crate::{bundled, Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -27,33 +35,18 @@ impl Size {
     /// Metres per mesh unit for a stone whose R_max is `r_max` mesh units; a size that is not a
     /// positive finite length is refused.
     pub fn length_unit_m(self, r_max: f64) -> Result<f64> {
-        let unit = match self {
-            Size::Unit(u) => u,
-            Size::RMax(r) => r / r_max,
-        };
         match self {
-            Size::Unit(u) if !(unit > 0.0 && unit.is_finite()) => {
-                return Err(Error::parameter("length_unit", u, "a positive length in metres per mesh unit"))
-            }
-            Size::RMax(r) if !(unit > 0.0 && unit.is_finite()) => {
-                return Err(Error::parameter("size", r, "a positive length in metres (R_max)"))
-            }
-            _ => {}
+            Size::Unit(u) => Ok(LengthUnit::metres(u)?.metres),
+            Size::RMax(r) if r > 0.0 && r.is_finite() && (r / r_max).is_finite() && r / r_max > 0.0 => Ok(r / r_max),
+            Size::RMax(r) => Err(Error::parameter("size", r, "a positive length in metres (R_max)")),
         }
-        Ok(unit)
     }
 }
 
-/// What a command assumes of a mesh whose unit is neither given nor known: metres, the unit of
-/// field scans (`perturb`, `shake`, `shake --pose`).
-pub const ASSUMED_UNIT: Size = Size::Unit(1.0);
-
-/// What `drop` assumes of a stone whose size is neither given nor known: R_max = 1 cm, the
-/// reference size of the drop presets ([`REFERENCE_R_MAX_M`], a die).
-pub const ASSUMED_DROP_SIZE: Size = Size::RMax(REFERENCE_R_MAX_M);
-
 /// The size at which a surface's physical rolling-resistance length is turned into δ / R_max by
-/// the drop presets when the stone's real size is not given: R_max = 1 cm (a die, a pebble).
+/// the library's parameter defaults when no size is given to them
+/// ([`crate::dynamics::drops::params::Preset::params`]): R_max = 1 cm (a die, a pebble). The
+/// commands always pass the stone's real size.
 pub const REFERENCE_R_MAX_M: f64 = 0.01;
 
 /// Plausible real R_max (m) of a stone, a pebble or a field rock: from 2 mm (a 4 mm granule, the
@@ -70,8 +63,6 @@ pub enum SizeSource {
     Given,
     /// Known without being given: the bundled stone, whose coordinates are millimetres.
     Known,
-    /// Neither given nor known: the command's default, stated by [`RealSize::assumption`].
-    Assumed,
 }
 
 /// A stone's real size, and how it was decided ([`RealSize::resolve`]).
@@ -90,13 +81,13 @@ pub struct RealSize {
 impl RealSize {
     /// The real size of the mesh named `name` (its report name: [`bundled::NAME`] for the bundled
     /// stone) whose R_max is `r_max` mesh units: `given` if any, else the bundled stone's
-    /// millimetres, else `assumed` ([`ASSUMED_UNIT`] or [`ASSUMED_DROP_SIZE`]). A given size that
-    /// is not a positive finite length is refused.
-    pub fn resolve(name: &str, r_max: f64, given: Option<Size>, assumed: Size) -> Result<RealSize> {
+    /// millimetres, else refused ([`Error::SizeUnknown`]). A given size that is not a positive
+    /// finite length is refused.
+    pub fn resolve(name: &str, r_max: f64, given: Option<Size>) -> Result<RealSize> {
         let (as_decided, source) = match given {
             Some(s) => (s, SizeSource::Given),
             None if bundled::is_bundled(name) => (Size::Unit(bundled::LENGTH_UNIT_M), SizeSource::Known),
-            None => (assumed, SizeSource::Assumed),
+            None => return Err(Error::SizeUnknown { mesh: name.to_string() }),
         };
         let length_unit_m = as_decided.length_unit_m(r_max)?;
         let r_max_m = match as_decided {
@@ -106,38 +97,16 @@ impl RealSize {
         Ok(RealSize { length_unit_m, r_max_m, source, as_decided })
     }
 
-    /// Was the size assumed (neither given nor known)?
+    /// Was the size assumed? Never: a size is given or known ([`RealSize::resolve`]). Reports
+    /// keep their `size_assumed` field (always false) for the readers of earlier files, which
+    /// could assume one.
     pub fn assumed(&self) -> bool {
-        self.source == SizeSource::Assumed
+        false
     }
 
     /// Is R_max within [`PLAUSIBLE_R_MAX_M`]?
     pub fn plausible(&self) -> bool {
         (PLAUSIBLE_R_MAX_M[0]..=PLAUSIBLE_R_MAX_M[1]).contains(&self.r_max_m)
-    }
-
-    /// For an assumed size, what was assumed for the mesh `name` and what it implies, e.g.
-    /// "rock.ply: its length unit is not known; assuming metres (R_max = 178.3 m). The result
-    /// depends on the real size (…)". The caller adds how to give it in its own words.
-    pub fn assumption(&self, name: &str) -> Option<String> {
-        if !self.assumed() {
-            return None;
-        }
-        let what = match self.as_decided {
-            Size::Unit(u) => format!(
-                "its length unit is not known; assuming {} (R_max = {})",
-                unit_name(u),
-                format_length(self.r_max_m)
-            ),
-            Size::RMax(_) => format!(
-                "its real size is not known; assuming R_max = {} (the drop presets' reference size)",
-                format_length(self.r_max_m)
-            ),
-        };
-        Some(format!(
-            "{name}: {what}. The result depends on the real size (the rolling resistance δ/R_max; \
-             under shaking, also the real frequencies of the motion)"
-        ))
     }
 
     /// For a size outside [`PLAUSIBLE_R_MAX_M`], the warning that names it and the range, e.g.
@@ -155,16 +124,60 @@ impl RealSize {
             format_length(PLAUSIBLE_R_MAX_M[1])
         ))
     }
+
+    /// `value`, given in real SI units for this stone, as the number the scaled body's parameters
+    /// hold (R_max = 1 m, g = 9.81 m/s², [`crate::dynamics::engine::params`]): Froude scaling
+    /// with L = R_max in metres,
+    ///
+    /// ```text
+    /// time, speed: x / √L     rate (spin, damping, frequency): x · √L     length: x / L
+    /// ```
+    pub fn scaled(&self, dimension: Dimension, value: f64) -> f64 {
+        let l = self.r_max_m;
+        match dimension {
+            Dimension::Time | Dimension::Speed => value / l.sqrt(),
+            Dimension::Rate => value * l.sqrt(),
+            Dimension::Length => value / l,
+        }
+    }
+
+    /// The inverse of [`RealSize::scaled`]: a scaled parameter in real SI units for this stone.
+    pub fn real(&self, dimension: Dimension, scaled: f64) -> f64 {
+        let l = self.r_max_m;
+        match dimension {
+            Dimension::Time | Dimension::Speed => scaled * l.sqrt(),
+            Dimension::Rate => scaled / l.sqrt(),
+            Dimension::Length => scaled * l,
+        }
+    }
 }
 
-/// The name of a length unit of `u` metres ("metres", "millimetres", or "1 unit = 0.0254 m").
-fn unit_name(u: f64) -> String {
-    match u {
-        1e-3 => "millimetres".into(),
-        1e-2 => "centimetres".into(),
-        1.0 => "metres".into(),
-        1e3 => "kilometres".into(),
-        _ => format!("1 unit = {u} m"),
+/// The physical dimension of a run parameter given in real units ([`RealSize::scaled`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dimension {
+    /// Seconds: time step, time caps, rest and settling windows.
+    Time,
+    /// Metres per second.
+    Speed,
+    /// Per second: spin (rad/s), damping rates (1/s), frequencies (Hz).
+    Rate,
+    /// Metres: the rolling-resistance and torsional-friction lengths.
+    Length,
+}
+
+/// The dimension of the run parameter `name` (a field of the parameter structs:
+/// [`crate::dynamics::engine::params`], [`crate::dynamics::drops::params`],
+/// [`crate::dynamics::resting::RestingParams`]); None for a dimensionless one (friction,
+/// restitution, solver iterations, heights in R_max…).
+pub fn dimension(name: &str) -> Option<Dimension> {
+    match name {
+        "dt" | "max_time" | "rest_time" | "settle_time" | "hold_time" => Some(Dimension::Time),
+        "horizontal_speed" | "rest_linear_speed" => Some(Dimension::Speed),
+        "spin" | "rest_angular_speed" | "linear_damping" | "angular_damping" | "contact_frequency" => {
+            Some(Dimension::Rate)
+        }
+        "rolling_resistance" | "torsional_friction" => Some(Dimension::Length),
+        _ => None,
     }
 }
 
@@ -201,31 +214,54 @@ mod tests {
     }
 
     #[test]
-    fn the_size_is_given_known_or_assumed_and_an_assumed_or_implausible_one_is_said() {
-        let bundled = RealSize::resolve(bundled::NAME, 178.323, None, ASSUMED_UNIT).unwrap();
+    fn the_size_is_given_or_known_and_a_mesh_without_one_is_refused() {
+        let bundled = RealSize::resolve(bundled::NAME, 178.323, None).unwrap();
         assert_eq!((bundled.source, bundled.length_unit_m), (SizeSource::Known, 1e-3));
         assert!((bundled.r_max_m - 0.178323).abs() < 1e-12);
-        assert_eq!((bundled.assumption(bundled::NAME), bundled.implausibility(bundled::NAME)), (None, None));
-        let copy = RealSize::resolve("mystone.ply", 178.323, None, ASSUMED_UNIT).unwrap();
-        assert_eq!((copy.source, copy.r_max_m), (SizeSource::Assumed, 178.323));
-        let note = copy.assumption("mystone.ply").unwrap();
-        assert!(
-            note.starts_with("mystone.ply: its length unit is not known; assuming metres (R_max = 178.3 m)"),
-            "{note}"
-        );
-        let warning = copy.implausibility("mystone.ply").unwrap();
+        assert_eq!(bundled.implausibility(bundled::NAME), None);
+        match RealSize::resolve("mystone.ply", 178.323, None).unwrap_err() {
+            e @ Error::SizeUnknown { .. } => {
+                let text = e.to_string();
+                assert!(text.starts_with("mystone.ply: its length unit is not known"), "{text}");
+                assert!(text.contains("give length_unit (mm, cm, m, km, in") && text.contains("or size"), "{text}");
+                let keywords = e.spelled(&|n: &str| format!("{n}="));
+                assert!(
+                    keywords.contains("give length_unit= (mm") && keywords.contains("or size= (R_max"),
+                    "{keywords}"
+                );
+            }
+            e => panic!("{e}"),
+        }
+        let given = RealSize::resolve("mystone.ply", 178.323, Some(Size::Unit(1e-3))).unwrap();
+        assert_eq!((given.source, given.assumed()), (SizeSource::Given, false));
+        // A given size is flagged when it is implausible (the bundled stone in metres).
+        let metres = RealSize::resolve(bundled::NAME, 178.323, Some(Size::Unit(1.0))).unwrap();
+        let warning = metres.implausibility("x").unwrap();
         assert!(warning.contains("R_max = 178.3 m") && warning.contains("(R_max 2 mm to 20 m)"), "{warning}");
-        let given = RealSize::resolve("mystone.ply", 178.323, Some(Size::Unit(1e-3)), ASSUMED_UNIT).unwrap();
-        assert_eq!((given.source, given.assumption("mystone.ply")), (SizeSource::Given, None));
-        // A given size is flagged too when it is implausible (the bundled stone in metres).
-        let metres = RealSize::resolve(bundled::NAME, 178.323, Some(Size::Unit(1.0)), ASSUMED_UNIT).unwrap();
-        assert!(metres.implausibility("x").is_some() && metres.assumption("x").is_none());
-        let die = RealSize::resolve("die.stl", 7.0, None, ASSUMED_DROP_SIZE).unwrap();
+        let die = RealSize::resolve("die.stl", 7.0, Some(Size::RMax(0.01))).unwrap();
         assert_eq!((die.r_max_m, die.length_unit_m), (0.01, 0.01 / 7.0));
-        assert!(die.assumption("die.stl").unwrap().contains("assuming R_max = 10 mm"));
         // The bounds are the range's, inclusive.
-        let at = |r: f64| RealSize::resolve("x", 1.0, Some(Size::RMax(r)), ASSUMED_UNIT).unwrap().plausible();
+        let at = |r: f64| RealSize::resolve("x", 1.0, Some(Size::RMax(r))).unwrap().plausible();
         assert_eq!([at(1.9e-3), at(2e-3), at(20.0), at(20.1)], [false, true, true, false]);
-        assert!(RealSize::resolve("x", 1.0, Some(Size::RMax(-1.0)), ASSUMED_UNIT).is_err());
+        assert!(RealSize::resolve("x", 1.0, Some(Size::RMax(-1.0))).is_err());
+        assert!(RealSize::resolve("x", 1.0, Some(Size::Unit(0.0))).is_err());
+    }
+
+    #[test]
+    fn real_units_scale_as_froude_says_and_back() {
+        // A die of R_max = 1 cm: a spin of 5 rad/s of the scaled body is 50 rad/s, 1/120 s of it
+        // 0.833 ms, 1 m/s of it 0.1 m/s, δ = 0.2 mm is 0.02 R_max.
+        let die = RealSize::resolve("die.stl", 1.0, Some(Size::RMax(0.01))).unwrap();
+        assert!((die.scaled(Dimension::Rate, 50.0) - 5.0).abs() < 1e-12);
+        assert!((die.scaled(Dimension::Time, 1.0 / 1200.0) - 1.0 / 120.0).abs() < 1e-15);
+        assert!((die.scaled(Dimension::Speed, 0.1) - 1.0).abs() < 1e-12);
+        assert!((die.scaled(Dimension::Length, 2e-4) - 0.02).abs() < 1e-15);
+        for d in [Dimension::Time, Dimension::Speed, Dimension::Rate, Dimension::Length] {
+            assert!((die.real(d, die.scaled(d, 0.37)) - 0.37).abs() < 1e-15, "{d:?}");
+        }
+        assert_eq!(dimension("dt"), Some(Dimension::Time));
+        assert_eq!(dimension("contact_frequency"), Some(Dimension::Rate));
+        assert_eq!(dimension("rolling_resistance"), Some(Dimension::Length));
+        assert_eq!((dimension("friction"), dimension("height")), (None, None));
     }
 }

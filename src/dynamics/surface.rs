@@ -66,6 +66,18 @@ impl Surface {
         }
     }
 
+    /// What the pair stands for, and so which kind of run takes it by default: "dice thrown on
+    /// a wooden table, where the throw is calibrated" (drops), "a stone resting on rock" (pushes
+    /// and shaking sweeps), "a rock on a shake table's concrete" (field rocks).
+    pub fn stands_for(self) -> &'static str {
+        match self {
+            Surface::SteelOnWood => "dice thrown on a wooden table, where the throw is calibrated",
+            Surface::StoneOnStone => "a stone resting on rock",
+            Surface::RockOnConcrete => "a rock on a shake table's concrete",
+            Surface::RockOnSteel => "a rock on a steel plate",
+        }
+    }
+
     /// The contact of this pair.
     pub fn contact(self) -> Contact {
         let (friction, restitution, rolling_resistance_m) = match self {

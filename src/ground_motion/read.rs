@@ -184,8 +184,15 @@ pub fn read_csv(path: &Path, columns: &Columns, unit: AccelUnit) -> Result<Recor
         times.push(t);
         rows.push(a);
     }
-    if times.len() < 2 {
-        return Err(parse(format!("{} sample(s): a record needs at least two", times.len())));
+    match (times.len(), &header) {
+        (0, None) => return Err(parse("the file is empty: no samples (a record needs at least two)".into())),
+        (0, Some(_)) => {
+            return Err(parse(
+                "the file has a header but no data rows: no samples (a record needs at least two)".into(),
+            ))
+        }
+        (1, _) => return Err(parse("1 sample: a record needs at least two".into())),
+        _ => {}
     }
     uniform(&file_name(path), &times, &rows).map_err(|e| parse(e.to_string()))
 }

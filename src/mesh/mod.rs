@@ -3,6 +3,7 @@
 
 pub mod intersect;
 pub mod io;
+pub mod unit;
 
 use crate::{Error, Point3, Result, Vec3};
 use std::collections::HashMap;

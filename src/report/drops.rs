@@ -50,6 +50,13 @@ impl Scaled {
         format!("{} √(R_max/g){}", number(t * crate::GRAVITY.sqrt(), 3), real.unwrap_or_default())
     }
 
+    /// A length in units of R_max, in mm too when the real size is known: "0.001122 R_max =
+    /// 0.2 mm" (steel on wood's rolling-resistance length, for the bundled stone).
+    pub fn length(&self, x: f64) -> String {
+        let real = self.r_max_m.map(|l| format!(" = {} mm", number(x * l * 1e3, 3)));
+        format!("{} R_max{}", number(x, 4), real.unwrap_or_default())
+    }
+
     /// " for R_max = 178.3 mm" when the real size is known.
     pub fn for_size(&self) -> String {
         self.r_max_m.map_or(String::new(), |l| format!(" for R_max = {}", crate::dynamics::size::format_length(l)))
@@ -64,12 +71,13 @@ pub fn drop_summary_sized(r: &crate::dynamics::drops::montecarlo::DropReport, r_
     let plural = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     let _ = writeln!(
         s,
-        "{}: {} of {} (seed {}), preset {}; {} settled, {} ended by the {} certificate{}",
+        "{}: {} of {} (seed {}), preset {}{}; {} settled, {} ended by the {} certificate{}",
         r.mesh,
         r.drops,
         plural(r.drops_requested, "drop", "drops"),
         r.seed,
         r.preset.as_deref().unwrap_or("custom"),
+        r.surface.map_or(String::new(), |s| format!(" ({})", s.stands_for())),
         r.settled,
         r.certified,
         r.certificate.name(),
@@ -89,11 +97,11 @@ pub fn drop_summary_sized(r: &crate::dynamics::drops::montecarlo::DropReport, r_
     );
     let _ = writeln!(
         s,
-        "  contact: friction {}, restitution {}, rolling resistance {} R_max, torsional {} R_max (single contact point), damping {} linear, {} angular; dt {}, flight {}",
+        "  contact: friction {}, restitution {}, rolling resistance {}, torsional {} (single contact point), damping {} linear, {} angular; dt {}, flight {}",
         number(p.sim.contact.friction, 4),
         number(p.sim.contact.restitution, 4),
-        number(p.sim.contact.rolling_resistance, 4),
-        number(p.sim.contact.torsional_friction, 4),
+        at.length(p.sim.contact.rolling_resistance),
+        at.length(p.sim.contact.torsional_friction),
         at.rate(p.sim.contact.linear_damping),
         at.rate(p.sim.contact.angular_damping),
         at.time(p.sim.numerics.dt),

@@ -6,7 +6,7 @@ use crate::dynamics::certificate::CertificateMode;
 use crate::dynamics::drops::montecarlo::{run_and_summarize, RunHeader};
 use crate::dynamics::drops::params::{DropParams, Preset};
 use crate::dynamics::size::REFERENCE_R_MAX_M;
-use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
+use crate::dynamics::size::{RealSize, Size};
 use crate::dynamics::stone::Stone;
 use crate::dynamics::surface::Surface;
 use crate::equilibria::Kind;
@@ -74,7 +74,7 @@ pub fn hand_experiment(a: &Analysis, nu: f64, exp: &Experimenter, seed: u64) -> 
     let stone = Stone::new(a, nu)?;
     let mut params = exp.params.clone();
     if let Some(u) = exp.length_unit_m {
-        let size = RealSize::resolve("", stone.body.r_max, Some(Size::Unit(u)), ASSUMED_DROP_SIZE)?;
+        let size = RealSize::resolve("", stone.body.r_max, Some(Size::Unit(u)))?;
         params.sim.contact.rolling_resistance *= REFERENCE_R_MAX_M / size.r_max_m;
         params.sim.contact.torsional_friction *= REFERENCE_R_MAX_M / size.r_max_m;
     }

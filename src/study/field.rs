@@ -5,7 +5,7 @@ use super::experimenter::{hand_experiment, DynamicCounts, Experimenter};
 use super::metadata::Metadata;
 use super::{CountCurve, Moments};
 use crate::analysis::{Analysis, Options, Report, PAPER_NU};
-use crate::dynamics::size::{RealSize, Size, ASSUMED_DROP_SIZE};
+use crate::dynamics::size::{RealSize, Size};
 use crate::hierarchy::Counts;
 use crate::rng::fnv1a_str;
 use crate::stats::{mean, sample_sd};
@@ -78,9 +78,7 @@ impl Study {
         for p in &self.pebbles {
             if let Ok(c) = &p.result {
                 let given = Some(Size::Unit(length_unit_m));
-                odd.extend(
-                    RealSize::resolve(&p.file, c.report.micro.r_max, given, ASSUMED_DROP_SIZE)?.implausibility(&p.file),
-                );
+                odd.extend(RealSize::resolve(&p.file, c.report.micro.r_max, given)?.implausibility(&p.file));
             }
         }
         Ok(odd)

@@ -43,6 +43,8 @@ pub fn drop_header(
         params,
         certificate,
         preset: preset.map(Into::into),
+        surface: None,
+        r_max_m: None,
         center_of_mass: None,
         shard: Shard::ALL,
     }

@@ -175,7 +175,11 @@ impl RunParams {
             return Err(Error::parameter("solver_iterations", n.solver_iterations, "in 1..=1000"));
         }
         if n.dt > n.max_time {
-            return Err(Error::parameter("dt", n.dt, format!("at most the time cap max_time ({} s)", n.max_time)));
+            return Err(Error::parameter(
+                "dt",
+                n.dt,
+                format!("at most the time cap max_time ({:.4} √(R_max/g))", n.max_time * crate::GRAVITY.sqrt()),
+            ));
         }
         // Contact stability: rapier's soft contacts (30–60 Hz) need several steps per
         // oscillation, and a body must not fall through more than a fraction of itself per step.
@@ -184,14 +188,19 @@ impl RunParams {
                 "dt",
                 n.dt,
                 format!(
-                    "at most {MAX_STABLE_DT} s of the scaled body for the contact solver (the soft contacts oscillate \
-                     at 30–60 Hz and need ≥ 4 steps per period; the drop presets take this longest step, runs from \
-                     rest 1/240 s)"
+                    "at most {:.4} √(R_max/g) for the contact solver (the soft contacts oscillate at 30–60 Hz of the \
+                     scaled body and need ≥ 4 steps per period; the drop presets take this longest step, runs from \
+                     rest half of it)",
+                    MAX_STABLE_DT * crate::GRAVITY.sqrt()
                 ),
             ));
         }
         if n.max_time / n.dt > 1e8 {
-            return Err(Error::parameter("max_time", n.max_time, format!("at most 10⁸ steps of dt = {} s", n.dt)));
+            return Err(Error::parameter(
+                "max_time",
+                n.max_time,
+                format!("at most 10⁸ steps of dt = {:.4e} √(R_max/g)", n.dt * crate::GRAVITY.sqrt()),
+            ));
         }
         Ok(())
     }

@@ -64,11 +64,13 @@ pub fn stream_index(family: Family, start: usize, trial: u32) -> u64 {
 struct TrialCertificate<'a> {
     energy: EnergyCertificate<'a>,
     start_flock: usize,
+    /// Decide the final facet too ([`CertificateMode::Facet`]), not only a flock left.
+    facet: bool,
 }
 
 impl Certificate for TrialCertificate<'_> {
     fn decided(&self, s: &crate::dynamics::engine::world::BodyState) -> Option<Decided> {
-        if let Some(f) = self.energy.facet(s) {
+        if let Some(f) = self.energy.facet(s).filter(|_| self.facet) {
             return Some(Decided::Facet(f));
         }
         self.energy.flock(s).filter(|&k| k != self.start_flock).map(|k| Decided::Flock(k as u32))
@@ -86,9 +88,9 @@ pub fn trial(stone: &Stone, start: usize, p: &RestingParams, family: Family, eps
     let level0 = sim.state().level;
     let mut max_rise: f64 = 0.0;
     let energy = EnergyCertificate::new(stone, CertificateMode::Facet).expect("a facet certificate");
-    let cert = TrialCertificate { energy, start_flock: s.flock };
+    let cert = TrialCertificate { energy, start_flock: s.flock, facet: p.certificate == CertificateMode::Facet };
     let none = crate::dynamics::engine::run::NoCertificate;
-    let cert: &dyn Certificate = if p.certificate { &cert } else { &none };
+    let cert: &dyn Certificate = if p.certificate == CertificateMode::None { &none } else { &cert };
     let end = run_to_end(&mut sim, &p.sim, &mut Passive, cert, RestKind::Speeds, &mut |st| {
         max_rise = max_rise.max(st.level - level0)
     });

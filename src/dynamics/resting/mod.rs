@@ -20,6 +20,7 @@
 //! (global angular damping 1 s⁻¹ on the scaled body, no rolling resistance) survives only as the
 //! explicitly named reference [`RestingPreset::Damped`] ([`RestingParams::damped`]).
 
+use crate::dynamics::certificate::CertificateMode;
 use crate::dynamics::engine::params::{ContactParams, Flight, FlightParams, Numerics, RestParams, RunParams};
 use crate::dynamics::engine::simulation::Simulation;
 use crate::dynamics::stone::{resting_orientation, Class, StableEquilibrium, Stone};
@@ -82,7 +83,7 @@ impl FromStr for RestingPreset {
         RestingPreset::ALL
             .into_iter()
             .find(|p| p.name() == s)
-            .ok_or_else(|| Error::unknown("contact preset", s, &["surface", "damped"]))
+            .ok_or_else(|| Error::unknown("contact model", s, &["surface", "damped"]))
     }
 }
 
@@ -91,6 +92,10 @@ impl FromStr for RestingPreset {
 /// [`RestingParams::on_surface`]`(`[`Surface::StoneOnStone`]`, 1 m)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RestingParams {
+    /// The surface pair whose contact `sim` holds (None: the damped reference, or parameters
+    /// made by hand). Said by the summaries; absent from files of earlier versions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<Surface>,
     /// Contact, time step, time cap, rest thresholds and flight. Default: the surface pair's
     /// contact at the stone's real size (friction, restitution, rolling resistance and torsional
     /// friction δ / R_max, no global damping, as a drop's), dt 1/240 s, 4 solver iterations, a
@@ -111,13 +116,49 @@ pub struct RestingParams {
     /// 120 and 240 Hz (the last one's G is 0.0013 R_F from its facet's edge), and only 8 at
     /// 480 Hz, where the stiff contact starts to jitter at dt = 1/240 s.
     pub contact_frequency: f64,
-    /// End a trial once the energy certificate decides its outcome (final facet, or a flock
-    /// other than the start's). Default off: the check that no trial crosses a static barrier
-    /// is only meaningful without it.
-    pub certificate: bool,
+    /// End a trial early by the energy certificate: [`CertificateMode::Facet`] once the final
+    /// facet is certain or a flock other than the start's is, [`CertificateMode::Flock`] only
+    /// once a flock other than the start's is certain (a trial that stays in its flock runs on
+    /// to rest, so that same equilibrium and neighbour are still told apart). Default
+    /// [`CertificateMode::None`]: the check that no trial crosses a static barrier is only
+    /// meaningful without it. Written `false` / `true` / `"flock"` (files of earlier versions
+    /// have the two booleans).
+    #[serde(with = "certificate_field")]
+    pub certificate: CertificateMode,
 }
 
 pub mod outcome;
+
+/// [`RestingParams::certificate`] as files write it: `false` (none), `true` (facet) or
+/// `"flock"`.
+mod certificate_field {
+    use crate::dynamics::certificate::CertificateMode;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    #[serde(untagged)]
+    enum Field {
+        Bool(bool),
+        Name(CertificateMode),
+    }
+
+    pub fn serialize<S: Serializer>(m: &CertificateMode, s: S) -> Result<S::Ok, S::Error> {
+        match m {
+            CertificateMode::None => Field::Bool(false),
+            CertificateMode::Facet => Field::Bool(true),
+            CertificateMode::Flock => Field::Name(CertificateMode::Flock),
+        }
+        .serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<CertificateMode, D::Error> {
+        Ok(match Field::deserialize(d)? {
+            Field::Bool(false) => CertificateMode::None,
+            Field::Bool(true) => CertificateMode::Facet,
+            Field::Name(m) => m,
+        })
+    }
+}
 
 /// Time cap (s, scaled) after a perturbation or a ground motion.
 pub const RESTING_MAX_TIME: f64 = 20.0;
@@ -153,11 +194,12 @@ impl RestingParams {
             flight: FlightParams { mode: Flight::Free, strict_impacts: false },
         };
         Ok(RestingParams {
+            surface: Some(surface),
             sim,
             settle_time: 0.25,
             hold_time: 1.0,
             contact_frequency: CONTACT_FREQUENCY,
-            certificate: false,
+            certificate: CertificateMode::None,
         })
     }
 
@@ -182,11 +224,12 @@ impl RestingParams {
             flight: FlightParams { mode: Flight::Rapier, ..defaults.flight },
         };
         RestingParams {
+            surface: None,
             sim,
             settle_time: 0.25,
             hold_time: 1.0,
             contact_frequency: CONTACT_FREQUENCY,
-            certificate: false,
+            certificate: CertificateMode::None,
         }
     }
 

@@ -29,9 +29,7 @@ pub mod sweep;
 pub use drive::{shake_placed, GroundDrive, Placed, Shaken};
 pub use ensemble::{run_ensemble, Ensemble, EnsembleSpec, Member, Uncertainty};
 pub use records::{run_batch, run_record, RecordRun, ShakeBatch};
-pub use rock::{
-    default_poses, driven, parse_length_unit, place, rock_params, shake_record, stone_of, Pose, RockRun, RockSetup,
-};
+pub use rock::{default_poses, driven, place, rock_params, shake_record, stone_of, Pose, RockRun, RockSetup};
 pub use sweep::{
     default_pulse, default_starts, pga_grid, pgas_for, shake_stream, shake_trial, sine_pulse, sweep_fragility,
     sweep_fragility_monitored, Fragility, MotionInfo, ShakeConfig, ShakeReport, ShakeTrial,

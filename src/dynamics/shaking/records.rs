@@ -290,6 +290,7 @@ mod tests {
                 final_flock: 0,
                 settled,
                 azimuth_deg: 0.0,
+                surface: None,
                 r_max_m: 1.0,
                 size_assumed: None,
                 time_s: 1.0,

@@ -37,10 +37,21 @@ pub enum Pose {
     /// to rest on the stable micro-equilibrium of the quasi-static descent from the as-scanned
     /// down direction −z ([`Stone::rest`]).
     AsScanned,
-    /// Exactly at rest on this stable micro-equilibrium (analysis index), as for pushes.
-    Facet {
+    /// Exactly at rest on this stable micro-equilibrium (its index among the analysis'
+    /// micro-equilibria, as `analyze` prints it), as for pushes; written `equilibrium:ID`. Files
+    /// written before hull facets could be named call it `facet` (then `facet:ID` named an
+    /// equilibrium), which is read as this.
+    #[serde(alias = "facet")]
+    Equilibrium {
         /// Analysis index of the stable micro-equilibrium.
         id: usize,
+    },
+    /// At rest on the stable micro-equilibrium of this hull facet (the facet number `analyze`
+    /// prints beside each equilibrium); written `facet:F`. [`Pose::resolved`] turns it into the
+    /// [`Pose::Equilibrium`] it names.
+    HullFacet {
+        /// The hull facet's number.
+        facet: usize,
     },
     /// The mesh rotated by this unit quaternion (w, x, y, z; mesh → world), put down and settled
     /// as for [`Pose::AsScanned`].
@@ -51,12 +62,13 @@ pub enum Pose {
 }
 
 impl std::fmt::Display for Pose {
-    /// The command line's spelling (`as-scanned`, `facet:ID`, `quat:w,x,y,z`), which
-    /// [`Pose::from_str`](std::str::FromStr) reads back.
+    /// The command line's spelling (`as-scanned`, `equilibrium:ID`, `facet:F`, `quat:w,x,y,z`),
+    /// which [`Pose::from_str`](std::str::FromStr) reads back.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Pose::AsScanned => write!(f, "as-scanned"),
-            Pose::Facet { id } => write!(f, "facet:{id}"),
+            Pose::Equilibrium { id } => write!(f, "equilibrium:{id}"),
+            Pose::HullFacet { facet } => write!(f, "facet:{facet}"),
             Pose::Quat { q } => write!(f, "quat:{},{},{},{}", q[0], q[1], q[2], q[3]),
         }
     }
@@ -69,14 +81,19 @@ impl std::str::FromStr for Pose {
             Error::parameter(
                 "pose",
                 format!("{s:?}"),
-                "as-scanned, facet:ID (a stable micro-equilibrium) or quat:w,x,y,z",
+                "as-scanned, equilibrium:ID (a stable micro-equilibrium, as analyze numbers them), facet:F (the \
+                 hull facet it rests on) or quat:w,x,y,z",
             )
         };
+        let number = |t: &str| t.trim().parse::<usize>().map_err(|_| bad());
         if s == "as-scanned" {
             return Ok(Pose::AsScanned);
         }
-        if let Some(id) = s.strip_prefix("facet:") {
-            return Ok(Pose::Facet { id: id.trim().parse().map_err(|_| bad())? });
+        if let Some(id) = s.strip_prefix("equilibrium:") {
+            return Ok(Pose::Equilibrium { id: number(id)? });
+        }
+        if let Some(facet) = s.strip_prefix("facet:") {
+            return Ok(Pose::HullFacet { facet: number(facet)? });
         }
         if let Some(q) = s.strip_prefix("quat:") {
             let v: Vec<f64> = q
@@ -98,26 +115,75 @@ impl std::str::FromStr for Pose {
     }
 }
 
-/// The length unit of a mesh: how many metres one mesh unit is (`mm`, `cm`, `m`, `km` or a
-/// positive number).
-pub fn parse_length_unit(s: &str) -> Result<f64> {
-    let v = match s {
-        "mm" => 1e-3,
-        "cm" => 1e-2,
-        "m" => 1.0,
-        "km" => 1e3,
-        _ => s.parse::<f64>().map_err(|_| {
-            Error::parameter(
-                "length_unit",
-                format!("{s:?}"),
-                "mm, cm, m, km or a positive number of metres per mesh unit",
-            )
-        })?,
-    };
-    if !(v > 0.0 && v.is_finite()) {
-        return Err(Error::parameter("length_unit", s, "a positive number of metres per mesh unit"));
+impl Pose {
+    /// This pose on `stone`, a hull facet turned into the stable micro-equilibrium it holds; an
+    /// equilibrium index that is not a stable one's, or a facet that holds none, is refused with
+    /// the ids that are. `facet:F` named an equilibrium index before it named a hull facet; where
+    /// F could be read both ways and the two differ, it is refused with both readings rather than
+    /// read one way silently.
+    pub fn resolved(self, stone: &Stone) -> Result<Pose> {
+        let stable = stone.stable();
+        let list = || {
+            let ids: Vec<String> = stable.iter().map(|s| format!("{} (facet {})", s.index, s.facet)).collect();
+            ids.join(", ")
+        };
+        match self {
+            Pose::Equilibrium { id } if stone.position(id).is_none() => Err(Error::Pose {
+                pose: self.to_string(),
+                what: format!(
+                    "not the index of a stable micro-equilibrium{}; stable ones (with their hull facets): {}",
+                    stone.facet_hint(id),
+                    list()
+                ),
+            }),
+            Pose::HullFacet { facet } => {
+                let on = stable.iter().find(|s| s.facet as usize == facet);
+                let old = stone.position(facet).map(|k| &stable[k]);
+                match (on, old) {
+                    (Some(e), Some(o)) if e.index != o.index => Err(Error::Pose {
+                        pose: self.to_string(),
+                        what: format!(
+                            "ambiguous: hull facet {facet} holds stable micro-equilibrium {}, and equilibrium {facet} \
+                             (what facet:{facet} meant in earlier versions) rests on hull facet {}; write \
+                             equilibrium:{} for the first, equilibrium:{facet} for the second",
+                            e.index, o.facet, e.index
+                        ),
+                    }),
+                    (Some(e), _) => Ok(Pose::Equilibrium { id: e.index }),
+                    (None, old) => {
+                        let was = old.map_or(String::new(), |o| {
+                            format!(
+                                "; facet:{facet} meant equilibrium {facet} in earlier versions: write equilibrium:{facet} \
+                                 for it (it rests on hull facet {})",
+                                o.facet
+                            )
+                        });
+                        Err(Error::Pose {
+                            pose: self.to_string(),
+                            what: format!(
+                                "hull facet {facet} holds no stable micro-equilibrium{was}; stable ones (with their hull \
+                                 facets): {}",
+                                list()
+                            ),
+                        })
+                    }
+                }
+            }
+            p => Ok(p),
+        }
     }
-    Ok(v)
+
+    /// The orientation (mesh → world) of a pose that is put down and settled: as scanned (the
+    /// identity) or the quaternion, normalised; None for a pose that names an equilibrium.
+    pub fn orientation(&self) -> Option<UnitQuaternion<f64>> {
+        match *self {
+            Pose::AsScanned => Some(UnitQuaternion::identity()),
+            Pose::Quat { q } => {
+                Some(UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])))
+            }
+            Pose::Equilibrium { .. } | Pose::HullFacet { .. } => None,
+        }
+    }
 }
 
 /// Rest criterion for placement: the pose's expected micro-equilibrium, else a usage error that
@@ -145,30 +211,20 @@ fn refuse_pose(stone: &Stone, pose: &Pose, down: &Vec3, expected: u32, got: u32,
 /// Put the rock down in `pose` and let it settle under gravity (module docs of the field-rock
 /// docs).
 ///
-/// * `Facet`: exactly at rest on the facet, settled for `p.settle_time` (as for pushes).
+/// * `Equilibrium` (or `HullFacet`, [`Pose::resolved`]): exactly at rest on its facet, settled for
+///   `p.settle_time` (as for pushes).
 /// * `AsScanned` / `Quat`: the body orientation is the pose, G above the ground by the support
 ///   function h(d) of the down direction d (the lowest point touches), zero velocity; simulated
 ///   without motion until it rests ([`PositionRest`](crate::dynamics::engine::rest::PositionRest) of `p.sim`, at most
 ///   `p.sim.max_time`). It must rest on the micro-equilibrium the quasi-static descent of h from
 ///   d reaches ([`Stone::rest`]), else the pose is refused.
 pub fn place<'a>(stone: &'a Stone, pose: &Pose, p: &RestingParams) -> Result<Placed<'a>> {
-    let q = match *pose {
-        Pose::Facet { id } => {
-            let start = stone.position(id).ok_or_else(|| {
-                let list: Vec<String> = stone.stable().iter().map(|s| s.index.to_string()).collect();
-                Error::Pose {
-                    pose: format!("facet:{id}"),
-                    what: format!(
-                        "not the index of a stable micro-equilibrium{}; stable ones: {}",
-                        stone.facet_hint(id),
-                        list.join(", ")
-                    ),
-                }
-            })?;
+    let q = match pose.resolved(stone)? {
+        Pose::Equilibrium { id } => {
+            let start = stone.position(id).expect("a resolved pose names a stable micro-equilibrium");
             return Ok(Placed::on(stone, start, p));
         }
-        Pose::AsScanned => UnitQuaternion::identity(),
-        Pose::Quat { q } => UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3])),
+        resolved => resolved.orientation().ok_or_else(|| Error::check(format!("pose {pose} did not resolve")))?,
     };
     let down0 = q.inverse() * -Vec3::z();
     let expected = stone.rest(&down0);
@@ -212,8 +268,14 @@ pub struct RockRun {
     pub final_flock: usize,
     /// Came to rest (relative to the ground) before the time cap.
     pub settled: bool,
-    /// Azimuth of the record's x axis in the world frame (degrees).
+    /// Azimuth of the record's x axis (degrees, counter-clockwise from the x axis of the rock as
+    /// it stands: the mesh's own as scanned, or turned by the smallest rotation that brings its
+    /// facet down when it stands on an equilibrium).
     pub azimuth_deg: f64,
+    /// The surface pair the contact started from ([`RestingParams::surface`]; absent: the damped
+    /// reference or parameters made by hand, and files of earlier versions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<Surface>,
     /// Real R_max of the rock (m).
     pub r_max_m: f64,
     /// Whether that size was assumed, the mesh's unit being neither given nor known
@@ -258,6 +320,7 @@ pub fn shake_record(
         final_flock: rest.flock,
         settled: run.end.settled,
         azimuth_deg: azimuth.to_degrees(),
+        surface: p.surface,
         r_max_m,
         size_assumed: None,
         time_s: run.end.steps as f64 * p.sim.numerics.dt * r_max_m.sqrt(),

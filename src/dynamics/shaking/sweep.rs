@@ -252,6 +252,11 @@ pub struct ShakeReport {
     /// absent when the caller gave R_max as a number.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub size_assumed: Option<bool>,
+    /// The azimuth every trial shook along (degrees from the x axis of the stone as it stands:
+    /// the mesh turned by the smallest rotation that brings the facet down); absent: a random
+    /// azimuth per trial.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub azimuth_deg: Option<f64>,
     /// Fragility of each stable micro-equilibrium.
     pub fragility: Vec<Fragility>,
     /// The deepest any hull corner went below the ground after any step or sub-step of any trial
@@ -297,6 +302,7 @@ pub fn sweep_fragility_monitored(
         params: cfg.params.clone(),
         r_max_m: cfg.r_max_m,
         size_assumed: None,
+        azimuth_deg: cfg.azimuth.map(f64::to_degrees),
         fragility,
         deepest_penetration: trials.iter().map(|t| t.deepest_penetration).fold(0.0, f64::max),
         trials,

@@ -118,8 +118,8 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
     } else {
         let _ = writeln!(
             s,
-            "  rocking  {} (stable micro-equilibria inside unstable/saddle flocks; equilibrium ids as \
-             --equilibrium and --pose facet:ID take them):",
+            "  rocking  {} (stable micro-equilibria inside unstable/saddle flocks; --equilibrium ID and \
+             --pose equilibrium:ID take the equilibrium, --pose facet:F the hull facet):",
             plural(r.rocking.len() as u64, "rocking equilibrium", "rocking equilibria")
         );
         for q in r.rocking.iter().take(10) {

@@ -90,12 +90,17 @@ pub fn contact_line(p: &crate::dynamics::resting::RestingParams, r_max_m: Option
     } else {
         "no global damping".to_string()
     };
+    let surface = match p.surface {
+        Some(pair) => format!("{pair} ({}), ", pair.stands_for()),
+        None => String::new(),
+    };
     format!(
-        "contact: friction {}, restitution {}, rolling resistance δ = {:.2e} R_max through the contact, {damping}; \
-         dt {}, cap {}",
+        "contact: {surface}friction {}, restitution {}, rolling resistance δ = {:.2e} R_max{} through the contact, \
+         {damping}; dt {}, cap {}",
         number(c.contact.friction, 4),
         number(c.contact.restitution, 4),
         c.contact.rolling_resistance,
+        r_max_m.map_or(String::new(), |l| format!(" = {} mm", number(c.contact.rolling_resistance * l * 1e3, 3))),
         at.time(c.numerics.dt),
         at.time(c.numerics.max_time)
     )

@@ -21,6 +21,10 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         b.start_equilibrium,
         b.settling_tilt_deg
     );
+    if let Some(r) = b.runs.first() {
+        let drawn = b.ensemble.as_ref().is_some_and(|e| e.uncertainty.azimuth_deg.is_some());
+        s += &format!("  {}\n", super::runs::field_line(&r.rock, drawn));
+    }
     match (&b.surface, &b.surface_error) {
         (Some(f), _) => {
             s += &format!(

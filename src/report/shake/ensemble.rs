@@ -31,6 +31,9 @@ pub fn ensemble_summary(e: &Ensemble, mesh: &str) -> String {
         s += &format!(" ({} still moving at the time cap, left out)", p.members - p.settled);
     }
     s += "\n";
+    if let Some(m) = e.members.first() {
+        s += &format!("  {}\n", super::runs::field_line(&m.run, e.uncertainty.azimuth_deg.is_some()));
+    }
     s += &sensitivity_lines(&e.sensitivity);
     s += &tipping_lines(&e.tipping);
     s

@@ -1,7 +1,7 @@
 //! Field-rock runs under records ([`crate::dynamics::shaking::RecordRun`]): the columns of
 //! `runs.csv`, its rows, and the summary of one run.
 
-use crate::dynamics::shaking::RecordRun;
+use crate::dynamics::shaking::{RecordRun, RockRun};
 use crate::report::short_name;
 use std::path::Path;
 
@@ -83,7 +83,7 @@ pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
     format!(
         "{} (R_max = {:.3} m) under {} × {}: PGA {:.3} g, PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
          settled onto equilibrium {} with a tilt of {:.3}°; {} (outcome {}, final equilibrium {}, flock {}), \
-         max tilt {:.2}°, slide {:.4} m{}\n",
+         max tilt {:.2}°, slide {:.4} m{}\n  {}\n",
         short_name(mesh),
         r.rock.r_max_m,
         r.motion.record,
@@ -99,6 +99,16 @@ pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
         r.rock.final_flock,
         r.rock.max_tilt_deg,
         r.rock.slide_m,
-        if r.rock.settled { "" } else { " (still moving at the time cap)" }
+        if r.rock.settled { "" } else { " (still moving at the time cap)" },
+        field_line(&r.rock, false)
     ) + &crate::report::depth_line(r.rock.deepest_penetration)
+}
+
+/// The record's direction and the ground of a field-rock run: "record's x axis at azimuth 30°
+/// from the rock's x axis as it stands; on rock-on-concrete (a rock on a shake table's concrete)";
+/// `drawn`: each member of an ensemble drew its own azimuth.
+pub(crate) fn field_line(r: &RockRun, drawn: bool) -> String {
+    let surface = r.surface.map_or(String::new(), |s| format!("; on {s} ({})", s.stands_for()));
+    let azimuth = if drawn { "each member's azimuth".to_string() } else { format!("azimuth {}°", r.azimuth_deg) };
+    format!("record's x axis at {azimuth} from the rock's x axis as it stands{surface}")
 }

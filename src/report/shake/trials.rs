@@ -22,9 +22,13 @@ pub fn summary(r: &ShakeReport, mesh: &str) -> String {
         crate::report::perturb::contact_line(&r.params, Some(r.r_max_m))
     );
     s += &crate::report::depth_line(r.deepest_penetration);
+    let azimuth = match r.azimuth_deg {
+        Some(a) => format!("all along azimuth {a}° from the stone's x axis as it stands"),
+        None => "each along a random azimuth".to_string(),
+    };
     let _ = writeln!(
         s,
-        "{} trials per PGA on {} PGAs from {:.3} g to {:.3} g, seed {}; flocks at ν = {:.3e}",
+        "{} trials per PGA on {} PGAs from {:.3} g to {:.3} g ({azimuth}), seed {}; flocks at ν = {:.3e}",
         r.trials_per_point,
         r.pgas.len(),
         r.pgas.first().copied().unwrap_or(f64::NAN),

@@ -67,6 +67,14 @@ pub struct RunHeader {
     /// was run).
     #[serde(default)]
     pub preset: Option<String>,
+    /// The surface pair the contact started from (for the summary; absent from files of earlier
+    /// versions and runs made from explicit parameters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<crate::dynamics::surface::Surface>,
+    /// The stone's real R_max (m) the run was made for (for the summary's SI values, a merged
+    /// run's too; absent from files of earlier versions and runs made from explicit parameters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub r_max_m: Option<f64>,
     /// A declared centre of mass (mesh units), if the run used one instead of the solid's G.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub center_of_mass: Option<[f64; 3]>,
@@ -97,6 +105,8 @@ impl RunHeader {
             params,
             certificate,
             preset: Some(format!("{} on {}", preset.0, preset.1)),
+            surface: Some(preset.1),
+            r_max_m: None,
             center_of_mass: None,
             shard: Shard::ALL,
         }
@@ -121,6 +131,8 @@ impl RunHeader {
             params,
             certificate,
             preset: None,
+            surface: None,
+            r_max_m: None,
             center_of_mass: None,
             shard: Shard::ALL,
         }

@@ -108,6 +108,9 @@ pub struct DropReport {
     pub params: DropParams,
     /// The preset the parameters started from, if any.
     pub preset: Option<String>,
+    /// The surface pair the contact started from, if known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<crate::dynamics::surface::Surface>,
     /// Whether and how the energy certificate may end a drop.
     pub certificate: CertificateMode,
     /// Resolution ν of the flocks.
@@ -282,6 +285,7 @@ pub fn summarize(model: &StaticModel, header: &RunHeader, outcomes: &BTreeMap<u6
         facet_drops: if facets_determined { n_facet } else { 0 },
         params: header.params.clone(),
         preset: header.preset.clone(),
+        surface: header.surface,
         certificate: header.certificate,
         nu: model.nu,
         facets,

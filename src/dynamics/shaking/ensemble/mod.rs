@@ -69,19 +69,15 @@ pub struct Member {
 /// quasi-static descent from its down direction reaches (what [`place`] requires).
 pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
     use crate::dynamics::shaking::rock::Pose;
-    let q = match setup.pose {
-        Pose::Facet { id } => {
-            return stone.stable().iter().find(|s| s.index == id).map(|s| s.facet).ok_or_else(|| Error::Pose {
-                pose: format!("facet:{id}"),
-                what: format!("not the index of a stable micro-equilibrium{}", stone.facet_hint(id)),
-            })
+    match setup.pose.resolved(stone)? {
+        Pose::Equilibrium { id } => {
+            Ok(stone.stable()[stone.position(id).expect("a resolved pose names a stable micro-equilibrium")].facet)
         }
-        Pose::AsScanned => nalgebra::UnitQuaternion::identity(),
-        Pose::Quat { q } => {
-            nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]))
+        pose => {
+            let q = pose.orientation().ok_or_else(|| Error::check(format!("pose {pose} did not resolve")))?;
+            Ok(stone.rest(&(q.inverse() * -Vec3::z())).facet)
         }
-    };
-    Ok(stone.rest(&(q.inverse() * -Vec3::z())).facet)
+    }
 }
 
 /// Run member `member` of the ensemble `u` (seed `seed`) on `motion` (already scaled and

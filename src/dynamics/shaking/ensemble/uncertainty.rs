@@ -40,11 +40,10 @@ impl Uncertainty {
     }
 
     /// The uncertainty a user states (the command line's and Python's): `given` in the user's
-    /// units — base-contact tolerance in the mesh's length unit (`length_unit_m` metres each),
-    /// azimuth in degrees, δ in mm. Friction, restitution and δ not given range over
-    /// `surface`'s ranges ([`Surface::ranges`]) unless `pinned` (the user set that value:
-    /// friction, restitution, rolling resistance).
-    pub fn stated(given: &Uncertainty, surface: Surface, length_unit_m: f64, pinned: [bool; 3]) -> Uncertainty {
+    /// units — base-contact tolerance and δ in mm, azimuth in degrees. Friction, restitution and
+    /// δ not given range over `surface`'s ranges ([`Surface::ranges`]) unless `pinned` (the user
+    /// set that value: friction, restitution, rolling resistance).
+    pub fn stated(given: &Uncertainty, surface: Surface, pinned: [bool; 3]) -> Uncertainty {
         let r = surface.ranges();
         let or_surface = |x: Option<[f64; 2]>, pinned: bool, default: [f64; 2]| match x {
             Some(x) => Some(x),
@@ -52,7 +51,7 @@ impl Uncertainty {
             None => Some(default),
         };
         Uncertainty {
-            contact_tolerance_m: given.contact_tolerance_m.map(|t| t.map(|x| x * length_unit_m)),
+            contact_tolerance_m: given.contact_tolerance_m.map(|t| t.map(|x| x * 1e-3)),
             azimuth_deg: given.azimuth_deg,
             random_sign: given.random_sign,
             friction: or_surface(given.friction, pinned[0], r.friction),
