@@ -122,50 +122,46 @@ impl Pose {
     /// F could be read both ways and the two differ, it is refused with both readings rather than
     /// read one way silently.
     pub fn resolved(self, stone: &Stone) -> Result<Pose> {
-        let stable = stone.stable();
+        let stable: Vec<(usize, usize)> = stone.stable().iter().map(|s| (s.index, s.facet as usize)).collect();
+        self.resolved_among(&stable, &|id| stone.facet_hint(id))
+    }
+
+    /// [`Pose::resolved`] among the stable micro-equilibria `stable` (analysis index, hull
+    /// facet), `hint` saying what an index that is not a stable one's is.
+    fn resolved_among(self, stable: &[(usize, usize)], hint: &dyn Fn(usize) -> String) -> Result<Pose> {
         let list = || {
-            let ids: Vec<String> = stable.iter().map(|s| format!("{} (facet {})", s.index, s.facet)).collect();
+            let ids: Vec<String> = stable.iter().map(|(index, facet)| format!("{index} (facet {facet})")).collect();
             ids.join(", ")
         };
+        let refuse = |what: String| Error::Pose { pose: self.to_string(), what };
         match self {
-            Pose::Equilibrium { id } if stone.position(id).is_none() => Err(Error::Pose {
-                pose: self.to_string(),
-                what: format!(
-                    "not the index of a stable micro-equilibrium{}; stable ones (with their hull facets): {}",
-                    stone.facet_hint(id),
-                    list()
-                ),
-            }),
+            Pose::Equilibrium { id } if !stable.iter().any(|s| s.0 == id) => Err(refuse(format!(
+                "not the index of a stable micro-equilibrium{}; stable ones (with their hull facets): {}",
+                hint(id),
+                list()
+            ))),
             Pose::HullFacet { facet } => {
-                let on = stable.iter().find(|s| s.facet as usize == facet);
-                let old = stone.position(facet).map(|k| &stable[k]);
+                let on = stable.iter().find(|s| s.1 == facet);
+                let old = stable.iter().find(|s| s.0 == facet);
                 match (on, old) {
-                    (Some(e), Some(o)) if e.index != o.index => Err(Error::Pose {
-                        pose: self.to_string(),
-                        what: format!(
-                            "ambiguous: hull facet {facet} holds stable micro-equilibrium {}, and equilibrium {facet} \
-                             (what facet:{facet} meant in earlier versions) rests on hull facet {}; write \
-                             equilibrium:{} for the first, equilibrium:{facet} for the second",
-                            e.index, o.facet, e.index
-                        ),
-                    }),
-                    (Some(e), _) => Ok(Pose::Equilibrium { id: e.index }),
+                    (Some(&(e, _)), Some(&(_, old_facet))) if e != facet => Err(refuse(format!(
+                        "ambiguous: hull facet {facet} holds stable micro-equilibrium {e}, and equilibrium {facet} \
+                         (what facet:{facet} meant in earlier versions) rests on hull facet {old_facet}; write \
+                         equilibrium:{e} for the first, equilibrium:{facet} for the second"
+                    ))),
+                    (Some(&(e, _)), _) => Ok(Pose::Equilibrium { id: e }),
                     (None, old) => {
-                        let was = old.map_or(String::new(), |o| {
+                        let was = old.map_or(String::new(), |&(_, old_facet)| {
                             format!(
                                 "; facet:{facet} meant equilibrium {facet} in earlier versions: write equilibrium:{facet} \
-                                 for it (it rests on hull facet {})",
-                                o.facet
+                                 for it (it rests on hull facet {old_facet})"
                             )
                         });
-                        Err(Error::Pose {
-                            pose: self.to_string(),
-                            what: format!(
-                                "hull facet {facet} holds no stable micro-equilibrium{was}; stable ones (with their hull \
-                                 facets): {}",
-                                list()
-                            ),
-                        })
+                        Err(refuse(format!(
+                            "hull facet {facet} holds no stable micro-equilibrium{was}; stable ones (with their hull \
+                             facets): {}",
+                            list()
+                        )))
                     }
                 }
             }
@@ -431,6 +427,40 @@ pub fn driven(record: &Record, real_dt: f64) -> Result<Record> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_facet_pose_is_read_as_the_hull_facet_and_never_silently_as_an_old_equilibrium_id() {
+        // Stable micro-equilibria (index, hull facet): 0 on facet 3, 1 on facet 7, 3 on facet 0.
+        let stable = [(0, 3), (1, 7), (3, 0)];
+        let none = |_: usize| String::new();
+        let pose = |s: &str| s.parse::<Pose>().unwrap().resolved_among(&stable, &none);
+        // A facet that holds an equilibrium and is no equilibrium's index: that equilibrium.
+        assert_eq!(pose("facet:7").unwrap(), Pose::Equilibrium { id: 1 });
+        // The same equilibrium either way (facet 0 holds equilibrium 3... and equilibrium 0 is on
+        // facet 3): facet:3 holds equilibrium 0 but names equilibrium 3 of old, on facet 0.
+        let e = pose("facet:3").unwrap_err().to_string();
+        assert!(e.contains("ambiguous: hull facet 3 holds stable micro-equilibrium 0, and equilibrium 3"), "{e}");
+        assert!(e.contains("write equilibrium:0 for the first, equilibrium:3 for the second"), "{e}");
+        // A facet holding no equilibrium whose number is an old equilibrium id: refused, pointing
+        // to equilibrium:ID.
+        let e = pose("facet:1").unwrap_err().to_string();
+        assert!(e.contains("hull facet 1 holds no stable micro-equilibrium; facet:1 meant equilibrium 1"), "{e}");
+        assert!(e.contains("write equilibrium:1 for it (it rests on hull facet 7)"), "{e}");
+        // Neither reading: the list of what there is.
+        let e = pose("facet:9").unwrap_err().to_string();
+        assert!(e.contains("stable ones (with their hull facets): 0 (facet 3), 1 (facet 7), 3 (facet 0)"), "{e}");
+        // Equilibrium ids are taken as they are, or refused.
+        assert_eq!(pose("equilibrium:3").unwrap(), Pose::Equilibrium { id: 3 });
+        assert!(pose("equilibrium:2").is_err());
+        // Where both readings name the same equilibrium (a box: equilibrium k on facet k), it is
+        // that one.
+        let same = [(0, 0), (1, 1)];
+        assert_eq!(
+            "facet:1".parse::<Pose>().unwrap().resolved_among(&same, &none).unwrap(),
+            Pose::Equilibrium { id: 1 }
+        );
+        assert_eq!(Pose::AsScanned.resolved_among(&stable, &none).unwrap(), Pose::AsScanned);
+    }
 
     #[test]
     fn a_box_is_a_stone_at_its_nu_resting_by_default_on_its_largest_face() {
