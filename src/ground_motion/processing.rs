@@ -2,16 +2,17 @@
 //!
 //! The velocity integrated from an acceleration record as given ([`Record::velocity`]) drifts:
 //! an offset of 10⁻³ g left in a 40 s record adds 0.4 m/s to it, and the long periods an
-//! accelerometer (or a shake table's) cannot resolve add more. Strong-motion practice corrects
+//! accelerometer (a shake table's too) cannot resolve add more. Strong-motion practice corrects
 //! the baseline and removes those periods with an acausal high-pass filter before integrating
 //! (Boore & Bommer 2005). [`Record::processed`] does, for each component:
 //!
 //! 1. **Baseline**: the mean of the acceleration over the record is removed, so that
 //!    ∫a dt = 0: the ground is at rest at both ends of the record (v(T) = v(0) = 0), the
-//!    simplest baseline correction of Boore & Bommer (2005, §4).
-//! 2. **Pads**: ⌈1.5 n / (f_c dt)⌉ zeros before and after the record — the pad length Converse &
-//!    Brady (1992) give for an acausal Butterworth filter of order n and corner f_c (Boore 2005),
-//!    used at each end — so the filter's two-sided response has room and nothing wraps around.
+//!    simplest baseline correction of Boore & Bommer (2005).
+//! 2. **Pads**: ⌈1.5 n / (f_c dt)⌉ zeros before and after the record — the total pad length
+//!    Converse & Brady (1992) give for an acausal Butterworth filter of order n and corner f_c
+//!    (Boore 2005; gmprocess splits it between the ends), here at each end — so the filter's
+//!    two-sided response has room and nothing wraps around the FFT.
 //! 3. **High-pass**: the spectrum of the padded record (FFT) is multiplied by
 //!
 //!    ```text
@@ -20,7 +21,7 @@
 //!
 //!    the squared magnitude of the n-th order Butterworth high-pass: what passing that filter
 //!    forward and then backward in time does (zero phase, "acausal"): 1/2 at the corner,
-//!    (f/f_c)^(2n) below it, 1 − (f_c/f)^(2n) above it.
+//!    ≈ (f/f_c)^(2n) well below it, ≈ 1 − (f_c/f)^(2n) well above it.
 //! 4. **Velocity**: the trapezoid rule from v = 0 at the first pad sample, over the padded
 //!    record: the pads are kept, as Boore (2005) advises, since the acausal filter's response
 //!    reaches into them.
@@ -35,8 +36,8 @@
 //! corner is a stated constant: [`Processing::default`] takes f_c = 0.08 Hz and n = 5, the
 //! constant corner and the high-pass of the USGS processing software gmprocess's default
 //! configuration (Butterworth of order 5 in two passes, 0.08 Hz when the corners are not picked
-//! from the noise). Periods longer than 1/f_c = 12.5 s are removed; a short velocity pulse of
-//! duration T loses about T f_c (π/2n)/sin(π/2n) of its peak (it leaves the ground displaced,
+//! from the noise). Periods longer than 1/f_c = 12.5 s are removed; one sine cycle of
+//! acceleration lasting T loses about T f_c (π/2n)/sin(π/2n) of its peak (it leaves the ground displaced,
 //! which a high-pass cannot keep). Give another corner with [`Processing`].
 //!
 //! # Why this is written here
