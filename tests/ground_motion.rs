@@ -134,3 +134,83 @@ fn bad_records_name_the_file_and_line() {
     let e = read_at2(&[&write(dir.path(), "nan.AT2", &lines.join("\n"))]).unwrap_err().to_string();
     assert!(e.contains("nan.AT2") && e.contains("not a number"), "{e}");
 }
+
+#[test]
+fn a_table_of_known_pgvs_names_records_by_file_name() {
+    use rocking_stones::ground_motion::read::{read_known_pgv, with_known_pgvs};
+    use rocking_stones::ground_motion::PgvSource;
+    let dir = tempfile::tempdir().unwrap();
+    let p =
+        write(dir.path(), "pgv.csv", "# measured\nmotion, note ,PGV_m_s\nmotions/a.csv,first,0.3\n\nb.csv,\"x\",0.2\n");
+    let table = read_known_pgv(&p).unwrap();
+    assert_eq!(table, vec![("a.csv".to_string(), 0.3), ("b.csv".to_string(), 0.2)]);
+    let pulse = one_sine_pulse(0.2, 0.5, 0.005).unwrap();
+    let named = |n: &str| Record { name: n.into(), known_pgv_m_s: None, ..pulse.clone() };
+    let (records, n) = with_known_pgvs(vec![named("a.csv"), named("c.csv")], &table, "pgv.csv").unwrap();
+    assert_eq!(n, 1);
+    let (a, c) = (records[0].measures(), records[1].measures());
+    assert_eq!((a.pgv_m_s, a.pgv_source), (0.3, PgvSource::Given));
+    assert_eq!(c.pgv_source, PgvSource::Processed);
+    // A table of other records is refused, naming itself.
+    let e = with_known_pgvs(vec![named("c.csv")], &table, "pgv.csv").unwrap_err().to_string();
+    assert!(e.contains("pgv.csv") && e.contains("a.csv"), "{e}");
+    // Bad tables name the file, the line and what is wrong.
+    let msg = |name: &str, text: &str| read_known_pgv(&write(dir.path(), name, text)).unwrap_err().to_string();
+    let e = msg("cols.csv", "record,pga_g\na.csv,0.3\n");
+    assert!(e.contains("cols.csv") && e.contains("pgv_m_s") && e.contains("record, pga_g"), "{e}");
+    let e = msg("neg.csv", "record,pgv_m_s\na.csv,0.3\nb.csv,-0.1\n");
+    assert!(e.contains("neg.csv") && e.contains("line 3") && e.contains("-0.1"), "{e}");
+    let e = msg("twice.csv", "file,pgv_m_s\nx/a.csv,0.3\ny/a.csv,0.2\n");
+    assert!(e.contains("line 3") && e.contains("twice"), "{e}");
+    let e = msg("short.csv", "record,pgv_m_s\na.csv\n");
+    assert!(e.contains("line 2") && e.contains("missing"), "{e}");
+    assert!(msg("empty.csv", "# nothing\n").contains("empty"));
+    assert!(msg("header.csv", "record,pgv_m_s\n").contains("no rows"));
+}
+
+/// `rocking shake` on the bundled stone (standing on its rocking pose) under one second of a
+/// 2 Hz sine of 0.25 g: the PGV printed is the processed one — the closed form 2 a_p/ω_p less
+/// the high-pass's T f_c (π/10)/sin(π/10) (`ground_motion::processing`) — unless `--pgv` gives
+/// it; a folder of records takes known PGVs from `--pgv-table`.
+#[test]
+fn the_shake_command_says_which_pgv_it_used() {
+    use std::f64::consts::PI;
+    use std::process::Command;
+    let dir = tempfile::tempdir().unwrap();
+    let mut csv = String::from("time_s,ax_g\n");
+    for k in 0..2000 {
+        let t = k as f64 / 200.0;
+        csv += &format!("{t:.3},{:.6}\n", if t < 1.0 { 0.25 * (2.0 * PI * 2.0 * t).sin() } else { 0.0 });
+    }
+    let recs = dir.path().join("records");
+    fs::create_dir(&recs).unwrap();
+    let rec = write(&recs, "pulse.csv", &csv);
+    write(&recs, "other.csv", &csv);
+    let run = |extra: &[&str]| {
+        let base = ["shake", "--pose", "equilibrium:3", "--columns", "time_s,ax_g", "--json"];
+        Command::new(env!("CARGO_BIN_EXE_rocking")).args(base).args(extra).output().unwrap()
+    };
+    let json = |out: std::process::Output| -> serde_json::Value {
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let rec_s = rec.to_str().unwrap();
+    let closed = 2.0 * 0.25 * G / (2.0 * PI * 2.0);
+    let j = json(run(&["--motion", rec_s]));
+    let processed = closed * (1.0 - 1.0 * 0.08 * (PI / 10.0) / (PI / 10.0).sin());
+    assert!((j["pgv_m_s"].as_f64().unwrap() / processed - 1.0).abs() < 0.01, "{} vs {processed}", j["pgv_m_s"]);
+    assert_eq!(j["pgv_source"], "processed");
+    let j = json(run(&["--motion", rec_s, "--pgv", "0.39"]));
+    assert_eq!((j["pgv_m_s"].as_f64(), &j["pgv_source"]), (Some(0.39), &serde_json::json!("given")));
+    assert!((j["pgv_over_pga_s"].as_f64().unwrap() - 0.39 / (0.25 * G)).abs() < 1e-3, "{j}");
+    let out = run(&["--motion", rec_s, "--pgv", "-1"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("--pgv"));
+    // A folder: the table names one record of two.
+    let table = write(dir.path(), "pgv.csv", "record,pgv_m_s\npulse.csv,0.5\nelsewhere.csv,0.1\n");
+    let j = json(run(&["--records", recs.to_str().unwrap(), "--pgv-table", table.to_str().unwrap()]));
+    let runs = j["runs"].as_array().unwrap();
+    let of = |name: &str| runs.iter().find(|r| r["record"] == name).unwrap().clone();
+    assert_eq!((of("pulse.csv")["pgv_m_s"].as_f64(), &of("pulse.csv")["pgv_source"]), (Some(0.5), &"given".into()));
+    assert_eq!(of("other.csv")["pgv_source"], "processed");
+    assert!((of("other.csv")["pgv_m_s"].as_f64().unwrap() / processed - 1.0).abs() < 0.01);
+}

@@ -42,6 +42,15 @@ pub struct Args {
     /// CSV records: acceleration unit (g, m/s2, gal).
     #[arg(long, default_value = "g")]
     pub accel_unit: String,
+    /// The --motion record's known peak ground velocity (m/s), e.g. measured: reported (and
+    /// used for PGV/PGA) instead of the PGV of the processed record (mean removed, acausal
+    /// Butterworth high-pass of order 5 at 0.08 Hz, integrated).
+    #[arg(long, value_name = "M_S", requires = "motion", conflicts_with = "records")]
+    pub pgv: Option<f64>,
+    /// --records: a CSV of known PGVs, columns `record` (or `motion`, `file`: the record's file
+    /// name) and `pgv_m_s`; the records it names report that PGV, the others the processed one.
+    #[arg(long, value_name = "FILE", requires = "records")]
+    pub pgv_table: Option<PathBuf>,
     /// Polynomial baseline correction of the records (order 0–3) before use.
     #[arg(long, value_name = "ORDER", value_parser = super::at_least::<usize, 0>)]
     pub baseline: Option<usize>,
@@ -189,8 +198,27 @@ pub fn run_shake(args: Args) -> Result<()> {
 }
 
 /// The records of the command line (one --motion, or the --records folder), each baseline
-/// corrected if asked.
+/// corrected if asked, with their known PGVs if given.
 fn read_records(args: &Args) -> Result<Vec<Record>> {
+    let records = read_baselined(args)?;
+    if let Some(pgv) = args.pgv {
+        let given = |r: Record| r.with_known_pgv(pgv).map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)));
+        return records.into_iter().map(given).collect();
+    }
+    match &args.pgv_table {
+        Some(path) => {
+            let table = read::read_known_pgv(path)?;
+            let (records, named) = read::with_known_pgvs(records, &table, &path.display().to_string())
+                .map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;
+            eprintln!("{}: known PGV of {named} of {} records", path.display(), records.len());
+            Ok(records)
+        }
+        None => Ok(records),
+    }
+}
+
+/// The records of the command line, each baseline corrected if asked.
+fn read_baselined(args: &Args) -> Result<Vec<Record>> {
     let columns: Columns = args.columns.parse()?;
     let accel_unit: AccelUnit = args.accel_unit.parse()?;
     let records = match (&args.records, args.motion.is_empty()) {

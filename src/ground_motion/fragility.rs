@@ -513,6 +513,7 @@ mod tests {
             pgv_m_s: 0.3,
             pgv_over_pga_s: 0.0765,
             pga_vertical_g: 0.0,
+            pgv_source: Default::default(),
         };
         assert_eq!(Run::of(&motion, true), run(0.4, 0.0765, true));
     }

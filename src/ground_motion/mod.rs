@@ -15,23 +15,30 @@
 //! For a record a(t) with horizontal part a_h = (a_x, a_y) ([`Record::measures`]):
 //!
 //! ```text
-//! PGA = max_t |a_h(t)|,    v(t) = ∫₀ᵗ a(s) ds (trapezoid rule),    PGV = max_t |v_h(t)|,
+//! PGA = max_t |a_h(t)|,    PGV = max_t |v_h(t)|,    PGV/PGA (s),
 //! ```
 //!
 //! the peaks of the horizontal resultant (for a one-component record, the usual peaks of that
-//! component), and the ratio PGV/PGA (s), the second variable of the fragility surfaces of
-//! Purvance, Anooshehpoor & Brune (2008). PGV is read from the velocity integrated from the record
-//! *as given*: correct the baseline first ([`Record::baseline_corrected`]) — an offset of 10⁻³ g
-//! left in a 40 s record adds 0.4 m/s to the velocity.
+//! component). PGA is read from the record as given. PGV is read from the ground velocity v as
+//! strong-motion processing computes it ([`processing`]): the mean removed, zero pads, an acausal
+//! Butterworth high-pass (order 5 per pass, corner 0.08 Hz by default, the zero-phase response
+//! 1/(1 + (f_c/f)^10)), then the trapezoid rule — not from the plain integral
+//! ([`Record::velocity`]), which drifts with any offset or long-period noise of the record. A
+//! record whose PGV is known says so ([`Record::with_known_pgv`]: a measurement, or the closed
+//! form of a synthetic pulse); its measures then carry that PGV, scaled with the record, and
+//! [`Measures::pgv_source`] says which was used. PGV/PGA is the second variable of the fragility
+//! surfaces of Purvance, Anooshehpoor & Brune (2008).
 
 pub mod fragility;
+pub mod processing;
 pub mod read;
 pub mod studies;
 pub mod synthetic;
 
 use crate::{Error, Result, GRAVITY as G};
+use processing::Processing;
 use realfft::RealFftPlanner;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A ground-acceleration history: uniform sampling from t = 0, three components (m/s²).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -42,6 +49,32 @@ pub struct Record {
     pub dt: f64,
     /// Acceleration at t = k·dt: `[x, y, z]` in m/s², x and y horizontal, z up.
     pub accel: Vec<[f64; 3]>,
+    /// The record's peak horizontal ground velocity (m/s) when it is known (measured, or the
+    /// closed form of a synthetic motion): [`Record::measures`] then reports it instead of the
+    /// processed one. Set with [`Record::with_known_pgv`]; scales with [`Record::scaled`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub known_pgv_m_s: Option<f64>,
+}
+
+/// Where the PGV of [`Measures`] comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PgvSource {
+    /// The velocity of standard strong-motion processing ([`processing`]).
+    #[default]
+    Processed,
+    /// Given with the record ([`Record::with_known_pgv`]).
+    Given,
+}
+
+impl PgvSource {
+    /// The word a summary prints: `processed` or `given`.
+    pub fn name(self) -> &'static str {
+        match self {
+            PgvSource::Processed => "processed",
+            PgvSource::Given => "given",
+        }
+    }
 }
 
 /// Peak values of a record ([`Record::measures`]).
@@ -51,7 +84,9 @@ pub struct Measures {
     pub pga_m_s2: f64,
     /// Peak horizontal ground acceleration (g).
     pub pga_g: f64,
-    /// Peak horizontal ground velocity (m/s), from the integrated record.
+    /// Peak horizontal ground velocity (m/s): of the velocity after strong-motion processing
+    /// (mean removed, zero pads, acausal Butterworth high-pass of order 5 at 0.08 Hz, see
+    /// [`processing`]), or the record's known PGV ([`Measures::pgv_source`]).
     pub pgv_m_s: f64,
     /// PGV / PGA (s): a time scale of the strong pulses.
     pub pgv_over_pga_s: f64,
@@ -59,6 +94,8 @@ pub struct Measures {
     pub pga_vertical_g: f64,
     /// Duration (s).
     pub duration_s: f64,
+    /// Which PGV this is: processed, or given with the record.
+    pub pgv_source: PgvSource,
 }
 
 /// A record × scale factor and the intensity measures of the scaled record: what one field-rock
@@ -71,19 +108,24 @@ pub struct ScaledRecord {
     pub scale: f64,
     /// Peak horizontal ground acceleration of the scaled record (g).
     pub pga_g: f64,
-    /// Peak horizontal ground velocity of the scaled record (m/s).
+    /// Peak horizontal ground velocity of the scaled record (m/s), as [`Measures::pgv_m_s`].
     pub pgv_m_s: f64,
     /// PGV/PGA (s).
     pub pgv_over_pga_s: f64,
     /// Peak vertical ground acceleration (g).
     pub pga_vertical_g: f64,
+    /// Which PGV this is: processed, or given with the record (absent in journals written before
+    /// it was recorded: processed).
+    #[serde(default)]
+    pub pgv_source: PgvSource,
 }
 
 impl ScaledRecord {
     /// `record` × `scale`, its scaled record's measures `m`.
     pub fn of(record: &Record, scale: f64, m: &Measures) -> ScaledRecord {
         let (pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g) = (m.pga_g, m.pgv_m_s, m.pgv_over_pga_s, m.pga_vertical_g);
-        ScaledRecord { record: record.name.clone(), scale, pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g }
+        let pgv_source = m.pgv_source;
+        ScaledRecord { record: record.name.clone(), scale, pga_g, pgv_m_s, pgv_over_pga_s, pga_vertical_g, pgv_source }
     }
 
     /// Whether `other` is the same record at the same scale factor (bit for bit): a run of the
@@ -110,7 +152,22 @@ impl Record {
                 format!("sample {} (t = {} s) is not a finite number", k + 1, k as f64 * dt),
             ));
         }
-        Ok(Record { name, dt, accel })
+        Ok(Record { name, dt, accel, known_pgv_m_s: None })
+    }
+
+    /// The record with its peak horizontal ground velocity known to be `pgv_m_s` (m/s, > 0): a
+    /// measured PGV, or the closed form of a synthetic motion. [`Record::measures`] reports it
+    /// (source [`PgvSource::Given`]) instead of the processed one.
+    pub fn with_known_pgv(self, pgv_m_s: f64) -> Result<Record> {
+        if !(pgv_m_s > 0.0 && pgv_m_s.is_finite()) {
+            return Err(Error::parameter("pgv", format!("{pgv_m_s} m/s"), "a positive peak ground velocity (m/s)"));
+        }
+        Ok(Record { known_pgv_m_s: Some(pgv_m_s), ..self })
+    }
+
+    /// The same record (name, known PGV) with other samples: `accel` at interval `dt`.
+    fn with_samples(&self, dt: f64, accel: Vec<[f64; 3]>) -> Record {
+        Record { name: self.name.clone(), dt, accel, known_pgv_m_s: self.known_pgv_m_s }
     }
 
     /// Duration (s): the time of the last sample.
@@ -135,13 +192,14 @@ impl Record {
     /// The record multiplied by `factor` (a scaled earthquake).
     pub fn scaled(&self, factor: f64) -> Record {
         let accel = self.accel.iter().map(|a| a.map(|x| x * factor)).collect();
-        Record { name: self.name.clone(), dt: self.dt, accel }
+        let known_pgv_m_s = self.known_pgv_m_s.map(|v| v * factor.abs());
+        Record { known_pgv_m_s, ..self.with_samples(self.dt, accel) }
     }
 
     /// The record scaled to peak horizontal acceleration `pga_g` (g); a record without
     /// horizontal motion is returned unchanged.
     pub fn scaled_to_pga(&self, pga_g: f64) -> Record {
-        let peak = self.measures().pga_g;
+        let peak = self.pga_m_s2() / G;
         if peak > 0.0 {
             self.scaled(pga_g / peak)
         } else {
@@ -154,28 +212,38 @@ impl Record {
     pub fn rotated(&self, azimuth: f64) -> Record {
         let (s, c) = azimuth.sin_cos();
         let accel = self.accel.iter().map(|a| [c * a[0] - s * a[1], s * a[0] + c * a[1], a[2]]).collect();
-        Record { name: self.name.clone(), dt: self.dt, accel }
+        self.with_samples(self.dt, accel)
     }
 
-    /// Ground velocity (m/s) at every sample: the trapezoid rule from v(0) = 0.
+    /// Ground velocity (m/s) at every sample: the trapezoid rule from v(0) = 0 on the record as
+    /// given, without baseline correction or filtering (PGV is read from [`Record::processed`]).
     pub fn velocity(&self) -> Vec<[f64; 3]> {
-        let mut v = Vec::with_capacity(self.accel.len());
-        let mut cur = [0.0; 3];
-        v.push(cur);
-        for w in self.accel.windows(2) {
-            for c in 0..3 {
-                cur[c] += 0.5 * self.dt * (w[0][c] + w[1][c]);
-            }
-            v.push(cur);
-        }
-        v
+        trapezoid(self.dt, &self.accel)
     }
 
-    /// PGA, PGV and PGV/PGA (see the module doc).
+    /// Peak horizontal acceleration (m/s²) of the record as given.
+    fn pga_m_s2(&self) -> f64 {
+        self.accel.iter().map(|a| a[0].hypot(a[1])).fold(0.0, f64::max)
+    }
+
+    /// PGA, PGV and PGV/PGA (see the module doc): PGV the record's known one, else that of the
+    /// velocity processed with the default [`Processing`].
     pub fn measures(&self) -> Measures {
-        let horizontal = |a: &[f64; 3]| a[0].hypot(a[1]);
-        let pga = self.accel.iter().map(horizontal).fold(0.0, f64::max);
-        let pgv = self.velocity().iter().map(horizontal).fold(0.0, f64::max);
+        let (pgv, pgv_source) = match self.known_pgv_m_s {
+            Some(v) => (v, PgvSource::Given),
+            None => (self.processed_unchecked(&Processing::default()).pgv(), PgvSource::Processed),
+        };
+        self.measures_with_pgv(pgv, pgv_source)
+    }
+
+    /// [`Record::measures`] with PGV from the velocity processed with `p` (checked), whether or
+    /// not the record's PGV is known.
+    pub fn measures_processed(&self, p: &Processing) -> Result<Measures> {
+        Ok(self.measures_with_pgv(self.processed(p)?.pgv(), PgvSource::Processed))
+    }
+
+    fn measures_with_pgv(&self, pgv: f64, pgv_source: PgvSource) -> Measures {
+        let pga = self.pga_m_s2();
         let vertical = self.accel.iter().map(|a| a[2].abs()).fold(0.0, f64::max);
         Measures {
             pga_m_s2: pga,
@@ -184,6 +252,7 @@ impl Record {
             pgv_over_pga_s: if pga > 0.0 { pgv / pga } else { 0.0 },
             pga_vertical_g: vertical / G,
             duration_s: self.duration(),
+            pgv_source,
         }
     }
 
@@ -231,7 +300,7 @@ impl Record {
                 a[c] -= slope;
             }
         }
-        Ok(Record { name: self.name.clone(), dt: self.dt, accel })
+        Ok(self.with_samples(self.dt, accel))
     }
 
     /// The record sampled at interval `dt` (s). When `dt` is coarser than the record's interval
@@ -247,7 +316,7 @@ impl Record {
         let source = if dt > self.dt * (1.0 + 1e-12) { self.low_passed(0.5 / dt) } else { self.clone() };
         let n = (self.duration() / dt + 1e-9).floor() as usize + 1;
         let accel = (0..n.max(2)).map(|k| source.at(k as f64 * dt)).collect();
-        Ok(Record { name: self.name.clone(), dt, accel })
+        Ok(self.with_samples(dt, accel))
     }
 
     /// The record with its spectrum removed above `f_cut` (Hz), tapered from 0.9 f_cut.
@@ -290,8 +359,23 @@ impl Record {
                 a[c] = *y;
             }
         }
-        Record { name: self.name.clone(), dt: self.dt, accel }
+        self.with_samples(self.dt, accel)
     }
+}
+
+/// The running integral of `accel` sampled at `dt` by the trapezoid rule, from 0 at the first
+/// sample.
+fn trapezoid(dt: f64, accel: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut v = Vec::with_capacity(accel.len());
+    let mut cur = [0.0; 3];
+    v.push(cur);
+    for w in accel.windows(2) {
+        for c in 0..3 {
+            cur[c] += 0.5 * dt * (w[0][c] + w[1][c]);
+        }
+        v.push(cur);
+    }
+    v
 }
 
 #[cfg(test)]
@@ -347,13 +431,40 @@ mod tests {
     fn sine_cycles_have_closed_form_peaks() {
         // a = A sin(ωt) for whole cycles: PGA = A, v = (A/ω)(1 − cos ωt), PGV = 2A/ω.
         let (a, f) = (3.0, 2.0);
-        let m = sine(f, 1e-3, 1.5, a).measures();
+        let r = sine(f, 1e-3, 1.5, a);
         let pgv = 2.0 * a / (2.0 * PI * f);
-        assert!((m.pga_m_s2 - a).abs() < 1e-4 * a, "{m:?}");
         // The trapezoid rule is exact to (ω dt)²/12 = 1.3·10⁻⁵ here.
-        assert!((m.pgv_m_s - pgv).abs() < 2e-5 * pgv, "{} vs {pgv}", m.pgv_m_s);
-        assert!((m.pgv_over_pga_s - 1.0 / (PI * f)).abs() < 1e-4, "{m:?}");
+        let raw = r.velocity().iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+        assert!((raw - pgv).abs() < 2e-5 * pgv, "{raw} vs {pgv}");
+        // Processed, the pulse's displacement goes with the high-pass: T f_c (π/10)/sin(π/10)
+        // = 12.2 % of its peak (see `processing`).
+        let m = r.measures();
+        assert_eq!(m.pgv_source, PgvSource::Processed);
+        assert!((m.pgv_m_s / pgv - (1.0 - 1.5 * 0.08 * 1.0166)).abs() < 5e-3, "{} vs {pgv}", m.pgv_m_s);
+        assert!((m.pga_m_s2 - a).abs() < 1e-4 * a, "{m:?}");
         assert!((m.pga_g - a / G).abs() < 1e-4);
+        // Known, the closed form is what the measures say.
+        let m = r.with_known_pgv(pgv).unwrap().measures();
+        assert_eq!((m.pgv_m_s, m.pgv_source), (pgv, PgvSource::Given));
+        assert!((m.pgv_over_pga_s - 1.0 / (PI * f)).abs() < 1e-4, "{m:?}");
+    }
+
+    #[test]
+    fn a_known_pgv_scales_with_the_record_and_survives_its_transformations() {
+        let r = sine(1.0, 0.01, 4.0, 2.0).with_known_pgv(0.5).unwrap();
+        assert_eq!(r.scaled(-2.0).measures().pgv_m_s, 1.0);
+        assert!((r.scaled_to_pga(0.1).measures().pgv_m_s - 0.5 * 0.1 * G / 2.0).abs() < 1e-12);
+        for other in [r.rotated(0.3), r.resampled(0.02).unwrap(), r.baseline_corrected(1).unwrap()] {
+            assert_eq!(other.measures().pgv_m_s, 0.5);
+        }
+        // The processed PGV is still there to compare.
+        let processed = r.measures_processed(&Processing::default()).unwrap();
+        assert_eq!(processed.pgv_source, PgvSource::Processed);
+        assert_eq!(processed.pgv_m_s, r.processed(&Processing::default()).unwrap().pgv());
+        assert!(r.measures_processed(&Processing { corner_hz: -1.0, order: 5 }).is_err());
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(sine(1.0, 0.01, 1.0, 1.0).with_known_pgv(bad).is_err());
+        }
     }
 
     #[test]
@@ -379,7 +490,7 @@ mod tests {
         // The clean record ends at rest (whole cycles); so does the corrected one, and its peak
         // velocity is the clean one's (closed form 2A/ω = 1/π) within a few per cent.
         assert!(v_end(&fixed).abs() < 0.01, "{}", v_end(&fixed));
-        let pgv = fixed.measures().pgv_m_s;
+        let pgv = fixed.velocity().iter().map(|v| v[0].abs()).fold(0.0, f64::max);
         assert!((pgv - 1.0 / PI).abs() < 0.03 / PI, "{pgv}");
         // Order 0 changes nothing; order 1 removes the offset alone.
         assert_eq!(dirty.baseline_corrected(0).unwrap().accel, dirty.accel);

@@ -14,6 +14,14 @@
 //! the median interval, as times printed with few digits are) are taken as they are; irregular
 //! times are interpolated linearly onto a grid at the smallest interval.
 //!
+//! # Known PGVs
+//!
+//! [`read_known_pgv`] reads a CSV table of records whose PGV is known: a header line, a column
+//! `pgv_m_s` (m/s) and a column naming the record's file, `record`, `motion` or `file` (the first
+//! of these present), e.g. `record,pgv_m_s` then `quake.csv,0.31`. Only the file name is kept
+//! (`motions/Test011.csv` names `Test011.csv`), the name a record read from that file has; other
+//! columns are ignored. [`with_known_pgvs`] gives the records of a folder their PGVs.
+//!
 //! # PEER NGA `.AT2`
 //!
 //! Four header lines — the database, the event and station, `ACCELERATION TIME SERIES IN UNITS
@@ -244,6 +252,87 @@ fn uniform(name: &str, times: &[f64], rows: &[[f64; 3]]) -> Result<Record> {
         })
         .collect();
     Record::new(name, smallest, accel)
+}
+
+/// The known PGVs of a CSV table (see the module doc): (record file name, PGV in m/s) per row,
+/// in the file's order. Refuses a table without the columns, a PGV that is not a positive
+/// number, a name given twice (naming the file and the line) and a table without rows.
+pub fn read_known_pgv(path: &Path) -> Result<Vec<(String, f64)>> {
+    let text = read_text(path)?;
+    let parse = |what: String| Error::Parse { path: path.into(), what };
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let line = |r: &csv::StringRecord| r.position().map_or(0, |p| p.line());
+    let mut rows = reader.records().map(|r| r.map_err(|e| parse(e.to_string())));
+    let Some(header) = rows.next().transpose()? else {
+        return Err(parse("empty: a header line with `pgv_m_s` and `record` (or `motion`, `file`) is needed".into()));
+    };
+    let names: Vec<String> = header.iter().map(|h| h.to_ascii_lowercase()).collect();
+    let find = |n: &str| names.iter().position(|h| h == n);
+    let (Some(pgv_col), Some(name_col)) = (find("pgv_m_s"), ["record", "motion", "file"].iter().find_map(|n| find(n)))
+    else {
+        return Err(parse(format!(
+            "line {}: the header needs columns `pgv_m_s` and `record` (or `motion`, `file`), has: {}",
+            line(&header),
+            names.join(", ")
+        )));
+    };
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for row in rows {
+        let row = row?;
+        let k = line(&row);
+        let (Some(name), Some(pgv)) = (row.get(name_col), row.get(pgv_col)) else {
+            return Err(parse(format!("line {k}: {} fields, the record or the PGV is missing", row.len())));
+        };
+        let pgv: f64 = match pgv.parse() {
+            Ok(v) if v > 0.0 && f64::is_finite(v) => v,
+            _ => return Err(parse(format!("line {k}: PGV {pgv:?} is not a positive number (m/s)"))),
+        };
+        let name = file_name(Path::new(name));
+        if out.iter().any(|(n, _)| *n == name) {
+            return Err(parse(format!("line {k}: record {name:?} is given twice")));
+        }
+        out.push((name, pgv));
+    }
+    if out.is_empty() {
+        return Err(parse("no rows: the table gives no PGV".into()));
+    }
+    Ok(out)
+}
+
+/// `records` with the PGVs of `table` ([`read_known_pgv`]) for those it names (by record name,
+/// the file name); the others keep the processed PGV. Refuses a table that names none of the
+/// records (a table of other records, most likely), naming `table_name`; returns how many it
+/// named.
+pub fn with_known_pgvs(
+    records: Vec<Record>,
+    table: &[(String, f64)],
+    table_name: &str,
+) -> Result<(Vec<Record>, usize)> {
+    let mut named = 0;
+    let records: Vec<Record> = records
+        .into_iter()
+        .map(|r| match table.iter().find(|(n, _)| *n == r.name) {
+            Some((_, pgv)) => {
+                named += 1;
+                r.with_known_pgv(*pgv)
+            }
+            None => Ok(r),
+        })
+        .collect::<Result<_>>()?;
+    if named == 0 && !records.is_empty() {
+        let first = table.iter().take(3).map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ");
+        return Err(Error::parameter(
+            "pgv_table",
+            table_name,
+            format!("a table naming some of the records by file name (it names {first}…)"),
+        ));
+    }
+    Ok((records, named))
 }
 
 /// One component of a PEER NGA `.AT2` file: its interval (s) and accelerations (g).

@@ -4,7 +4,9 @@
 //! * [`one_sine_pulse`]: Makris & Roussos (2000)'s type-A pulse, one full cycle of
 //!   a(t) = a_p sin(ω_p t), 0 ≤ t ≤ T_p = 2π/ω_p. Closed forms: PGA = a_p,
 //!   v(t) = (a_p/ω_p)(1 − cos ω_p t), PGV = 2 a_p/ω_p = a_p T_p/π, PGV/PGA = T_p/π; the ground
-//!   ends at rest, displaced by a_p T_p²/(2π).
+//!   ends at rest, displaced by a_p T_p²/(2π). The pulses ([`sine_cycles`]) carry that PGV as
+//!   known ([`Record::with_known_pgv`]): the processed one would lose the displacement to the
+//!   high-pass (see [`super::processing`]).
 //! * [`filtered_noise`]: Gaussian white noise through the Kanai–Tajimi soil filter (natural
 //!   period T_g, damping ζ_g) and the Clough–Penzien high-pass (corner ω_f = ω_g/10, ζ_f = ζ_g),
 //!   which removes the unphysical low-frequency content of the Kanai–Tajimi spectrum, times the
@@ -45,7 +47,15 @@ pub fn sine_cycles(ap_g: f64, tp: f64, cycles: f64, dt: f64) -> Result<Record> {
     } else {
         format!("{cycles} sine cycles a_p = {ap_g} g, T_p = {t} s")
     };
-    Record::new(name, dt, accel)
+    // v = (a_p/ω)(1 − cos ωt) over the sampled cycles c: its peak 2 a_p/ω from half a cycle on.
+    let (amp, c) = ((ap_g * G).abs(), samples as f64 / n as f64);
+    let pgv = amp * tp / (2.0 * PI) * if c >= 0.5 { 2.0 } else { 1.0 - (2.0 * PI * c).cos() };
+    let record = Record::new(name, dt, accel)?;
+    if pgv > 0.0 {
+        record.with_known_pgv(pgv)
+    } else {
+        Ok(record)
+    }
 }
 
 /// The parameters of [`filtered_noise`].
@@ -162,11 +172,20 @@ mod tests {
     #[test]
     fn one_sine_pulse_has_closed_form_peaks() {
         let (ap, tp) = (0.4, 0.5);
-        let m = one_sine_pulse(ap, tp, 1e-4).unwrap().measures();
+        let r = one_sine_pulse(ap, tp, 1e-4).unwrap();
+        let m = r.measures();
         assert!((m.pga_g - ap).abs() < 1e-6, "{m:?}");
         let pgv = ap * G * tp / PI;
-        assert!((m.pgv_m_s - pgv).abs() < 1e-6 * pgv, "{} vs {pgv}", m.pgv_m_s);
+        assert!((m.pgv_m_s - pgv).abs() < 1e-12 * pgv, "{} vs {pgv}", m.pgv_m_s);
+        assert_eq!(m.pgv_source, crate::ground_motion::PgvSource::Given);
         assert!((m.pgv_over_pga_s - tp / PI).abs() < 1e-6);
+        // The known PGV is that of the samples: their trapezoid velocity peaks there too.
+        let raw = r.velocity().iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+        assert!((raw - pgv).abs() < 1e-6 * pgv, "{raw} vs {pgv}");
+        // A quarter cycle: v peaks at its end, (a_p/ω)(1 − cos π/2) = a_p/ω.
+        let quarter = sine_cycles(ap, tp, 0.25, 1e-4).unwrap();
+        let raw = quarter.velocity().iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+        assert!((quarter.measures().pgv_m_s - raw).abs() < 1e-6 * raw, "{:?} vs {raw}", quarter.measures());
         assert!(one_sine_pulse(ap, tp, 0.6).is_err());
     }
 

@@ -276,6 +276,7 @@ mod tests {
                 pgv_m_s: pga_g * ratio * 9.81,
                 pgv_over_pga_s: ratio,
                 pga_vertical_g: 0.0,
+                pgv_source: Default::default(),
             },
             member: None,
             rock: RockRun {

@@ -5,6 +5,8 @@ use super::ensemble::{batch_lines, write_batch_ensemble_outputs};
 use super::runs::write_runs_csv;
 use crate::dynamics::shaking::{RecordRun, ShakeBatch};
 use crate::ground_motion::fragility::FragilitySurface;
+use crate::ground_motion::processing::Processing;
+use crate::ground_motion::PgvSource;
 use crate::plot::{render, DrawResult, Mark};
 use crate::report::{short_name, write_json, Folder};
 use plotters::prelude::*;
@@ -25,6 +27,7 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         let drawn = b.ensemble.as_ref().is_some_and(|e| e.uncertainty.azimuth_deg.is_some());
         s += &format!("  {}\n", super::runs::field_line(&r.rock, drawn));
     }
+    s += &pgv_line(&b.runs);
     match (&b.surface, &b.surface_error) {
         (Some(f), _) => {
             s += &format!(
@@ -50,6 +53,20 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         );
     }
     s
+}
+
+/// Which PGV the runs' PGV/PGA is of: processed, given, or how many of each.
+fn pgv_line(runs: &[RecordRun]) -> String {
+    let given = runs.iter().filter(|r| r.motion.pgv_source == PgvSource::Given).count();
+    match (given, runs.len()) {
+        (_, 0) => String::new(),
+        (0, _) => format!(
+            "PGV of the records: processed (mean removed, acausal Butterworth high-pass at {} Hz, integrated)\n",
+            Processing::default().corner_hz
+        ),
+        (g, n) if g == n => "PGV of the records: given with them\n".to_string(),
+        (g, n) => format!("PGV of the records: given for {g} of {n} runs, processed for the others\n"),
+    }
 }
 
 /// Plot the runs in the (PGA, PGV/PGA) plane on log axes — overturned filled, standing hollow —

@@ -13,12 +13,13 @@ use std::path::{Path, PathBuf};
 pub fn ensemble_summary(e: &Ensemble, mesh: &str) -> String {
     let p = &e.probability;
     let mut s = format!(
-        "{} under {} × {}: PGA {:.3} g, PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
+        "{} under {} × {}: PGA {:.3} g, {} PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
          P(overturn) = {:.3} (95 % interval {:.3}–{:.3}): {} of {} settled members overturned",
         short_name(mesh),
         e.motion.record,
         e.motion.scale,
         e.motion.pga_g,
+        e.motion.pgv_source.name(),
         e.motion.pgv_m_s,
         e.motion.pgv_over_pga_s,
         p.p_overturn,

@@ -29,10 +29,14 @@ pub fn write_record(path: &Path, r: &Record) -> crate::Result<()> {
     crate::report::write_csv(path, &["time_s", "ax_g", "ay_g", "az_g"], rows)
 }
 
-/// One line that says what a motion is: its name, PGA, PGV and duration.
+/// One line that says what a motion is: its name, PGA, PGV (processed or given) and duration.
 pub fn describe_motion(m: &MotionInfo) -> String {
     format!(
-        "{} (PGA {:.3} g, PGV {:.3} m/s, {:.2} s)",
-        m.name, m.measures.pga_g, m.measures.pgv_m_s, m.measures.duration_s
+        "{} (PGA {:.3} g, {} PGV {:.3} m/s, {:.2} s)",
+        m.name,
+        m.measures.pga_g,
+        m.measures.pgv_source.name(),
+        m.measures.pgv_m_s,
+        m.measures.duration_s
     )
 }

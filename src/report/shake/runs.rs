@@ -81,7 +81,7 @@ pub fn write_run_outputs(run: &RecordRun, dir: &Path) -> crate::Result<Vec<std::
 /// A readable summary of one field-rock run.
 pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
     format!(
-        "{} (R_max = {:.3} m) under {} × {}: PGA {:.3} g, PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
+        "{} (R_max = {:.3} m) under {} × {}: PGA {:.3} g, {} PGV {:.3} m/s, PGV/PGA {:.3} s\n  \
          settled onto equilibrium {} with a tilt of {:.3}°; {} (outcome {}, final equilibrium {}, flock {}), \
          max tilt {:.2}°, slide {:.4} m{}\n  {}\n",
         short_name(mesh),
@@ -89,6 +89,7 @@ pub fn rock_run_summary(r: &RecordRun, mesh: &str) -> String {
         r.motion.record,
         r.motion.scale,
         r.motion.pga_g,
+        r.motion.pgv_source.name(),
         r.motion.pgv_m_s,
         r.motion.pgv_over_pga_s,
         r.rock.start_equilibrium,
