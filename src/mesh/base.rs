@@ -75,16 +75,24 @@ impl BaseClosing {
     pub fn new(scan: OpenScan) -> Result<BaseClosing> {
         let plane = scan.rim_plane().clone();
         let mesh = scan.mesh();
-        let outline: Vec<[f64; 2]> = scan.rim().points(mesh).iter().map(|p| plane.coordinates(p)).collect();
-        let (interior, spacing) = grid(&outline, scan.summary().rim.area);
+        // The base runs every rim loop backwards: its region is on the left of the reversed loops.
+        let order: Vec<u32> = scan.rim().iter().flat_map(|l| l.vertices.iter().rev().copied()).collect();
+        let outlines: Vec<Vec<[f64; 2]>> = scan
+            .rim()
+            .iter()
+            .map(|l| l.vertices.iter().rev().map(|&i| plane.coordinates(&mesh.vertices[i as usize])).collect())
+            .collect();
+        let (interior, spacing) = grid(&outlines, scan.summary().rim.area);
         let uv: Vec<[f64; 2]> = interior.iter().map(|(p, _)| *p).collect();
-        let local = triangulate(&outline, &uv).map_err(|e| {
+        let local = triangulate(&outlines, &uv).map_err(|e| {
+            let rim = &scan.summary().rim;
             Error::open_scan(
                 ScanProblem::NotSimple,
                 format!(
-                    "the rim of the hidden base ({} edges, perimeter {:.4e}) does not project onto its best-fit plane as a simple polygon ({}): seen along its normal ({:.2}, {:.2}, {:.2}) it folds over itself; cut the scan flat at its base, or give a point near another rim",
-                    outline.len(),
-                    scan.summary().rim.perimeter,
+                    "the rim of the hidden base ({} edges in {} loop(s), perimeter {:.4e}) does not project onto its best-fit plane as simple polygons ({}): seen along its normal ({:.2}, {:.2}, {:.2}) it folds over itself; cut the scan flat at its base, or give a point near another rim",
+                    rim.vertices,
+                    outlines.len(),
+                    rim.perimeter,
                     e.0,
                     plane.normal.x,
                     plane.normal.y,
@@ -92,10 +100,9 @@ impl BaseClosing {
                 ),
             )
         })?;
-        let (n, nv) = (outline.len() as u32, mesh.vertices.len() as u32);
-        let rim = &scan.rim().vertices;
+        let (n, nv) = (order.len() as u32, mesh.vertices.len() as u32);
         let triangles =
-            local.into_iter().map(|t| t.map(|i| if i < n { rim[i as usize] } else { nv + i - n })).collect();
+            local.into_iter().map(|t| t.map(|i| if i < n { order[i as usize] } else { nv + i - n })).collect();
         let points = interior
             .into_iter()
             .map(|([u, v], d)| BasePoint { point: plane.at(u, v, 0.0), uv: [u, v], rim_distance: d })
@@ -168,18 +175,19 @@ impl BaseClosing {
         triangles.extend_from_slice(&scan.triangles);
         triangles.extend_from_slice(&self.triangles);
         let mut on_base = vec![false; vertices.len()];
-        self.scan.rim().vertices.iter().for_each(|&i| on_base[i as usize] = true);
+        self.scan.rim().iter().flat_map(|l| &l.vertices).for_each(|&i| on_base[i as usize] = true);
         on_base[nv..].iter_mut().for_each(|b| *b = true);
         let mesh = TriMesh::new(vertices, triangles);
         Ok(ClosedScan { mesh, repairs: self.scan.repairs().clone(), on_base, first_base_triangle })
     }
 }
 
-/// The grid points strictly inside the polygon `outline`, at least s/2 from it, with their
-/// distances from it, and the spacing s = √(`area` / [`BASE_GRID_POINTS`]) (module docs).
-fn grid(outline: &[[f64; 2]], area: f64) -> (Vec<([f64; 2], f64)>, f64) {
+/// The grid points strictly inside the region bounded by `outlines`, at least s/2 from them,
+/// with their distances from them, and the spacing s = √(`area` / [`BASE_GRID_POINTS`]) (module
+/// docs). Cost: (grid points in the bounding box) × (outline vertices), once per scan.
+fn grid(outlines: &[Vec<[f64; 2]>], area: f64) -> (Vec<([f64; 2], f64)>, f64) {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in outline {
+    for p in outlines.iter().flatten() {
         for k in 0..2 {
             lo[k] = lo[k].min(p[k]);
             hi[k] = hi[k].max(p[k]);
@@ -193,12 +201,14 @@ fn grid(outline: &[[f64; 2]], area: f64) -> (Vec<([f64; 2], f64)>, f64) {
     let (nx, ny) = ((w / s).floor() as i64, (h / s).floor() as i64);
     // Centred on the box: the same margin on both sides.
     let (u0, v0) = (lo[0] + (w - nx as f64 * s) / 2.0, lo[1] + (h - ny as f64 * s) / 2.0);
+    let edges: Vec<([f64; 2], [f64; 2])> =
+        outlines.iter().flat_map(|o| (0..o.len()).map(move |i| (o[i], o[(i + 1) % o.len()]))).collect();
     let mut out = Vec::new();
     for j in 0..=ny {
         for i in 0..=nx {
             let p = [u0 + i as f64 * s, v0 + j as f64 * s];
-            let d = distance(&p, outline);
-            if d >= s / 2.0 && inside(&p, outline) {
+            let d = edges.iter().map(|(a, b)| segment_distance(&p, a, b)).fold(f64::INFINITY, f64::min);
+            if d >= s / 2.0 && inside(&p, &edges) {
                 out.push((p, d));
             }
         }
@@ -206,12 +216,10 @@ fn grid(outline: &[[f64; 2]], area: f64) -> (Vec<([f64; 2], f64)>, f64) {
     (out, s)
 }
 
-/// Even-odd rule: a horizontal ray from `p` crosses the polygon's edges an odd number of times.
-fn inside(p: &[f64; 2], poly: &[[f64; 2]]) -> bool {
-    let n = poly.len();
+/// Even-odd rule: a ray from `p` towards +u crosses the edges an odd number of times.
+fn inside(p: &[f64; 2], edges: &[([f64; 2], [f64; 2])]) -> bool {
     let mut odd = false;
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
+    for (a, b) in edges {
         if (a[1] > p[1]) != (b[1] > p[1]) {
             let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
             odd ^= x > p[0];
@@ -220,16 +228,10 @@ fn inside(p: &[f64; 2], poly: &[[f64; 2]]) -> bool {
     odd
 }
 
-/// Distance from `p` to the closed polygon `poly`.
-fn distance(p: &[f64; 2], poly: &[[f64; 2]]) -> f64 {
-    let n = poly.len();
-    (0..n)
-        .map(|i| {
-            let (a, b) = (poly[i], poly[(i + 1) % n]);
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let l2 = dx * dx + dy * dy;
-            let t = if l2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
-            ((p[0] - a[0] - t * dx).powi(2) + (p[1] - a[1] - t * dy).powi(2)).sqrt()
-        })
-        .fold(f64::INFINITY, f64::min)
+/// Distance from `p` to the segment ab.
+fn segment_distance(p: &[f64; 2], a: &[f64; 2], b: &[f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    ((p[0] - a[0] - t * dx).powi(2) + (p[1] - a[1] - t * dy).powi(2)).sqrt()
 }

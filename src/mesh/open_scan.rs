@@ -15,15 +15,19 @@
 //!    ([`Plane::best_fit`], normal n pointing out of the solid), the area it encloses on that
 //!    plane, |n · ½ Σ pᵢ × pᵢ₊₁|, and its flatness, the largest distance of a vertex from the
 //!    plane.
-//! 4. The rim of the hidden base. A loop is a *gap* (a hole the scan left) when its perimeter is
-//!    at most [`GAP_PERIMETER_RATIO`] = 1/3 of the rim's; the rim is the one loop that is not a
-//!    gap. With [`RimChoice::Lowest`] it is the largest loop, and it must be at the base: its
-//!    outward normal within 60° of straight down (n_z ≤ −[`BASE_FACING`]) and its centre in the
-//!    lower half of the scan's height; with [`RimChoice::Near`] it is the loop passing nearest
-//!    the point given, facing any way. Refused, with what to give instead
-//!    ([`Error::OpenScan`]): a closed surface ([`ScanProblem::Closed`]: read it as a stone), an
-//!    open top or side ([`ScanProblem::OpenTop`]: the largest loop is not at the base), several
-//!    loops longer than a third of the largest ([`ScanProblem::SeveralRims`]).
+//! 4. The rim of the hidden base. With [`RimChoice::Lowest`] its main loop is the longest
+//!    opening, which must be at the base: its outward normal within 60° of straight down
+//!    (n_z ≤ −[`BASE_FACING`]) and its centre in the lower half of the scan's height; with
+//!    [`RimChoice::Near`] it is the opening passing nearest the point given, facing any way.
+//!    Every other opening lying on the main loop's plane (all its vertices within the main loop's
+//!    flatness plus [`BASE_PLANE_TOLERANCE`] = 1 % of its perimeter of that plane, facing along
+//!    its normal within 60°: a rock standing on several feet, a ring of contact) belongs to the
+//!    rim too; the rim's plane is then the least-squares plane of all its loops. Of the other
+//!    openings, those at most [`GAP_PERIMETER_RATIO`] = 1/3 of the rim's perimeter long are
+//!    *gaps* (holes the scan left). Refused, with what to give instead ([`Error::OpenScan`]): a
+//!    closed surface ([`ScanProblem::Closed`]: read it as a stone), an open top or side
+//!    ([`ScanProblem::OpenTop`]: the longest opening, or another as long as a third of the rim,
+//!    not at the base), another opening that long elsewhere ([`ScanProblem::SeveralRims`]).
 //! 5. Every gap closed by a patch: the constrained Delaunay triangulation of its loop projected
 //!    on its best-fit plane ([`triangulate`]), refused when that projection is not a simple
 //!    polygon ([`ScanProblem::NotSimple`]) or when a patch crosses the scan
@@ -44,6 +48,11 @@ use serde::Serialize;
 /// A loop other than the rim is a gap of the scan (closed and reported) when its perimeter is at
 /// most this fraction of the rim's; a longer one makes the rim ambiguous and is refused.
 pub const GAP_PERIMETER_RATIO: f64 = 1.0 / 3.0;
+
+/// An opening belongs to the rim when all its vertices lie within the main loop's flatness plus
+/// this fraction of its perimeter of the main loop's plane (and it faces along that plane's
+/// normal within 60°).
+pub const BASE_PLANE_TOLERANCE: f64 = 0.01;
 
 /// Without a point given, the rim must face down: its outward normal's z component at most
 /// −`BASE_FACING` (within 60° of straight down: a pedestal may slope).
@@ -92,8 +101,12 @@ pub struct Opening {
 pub struct OpenScanSummary {
     /// How the rim was chosen.
     pub chosen: RimChoice,
-    /// The rim of the hidden base.
+    /// The rim of the hidden base as a whole: all its loops (their vertices, perimeters and
+    /// enclosed areas summed), on their common least-squares plane (centre, outward normal, the
+    /// largest distance of a rim vertex from it).
     pub rim: Opening,
+    /// The rim's loops one by one (one, unless the rock stands on several feet), longest first.
+    pub rim_loops: Vec<Opening>,
     /// The gaps of the scan, each closed by a flat patch, longest first.
     pub gaps: Vec<Opening>,
     /// Triangles hanging on the surface by one edge or none (flaps), removed.
@@ -106,7 +119,7 @@ pub struct OpenScan {
     mesh: TriMesh,
     repairs: Repairs,
     scan_triangles: usize,
-    rim: BoundaryLoop,
+    rim: Vec<BoundaryLoop>,
     rim_plane: Plane,
     summary: OpenScanSummary,
 }
@@ -162,18 +175,20 @@ impl OpenScan {
         let measured: Vec<(Opening, Plane)> =
             loops.iter().enumerate().map(|(i, l)| measure(&mesh, l, i)).collect::<Result<_>>()?;
         let openings: Vec<&Opening> = measured.iter().map(|(o, _)| o).collect();
-        let rim_index = choose_rim(&mesh, &loops, &openings, choice)?;
+        let base = choose_rim(&mesh, &loops, &openings, choice)?;
         // The scan's own crossings, as a closed stone's.
         unit.check_crossings(k, &mut rep, &original)?;
         let scan_triangles = mesh.triangles.len();
         let boxes = intersect::triangle_boxes(&mesh.vertices, &mesh.triangles);
         let mut gaps = Vec::new();
         for (i, (l, (opening, plane))) in loops.iter().zip(&measured).enumerate() {
-            if i == rim_index {
+            if base.contains(&i) {
                 continue;
             }
-            let outline: Vec<[f64; 2]> = l.points(&mesh).iter().map(|p| plane.coordinates(p)).collect();
-            let patch: Vec<[u32; 3]> = triangulate(&outline, &[])
+            // The patch runs the loop backwards: its region is on the left of the reversed loop.
+            let outline: Vec<[f64; 2]> = l.points(&mesh).iter().rev().map(|p| plane.coordinates(p)).collect();
+            let m = l.len() as u32;
+            let patch: Vec<[u32; 3]> = triangulate(&[outline], &[])
                 .map_err(|e| {
                     Error::open_scan(
                         ScanProblem::NotSimple,
@@ -185,7 +200,7 @@ impl OpenScan {
                     )
                 })?
                 .into_iter()
-                .map(|t| t.map(|j| l.vertices[j as usize]))
+                .map(|t| t.map(|j| l.vertices[(m - 1 - j) as usize]))
                 .collect();
             if let Some(c) =
                 intersect::find_patch_crossing(&mesh.vertices, &mesh.triangles[..scan_triangles], &boxes, &patch)
@@ -205,9 +220,13 @@ impl OpenScan {
             gaps.push(opening.clone());
         }
         gaps.sort_by(|a, b| b.perimeter.total_cmp(&a.perimeter));
-        let (rim_opening, rim_plane) = measured[rim_index].clone();
-        let summary = OpenScanSummary { chosen: choice.clone(), rim: rim_opening, gaps, trimmed_triangles: trimmed };
-        Ok(OpenScan { mesh, repairs: rep, scan_triangles, rim: loops.swap_remove(rim_index), rim_plane, summary })
+        let rim: Vec<BoundaryLoop> = base.iter().map(|&i| loops[i].clone()).collect();
+        let (rim_opening, rim_plane) = measure_together(&mesh, &rim)?;
+        let mut rim_loops: Vec<Opening> = base.iter().map(|&i| measured[i].0.clone()).collect();
+        rim_loops.sort_by(|a, b| b.perimeter.total_cmp(&a.perimeter));
+        let summary =
+            OpenScanSummary { chosen: choice.clone(), rim: rim_opening, rim_loops, gaps, trimmed_triangles: trimmed };
+        Ok(OpenScan { mesh, repairs: rep, scan_triangles, rim, rim_plane, summary })
     }
 
     /// The scan (welded, outward) with its gaps closed: open at the rim only. Its triangles
@@ -227,9 +246,9 @@ impl OpenScan {
         self.scan_triangles
     }
 
-    /// The rim: vertex indices into [`OpenScan::mesh`], in the direction the scan's triangles
-    /// run it (counter-clockwise seen from inside the rock).
-    pub fn rim(&self) -> &BoundaryLoop {
+    /// The rim's loops (the main one first): vertex indices into [`OpenScan::mesh`], in the
+    /// direction the scan's triangles run them (counter-clockwise seen from inside the rock).
+    pub fn rim(&self) -> &[BoundaryLoop] {
         &self.rim
     }
 
@@ -310,6 +329,23 @@ fn measure(mesh: &TriMesh, l: &BoundaryLoop, i: usize) -> Result<(Opening, Plane
     Ok((opening, plane))
 }
 
+/// The rim's loops measured together on their least-squares plane (normal out of the solid).
+fn measure_together(mesh: &TriMesh, rim: &[BoundaryLoop]) -> Result<(Opening, Plane)> {
+    let pts: Vec<Vec<Point3>> = rim.iter().map(|l| l.points(mesh)).collect();
+    let slices: Vec<&[Point3]> = pts.iter().map(|p| p.as_slice()).collect();
+    let a: Vec3 = pts.iter().map(|p| vector_area(p)).sum();
+    let plane = Plane::best_fit_loops(&slices, &-a).ok_or_else(|| Error::degenerate("the rim has no plane: no extent"))?;
+    let opening = Opening {
+        vertices: pts.iter().map(Vec::len).sum(),
+        perimeter: pts.iter().map(|p| perimeter(p)).sum(),
+        area: plane.normal.dot(&a).abs(),
+        flatness: pts.iter().flatten().map(|p| plane.distance(p).abs()).fold(0.0, f64::max),
+        centre: plane.point,
+        normal: plane.normal,
+    };
+    Ok((opening, plane))
+}
+
 /// "N edges, perimeter L around (x, y, z), facing (nx, ny, nz)".
 fn describe(o: &Opening) -> String {
     format!(
@@ -331,64 +367,57 @@ fn distance_to_loop(p: &Point3, pts: &[Point3]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The index of the rim among the openings (module docs, step 4).
-fn choose_rim(mesh: &TriMesh, loops: &[BoundaryLoop], o: &[&Opening], choice: &RimChoice) -> Result<usize> {
-    let by_length = |a: &usize, b: &usize| o[*a].perimeter.total_cmp(&o[*b].perimeter);
-    let largest = (0..o.len()).max_by(by_length).unwrap_or(0);
-    let list = |idx: &[usize]| idx.iter().map(|&i| describe(o[i])).collect::<Vec<_>>().join("; ");
-    let rim = match choice {
+/// The indices of the rim's loops among the openings, the main one first (module docs, step 4).
+fn choose_rim(mesh: &TriMesh, loops: &[BoundaryLoop], o: &[&Opening], choice: &RimChoice) -> Result<Vec<usize>> {
+    let (lo, hi) = mesh.bounding_box().unwrap_or_default();
+    let at_base = |i: usize| o[i].normal.z <= -BASE_FACING && o[i].centre.z <= (lo.z + hi.z) / 2.0;
+    let main = match choice {
         RimChoice::Near(p) => (0..o.len())
             .min_by(|&a, &b| {
                 distance_to_loop(p, &loops[a].points(mesh)).total_cmp(&distance_to_loop(p, &loops[b].points(mesh)))
             })
             .unwrap_or(0),
         RimChoice::Lowest => {
-            let mut large: Vec<usize> =
-                (0..o.len()).filter(|&i| o[i].perimeter > GAP_PERIMETER_RATIO * o[largest].perimeter).collect();
-            large.sort_by(|a, b| by_length(b, a));
-            let lowest = large.iter().copied().min_by(|&a, &b| o[a].centre.z.total_cmp(&o[b].centre.z));
-            if large.len() > 1 && lowest != Some(largest) {
-                return Err(open_top(o[largest], "higher than another large opening"));
+            let longest = (0..o.len()).max_by(|&a, &b| o[a].perimeter.total_cmp(&o[b].perimeter)).unwrap_or(0);
+            if !at_base(longest) {
+                return Err(open_top(o[longest]));
             }
-            if large.len() > 1 {
-                return Err(several(&list(&large), "the lowest"));
-            }
-            let (lo, hi) = mesh.bounding_box().unwrap_or_default();
-            if o[largest].normal.z > -BASE_FACING {
-                return Err(open_top(o[largest], "facing up or sideways"));
-            }
-            if o[largest].centre.z > (lo.z + hi.z) / 2.0 {
-                return Err(open_top(o[largest], "in the upper half of the scan"));
-            }
-            largest
+            longest
         }
     };
-    let others: Vec<usize> =
-        (0..o.len()).filter(|&i| i != rim && o[i].perimeter > GAP_PERIMETER_RATIO * o[rim].perimeter).collect();
-    if !others.is_empty() {
-        let mut all = vec![rim];
-        all.extend(others);
-        return Err(several(&list(&all), "the one nearest the point given"));
+    let plane = Plane { point: o[main].centre, normal: o[main].normal, e1: Vec3::zeros(), e2: Vec3::zeros() };
+    let tolerance = o[main].flatness + BASE_PLANE_TOLERANCE * o[main].perimeter;
+    let on_plane = |i: usize| {
+        o[i].normal.dot(&plane.normal).abs() >= BASE_FACING
+            && loops[i].points(mesh).iter().all(|p| plane.distance(p).abs() <= tolerance)
+    };
+    let mut rim = vec![main];
+    rim.extend((0..o.len()).filter(|&i| i != main && on_plane(i)));
+    let length: f64 = rim.iter().map(|&i| o[i].perimeter).sum();
+    let large: Vec<usize> =
+        (0..o.len()).filter(|&i| !rim.contains(&i) && o[i].perimeter > GAP_PERIMETER_RATIO * length).collect();
+    if let Some(&top) = large.iter().find(|&&i| !at_base(i)).filter(|_| *choice == RimChoice::Lowest) {
+        return Err(open_top(o[top]));
+    }
+    if !large.is_empty() {
+        let list = std::iter::once(main).chain(large).map(|i| describe(o[i])).collect::<Vec<_>>().join("; ");
+        return Err(Error::open_scan(
+            ScanProblem::SeveralRims,
+            format!(
+                "the surface is open in several places of comparable size, not on one plane ({list}): which one is the rim of the hidden base is not clear; give a point near the rim, or close the other openings in the scan (openings shorter than {:.2} of the rim's perimeter are closed as scan gaps)",
+                GAP_PERIMETER_RATIO
+            ),
+        ));
     }
     Ok(rim)
 }
 
-fn open_top(o: &Opening, why: &str) -> Error {
+fn open_top(o: &Opening) -> Error {
     Error::open_scan(
         ScanProblem::OpenTop,
         format!(
-            "the surface is open, but its largest opening ({}) is not at its base ({why}): an open scan is read standing as the rock stands, +z up, open only where it meets its pedestal; turn the scan so, give a point near the rim of its hidden base, or close the opening in the scan",
+            "the surface is open, but not only at its base: an opening as long as the rim ({}) faces up or sideways or lies in the upper half of the scan. An open scan is read standing as the rock stands, +z up, open where it meets its pedestal; turn the scan so, give a point near the rim of its hidden base, or close that opening in the scan",
             describe(o)
-        ),
-    )
-}
-
-fn several(list: &str, which: &str) -> Error {
-    Error::open_scan(
-        ScanProblem::SeveralRims,
-        format!(
-            "the surface is open in several places of comparable size ({list}): which one is the rim of the hidden base is not clear (taking {which}); give a point near the rim, or close the other openings in the scan (openings shorter than {:.2} of the rim's perimeter are closed as scan gaps)",
-            GAP_PERIMETER_RATIO
         ),
     )
 }

@@ -45,36 +45,46 @@ impl Plane {
         Some(Plane { point, normal: n, e1, e2: n.cross(&e1) })
     }
 
-    /// The least-squares plane of the closed polyline `points` (module docs), its normal
-    /// side of `towards` (n·towards ≥ 0). `None` for fewer than three points, a
-    /// polyline of zero length or non-finite arithmetic.
+    /// The least-squares plane of the closed polyline `points` (module docs), its normal on the
+    /// side of `towards` (n·towards ≥ 0). `None` for fewer than three points, a polyline of zero
+    /// length or non-finite arithmetic.
     pub fn best_fit(points: &[Point3], towards: &Vec3) -> Option<Plane> {
-        let n = points.len();
-        if n < 3 {
+        Plane::best_fit_loops(&[points], towards)
+    }
+
+    /// The least-squares plane of several closed polylines together, each weighted as in
+    /// [`Plane::best_fit`].
+    pub fn best_fit_loops(loops: &[&[Point3]], towards: &Vec3) -> Option<Plane> {
+        if loops.iter().any(|l| l.len() < 3) || loops.is_empty() {
             return None;
         }
-        let w: Vec<f64> =
-            (0..n).map(|i| ((points[i] - points[(i + n - 1) % n]).norm() + (points[(i + 1) % n] - points[i]).norm()) / 2.0).collect();
-        let total: f64 = w.iter().sum();
+        let weighted: Vec<(Point3, f64)> = loops
+            .iter()
+            .flat_map(|points| {
+                let n = points.len();
+                (0..n).map(move |i| {
+                    let w = ((points[i] - points[(i + n - 1) % n]).norm() + (points[(i + 1) % n] - points[i]).norm()) / 2.0;
+                    (points[i], w)
+                })
+            })
+            .collect();
+        let total: f64 = weighted.iter().map(|(_, w)| w).sum();
         if !(total > 0.0 && total.is_finite()) {
             return None;
         }
-        let first = points[0].coords;
-        let mean = points.iter().zip(&w).map(|(p, wi)| (p.coords - first) * *wi).sum::<Vec3>() / total + first;
+        let first = weighted[0].0.coords;
+        let mean = weighted.iter().map(|(p, w)| (p.coords - first) * *w).sum::<Vec3>() / total + first;
         let mut c = nalgebra::Matrix3::zeros();
-        for (p, wi) in points.iter().zip(&w) {
+        for (p, w) in &weighted {
             let d = p.coords - mean;
-            c += d * d.transpose() * *wi;
+            c += d * d.transpose() * *w;
         }
         if !c.iter().all(|x| x.is_finite()) {
             return None;
         }
         let eig = nalgebra::SymmetricEigen::new(c);
-        let order = {
-            let mut o = [0usize, 1, 2];
-            o.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
-            o
-        };
+        let mut order = [0usize, 1, 2];
+        order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
         let mut normal: Vec3 = eig.eigenvectors.column(order[0]).into_owned();
         if normal.dot(towards) < 0.0 {
             normal = -normal;

@@ -172,7 +172,8 @@ fn open_scan_lines(o: &crate::analysis::OpenScanReport, unit: &Unit) -> String {
     };
     let d = &o.on_hidden_base;
     format!(
-        "  open     an open scan: the rim of its hidden base is {} {} around, encloses {} {} on its plane and lies within {} {} of it; {gaps}{trimmed}\n  base     hidden, closed by a {} (the nominal base); {} stable, {} unstable and {} saddle micro-equilibria touch it\n",
+        "  open     an open scan: the rim of its hidden base{} is {} {} around, encloses {} {} on its plane and lies within {} {} of it; {gaps}{trimmed}\n  base     hidden, closed by a {} (the nominal base); {} stable, {} unstable and {} saddle micro-equilibria touch it\n",
+        if o.scan.rim_loops.len() > 1 { format!(" ({} loops on one plane)", o.scan.rim_loops.len()) } else { String::new() },
         n(rim.perimeter),
         unit.length(),
         n(rim.area),
