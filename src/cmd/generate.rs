@@ -150,13 +150,19 @@ fn open_scan(args: &Args) -> Result<()> {
                     Site::Facet(f) => f as usize,
                     _ => bail!("--stand-on {id}: not on a facet"),
                 },
-                _ => bail!("--stand-on {id}: not a stable micro-equilibrium of {} (rocking analyze --json lists them)", from.display()),
+                _ => bail!(
+                    "--stand-on {id}: not a stable micro-equilibrium of {} (rocking analyze --json lists them)",
+                    from.display()
+                ),
             };
             stand_on(&mesh, &a.hull.facets[facet].normal)?
         }
     };
-    let open = cut_base(&mesh, cut).map_err(|e| anyhow::anyhow!("--cut: {}", e.spelled(&|n| if n == "cut" { "--cut".into() } else { n.into() })))?;
-    let scan = OpenScan::new(open.clone(), &RimChoice::Lowest).context("the cut mesh does not read back as an open scan")?;
+    let open = cut_base(&mesh, cut).map_err(|e| {
+        anyhow::anyhow!("--cut: {}", e.spelled(&|n| if n == "cut" { "--cut".into() } else { n.into() }))
+    })?;
+    let scan =
+        OpenScan::new(open.clone(), &RimChoice::Lowest).context("the cut mesh does not read back as an open scan")?;
     io::write(&args.output, &open).context("writing the open scan")?;
     let rim = &scan.summary().rim;
     println!(

@@ -151,7 +151,10 @@ impl BaseClosing {
                 return Err(Error::parameter(
                     "offset",
                     h,
-                    format!("a finite height at every point of the base (here at ({}, {}, {}))", b.point.x, b.point.y, b.point.z),
+                    format!(
+                        "a finite height at every point of the base (here at ({}, {}, {}))",
+                        b.point.x, b.point.y, b.point.z
+                    ),
                 ));
             }
             vertices.push(b.point + normal * h);

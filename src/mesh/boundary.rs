@@ -205,7 +205,10 @@ mod tests {
             Point3::new(-1.0, -1.0, 0.0),
         ];
         let e = boundary_loops(&TriMesh::new(v, vec![[0, 1, 2], [0, 3, 4]])).unwrap_err().to_string();
-        assert!(e.contains("non-manifold boundary: the vertex at (0, 0, 0)") && e.contains("two boundary loops"), "{e}");
+        assert!(
+            e.contains("non-manifold boundary: the vertex at (0, 0, 0)") && e.contains("two boundary loops"),
+            "{e}"
+        );
     }
 
     #[test]

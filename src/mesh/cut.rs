@@ -78,10 +78,18 @@ pub fn cut_open(mesh: &TriMesh, plane: &Plane) -> Result<TriMesh> {
         }
     }
     if triangles.is_empty() {
-        return Err(Error::parameter("cut", format!("the plane through {:?}", plane.point.coords.as_slice()), "a plane with part of the mesh above it"));
+        return Err(Error::parameter(
+            "cut",
+            format!("the plane through {:?}", plane.point.coords.as_slice()),
+            "a plane with part of the mesh above it",
+        ));
     }
     if !changed {
-        return Err(Error::parameter("cut", format!("the plane through {:?}", plane.point.coords.as_slice()), "a plane that passes through the mesh"));
+        return Err(Error::parameter(
+            "cut",
+            format!("the plane through {:?}", plane.point.coords.as_slice()),
+            "a plane that passes through the mesh",
+        ));
     }
     let mut out = TriMesh::new(vertices, triangles);
     out.weld();
@@ -93,7 +101,11 @@ pub fn cut_open(mesh: &TriMesh, plane: &Plane) -> Result<TriMesh> {
 pub fn cut_base(mesh: &TriMesh, height: f64) -> Result<TriMesh> {
     let (lo, hi) = mesh.bounding_box().ok_or_else(|| Error::invalid("empty mesh: nothing to cut"))?;
     if !(height > 0.0 && lo.z + height < hi.z) {
-        return Err(Error::parameter("cut", height, format!("a height in (0, {}) above the lowest point", hi.z - lo.z)));
+        return Err(Error::parameter(
+            "cut",
+            height,
+            format!("a height in (0, {}) above the lowest point", hi.z - lo.z),
+        ));
     }
     let plane = Plane { point: Point3::new(0.0, 0.0, lo.z + height), normal: Vec3::z(), e1: Vec3::x(), e2: Vec3::y() };
     cut_open(mesh, &plane)

@@ -331,7 +331,11 @@ pub fn find_patch_crossing(
         .collect();
     let triangles: Vec<[u32; 3]> = near.iter().map(|&i| surface[i]).chain(patch.iter().copied()).collect();
     let name = |i: usize| if i < near.len() { near[i] } else { surface.len() + i - near.len() };
-    find_crossing_with(vertices, &triangles, near.len()).map(|c| Crossing { first: name(c.first), second: name(c.second), ..c })
+    find_crossing_with(vertices, &triangles, near.len()).map(|c| Crossing {
+        first: name(c.first),
+        second: name(c.second),
+        ..c
+    })
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ pub mod polygon;
 pub use base::{BaseClosing, BasePoint, ClosedScan};
 pub use boundary::{boundary_loops, BoundaryLoop};
 pub use cut::{cut_base, cut_open, stand_on};
-pub use open_scan::{Opening, OpenScan, OpenScanSummary, RimChoice, Scan};
+pub use open_scan::{OpenScan, OpenScanSummary, Opening, RimChoice, Scan};
 pub use plane::Plane;
 
 use crate::{Error, Point3, Result, Vec3};

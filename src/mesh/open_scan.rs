@@ -334,7 +334,8 @@ fn measure_together(mesh: &TriMesh, rim: &[BoundaryLoop]) -> Result<(Opening, Pl
     let pts: Vec<Vec<Point3>> = rim.iter().map(|l| l.points(mesh)).collect();
     let slices: Vec<&[Point3]> = pts.iter().map(|p| p.as_slice()).collect();
     let a: Vec3 = pts.iter().map(|p| vector_area(p)).sum();
-    let plane = Plane::best_fit_loops(&slices, &-a).ok_or_else(|| Error::degenerate("the rim has no plane: no extent"))?;
+    let plane =
+        Plane::best_fit_loops(&slices, &-a).ok_or_else(|| Error::degenerate("the rim has no plane: no extent"))?;
     let opening = Opening {
         vertices: pts.iter().map(Vec::len).sum(),
         perimeter: pts.iter().map(|p| perimeter(p)).sum(),
@@ -416,7 +417,7 @@ fn open_top(o: &Opening) -> Error {
     Error::open_scan(
         ScanProblem::OpenTop,
         format!(
-            "the surface is open, but not only at its base: an opening as long as the rim ({}) faces up or sideways or lies in the upper half of the scan. An open scan is read standing as the rock stands, +z up, open where it meets its pedestal; turn the scan so, give a point near the rim of its hidden base, or close that opening in the scan",
+            "the surface is open, but not only at its base: a large opening ({}) is not at the bottom of the scan (it faces up or sideways, or lies in the upper half). An open scan is read standing as the rock stands, +z up, open where it meets its pedestal; turn the scan so, give a point near the rim of its hidden base, or close that opening in the scan",
             describe(o)
         ),
     )

@@ -63,7 +63,8 @@ impl Plane {
             .flat_map(|points| {
                 let n = points.len();
                 (0..n).map(move |i| {
-                    let w = ((points[i] - points[(i + n - 1) % n]).norm() + (points[(i + 1) % n] - points[i]).norm()) / 2.0;
+                    let w =
+                        ((points[i] - points[(i + n - 1) % n]).norm() + (points[(i + 1) % n] - points[i]).norm()) / 2.0;
                     (points[i], w)
                 })
             })

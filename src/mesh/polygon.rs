@@ -109,7 +109,9 @@ pub fn triangulate(outlines: &[Vec<[f64; 2]>], interior: &[[f64; 2]]) -> Result<
 fn region(cdt: &Cdt, edges: &[[usize; 2]]) -> Result<Vec<bool>, NotSimple> {
     let mut inside = vec![false; cdt.all_faces().len()];
     let mut stack = Vec::new();
-    let wrong = |a: usize, b: usize| NotSimple(format!("the outline winds the other way at the edge from vertex {a} to vertex {b}"));
+    let wrong = |a: usize, b: usize| {
+        NotSimple(format!("the outline winds the other way at the edge from vertex {a} to vertex {b}"))
+    };
     for &[a, b] in edges {
         let e = cdt
             .get_edge_from_neighbors(FixedVertexHandle::from_index(a), FixedVertexHandle::from_index(b))

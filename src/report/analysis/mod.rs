@@ -166,7 +166,10 @@ fn open_scan_lines(o: &crate::analysis::OpenScanReport, unit: &Unit) -> String {
         ),
     };
     let trimmed = if o.scan.trimmed_triangles > 0 {
-        format!("; {} hanging at the openings trimmed", plural(o.scan.trimmed_triangles as u64, "triangle", "triangles"))
+        format!(
+            "; {} hanging at the openings trimmed",
+            plural(o.scan.trimmed_triangles as u64, "triangle", "triangles")
+        )
     } else {
         String::new()
     };
