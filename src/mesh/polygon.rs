@@ -164,7 +164,7 @@ mod tests {
         // counter-clockwise, covering the area exactly.
         let outline = vec![[2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0], [0.0, 0.0]];
         let interior = [[0.5, 0.5], [0.5, 1.5]];
-        let t = triangulate(&[outline.clone()], &interior).unwrap();
+        let t = triangulate(std::slice::from_ref(&outline), &interior).unwrap();
         assert_eq!(t.len(), 8);
         let pts: Vec<[f64; 2]> = outline.iter().chain(&interior).copied().collect();
         assert!((area(&pts, &t) - 3.0).abs() < 1e-12);
@@ -199,7 +199,7 @@ mod tests {
         let repeated = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [1.0, 0.0]];
         assert!(triangulate(&[repeated], &[]).unwrap_err().0.contains("same point"));
         let square = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        assert!(triangulate(&[square.clone()], &[[2.0, 0.5]]).unwrap_err().0.contains("outside"));
+        assert!(triangulate(std::slice::from_ref(&square), &[[2.0, 0.5]]).unwrap_err().0.contains("outside"));
         assert_eq!(triangulate(&[square], &[[0.5, 0.5]]).unwrap().len(), 4);
     }
 }
