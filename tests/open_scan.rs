@@ -340,4 +340,42 @@ fn the_bundled_open_scan_is_read_and_its_base_marked() {
     assert!(o.on_hidden_base.stable >= 1, "it stands on its base: {:?}", o.on_hidden_base);
     let json = serde_json::to_value(&r).unwrap();
     assert!(json["open_scan"]["rim"]["perimeter"].as_f64().unwrap() > 0.0);
+    // The figures data/README.md quotes: two feet 216 mm apart, 755 mm of rim around 11 907 mm².
+    assert_eq!(o.scan.rim_loops.len(), 2);
+    assert_eq!((o.scan.rim.perimeter.round(), o.scan.rim.area.round()), (755.0, 11907.0));
+    let apart = (o.scan.rim_loops[0].centre - o.scan.rim_loops[1].centre).norm();
+    assert_eq!(apart.round(), 216.0);
+    // It stands on the stable facet of the bundled stone with the largest basin (37 %).
+    let stone = rocking_stones::bundled::analysis(&Options::default()).unwrap().report("s", &Options::default());
+    let likeliest =
+        stone.stable_facets.iter().max_by(|a, b| a.basin_probability.total_cmp(&b.basin_probability)).unwrap();
+    assert_eq!((likeliest.equilibrium, (likeliest.basin_probability * 100.0).round()), (10, 37.0));
+}
+
+fn rocking(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_rocking")).args(args).output().expect("run rocking")
+}
+
+#[test]
+fn the_cli_regenerates_the_bundled_open_scan_and_analyses_it() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("open.ply");
+    let from = root.join("data/default_pebble.ply");
+    let args = ["generate", "open-scan", "--from", from.to_str().unwrap(), "--stand-on", "10", "--cut", "5"];
+    let r = rocking(&[&args[..], &["-o", out.to_str().unwrap()]].concat());
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // The command data/README.md gives makes the bundled file, byte for byte.
+    assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(root.join("data/open_scan_E34.ply")).unwrap());
+    let r = rocking(&["analyze", out.to_str().unwrap(), "--length-unit", "mm"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let text = String::from_utf8_lossy(&r.stdout);
+    assert!(text.contains("open     an open scan") && text.contains("closed by a flat cap"), "{text}");
+    assert!(String::from_utf8_lossy(&r.stderr).contains("is an open scan"));
+    // Options that do not fit are refused by their flags.
+    let r = rocking(&[&args[..6], &["--cut=-1", "-o", out.to_str().unwrap()]].concat());
+    let e = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success() && e.contains("--cut must be a height in (0, "), "{e}");
+    let r = rocking(&["generate", "box", "--cut", "1", "-o", out.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&r.stderr).contains("--cut applies to open-scan"));
 }
