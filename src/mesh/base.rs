@@ -15,9 +15,9 @@
 //! out so that no sliver triangle hugs it. The rim's vertices keep their 3D positions, so the
 //! base is watertight with the scan; only the interior points move with the offset. Every
 //! closing ([`BaseClosing::close`]) reuses that triangulation: it places the interior points,
-//! checks that the base does not cross the scan or itself (exact predicates,
+//! checks that the base does not cross the scan (exact predicates,
 //! [`intersect::find_patch_crossing`], on the base and the scan triangles within its bounding
-//! box), and returns the closed solid boundary, which [`super::TriMesh::into_solid_boundary`]
+//! box; a height field over a plane triangulation cannot cross itself), and returns the closed solid boundary, which [`super::TriMesh::into_solid_boundary`]
 //! accepts as it is.
 
 use super::open_scan::OpenScan;
@@ -138,7 +138,7 @@ impl BaseClosing {
 
     /// Close the rim with the base h = `offset(point)` along the rim plane's outward normal
     /// (module docs). Refuses a non-finite offset ([`Error::Parameter`] `offset`) and a base that
-    /// crosses the scan or itself ([`ScanProblem::Crossing`]).
+    /// crosses the scan ([`ScanProblem::Crossing`]).
     pub fn close(&self, offset: impl Fn(&BasePoint) -> f64) -> Result<ClosedScan> {
         let scan = self.scan.mesh();
         let normal = self.plane().normal;
@@ -160,16 +160,11 @@ impl BaseClosing {
             vertices.push(b.point + normal * h);
         }
         if let Some(c) = intersect::find_patch_crossing(&vertices, &scan.triangles, &self.boxes, &self.triangles) {
-            let with = if c.first < scan.triangles.len() {
-                format!("the scan's triangle {}", c.first)
-            } else {
-                "itself".to_string()
-            };
             return Err(Error::open_scan(
                 ScanProblem::Crossing,
                 format!(
-                    "the base crosses {with} near ({}, {}, {}) ({} crossing pair(s), {:.3e} deep): recessed deeper than the rock allows, or folded",
-                    c.near.x, c.near.y, c.near.z, c.pairs, c.depth
+                    "the base crosses the scan's triangle {} near ({}, {}, {}) ({} crossing pair(s), {:.3e} deep): recessed deeper than the rock allows",
+                    c.first, c.near.x, c.near.y, c.near.z, c.pairs, c.depth
                 ),
             ));
         }

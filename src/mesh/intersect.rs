@@ -201,6 +201,15 @@ pub fn find_self_intersection(vertices: &[Point3], triangles: &[[u32; 3]]) -> Op
 /// the surface or itself, the surface's own crossings aside. `first_new` = 0 is
 /// [`find_self_intersection`].
 pub fn find_crossing_with(vertices: &[Point3], triangles: &[[u32; 3]], first_new: usize) -> Option<Crossing> {
+    find_counted(vertices, triangles, &|_, j| j >= first_new)
+}
+
+/// The deepest crossing among the pairs (i, j), i < j, for which `count(i, j)` holds.
+fn find_counted(
+    vertices: &[Point3],
+    triangles: &[[u32; 3]],
+    count: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Option<Crossing> {
     let nt = triangles.len();
     let pts: Vec<[Point3; 3]> = triangles.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
     let axis: Vec<Option<usize>> = pts.par_iter().map(drop_axis).collect();
@@ -247,7 +256,7 @@ pub fn find_crossing_with(vertices: &[Point3], triangles: &[[u32; 3]], first_new
     };
     let test = |i: usize, j: usize| -> Option<(usize, usize, Point3)> {
         let (i, j) = (i.min(j), i.max(j));
-        if j < first_new {
+        if !count(i, j) {
             return None;
         }
         let (ki, kj) = (axis[i]?, axis[j]?);
@@ -312,8 +321,10 @@ pub fn triangle_boxes(vertices: &[Point3], triangles: &[[u32; 3]]) -> Vec<(Point
 
 /// Where a patch crosses a surface it is attached to, or itself: [`find_crossing_with`] on the
 /// patch and the surface triangles whose boxes (`surface_boxes`, [`triangle_boxes`] of `surface`)
-/// meet the patch's bounding box, the only ones it can reach. Pairs of two surface triangles are
-/// not counted. In the result, triangle `i < surface.len()` is surface triangle `i`, and
+/// meet the patch's bounding box, the only ones it can reach. Only pairs of a surface triangle
+/// and a patch triangle are counted: the patches closing an open scan are height fields over a
+/// plane triangulation (their projections on the plane do not overlap), which cannot cross
+/// themselves. In the result, triangle `i < surface.len()` is surface triangle `i`, and
 /// `surface.len() + j` is patch triangle `j`.
 pub fn find_patch_crossing(
     vertices: &[Point3],
