@@ -379,3 +379,20 @@ fn the_cli_regenerates_the_bundled_open_scan_and_analyses_it() {
     let r = rocking(&["generate", "box", "--cut", "1", "-o", out.to_str().unwrap()]);
     assert!(String::from_utf8_lossy(&r.stderr).contains("--cut applies to open-scan"));
 }
+
+#[test]
+fn the_cli_reads_an_open_top_as_a_scan_when_given_a_point_near_its_rim() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bowl.ply");
+    let bowl = cut_open(&generate::cuboid(2.0, 1.5, 1.0), &Plane::new(Point3::new(0.0, 0.0, 0.3), -Vec3::z()).unwrap())
+        .unwrap();
+    rocking_stones::mesh::io::write(&path, &bowl).unwrap();
+    let r = rocking(&["analyze", path.to_str().unwrap(), "--json"]);
+    assert!(String::from_utf8_lossy(&r.stderr).contains("not at the bottom of the scan"));
+    let r = rocking(&["analyze", path.to_str().unwrap(), "--json", "--rim-near", "0,0,0.3"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+    assert_eq!(json["open_scan"]["chosen"]["rim"], "near");
+    assert!((json["solid"]["volume"].as_f64().unwrap() - 2.4).abs() < 1e-12, "{}", json["solid"]["volume"]);
+    assert_eq!(json["micro"]["stable"], 6);
+}

@@ -142,7 +142,9 @@ impl OpenScan {
         let mut original = original.to_vec();
         let trimmed = trim_flaps(&mut mesh, &mut original);
         if mesh.triangles.is_empty() {
-            return Err(Error::invalid("no surface: every triangle hangs by one edge or none"));
+            return Err(Error::invalid(
+                "the surface is open and encloses nothing: every triangle hangs on the others by one edge or none",
+            ));
         }
         if trimmed > 0 {
             mesh.weld();
