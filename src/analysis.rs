@@ -5,7 +5,7 @@ use crate::equilibria::{Equilibria, Kind, Signs, Site, DEFAULT_DEGENERACY_TOL};
 use crate::hierarchy::cancellation_hierarchy;
 use crate::hierarchy::{Counts, Flock, Hierarchy, Plateau, Step};
 use crate::hull::{Polyhedron, DEFAULT_COPLANAR_TOL};
-use crate::mesh::{ldexp, scale_point, Repairs, TriMesh};
+use crate::mesh::{ldexp, scale_point, BaseClosing, ClosedScan, OpenScanSummary, Repairs, RimChoice, Scan, TriMesh};
 use crate::morse_smale::MorseSmaleGraph;
 use crate::shape::{describe, ShapeDescriptors};
 use crate::solid::MassProperties;
@@ -14,6 +14,9 @@ use serde::Serialize;
 use std::path::Path;
 
 pub use crate::hierarchy::{NuSource, PAPER_NU};
+pub use hidden_base::{DependentCounts, HiddenBase, OpenScanReport, FLAT_CAP};
+
+mod hidden_base;
 
 /// Tolerances and choices of a static analysis.
 #[derive(Clone, Debug)]
@@ -28,6 +31,8 @@ pub struct Options {
     /// a weighted die, a hollow print, a scan of only the hull. The inertia is then taken about
     /// it ([`MassProperties::about`]). `None`: the solid's G.
     pub center_of_mass: Option<Point3>,
+    /// Which opening of an open scan is the rim of its hidden base ([`Analysis::of_scan`]).
+    pub rim: RimChoice,
 }
 
 impl Default for Options {
@@ -37,6 +42,7 @@ impl Default for Options {
             degeneracy_tol: DEFAULT_DEGENERACY_TOL,
             nu: None,
             center_of_mass: None,
+            rim: RimChoice::Lowest,
         }
     }
 }
@@ -61,6 +67,9 @@ pub struct Analysis {
     pub shape: ShapeDescriptors,
     /// The shared signs of the equilibrium predicates (reused by the tracer).
     pub signs: Signs,
+    /// For an open scan: the base that closed it ([`Analysis::of_closed_scan`]); `None` for a
+    /// closed stone.
+    pub hidden_base: Option<HiddenBase>,
 }
 
 impl Analysis {
@@ -125,13 +134,49 @@ impl Analysis {
         }
         shape.volume = ldexp(shape.volume, -3 * k);
         shape.area = ldexp(shape.area, -2 * k);
-        Ok(Analysis { mesh, repairs, mass, hull, equilibria, graph, hierarchy, shape, signs })
+        Ok(Analysis { mesh, repairs, mass, hull, equilibria, graph, hierarchy, shape, signs, hidden_base: None })
     }
 
-    /// Load, check and analyse a mesh file; every error names the file.
+    /// Load, check and analyse a mesh file, closed or open ([`Analysis::of_scan`]); every error
+    /// names the file.
     pub fn of_file(path: &Path, opts: &Options) -> Result<Self> {
-        let (mesh, repairs) = crate::mesh::io::load_solid(path)?;
-        Self::of_solid(mesh, repairs, opts).map_err(|e| e.with_path(path))
+        let mesh = crate::mesh::io::read(path)?;
+        Self::of_scan(mesh, opts).map_err(|e| e.with_path(path))
+    }
+
+    /// Check and analyse a scan as read ([`TriMesh::into_scan`]): a closed surface exactly as
+    /// [`TriMesh::into_solid_boundary`] and [`Analysis::of_solid`] do; an open one (a field
+    /// scan, its rim chosen by `opts.rim`) closed with the flat cap, the nominal base
+    /// ([`BaseClosing::flat`]), its micro-equilibria marked where they depend on that base
+    /// ([`HiddenBase`]).
+    pub fn of_scan(mesh: TriMesh, opts: &Options) -> Result<Self> {
+        match mesh.into_scan(&opts.rim)? {
+            Scan::Closed(mesh, repairs) => Self::of_solid(mesh, repairs, opts),
+            Scan::Open(scan) => {
+                let summary = scan.summary().clone();
+                let closed = BaseClosing::new(*scan)?.flat()?;
+                Self::of_closed_scan(closed, summary, FLAT_CAP, opts)
+            }
+        }
+    }
+
+    /// Analyse an open scan closed by a base ([`BaseClosing::close`]), found as `scan` says and
+    /// named `base` in reports, as [`Analysis::of_solid`] does, keeping which vertices are the
+    /// base's ([`Analysis::hidden_base`]).
+    pub fn of_closed_scan(closed: ClosedScan, scan: OpenScanSummary, base: &str, opts: &Options) -> Result<Self> {
+        let hidden = HiddenBase::of(&closed, scan, base);
+        let mut a = Self::of_solid(closed.mesh, closed.repairs, opts)?;
+        a.hidden_base = Some(hidden);
+        Ok(a)
+    }
+
+    /// For every micro-equilibrium: whether it depends on an open scan's hidden base
+    /// ([`HiddenBase::dependent`]); all false for a closed stone.
+    pub fn on_hidden_base(&self) -> Vec<bool> {
+        match &self.hidden_base {
+            Some(h) => h.dependent(&self.hull, &self.equilibria),
+            None => vec![false; self.equilibria.points.len()],
+        }
     }
 
     /// For each hull facet, the stable micro-equilibrium its steepest descent reaches.
@@ -161,6 +206,7 @@ impl Analysis {
         let m = self.hierarchy.macro_scale(opts.nu);
         let (nu, nu_source, flocks) = (m.nu, m.source, m.flocks);
         let eq = &self.equilibria;
+        let on_base = self.on_hidden_base();
         let rocking = m
             .rocking
             .into_iter()
@@ -178,6 +224,7 @@ impl Analysis {
                     r_normalised: p.r / eq.r_max,
                     flock,
                     flock_type: flocks.flocks[flock].kind,
+                    hidden_base: on_base[i],
                 }
             })
             .collect();
@@ -192,6 +239,7 @@ impl Analysis {
                 point: p.point,
                 r: p.r,
                 flock: flocks.membership[i],
+                hidden_base: on_base[i],
             })
             .collect();
         // On the normalised hull (exact power-of-two scaling, as the pipeline): probabilities
@@ -217,6 +265,7 @@ impl Analysis {
                         r: eq.points[s].r,
                         basin_probability: quasi_static.facet_probability[f],
                         flock: flocks.membership[s],
+                        hidden_base: on_base[s],
                     })
                 })
                 .collect()
@@ -225,6 +274,7 @@ impl Analysis {
         Report {
             file: file.to_string(),
             repairs: self.repairs.clone(),
+            open_scan: self.hidden_base.as_ref().map(|h| h.report(eq, &on_base)),
             mesh: MeshSummary { vertices: self.mesh.vertices.len(), triangles: self.mesh.triangles.len() },
             solid: SolidSummary {
                 volume: self.mass.volume,
@@ -357,6 +407,10 @@ pub struct RockingEquilibrium {
     pub flock: usize,
     /// Type of that flock (unstable or saddle).
     pub flock_type: Kind,
+    /// Its facet has a corner on an open scan's hidden base ([`HiddenBase::dependent`]);
+    /// written only when true.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub hidden_base: bool,
 }
 
 /// One micro-equilibrium with its flock at the report's ν.
@@ -374,6 +428,10 @@ pub struct MicroEquilibrium {
     pub r: f64,
     /// Index of its flock at the report's ν.
     pub flock: usize,
+    /// Its site has a corner on an open scan's hidden base ([`HiddenBase::dependent`]); written
+    /// only when true.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub hidden_base: bool,
 }
 
 /// A stable facet as another engine or an experiment needs it: which way it faces and how often
@@ -393,6 +451,9 @@ pub struct StableFacet {
     pub basin_probability: f64,
     /// Flock at the macro ν.
     pub flock: usize,
+    /// The facet has a corner on an open scan's hidden base; written only when true.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub hidden_base: bool,
 }
 
 /// Everything a run of `rocking analyze` says about one stone.
@@ -402,6 +463,10 @@ pub struct Report {
     pub file: String,
     /// Repairs applied to the input mesh.
     pub repairs: Repairs,
+    /// For an open scan: what was found and closed, and how many micro-equilibria depend on the
+    /// hidden base (absent for a closed stone).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub open_scan: Option<OpenScanReport>,
     /// Size of the input mesh.
     pub mesh: MeshSummary,
     /// Mass properties of the solid.

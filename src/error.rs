@@ -157,6 +157,33 @@ pub enum Error {
     /// The caller stopped a long run ([`crate::monitor::Monitor::stopped`]).
     #[error("the run was stopped before it finished")]
     Cancelled,
+    /// An open surface that cannot be read as a field scan standing on its hidden base
+    /// (`crate::mesh::open_scan`): which [`ScanProblem`], and what to give instead.
+    #[error("{path}: {what}")]
+    OpenScan {
+        /// The file concerned (`<memory>` for meshes built in memory).
+        path: PathBuf,
+        /// Which reading failed.
+        problem: ScanProblem,
+        /// What was found, and what to give instead.
+        what: String,
+    },
+}
+
+/// Why a surface is not read as an open scan ([`Error::OpenScan`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ScanProblem {
+    /// The surface has no boundary: it is a closed stone, not an open scan (read it as one).
+    Closed,
+    /// The largest opening is not at the base: the scan is open at its top or side.
+    OpenTop,
+    /// Several openings of comparable size: which one is the rim of the hidden base is not clear.
+    SeveralRims,
+    /// An opening that does not project onto its best-fit plane as a simple polygon.
+    NotSimple,
+    /// A closing surface (a base or the patch of a gap) crosses the scan.
+    Crossing,
 }
 
 /// Any error of a writer's inner steps (CSV, JSON, I/O, plotters), before it is given its file.
@@ -179,6 +206,7 @@ impl Error {
             }
             Error::CentreOutsideHull { path, g, what } => Error::CentreOutsideHull { path: fix(path), g, what },
             Error::Study { path, what } => Error::Study { path: fix(path), what },
+            Error::OpenScan { path, problem, what } => Error::OpenScan { path: fix(path), problem, what },
             e @ (Error::Unknown { .. }
             | Error::Motion { .. }
             | Error::Pose { .. }
@@ -213,7 +241,8 @@ impl Error {
 
     /// A short stable name of the error's kind (`io`, `parse`, `invalid-mesh`, `degenerate`,
     /// `self-intersecting`, `centre-outside-hull`, `internal-check`, `plot`, `parameter`,
-    /// `size-unknown`, `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `clock`, `cancelled`), for tallies.
+    /// `size-unknown`, `unknown-name`, `motion`, `pose`, `checkpoint`, `fit`, `study`, `clock`,
+    /// `cancelled`, `open-scan`), for tallies.
     pub fn kind(&self) -> &'static str {
         match self {
             Error::Io { .. } => "io",
@@ -234,6 +263,7 @@ impl Error {
             Error::Study { .. } => "study",
             Error::Clock(_) => "clock",
             Error::Cancelled => "cancelled",
+            Error::OpenScan { .. } => "open-scan",
         }
     }
 
@@ -261,6 +291,11 @@ impl Error {
     /// A motion that cannot drive a run: `name` and what is wrong with it.
     pub fn motion(name: impl Into<String>, what: impl Into<String>) -> Self {
         Error::Motion { name: name.into(), what: what.into() }
+    }
+
+    /// An in-memory open-scan error ([`Error::OpenScan`]).
+    pub fn open_scan(problem: ScanProblem, what: impl Into<String>) -> Self {
+        Error::OpenScan { path: MEMORY.into(), problem, what: what.into() }
     }
 
     /// Shorthand for an in-memory failed internal check.

@@ -124,6 +124,11 @@ class Analysis:
         """welded_vertices, unreferenced_vertices, degenerate_triangles, flipped."""
     def to_dict(self) -> Dict[str, Any]:
         """The report; equal to ``json.loads`` of ``rocking analyze MESH --json``."""
+    @property
+    def open_scan(self) -> Optional[Dict[str, Any]]:
+        """For an open scan (+z up, open where the rock meets its pedestal): the rim of the
+        hidden base and its loops, the gaps closed, the base (``flat cap``) and how many
+        micro-equilibria touch it; None for a closed stone."""
     def to_json(self, pretty: bool = True) -> str:
         """The report as JSON; ``pretty=True`` is exactly what ``rocking analyze --json``
         prints (without the final newline)."""
@@ -266,6 +271,8 @@ def analyze(
     ``mesh``: a path, a ``(vertices, faces)`` pair, a ``trimesh.Trimesh`` (anything with
     ``.vertices`` and ``.faces``), or None for the bundled scanned stone. In-memory meshes are
     welded and checked exactly like files; their errors name ``name`` (default ``<memory>``).
+    An open scan (+z up, open where the rock meets its pedestal) is closed with a flat cap and
+    the micro-equilibria touching that hidden base are marked (:attr:`Analysis.open_scan`).
     ``nu`` fixes the macro scale (default: the automatic plateau, else 0.0035);
     ``coplanar_tol`` is the relative tolerance of the facet merge (1e-6 for f32 CAD files).
 

@@ -211,6 +211,14 @@ impl PyAnalysis {
         to_py(py, &self.report.repairs)
     }
 
+    /// For an open scan (a field scan, +z up, open where the rock meets its pedestal): what was
+    /// found (dict: the rim and its loops, the gaps closed, the base that closed it, the numbers
+    /// of micro-equilibria touching that base); None for a closed stone.
+    #[getter]
+    fn open_scan<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.report.open_scan)
+    }
+
     /// The report as a dict: equal to `json.loads` of `rocking analyze MESH --json`.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_py(py, &self.report)
@@ -257,7 +265,8 @@ impl PyAnalysis {
 /// mesh: a path (STL, OBJ, PLY), a (vertices (n, 3), faces (m, 3)) pair of arrays, an object
 ///     with .vertices and .faces (trimesh.Trimesh), or None for the bundled scanned stone.
 ///     In-memory meshes are welded and checked like files; errors name `name` (default
-///     "<memory>").
+///     "<memory>"). An open scan (+z up, open where the rock meets its pedestal) is closed with a
+///     flat cap, and the micro-equilibria touching that hidden base are marked (`open_scan`).
 /// nu: fixed ν of the macro scale (default: the automatic plateau, else 0.0035).
 /// coplanar_tol: relative tolerance of the facet merge (× bounding-box diagonal); 1e-6 for f32
 ///     CAD files.

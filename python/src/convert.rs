@@ -14,8 +14,9 @@ pyo3::create_exception!(
     rocking_stones,
     MeshError,
     PyValueError,
-    "The mesh is not the boundary of a solid (open, non-manifold, flipped, several shells, flat, \
-     NaN, truncated or unparsable file...). The message is the one `rocking` prints."
+    "The mesh is not the boundary of a solid (non-manifold, flipped, several shells, flat, NaN, \
+     truncated or unparsable file...), nor an open scan that can be read (open at its top, several \
+     rims...). The message is the one `rocking` prints."
 );
 
 /// A library error as the Python exception that carries the CLI's message.
@@ -38,6 +39,7 @@ pub(crate) fn py_err(e: Error) -> PyErr {
         | Error::Degenerate { .. }
         | Error::SelfIntersecting { .. }
         | Error::CentreOutsideHull { .. }
+        | Error::OpenScan { .. }
         | Error::Check { .. } => MeshError::new_err(msg),
         Error::Plot { .. } => PyRuntimeError::new_err(msg),
         Error::Cancelled => pyo3::exceptions::PyKeyboardInterrupt::new_err(msg),

@@ -1,6 +1,7 @@
 //! Mesh inputs: the `mesh` argument (None for the bundled stone, a path, a `(vertices, faces)`
 //! pair or an object with `.vertices` and `.faces`) read, checked and analysed exactly as
-//! `rocking analyze` does.
+//! `rocking analyze` does: a closed stone, or an open scan closed by a flat cap
+//! ([`Analysis::of_scan`]).
 
 use crate::convert::{py_err, MeshError};
 use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
@@ -104,8 +105,7 @@ pub(crate) fn source(mesh: Option<&Bound<'_, PyAny>>, name: Option<String>) -> P
 /// Load and check a mesh and run the static analysis, exactly as `rocking analyze` does.
 pub(crate) fn analyse(src: Source, opts: &Options) -> rocking_stones::Result<(Analysis, String)> {
     let in_memory = |mesh: TriMesh, name: &str| -> rocking_stones::Result<Analysis> {
-        let (mesh, repairs) = mesh.into_solid_boundary().map_err(|e| e.with_path(name))?;
-        Analysis::of_solid(mesh, repairs, opts).map_err(|e| e.with_path(name))
+        Analysis::of_scan(mesh, opts).map_err(|e| e.with_path(name))
     };
     match src {
         Source::File(p) => Ok((Analysis::of_file(&p, opts)?, p.display().to_string())),

@@ -22,7 +22,9 @@ def write_ply(path, v, f):
 
 
 BROKEN = {
-    "open": (TETRA_V, TETRA_F[:3]),
+    # Open where a face looks up: not an open scan standing on its base (one open at its bottom
+    # is read, closed by a flat cap).
+    "open_top": (TETRA_V, TETRA_F[[0, 1, 3]]),
     "misoriented": (TETRA_V, np.vstack([TETRA_F[:3], TETRA_F[3:, ::-1]])),
     "two_shells": (np.vstack([TETRA_V, TETRA_V + 5]), np.vstack([TETRA_F, TETRA_F + 4])),
     "flat": (np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]), TETRA_F),

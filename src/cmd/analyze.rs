@@ -4,6 +4,7 @@ use anyhow::{Context, Result};
 use rayon::prelude::*;
 use rocking_stones::analysis::{Analysis, Options, Report};
 use rocking_stones::bundled;
+use rocking_stones::mesh::RimChoice;
 use rocking_stones::report;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -42,6 +43,11 @@ pub struct Args {
     /// CSV file for a batch (several files or a folder); default: standard output.
     #[arg(long)]
     pub csv: Option<PathBuf>,
+    /// An open scan (a field scan, +z up, open where the rock meets its pedestal): the rim of
+    /// its hidden base is the opening passing nearest this point x,y,z (mesh units) instead of
+    /// the one opening at the bottom of the scan.
+    #[arg(long, value_parser = super::parse_point, allow_hyphen_values = true, value_name = "X,Y,Z")]
+    pub rim_near: Option<rocking_stones::Point3>,
 }
 
 pub fn run_analyze(args: Args) -> Result<()> {
@@ -49,6 +55,7 @@ pub fn run_analyze(args: Args) -> Result<()> {
         nu: args.nu,
         coplanar_tol: args.coplanar_tol,
         center_of_mass: args.center_of_mass,
+        rim: args.rim_near.map_or(RimChoice::Lowest, RimChoice::Near),
         ..Options::default()
     };
     opts.check()?;
@@ -94,12 +101,17 @@ fn expand(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
 }
 
 /// Analyse a mesh file, or the bundled default stone when `path` is None; returns the analysis
-/// and the name to report.
+/// and the name to report. An open scan is said on standard error: it is analysed closed by a
+/// flat cap.
 pub fn load_analysis(path: Option<&Path>, opts: &Options) -> Result<(Analysis, String)> {
-    Ok(match path {
+    let (analysis, name) = match path {
         Some(p) => (Analysis::of_file(p, opts)?, p.display().to_string()),
         None => (bundled::analysis(opts)?, bundled::NAME.to_string()),
-    })
+    };
+    if let Some(h) = &analysis.hidden_base {
+        eprintln!("note: {name} is an open scan: its hidden base is closed by a {} (the nominal base)", h.base);
+    }
+    Ok((analysis, name))
 }
 
 pub use rocking_stones::bundled::is_bundled;

@@ -193,6 +193,23 @@ fn crossing(ti: &[u32; 3], tj: &[u32; 3], pi: &[Point3; 3], pj: &[Point3; 3], ki
 /// Find crossing triangles of a mesh (see the module docs); `None` if the surface is embedded.
 /// The reported pair is the deepest ([`depth`]; ties: the lexicographically smallest pair).
 pub fn find_self_intersection(vertices: &[Point3], triangles: &[[u32; 3]]) -> Option<Crossing> {
+    find_crossing_with(vertices, triangles, 0)
+}
+
+/// As [`find_self_intersection`], counting only the pairs of which at least one triangle has an
+/// index ≥ `first_new`: where a patch appended to a surface (triangles `first_new..`) crosses
+/// the surface or itself, the surface's own crossings aside. `first_new` = 0 is
+/// [`find_self_intersection`].
+pub fn find_crossing_with(vertices: &[Point3], triangles: &[[u32; 3]], first_new: usize) -> Option<Crossing> {
+    find_counted(vertices, triangles, &|_, j| j >= first_new)
+}
+
+/// The deepest crossing among the pairs (i, j), i < j, for which `count(i, j)` holds.
+fn find_counted(
+    vertices: &[Point3],
+    triangles: &[[u32; 3]],
+    count: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Option<Crossing> {
     let nt = triangles.len();
     let pts: Vec<[Point3; 3]> = triangles.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
     let axis: Vec<Option<usize>> = pts.par_iter().map(drop_axis).collect();
@@ -239,6 +256,9 @@ pub fn find_self_intersection(vertices: &[Point3], triangles: &[[u32; 3]]) -> Op
     };
     let test = |i: usize, j: usize| -> Option<(usize, usize, Point3)> {
         let (i, j) = (i.min(j), i.max(j));
+        if !count(i, j) {
+            return None;
+        }
         let (ki, kj) = (axis[i]?, axis[j]?);
         crossing(&triangles[i], &triangles[j], &pts[i], &pts[j], ki, kj).map(|p| (i, j, p))
     };
@@ -286,6 +306,47 @@ pub fn find_self_intersection(vertices: &[Point3], triangles: &[[u32; 3]]) -> Op
         .map(|(i, j, near)| (i, j, near, depth(&pts[i], &pts[j])))
         .max_by(|x, y| x.3.total_cmp(&y.3).then((y.0, y.1).cmp(&(x.0, x.1))))
         .map(|(first, second, near, depth)| Crossing { first, second, near, depth, pairs })
+}
+
+/// Axis-aligned bounding box of every triangle.
+pub fn triangle_boxes(vertices: &[Point3], triangles: &[[u32; 3]]) -> Vec<(Point3, Point3)> {
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| vertices[i as usize]);
+            (a.inf(&b).inf(&c), a.sup(&b).sup(&c))
+        })
+        .collect()
+}
+
+/// Where a patch crosses a surface it is attached to, or itself: [`find_crossing_with`] on the
+/// patch and the surface triangles whose boxes (`surface_boxes`, [`triangle_boxes`] of `surface`)
+/// meet the patch's bounding box, the only ones it can reach. Only pairs of a surface triangle
+/// and a patch triangle are counted: the patches closing an open scan are height fields over a
+/// plane triangulation (their projections on the plane do not overlap), which cannot cross
+/// themselves. In the result, triangle `i < surface.len()` is surface triangle `i`, and
+/// `surface.len() + j` is patch triangle `j`.
+pub fn find_patch_crossing(
+    vertices: &[Point3],
+    surface: &[[u32; 3]],
+    surface_boxes: &[(Point3, Point3)],
+    patch: &[[u32; 3]],
+) -> Option<Crossing> {
+    let boxes = triangle_boxes(vertices, patch);
+    let (lo, hi) = boxes.iter().copied().reduce(|(l, h), (a, b)| (l.inf(&a), h.sup(&b)))?;
+    let near: Vec<usize> = (0..surface.len().min(surface_boxes.len()))
+        .filter(|&i| {
+            let (a, b) = &surface_boxes[i];
+            (0..3).all(|k| a[k] <= hi[k] && lo[k] <= b[k])
+        })
+        .collect();
+    let triangles: Vec<[u32; 3]> = near.iter().map(|&i| surface[i]).chain(patch.iter().copied()).collect();
+    let name = |i: usize| if i < near.len() { near[i] } else { surface.len() + i - near.len() };
+    find_crossing_with(vertices, &triangles, near.len()).map(|c| Crossing {
+        first: name(c.first),
+        second: name(c.second),
+        ..c
+    })
 }
 
 #[cfg(test)]

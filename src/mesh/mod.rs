@@ -1,9 +1,21 @@
 //! Triangle meshes of scanned stones: reading and writing ([`io`]), welding, and the checks that
 //! make a triangle soup into the boundary of a solid (closed, manifold, consistently oriented).
 
+pub mod base;
+pub mod boundary;
+pub mod cut;
 pub mod intersect;
 pub mod io;
+pub mod open_scan;
+pub mod plane;
+pub mod polygon;
 pub mod unit;
+
+pub use base::{BaseClosing, BasePoint, ClosedScan};
+pub use boundary::{boundary_loops, BoundaryLoop};
+pub use cut::{cut_base, cut_open, stand_on};
+pub use open_scan::{OpenScan, OpenScanSummary, Opening, RimChoice, Scan};
+pub use plane::Plane;
 
 use crate::{Error, Point3, Result, Vec3};
 use std::collections::HashMap;
@@ -200,7 +212,33 @@ impl TriMesh {
     /// crossings are counted in [`Repairs`]). Volume and crossings are evaluated on the mesh
     /// scaled by 2^[`TriMesh::unit_exponent`], so that any finite coordinates work. A surface that
     /// is consistently oriented *inwards* (negative volume) is flipped and reported in [`Repairs`].
-    pub fn into_solid_boundary(mut self) -> Result<(TriMesh, Repairs)> {
+    pub fn into_solid_boundary(self) -> Result<(TriMesh, Repairs)> {
+        let (mesh, rep, original) = self.prepared()?;
+        mesh.solid_checks(rep, &original)
+    }
+
+    /// Read a scan: a closed surface as [`TriMesh::into_solid_boundary`] does (the same checks,
+    /// messages and result), an open one (with edges of one triangle, none of three or more) as
+    /// an [`OpenScan`] whose rim is chosen by `rim` ([`OpenScan::from_prepared`]).
+    pub fn into_scan(self, rim: &RimChoice) -> Result<Scan> {
+        let (mesh, rep, original) = self.prepared()?;
+        let (mut open, mut fans) = (false, false);
+        for &(f, b) in mesh.edge_uses().values() {
+            open |= f + b == 1;
+            fans |= f + b > 2;
+        }
+        if open && !fans {
+            Ok(Scan::Open(Box::new(OpenScan::from_prepared(mesh, rep, &original, rim)?)))
+        } else {
+            let (mesh, rep) = mesh.solid_checks(rep, &original)?;
+            Ok(Scan::Closed(mesh, rep))
+        }
+    }
+
+    /// What every reading shares, closed stone or open scan: non-empty, finite, indices in range;
+    /// welded; zero-area (repeated-index) triangles dropped; no duplicate triangles. Returns the
+    /// mesh, its repairs so far and the input number of every kept triangle (for messages).
+    fn prepared(mut self) -> Result<(TriMesh, Repairs, Vec<usize>)> {
         if self.vertices.is_empty() || self.triangles.is_empty() {
             return Err(Error::invalid(format!(
                 "empty mesh ({} vertices, {} triangles)",
@@ -231,6 +269,12 @@ impl TriMesh {
             return Err(Error::invalid("every triangle is degenerate (repeated vertices)"));
         }
         self.check_duplicates(&original)?;
+        Ok((self, rep, original))
+    }
+
+    /// The checks of a closed solid after [`TriMesh::prepared`] (see
+    /// [`TriMesh::into_solid_boundary`]).
+    fn solid_checks(mut self, mut rep: Repairs, original: &[usize]) -> Result<(TriMesh, Repairs)> {
         self.check_edges()?;
         self.check_vertex_fans()?;
         self.check_single_shell()?;
@@ -247,23 +291,7 @@ impl TriMesh {
                 ldexp(d, -k)
             )));
         }
-        if let Some(c) = intersect::find_self_intersection(&unit.vertices, &unit.triangles) {
-            let few = c.pairs as f64 <= SHALLOW_CROSSING_PAIRS * self.triangles.len() as f64;
-            if few && c.depth <= SHALLOW_CROSSING_DEPTH * d {
-                rep.shallow_crossings = c.pairs;
-                rep.crossing_depth = c.depth / d;
-            } else {
-                return Err(Error::SelfIntersecting {
-                    path: crate::error::MEMORY.into(),
-                    first: original[c.first],
-                    second: original[c.second],
-                    pairs: c.pairs,
-                    depth: ldexp(c.depth, -k),
-                    relative_depth: c.depth / d,
-                    near: Some(scale_point(&c.near, -k).coords.into()),
-                });
-            }
-        }
+        unit.check_crossings(k, &mut rep, original)?;
         if v < 0.0 {
             rep.flipped = true;
             self.triangles.iter_mut().for_each(|t| t.swap(1, 2));
@@ -271,7 +299,32 @@ impl TriMesh {
         Ok((self, rep))
     }
 
-    fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
+    /// Self-intersections of this mesh, normalised by 2^`k` ([`TriMesh::unit_exponent`]): shallow
+    /// and few ones counted in `rep`, others refused ([`Error::SelfIntersecting`], triangles
+    /// named by `original`, their numbers in the input; a triangle past its end is named by its
+    /// own number).
+    pub(crate) fn check_crossings(&self, k: i32, rep: &mut Repairs, original: &[usize]) -> Result<()> {
+        let d = self.diameter();
+        let Some(c) = intersect::find_self_intersection(&self.vertices, &self.triangles) else { return Ok(()) };
+        let few = c.pairs as f64 <= SHALLOW_CROSSING_PAIRS * self.triangles.len() as f64;
+        if few && c.depth <= SHALLOW_CROSSING_DEPTH * d {
+            rep.shallow_crossings = c.pairs;
+            rep.crossing_depth = c.depth / d;
+            return Ok(());
+        }
+        let name = |t: usize| original.get(t).copied().unwrap_or(t);
+        Err(Error::SelfIntersecting {
+            path: crate::error::MEMORY.into(),
+            first: name(c.first),
+            second: name(c.second),
+            pairs: c.pairs,
+            depth: ldexp(c.depth, -k),
+            relative_depth: c.depth / d,
+            near: Some(scale_point(&c.near, -k).coords.into()),
+        })
+    }
+
+    pub(crate) fn edge_uses(&self) -> HashMap<(u32, u32), (u32, u32)> {
         // undirected edge (lo, hi) -> (uses as lo->hi, uses as hi->lo)
         let mut uses: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(self.triangles.len() * 3 / 2);
         for t in &self.triangles {
@@ -414,6 +467,18 @@ impl TriMesh {
     }
 
     fn check_single_shell(&self) -> Result<()> {
+        let shells = self.pieces();
+        if shells > 1 {
+            return Err(Error::invalid(format!(
+                "the mesh has {shells} separate closed shells; a stone must be a single closed surface"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Number of connected pieces (triangles joined through shared vertices; every vertex is
+    /// assumed used by a triangle).
+    pub(crate) fn pieces(&self) -> usize {
         let mut parent: Vec<u32> = (0..self.vertices.len() as u32).collect();
         fn find(p: &mut [u32], mut x: u32) -> u32 {
             while p[x as usize] != x {
@@ -428,12 +493,6 @@ impl TriMesh {
                 parent[a as usize] = b;
             }
         }
-        let shells = (0..self.vertices.len() as u32).filter(|&i| find(&mut parent, i) == i).count();
-        if shells > 1 {
-            return Err(Error::invalid(format!(
-                "the mesh has {shells} separate closed shells; a stone must be a single closed surface"
-            )));
-        }
-        Ok(())
+        (0..self.vertices.len() as u32).filter(|&i| find(&mut parent, i) == i).count()
     }
 }

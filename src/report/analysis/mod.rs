@@ -31,6 +31,9 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
         r.mesh.triangles,
         repairs_note(&r.repairs)
     );
+    if let Some(o) = &r.open_scan {
+        s.push_str(&open_scan_lines(o, unit));
+    }
     let _ = writeln!(
         s,
         "  solid    volume {} {}, area {} {}, G = ({}, {}, {}) {}",
@@ -116,16 +119,18 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
     if r.rocking.is_empty() {
         let _ = writeln!(s, "  rocking  none: every stable micro-equilibrium lies in a stable flock");
     } else {
+        let on_base = r.rocking.iter().filter(|q| q.hidden_base).count();
         let _ = writeln!(
             s,
             "  rocking  {} (stable micro-equilibria inside unstable/saddle flocks; --equilibrium ID and \
-             --pose equilibrium:ID take the equilibrium, --pose facet:F the hull facet):",
-            plural(r.rocking.len() as u64, "rocking equilibrium", "rocking equilibria")
+             --pose equilibrium:ID take the equilibrium, --pose facet:F the hull facet){}:",
+            plural(r.rocking.len() as u64, "rocking equilibrium", "rocking equilibria"),
+            if r.open_scan.is_some() { format!("; {on_base} on the hidden base") } else { String::new() }
         );
         for q in r.rocking.iter().take(10) {
             let _ = writeln!(
                 s,
-                "           equilibrium {:>5} (facet {:>6})  R/R_max = {:.5}  in {} flock {}  at ({}, {}, {}) {}",
+                "           equilibrium {:>5} (facet {:>6})  R/R_max = {:.5}  in {} flock {}  at ({}, {}, {}) {}{}",
                 q.index,
                 q.facet,
                 q.r_normalised,
@@ -134,7 +139,8 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
                 n(q.point.x),
                 n(q.point.y),
                 n(q.point.z),
-                unit.length()
+                unit.length(),
+                if q.hidden_base { "  [on the hidden base]" } else { "" }
             );
         }
         if r.rocking.len() > 10 {
@@ -142,6 +148,46 @@ pub fn summary_in(r: &Report, unit: &Unit) -> String {
         }
     }
     s
+}
+
+/// The lines of an open scan: what was found, and the base that closed it.
+fn open_scan_lines(o: &crate::analysis::OpenScanReport, unit: &Unit) -> String {
+    let n = |x: f64| number(x, 4);
+    let rim = &o.scan.rim;
+    let gaps = match o.scan.gaps.first() {
+        None => "no gaps".to_string(),
+        Some(g) => format!(
+            "{} closed flat (the largest {} {} around, {} {})",
+            plural(o.scan.gaps.len() as u64, "scan gap", "scan gaps"),
+            n(g.perimeter),
+            unit.length(),
+            n(g.area),
+            unit.area()
+        ),
+    };
+    let trimmed = if o.scan.trimmed_triangles > 0 {
+        format!(
+            "; {} hanging at the openings trimmed",
+            plural(o.scan.trimmed_triangles as u64, "triangle", "triangles")
+        )
+    } else {
+        String::new()
+    };
+    let d = &o.on_hidden_base;
+    format!(
+        "  open     an open scan: the rim of its hidden base{} is {} {} around, encloses {} {} on its plane and lies within {} {} of it; {gaps}{trimmed}\n  base     hidden, closed by a {} (the nominal base); {} stable, {} unstable and {} saddle micro-equilibria touch it\n",
+        if o.scan.rim_loops.len() > 1 { format!(" ({} loops on one plane)", o.scan.rim_loops.len()) } else { String::new() },
+        n(rim.perimeter),
+        unit.length(),
+        n(rim.area),
+        unit.area(),
+        n(rim.flatness),
+        unit.length(),
+        o.base,
+        d.stable,
+        d.unstable,
+        d.saddle
+    )
 }
 
 fn repairs_note(r: &crate::mesh::Repairs) -> String {
