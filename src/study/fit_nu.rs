@@ -50,6 +50,11 @@ impl HandSample {
     pub fn standard_errors(&self) -> [f64; 4] {
         standard_errors(&self.hand, self.n)
     }
+
+    /// The standard errors of [`HandSample::standard_errors`] for statistics `m` of `n` pebbles.
+    pub fn standard_errors_of(m: &[f64; 4], n: usize) -> [f64; 4] {
+        standard_errors(m, n)
+    }
 }
 
 pub(crate) fn standard_errors(m: &[f64; 4], n: usize) -> [f64; 4] {

@@ -164,6 +164,40 @@ fn crossing(x: &[f64], y: &[f64], i: usize, level: f64) -> (f64, f64) {
     (lo, hi)
 }
 
+/// The paper's one-ν experimenter at `nu` against the hand columns, sample by sample.
+pub fn one_nu_fits(hand: &[HandSample], curves: &[Vec<CountCurve>], nu: f64) -> Vec<SampleFit> {
+    let one = HandExperimenter::one_nu(nu);
+    hand.iter().zip(curves).map(|(h, c)| SampleFit::of(h, population_moments(c, &one))).collect()
+}
+
+/// A scan's name, its (S, U) at the paper's ν = 0.0035 and an experimenter's distribution.
+pub type ScanCounts = (String, (usize, usize), super::CountDistribution);
+
+/// What `exp` reports for each scan of `files` ([`ScanCounts`]).
+pub fn scans_counted(files: &[std::path::PathBuf], exp: &HandExperimenter) -> Result<Vec<ScanCounts>> {
+    files
+        .iter()
+        .map(|f| {
+            let a = crate::analysis::Analysis::of_file(f, &crate::analysis::Options::default())?;
+            let curve = CountCurve::of(&a.hierarchy);
+            let (k, name) = (curve.at(PAPER_NU), f.file_name().unwrap_or_default().to_string_lossy().into_owned());
+            Ok((name, (k.stable, k.unstable), exp.counts(&curve)))
+        })
+        .collect()
+}
+
+/// Model against Table 2 for every Table 2 sample that is a sample of the study (by name): the
+/// moments of its hand columns ([`super::summarize`]'s `hand`) against the hand columns.
+pub fn compare_hand(hand: &[HandSample], study: &super::Study) -> Vec<SampleFit> {
+    let summaries = super::summarize(study);
+    hand.iter()
+        .filter_map(|h| {
+            let s = summaries.iter().find(|s| s.sample == h.id && s.pebbles > 0)?;
+            Some(SampleFit::of(h, s.hand))
+        })
+        .collect()
+}
+
 /// One sample predicted by the experimenter fitted on the other samples.
 #[derive(Clone, Debug, Serialize)]
 pub struct LeftOut {
