@@ -122,6 +122,21 @@ fn the_study_writes_the_most_likely_pair_its_probability_and_the_distribution() 
     assert!(out.join("hand_vs_table2.png").exists());
 }
 
+#[test]
+fn fit_hand_writes_the_fit_the_model_against_the_table_and_the_left_out_predictions() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit");
+    let args = ["study", "fit-hand", "--count", "4", "--points", "300", "--roughness", "0.2,0.3", "--loso", "-o"];
+    let stdout = rocking(&[&args[..], &[out.to_str().unwrap()]].concat());
+    assert!(stdout.contains("χ² (hand) =") && stdout.contains("leave one sample out"), "{stdout}");
+    let (header, rows) = read_csv(&out.join("samples.csv"));
+    assert_eq!((header[0].as_str(), rows.len()), ("sample", 22));
+    let fit: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    assert_eq!(fit["fit"]["profile"].as_array().unwrap().len(), 2);
+    assert_eq!(fit["loso"].as_array().unwrap().len(), 22);
+    assert!(out.join("hand_vs_table2.png").exists());
+}
+
 /// The calibration the library ships ([`TABLE2_EXPERIMENTER`], [`TABLE2_ROUGHNESS`]) is what
 /// the fit on Table 2 gives (minutes: run by `cargo experiment hand_table2`, or
 /// `cargo test --release --test hand -- --ignored`).
