@@ -176,6 +176,12 @@ pub fn fit_hand(args: FitHandArgs) -> Result<()> {
         fit.one_nu.nu,
         fit.one_nu.chi2_min
     );
+    let frame = fit.in_scan_frame();
+    println!(
+        "the computer columns' real scans count like these synthetic pebbles at ν·10^δ, δ_S = {:.3}, δ_U = {:.3} \
+         decades: in the scans' frame ν_S = {:.2e}, ν_U = {:.2e}",
+        fit.scan_shift[0], fit.scan_shift[1], frame.stable.median, frame.unstable.median
+    );
     if let Some(l) = &loso {
         let chi2: f64 = l.iter().map(|x| x.prediction.chi2).sum();
         println!("leave one sample out: χ² = {chi2:.1} over {} predicted statistics", 4 * l.len());

@@ -208,5 +208,7 @@ pub fn write_calibration(dir: &Path, c: &Calibration) -> crate::Result<Value> {
         "loso_span": [span(&|l| l.roughness, &|x| x.to_string()), span(&|l| l.experimenter.stable.median, &e2),
             span(&|l| l.experimenter.unstable.median, &e2)],
         "real": real,
+        "shift": fit.scan_shift.map(|d| f(d, 3)),
+        "scan_frame": [e2(fit.in_scan_frame().stable.median), e2(fit.in_scan_frame().unstable.median)],
     }))
 }

@@ -104,6 +104,9 @@ pub struct Table2HandFit {
     pub dof: usize,
     /// The paper's one-ν experimenter fitted on the same populations at the chosen roughness.
     pub one_nu: NuFit,
+    /// [δ_S, δ_U] at the chosen roughness ([`scan_frame_shift`]): how far (decades) the synthetic
+    /// pebbles' ν must be moved to count like the real scans of the computer columns.
+    pub scan_shift: [f64; 2],
 }
 
 impl Table2HandFit {
@@ -111,6 +114,45 @@ impl Table2HandFit {
     pub fn chosen(&self) -> &RoughnessFit {
         &self.profile[self.best]
     }
+
+    /// The fitted experimenter moved into the real scans' frame: each median divided by
+    /// 10^δ of [`Table2HandFit::scan_shift`]. An alternative reading, not the fit: it assumes
+    /// the synthetic and the real count curves differ by that one shift at every ν, which
+    /// Table 2 (one ν of real scans) cannot check.
+    pub fn in_scan_frame(&self) -> HandExperimenter {
+        let e = self.chosen().fit.experimenter;
+        let shift = |t: super::Tolerance, d: f64| super::Tolerance { median: t.median / 10f64.powf(d), ..t };
+        HandExperimenter {
+            stable: shift(e.stable, self.scan_shift[0]),
+            unstable: shift(e.unstable, self.scan_shift[1]),
+        }
+    }
+}
+
+/// For S and for U, the shift δ (decades, on a grid of 0.025 from −1 to 1) at which the
+/// synthetic pebbles counted at ν = 0.0035·10^δ best match the computer columns (real scans at
+/// 0.0035): the χ² of that count's E and σ over the scanned samples, least. δ = 0 when the
+/// synthetic pebbles count like the scans; δ > 0 when they need a larger ν to.
+pub fn scan_frame_shift(hand: &[HandSample], curves: &[Vec<CountCurve>]) -> [f64; 2] {
+    let grid: Vec<f64> = (-40..=40).map(|i| i as f64 * 0.025).collect();
+    let fits: Vec<Vec<SampleFit>> = grid
+        .iter()
+        .map(|d| {
+            let nu = PAPER_NU * 10f64.powf(*d);
+            hand.iter()
+                .zip(curves)
+                .filter_map(|(h, c)| {
+                    let as_measured = HandSample { hand: h.computer?, n: h.n_computer?, ..h.clone() };
+                    Some(SampleFit::of(&as_measured, population_moments(c, &HandExperimenter::one_nu(nu))))
+                })
+                .collect()
+        })
+        .collect();
+    std::array::from_fn(|k| {
+        let chi2 = |f: &Vec<SampleFit>| f.iter().map(|s| s.z[k].powi(2) + s.z[k + 2].powi(2)).sum::<f64>();
+        let best = (0..grid.len()).min_by(|&a, &b| chi2(&fits[a]).total_cmp(&chi2(&fits[b]))).unwrap_or(40);
+        grid[best]
+    })
 }
 
 /// Fit the tolerances at every roughness of `pops` and choose the roughness (see the module
@@ -137,7 +179,8 @@ pub fn fit_hand_table2(hand: &[HandSample], pops: &[Populations]) -> Result<Tabl
     let roughness_interval = crossing(&r, &loss, best, loss[best] + scale);
     let one_opts = FitOptions { bootstrap: 0, ..FitOptions::default() };
     let one_nu = fit_nu(hand, &pops[best].curves, &one_opts)?;
-    Ok(Table2HandFit { profile, best, roughness, roughness_interval, at_edge, terms, dof, one_nu })
+    let scan_shift = scan_frame_shift(hand, &pops[best].curves);
+    Ok(Table2HandFit { profile, best, roughness, roughness_interval, at_edge, terms, dof, one_nu, scan_shift })
 }
 
 /// The vertex of the parabola through the grid minimum `i` and its neighbours (linear
