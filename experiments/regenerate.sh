@@ -20,7 +20,7 @@ cd "$(dirname "$0")/.."
 # In dependency-free order: static first, then dynamics (the slow ones last).
 ALL=(
   table1_planar_flocks fig2_planar_r_phi fig4_ellipse_grid fig5_rocking_planar
-  static_scaling fig10_separation_of_scales fuzz_mutations table2_fit_nu fig12_hand_vs_computer
+  static_scaling fig10_separation_of_scales fuzz_mutations table2_fit_nu hand_table2 fig12_hand_vs_computer
   housner_block corner_impact collider_step_cost drops_quasistatic_limit presets_flocks thick_coin cuboid_dice
   drops_settling drops_dt drops_certificate_speed certificate_margin drops_impacts drops_offfacet
   certificate_decisions drops_vs_mujoco drops_solver_substeps printed_shapes shake_table_pgv

@@ -7,13 +7,10 @@
 //! prose is `experiments/readme/table2_fit_nu.md`.
 
 use rocking_stones::analysis::PAPER_NU;
-use rocking_stones::plot::style;
-use rocking_stones::prelude::*;
-use rocking_stones::report::nu_fit::loss_chart;
+use rocking_stones::report::nu_fit::{loss_chart, nu_against_roughness, write_fits_csv};
 use rocking_stones::stats::{min_max, sample_sd};
 use rocking_stones::study::{self, FitOptions, HandSample, NuFit, PopulationParams};
 use serde_json::json;
-use std::fmt::Display;
 
 use experiments::harness;
 use harness::{cell, fixed, Result, Results};
@@ -77,26 +74,9 @@ fn main() -> Result<()> {
         runs.push(fit(spec)?);
     }
 
-    let header = "group,label,samples,roughness,points,spread,count,seed,calibrate,nu,interval_lo,interval_hi,\
-        bootstrap_p16,bootstrap_p84,bootstrap_sd_log10,chi2_min,dof,chi2_ES,chi2_EU,chi2_sdS,chi2_sdU,at_edge,seconds";
-    let rows = runs.iter().map(|r| {
-        let (f, p) = (&r.fit, &r.params);
-        let first: [&dyn Display; 9] =
-            [&r.group, &r.label, &r.samples, &p.roughness, &p.points, &p.spread, &p.count, &p.seed, &p.calibrate];
-        let e4 = [f.nu, f.interval.0, f.interval.1, f.bootstrap_interval.0, f.bootstrap_interval.1]
-            .map(|x| format!("{x:.4e}"));
-        let mut row: Vec<String> = first.iter().map(|x| x.to_string()).chain(e4).collect();
-        row.extend([fixed(f.bootstrap_sd_log10, 4), fixed(f.chi2_min, 2), f.dof.to_string()]);
-        row.extend(f.chi2_by_statistic.map(|x| fixed(x, 2)));
-        row.extend([f.at_edge.to_string(), fixed(r.seconds, 1)]);
-        row
-    });
-    out.csv("fits.csv", &header.split(',').collect::<Vec<_>>(), rows)?;
-    let curves = runs.iter().flat_map(|r| {
-        let points = r.fit.grid.iter().zip(&r.fit.chi2);
-        points.map(|(nu, c)| [r.group.to_string(), r.label.clone(), format!("{nu:.4e}"), fixed(*c, 3)])
-    });
-    out.csv("loss_curves.csv", &["group", "label", "nu", "chi2"], curves)?;
+    let fits: Vec<_> =
+        runs.iter().map(|r| ((r.group, r.label.as_str(), r.samples, r.seconds), &r.params, &r.fit)).collect();
+    write_fits_csv(&out.path("fits.csv"), &out.path("loss_curves.csv"), &fits)?;
 
     let rough: Vec<&Run> = runs.iter().filter(|r| r.group == "roughness").collect();
     for (group, what) in [
@@ -116,22 +96,7 @@ fn main() -> Result<()> {
             chart.clone().save(&out.path(&format!("loss_{group}.{ext}")), (1000, 680))?;
         }
     }
-    // Fitted ν (bootstrap 16–84 % bars) against the roughness amplitude, log–log, with 0.0035.
-    let (fitted, nu): (_, Vec<_>) =
-        (colors::VERMILLION, rough.iter().map(|r| (r.params.roughness, r.fit.nu)).collect());
-    let bars: Vec<_> =
-        rough.iter().map(|r| (r.params.roughness, r.fit.bootstrap_interval.0, r.fit.bootstrap_interval.1)).collect();
-    let chart = Chart::new(
-        Axis::log("roughness amplitude (largest relative radial deviation, log scale)", 0.007, 1.0).no_grid(),
-        Axis::log("fitted ν (fraction of R_max, log scale)", 5e-5, 5e-2).no_grid(),
-    )
-    .title("Fitted ν against the roughness of the synthetic pebbles")
-    .legend(Mark::LineDot(fitted), "fitted ν (bars: bootstrap 16–84 %)")
-    .legend(Mark::Dashed(colors::GREY), format!("paper: ν = {PAPER_NU}"))
-    .dashed(&[(0.007, PAPER_NU), (1.0, PAPER_NU)], colors::GREY)
-    .line(&nu, fitted)
-    .y_bars(&bars, fitted)
-    .markers_sized(&nu, fitted, Marker::Dot, style::MARKER + 1);
+    let chart = nu_against_roughness(&rough.iter().map(|r| (r.params.roughness, &r.fit)).collect::<Vec<_>>());
     for ext in ["png", "svg"] {
         chart.clone().save(&out.path(&format!("nu_vs_roughness.{ext}")), (900, 600))?;
     }

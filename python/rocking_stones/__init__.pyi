@@ -251,7 +251,15 @@ class Study:
     @property
     def errors(self) -> List[Optional[str]]: ...
     @property
-    def nu(self) -> float: ...
+    def nu(self) -> Optional[float]:
+        """ν of the one-ν hand columns; None when the two-tolerance experimenter counts them."""
+    @property
+    def experimenter(self) -> Optional[Dict[str, Dict[str, float]]]:
+        """The two-tolerance hand experimenter: ``{"stable": {"median", "sd_log10"}, "unstable": …}``."""
+    def hand(self) -> Dict[str, Any]:
+        """``hand.json`` as a dict: every analysed pebble's most likely pair and distribution."""
+    def hand_json(self) -> str:
+        """``hand.json`` exactly as ``rocking study`` writes it."""
     def pebbles_csv(self) -> str:
         """``pebbles.csv`` exactly as ``rocking study`` writes it."""
     def samples_csv(self) -> str:
@@ -428,7 +436,8 @@ def study(
     folder: Union[str, "os.PathLike[str]"],
     meta: Optional[Union[str, "os.PathLike[str]"]] = None,
     *,
-    nu: float = ...,
+    nu: Optional[float] = None,
+    tolerances: Optional[Tuple[float, float, float, float]] = None,
     coplanar_tol: float = ...,
     allow_unmatched: bool = False,
     dynamic: bool = False,
@@ -440,9 +449,13 @@ def study(
     progress: Optional[Callable[[int, int], Any]] = None,
 ) -> Study:
     """Field study over a folder of scans, as ``rocking study FOLDER --meta META``: one row per
-    pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``. ``dynamic=True`` adds the
-    simulated hand experimenter, who sets each pebble down at its real size: ``length_unit`` (the
-    scans' unit) is then needed."""
+    pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``. The hand columns are the
+    two-tolerance hand experimenter's most likely pair ``hand_S``, ``hand_U`` with its probability
+    ``hand_p`` and the distribution ``hand_pairs`` (``tolerances=(nu_s, sd_s, nu_u, sd_u)``,
+    default the calibration on Table 2; :meth:`Study.hand` has every pebble's distribution), or
+    with ``nu=`` the paper's one-ν counts ``hand_nu``, ``hand_S``, ``hand_U``, ``hand_H``.
+    ``dynamic=True`` adds the simulated hand experimenter, who sets each pebble down at its real
+    size: ``length_unit`` (the scans' unit) is then needed."""
 
 def generate(
     shape: Literal[

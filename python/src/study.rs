@@ -1,5 +1,6 @@
 //! `study` and the `Study` class: a field study over a folder of scans, as `rocking study`, with
-//! its `pebbles.csv` and `samples.csv` as text and as rows.
+//! its `pebbles.csv` and `samples.csv` as text and as rows, and each pebble's distribution of
+//! the hand counts (`hand.json`).
 
 use crate::convert::{py_err, to_py};
 use crate::long_run::interruptible;
@@ -68,10 +69,27 @@ impl PyStudy {
     fn errors(&self) -> Vec<Option<String>> {
         self.study.pebbles.iter().map(|p| p.result.as_ref().err().cloned()).collect()
     }
-    /// ν of the fixed-ν (hand) columns.
+    /// ν of the one-ν hand columns; None when the two-tolerance experimenter counts them.
     #[getter]
-    fn nu(&self) -> f64 {
-        self.study.nu
+    fn nu(&self) -> Option<f64> {
+        self.study.hand.is_none().then_some(self.study.nu)
+    }
+    /// The two-tolerance hand experimenter (dict of its stable and unstable tolerances: median
+    /// and sd_log10), None for the one-ν one.
+    #[getter]
+    fn experimenter<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.study.hand)
+    }
+    /// Every analysed pebble's distribution of the hand counts, as `hand.json`: a dict with
+    /// `experimenter` and `pebbles` (id, sample, file, most_likely {stable, unstable, saddle, p},
+    /// distribution {stable: [{count, p}], unstable: [...]}).
+    fn hand<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let text = rocking_stones::report::hand::hand_json(&self.study).map_err(py_err)?;
+        py.import("json")?.getattr("loads")?.call1((text,))
+    }
+    /// `hand.json` exactly as `rocking study` writes it.
+    fn hand_json(&self) -> PyResult<String> {
+        rocking_stones::report::hand::hand_json(&self.study).map_err(py_err)
     }
     /// `pebbles.csv` exactly as `rocking study` writes it.
     fn pebbles_csv(&self) -> &str {
@@ -91,23 +109,30 @@ impl PyStudy {
     }
     fn __repr__(&self) -> String {
         let failed = self.study.pebbles.iter().filter(|p| p.result.is_err()).count();
-        format!("<Study: {} pebbles, {} failed, nu = {}>", self.study.pebbles.len(), failed, self.study.nu)
+        let hand = match self.study.hand {
+            Some(_) => "two tolerances".to_string(),
+            None => format!("nu = {}", self.study.nu),
+        };
+        format!("<Study: {} pebbles, {} failed, {hand}>", self.study.pebbles.len(), failed)
     }
 }
 
 /// A field study over a folder of scans, as `rocking study FOLDER --meta META`; returns a
-/// `Study` with one row per pebble (the columns of pebbles.csv). dynamic=True adds the
+/// `Study` with one row per pebble (the columns of pebbles.csv). The hand columns are the
+/// two-tolerance hand experimenter's most likely pair (`tolerances=(nu_s, sd_s, nu_u, sd_u)`,
+/// default the calibration on Table 2), or with `nu=` the paper's one-ν counts. dynamic=True adds the
 /// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble), each pebble
 /// set down at its real size, given by `length_unit=` (the scans' unit: "mm", "cm", "m", "km",
 /// "in" or metres per unit), which it needs.
 #[pyfunction]
-#[pyo3(signature = (folder, meta = None, *, nu = PAPER_NU, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, length_unit = None, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
+#[pyo3(signature = (folder, meta = None, *, nu = None, tolerances = None, coplanar_tol = rocking_stones::hull::DEFAULT_COPLANAR_TOL, allow_unmatched = false, dynamic = false, length_unit = None, trials = rocking_stones::study::DEFAULT_TRIALS, height = rocking_stones::study::DEFAULT_SET_DOWN_HEIGHT, seed = 1, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn study(
     py: Python<'_>,
     folder: PathBuf,
     meta: Option<PathBuf>,
-    nu: f64,
+    nu: Option<f64>,
+    tolerances: Option<(f64, f64, f64, f64)>,
     coplanar_tol: f64,
     allow_unmatched: bool,
     dynamic: bool,
@@ -118,8 +143,17 @@ pub(crate) fn study(
     threads: Option<usize>,
     progress: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyStudy> {
-    use rocking_stones::study::{self as st, Experimenter, Metadata, StudyOptions};
-    let nu = check_nu(nu).map_err(py_err)?;
+    use rocking_stones::study::{self as st, Experimenter, HandExperimenter, Metadata, StudyOptions, Tolerance};
+    let hand = match (nu, tolerances) {
+        (Some(_), Some(_)) => return Err(PyValueError::new_err("give nu= (one ν) or tolerances= (two), not both")),
+        (Some(_), None) => None,
+        (None, None) => Some(st::TABLE2_EXPERIMENTER),
+        (None, Some((a, b, c, d))) => Some(HandExperimenter {
+            stable: Tolerance::new("stable", a, b).map_err(py_err)?,
+            unstable: Tolerance::new("unstable", c, d).map_err(py_err)?,
+        }),
+    };
+    let nu = check_nu(nu.unwrap_or(PAPER_NU)).map_err(py_err)?;
     if !folder.is_dir() {
         return Err(PyValueError::new_err(format!("{}: not a folder", folder.display())));
     }
@@ -148,10 +182,11 @@ pub(crate) fn study(
     let files = st::mesh_files(&folder).map_err(py_err)?;
     let meta = meta.as_deref().map(Metadata::read).transpose().map_err(py_err)?;
     let opts = StudyOptions { analysis: options(None, coplanar_tol)?, nu, experimenter, allow_unmatched };
-    let (study, _unmatched) = interruptible(py, threads, progress.map(|f| (f, files.len() as u64)), |c| {
+    let (mut study, _unmatched) = interruptible(py, threads, progress.map(|f| (f, files.len() as u64)), |c| {
         st::run_files(&files, meta.as_ref(), &opts, c)
     })?
     .map_err(py_err)?;
+    study.hand = hand;
     if let Some(u) = opts.experimenter.as_ref().and_then(|e| e.length_unit_m) {
         let odd = study.implausible_sizes(u).map_err(py_err)?;
         if let Some(first) = odd.first() {

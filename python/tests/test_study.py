@@ -52,3 +52,40 @@ def test_the_dynamic_study_needs_the_size_it_sets_pebbles_down_at(cli, tmp_path)
     assert cm.pebbles_csv() == (out / "pebbles.csv").read_text()
     with pytest.raises(ValueError, match="dynamic=True"):
         rs.study(folder, length_unit="cm")
+
+
+def test_the_hand_experimenter_gives_each_pebble_a_distribution_as_the_cli(cli, tmp_path):
+    import pytest
+
+    folder = tmp_path / "scans"
+    folder.mkdir()
+    for i in range(3):
+        v, f = rs.generate("pebble", n=800, roughness=0.3, seed=i)
+        trimesh.Trimesh(v, f, process=False).export(folder / f"p{i}.ply")
+    s = rs.study(folder)
+    out = tmp_path / "out"
+    cli.run(["study", str(folder), "-o", str(out)])
+    assert s.pebbles_csv() == (out / "pebbles.csv").read_text()
+    assert s.hand_json() == (out / "hand.json").read_text()
+    assert s.nu is None and s.experimenter["stable"]["median"] < s.experimenter["unstable"]["median"]
+    hand = s.hand()
+    for row, peb in zip(s.rows, hand["pebbles"]):
+        d = peb["distribution"]
+        ps = {w["count"]: w["p"] for w in d["stable"]}
+        pu = {w["count"]: w["p"] for w in d["unstable"]}
+        assert abs(sum(ps.values()) - 1) < 1e-9 and abs(sum(pu.values()) - 1) < 1e-9
+        # The most likely pair is the pair of the most likely counts; H by Poincaré–Hopf.
+        best_s, best_u = max(ps, key=ps.get), max(pu, key=pu.get)
+        assert (row["hand_S"], row["hand_U"], row["hand_H"]) == (best_s, best_u, best_s + best_u - 2)
+        assert abs(row["hand_p"] - ps[best_s] * pu[best_u]) < 1e-4
+        assert row["hand_pairs"].startswith(f"{best_s}:{best_u}:")
+    # Given tolerances: a fixed pair of ν (no spread) is certain and is G(ν) of each count.
+    fixed = rs.study(folder, tolerances=(0.0035, 0.0, 0.0035, 0.0))
+    one = rs.study(folder, nu=0.0035)
+    assert one.nu == 0.0035 and one.experimenter is None and "hand_nu" in one.rows[0]
+    for a, b in zip(fixed.rows, one.rows):
+        assert (a["hand_S"], a["hand_U"], a["hand_H"], a["hand_p"]) == (b["hand_S"], b["hand_U"], b["hand_H"], 1.0)
+    with pytest.raises(ValueError, match="not both"):
+        rs.study(folder, nu=0.0035, tolerances=(0.0035, 0.0, 0.0035, 0.0))
+    with pytest.raises(ValueError, match="stable_spread"):
+        rs.study(folder, tolerances=(0.0035, -1.0, 0.0035, 0.0))

@@ -5,6 +5,7 @@ pub mod perturb;
 pub mod planar;
 pub mod shake;
 pub mod study;
+pub mod study_hand;
 
 use rocking_stones::dynamics::size::{dimension, Dimension, RealSize, Size};
 use rocking_stones::mesh::unit::LengthUnit;

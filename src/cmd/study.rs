@@ -4,7 +4,12 @@
 //! * `rocking study FOLDER [--meta META.csv] [--nu X] [-o DIR] [--dynamic …]`
 //! * `rocking study synthetic (--table TABLE2.csv | --c-over-b X --c-over-a Y) [-o DIR] …`
 //! * `rocking study fit-nu [--table TABLE2.csv] [-o DIR] …` (default: the bundled Table 2)
+//! * `rocking study fit-hand [--table TABLE2.csv] [--roughness R,…] [--loso] [-o DIR] …`
+//!
+//! The hand columns are counted by the two-tolerance hand experimenter (`--tolerances`, default
+//! the calibration on Table 2) unless `--nu` asks for the paper's one-ν experimenter.
 
+use super::study_hand::HandArgs;
 use anyhow::{Context, Result};
 use rocking_stones::analysis::{Options, PAPER_NU};
 use rocking_stones::dynamics::size::format_length;
@@ -32,6 +37,8 @@ pub enum Sub {
     Synthetic(SyntheticArgs),
     /// Fit the experimenter's ν to the hand columns of the paper's Table 2.
     FitNu(FitArgs),
+    /// Calibrate the two-tolerance hand experimenter on the paper's Table 2.
+    FitHand(super::study_hand::FitHandArgs),
 }
 
 /// The simulated experimenter's options.
@@ -81,13 +88,20 @@ pub struct BatchArgs {
     /// Only warn about metadata ids without a scan.
     #[arg(long)]
     pub allow_unmatched: bool,
-    /// ν of the hand-experiment columns (the paper's hand experimenter: 0.0035).
-    #[arg(long, default_value_t = PAPER_NU, value_parser = super::parse_nu)]
-    pub nu: f64,
+    /// Count the hand columns as the paper's one-ν experimenter at this ν (the paper's: 0.0035)
+    /// instead of the two-tolerance experimenter.
+    #[arg(long, value_parser = super::parse_nu)]
+    pub nu: Option<f64>,
+    #[command(flatten)]
+    pub hand: HandArgs,
+    /// A Table 2 CSV whose sample ids name samples of the metadata: also write the model against
+    /// its hand columns per sample with z-scores (hand_vs_table2.csv, .png).
+    #[arg(long)]
+    pub table: Option<PathBuf>,
     /// Relative coplanarity tolerance of the facet merge (× bounding-box diagonal).
     #[arg(long, default_value_t = rocking_stones::hull::DEFAULT_COPLANAR_TOL, value_parser = super::parse_coplanar_tol)]
     pub coplanar_tol: f64,
-    /// Output folder (pebbles.csv, samples.csv, zingg.png/.svg).
+    /// Output folder (pebbles.csv, samples.csv, hand.json, zingg.png/.svg).
     #[arg(short, long, default_value = "study")]
     pub output: PathBuf,
     #[command(flatten)]
@@ -106,8 +120,10 @@ pub struct PopulationArgs {
     #[arg(long, default_value_t = 0.08)]
     pub spread: f64,
     /// Roughness amplitude of the generated pebbles (largest relative radial deviation).
-    #[arg(long, default_value_t = 0.05)]
-    pub roughness: f64,
+    /// Default: 0.05 for fit-nu; for synthetic, the roughness the two-tolerance hand
+    /// experimenter was calibrated with (0.3).
+    #[arg(long)]
+    pub roughness: Option<f64>,
     /// Points per pebble (the scan resolution).
     #[arg(long, default_value_t = 2000, value_parser = super::at_least::<usize, 0>)]
     pub points: usize,
@@ -120,19 +136,20 @@ pub struct PopulationArgs {
 }
 
 impl PopulationArgs {
-    fn params(&self, seed: u64) -> Result<PopulationParams> {
+    fn params(&self, seed: u64, default_roughness: f64) -> Result<PopulationParams> {
+        let roughness = self.roughness.unwrap_or(default_roughness);
         if !(self.spread >= 0.0 && self.spread.is_finite()) {
             anyhow::bail!("--spread must be a finite number ≥ 0, got {}", self.spread);
         }
-        if !(0.0..1.0).contains(&self.roughness) {
-            anyhow::bail!("--roughness must be in [0, 1), got {}", self.roughness);
+        if !(0.0..1.0).contains(&roughness) {
+            anyhow::bail!("--roughness must be in [0, 1), got {roughness}");
         }
         if self.count == 0 {
             anyhow::bail!("--count must be at least 1");
         }
         Ok(PopulationParams {
             spread: self.spread,
-            roughness: self.roughness,
+            roughness,
             points: self.points,
             count: self.count,
             seed,
@@ -156,9 +173,12 @@ pub struct SyntheticArgs {
     /// Name of the single sample.
     #[arg(long, default_value = "synthetic")]
     pub name: String,
-    /// ν of the hand-experiment counts.
-    #[arg(long, default_value_t = PAPER_NU, value_parser = super::parse_nu)]
-    pub nu: f64,
+    /// Count the hand columns as the paper's one-ν experimenter at this ν (the paper's: 0.0035)
+    /// instead of the two-tolerance experimenter.
+    #[arg(long, value_parser = super::parse_nu)]
+    pub nu: Option<f64>,
+    #[command(flatten)]
+    pub hand: HandArgs,
     #[command(flatten)]
     pub population: PopulationArgs,
     #[command(flatten)]
@@ -210,6 +230,7 @@ pub fn run_study(args: Args) -> Result<()> {
     match args.command {
         Some(Sub::Synthetic(a)) => synthetic(a),
         Some(Sub::FitNu(a)) => fit(a),
+        Some(Sub::FitHand(a)) => super::study_hand::fit_hand(a),
         None => batch(args.batch),
     }
 }
@@ -218,8 +239,9 @@ fn create_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create folder", dir.display()))
 }
 
-/// Write pebbles.csv, samples.csv and the Zingg diagram of a study; print the sample table.
-fn write_study(study: &Study, dir: &Path, title: &str) -> Result<()> {
+/// Write pebbles.csv, samples.csv, hand.json (and the model against `table`) and the Zingg
+/// diagram of a study; print the sample table.
+fn write_study(study: &Study, dir: &Path, title: &str, table: Option<&[study::HandSample]>) -> Result<()> {
     create_dir(dir)?;
     let summaries = study::summarize(study);
     let p = dir.join("pebbles.csv");
@@ -238,9 +260,11 @@ fn write_study(study: &Study, dir: &Path, title: &str) -> Result<()> {
     for ext in ["png", "svg"] {
         report::study::plot_zingg(study, title, &dir.join(format!("zingg.{ext}")))?;
     }
+    super::study_hand::write_hand(study, table, dir)?;
     print!("{}", report::study::samples_table(study, &summaries));
+    println!("{}", super::study_hand::describe(study));
     println!("σ: sample standard deviation (n − 1), the convention of the paper's hand columns");
-    println!("wrote {}, {}, {}/zingg.png and .svg", p.display(), s.display(), dir.display());
+    println!("wrote {}, {}, {}/hand.json, zingg.png and .svg", p.display(), s.display(), dir.display());
     Ok(())
 }
 
@@ -262,14 +286,17 @@ fn batch(args: BatchArgs) -> Result<()> {
         let e = rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()) };
         anyhow::bail!(e.spelled(&super::flag));
     }
+    let hand = args.hand.experimenter(args.nu)?;
+    let table = args.table.as_deref().map(study::read_table2).transpose()?;
     let opts = StudyOptions {
         analysis: Options { nu: None, coplanar_tol: args.coplanar_tol, ..Options::default() },
-        nu: args.nu,
+        nu: args.nu.unwrap_or(PAPER_NU),
         experimenter,
         allow_unmatched: args.allow_unmatched,
     };
     let bar = super::progress_bar(files.len() as u64, "");
-    let (study, unmatched) = study::run_files(&files, meta.as_ref(), &opts, &|| bar.inc(1))?;
+    let (mut study, unmatched) = study::run_files(&files, meta.as_ref(), &opts, &|| bar.inc(1))?;
+    study.hand = hand;
     bar.finish_and_clear();
     for id in &unmatched {
         eprintln!("warning: metadata id {id:?} has no scan");
@@ -286,14 +313,16 @@ fn batch(args: BatchArgs) -> Result<()> {
         eprintln!("error: {e}");
     }
     let title = format!("Zingg diagram: {}", folder.display());
-    write_study(&study, &args.output, &title)?;
+    write_study(&study, &args.output, &title, table.as_deref())?;
     eprintln!("{} scans, {} failed", study.pebbles.len(), failed.len());
     Ok(())
 }
 
 fn synthetic(args: SyntheticArgs) -> Result<()> {
-    let params = args.population.params(args.dynamic.seed)?;
+    let params = args.population.params(args.dynamic.seed, study::TABLE2_ROUGHNESS)?;
     let exp = args.dynamic.experimenter()?;
+    let hand_exp = args.hand.experimenter(args.nu)?;
+    let nu = args.nu.unwrap_or(PAPER_NU);
     let hand = args.table.as_deref().map(study::read_table2).transpose()?;
     let targets: Vec<SampleTarget> = match (&hand, args.c_over_b, args.c_over_a) {
         (Some(h), _, _) => h.iter().map(|s| s.target()).collect(),
@@ -317,14 +346,15 @@ fn synthetic(args: SyntheticArgs) -> Result<()> {
         }
     );
     let t = std::time::Instant::now();
-    let study = study::synthetic_study(&targets, &params, args.nu, exp.as_ref())?;
+    let mut study = study::synthetic_study(&targets, &params, nu, exp.as_ref())?;
+    study.hand = hand_exp;
     eprintln!("counted in {:.1} s", t.elapsed().as_secs_f64());
-    write_study(&study, &args.output, "Zingg diagram: synthetic pebbles")?;
+    write_study(&study, &args.output, "Zingg diagram: synthetic pebbles", hand.as_deref())?;
     if let Some(h) = &hand {
-        let rows = study::compare(h, &study, args.nu);
+        let rows = study::compare(h, &study, nu);
         let p = args.output.join("comparison.csv");
-        report::study::write_comparison_csv(&rows, args.nu, std::fs::File::create(&p)?).map_err(|e| e.with_path(&p))?;
-        report::study::plot_fig12(&rows, args.nu, "synthetic", &args.output)?;
+        report::study::write_comparison_csv(&rows, nu, std::fs::File::create(&p)?).map_err(|e| e.with_path(&p))?;
+        report::study::plot_fig12(&rows, nu, "synthetic", &args.output)?;
         println!("wrote {} and the Figure 12 plots", p.display());
     }
     if args.save_meshes {
@@ -345,7 +375,7 @@ fn fit(args: FitArgs) -> Result<()> {
     if args.nu_min >= args.nu_max || args.per_decade == 0 {
         anyhow::bail!("need --nu-min < --nu-max and --per-decade ≥ 1");
     }
-    let params = args.population.params(args.seed)?;
+    let params = args.population.params(args.seed, 0.05)?;
     let (mut hand, table) = match &args.table {
         Some(path) => (study::read_table2(path)?, path.display().to_string()),
         None => (study::bundled_table2()?, study::TABLE2_NAME.to_string()),

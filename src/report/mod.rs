@@ -9,9 +9,13 @@
 //!   and plots, the fragility surface, ground-motion records.
 //! * [`study`] — field studies: pebble/sample/comparison CSVs, tables, Zingg and Figure 12 plots.
 //! * [`nu_fit`] — fits of ν to hand counts: their χ²(ν) curves.
+//! * [`hand`], [`hand_calibration`] — the two-tolerance hand experimenter: its pebble columns and
+//!   JSON, model against Table 2, and its calibration on Table 2.
 
 pub mod analysis;
 pub mod drops;
+pub mod hand;
+pub mod hand_calibration;
 pub mod html;
 pub mod names;
 pub mod nu_fit;

@@ -3,7 +3,9 @@
 
 use crate::analysis::PAPER_NU;
 use crate::plot::{colors, log_tick, series_color, style, Axis, Chart, Mark, Marker};
-use crate::study::NuFit;
+use crate::study::{NuFit, PopulationParams};
+use std::fmt::Display;
+use std::path::Path;
 
 /// χ²(ν) curves of several fits `fits` (label, fit) on log–log axes (y described by `y_label`),
 /// each with its fitted ν̂ marked and named in the legend, the paper's ν = 0.0035 dashed grey:
@@ -34,6 +36,54 @@ pub fn loss_chart(title: &str, y_label: &str, fits: &[(String, &NuFit)]) -> Char
         chart = chart.markers_sized(&[(f.nu, f.chi2_min.max(y0))], color, Marker::Dot, style::MARKER + 1);
     }
     chart
+}
+
+/// Fitted ν (bootstrap 16–84 % bars) against the roughness amplitude of the synthetic pebbles
+/// (`fits`: roughness, fit), log–log, with the paper's ν = 0.0035 dashed.
+pub fn nu_against_roughness(fits: &[(f64, &NuFit)]) -> Chart {
+    let fitted = colors::VERMILLION;
+    let nu: Vec<(f64, f64)> = fits.iter().map(|(r, f)| (*r, f.nu)).collect();
+    let bars: Vec<_> = fits.iter().map(|(r, f)| (*r, f.bootstrap_interval.0, f.bootstrap_interval.1)).collect();
+    Chart::new(
+        Axis::log("roughness amplitude (largest relative radial deviation, log scale)", 0.007, 1.0).no_grid(),
+        Axis::log("fitted ν (fraction of R_max, log scale)", 5e-5, 5e-2).no_grid(),
+    )
+    .title("Fitted ν against the roughness of the synthetic pebbles")
+    .legend(Mark::LineDot(fitted), "fitted ν (bars: bootstrap 16–84 %)")
+    .legend(Mark::Dashed(colors::GREY), format!("paper: ν = {PAPER_NU}"))
+    .dashed(&[(0.007, PAPER_NU), (1.0, PAPER_NU)], colors::GREY)
+    .line(&nu, fitted)
+    .y_bars(&bars, fitted)
+    .markers_sized(&nu, fitted, Marker::Dot, style::MARKER + 1)
+}
+
+/// One fit of ν for [`write_fits_csv`]: (group, label, samples fitted, seconds), the population,
+/// the fit.
+pub type FitRow<'a> = ((&'a str, &'a str, usize, f64), &'a PopulationParams, &'a NuFit);
+
+/// Write `fits` (one row per fit: its case, population, ν̂ with its intervals, χ² and its split)
+/// and `curves` (group, label, ν, χ² at every grid ν of every fit).
+pub fn write_fits_csv(fits_path: &Path, curves_path: &Path, fits: &[FitRow]) -> crate::Result<()> {
+    let header = "group,label,samples,roughness,points,spread,count,seed,calibrate,nu,interval_lo,interval_hi,\
+        bootstrap_p16,bootstrap_p84,bootstrap_sd_log10,chi2_min,dof,chi2_ES,chi2_EU,chi2_sdS,chi2_sdU,at_edge,seconds";
+    let fixed = |x: f64, digits: usize| format!("{x:.digits$}");
+    let rows = fits.iter().map(|((group, label, samples, seconds), p, f)| {
+        let first: [&dyn Display; 9] =
+            [group, label, samples, &p.roughness, &p.points, &p.spread, &p.count, &p.seed, &p.calibrate];
+        let e4 = [f.nu, f.interval.0, f.interval.1, f.bootstrap_interval.0, f.bootstrap_interval.1]
+            .map(|x| format!("{x:.4e}"));
+        let mut row: Vec<String> = first.iter().map(|x| x.to_string()).chain(e4).collect();
+        row.extend([fixed(f.bootstrap_sd_log10, 4), fixed(f.chi2_min, 2), f.dof.to_string()]);
+        row.extend(f.chi2_by_statistic.map(|x| fixed(x, 2)));
+        row.extend([f.at_edge.to_string(), fixed(*seconds, 1)]);
+        row
+    });
+    super::write_csv(fits_path, &header.split(',').collect::<Vec<_>>(), rows)?;
+    let curves = fits.iter().flat_map(|((group, label, ..), _, f)| {
+        let points = f.grid.iter().zip(&f.chi2);
+        points.map(move |(nu, c)| [group.to_string(), label.to_string(), format!("{nu:.4e}"), fixed(*c, 3)])
+    });
+    super::write_csv(curves_path, &["group", "label", "nu", "chi2"], curves)
 }
 
 /// A log-axis tick written as [`log_tick`] does, but only at 1, 2, 3 and 5 × 10ᵏ (to 2 % of the

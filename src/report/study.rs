@@ -6,6 +6,7 @@ use super::create_dir;
 use crate::analysis::PAPER_NU;
 use crate::hierarchy::Counts;
 use crate::plot::{render, DrawResult, FONT_FAMILY};
+use crate::report::hand::{pair_cells, PAIR_COLUMNS};
 use crate::shape::Zingg;
 use crate::stats::LogFit;
 use crate::study::{trends, Comparison, NuFit, SampleSummary, Study};
@@ -21,11 +22,13 @@ pub const DYNAMIC_COLUMNS: [&str; 4] = ["dyn_trials", "dyn_settled", "dyn_S", "d
 
 /// The header of the pebble CSV: `id`, `sample`, the metadata columns (prefixed `meta_` where
 /// they would clash with another column), the columns of `rocking analyze` (see
-/// [`crate::report::CSV_HEADER`]), the counts at the fixed ν, and the dynamic columns.
+/// [`crate::report::CSV_HEADER`]), the hand columns (the counts at the fixed ν, or the
+/// two-tolerance experimenter's [`PAIR_COLUMNS`]), and the dynamic columns.
 pub fn pebble_header(study: &Study) -> Vec<String> {
     let mut fixed: Vec<String> = ["id", "sample"].iter().map(|s| s.to_string()).collect();
     fixed.extend(crate::report::CSV_HEADER.iter().map(|s| s.to_string()));
-    fixed.extend(HAND_COLUMNS.iter().map(|s| s.to_string()));
+    let hand: &[&str] = if study.hand.is_some() { &PAIR_COLUMNS } else { &HAND_COLUMNS };
+    fixed.extend(hand.iter().map(|s| s.to_string()));
     if study.dynamic {
         fixed.extend(DYNAMIC_COLUMNS.iter().map(|s| s.to_string()));
     }
@@ -63,12 +66,15 @@ pub fn write_pebbles_csv<W: std::io::Write>(study: &Study, w: W) -> crate::Resul
             match &p.result {
                 Ok(c) => {
                     let k = c.curve.at(study.nu);
-                    row.extend([
-                        format!("{:e}", study.nu),
-                        k.stable.to_string(),
-                        k.unstable.to_string(),
-                        k.saddle.to_string(),
-                    ]);
+                    match study.hand {
+                        Some(_) => row.extend(pair_cells(&study.distribution(c))),
+                        None => row.extend([
+                            format!("{:e}", study.nu),
+                            k.stable.to_string(),
+                            k.unstable.to_string(),
+                            k.saddle.to_string(),
+                        ]),
+                    }
                     if study.dynamic {
                         match &c.dynamic {
                             Some(d) => row.extend([
@@ -82,7 +88,8 @@ pub fn write_pebbles_csv<W: std::io::Write>(study: &Study, w: W) -> crate::Resul
                     }
                 }
                 Err(_) => {
-                    let n = HAND_COLUMNS.len() + if study.dynamic { DYNAMIC_COLUMNS.len() } else { 0 };
+                    let hand = if study.hand.is_some() { PAIR_COLUMNS.len() } else { HAND_COLUMNS.len() };
+                    let n = hand + if study.dynamic { DYNAMIC_COLUMNS.len() } else { 0 };
                     row.extend(std::iter::repeat_n(String::new(), n));
                 }
             }
@@ -105,7 +112,8 @@ fn cell(x: f64) -> String {
 
 /// One CSV row per sample: `sample, pebbles, failed, mean_c_over_b, mean_c_over_a,
 /// mean_b_over_a`, then `E_S, E_U, sd_S, sd_U` for the micro scale (`micro_`), each pebble's
-/// plateau (`plateau_`) and the fixed ν (`hand_`, with `hand_nu`), then the dynamic
+/// plateau (`plateau_`) and the hand experimenter (`hand_`; with `hand_nu` for the one-ν one),
+/// then the dynamic
 /// experimenter (`dyn_E_S, dyn_sd_S, dyn_rocking`) if it ran. σ is the sample standard deviation
 /// (n − 1), as in the paper's Table 2.
 pub fn write_samples_csv<W: std::io::Write>(study: &Study, summaries: &[SampleSummary], w: W) -> crate::Result<()> {
@@ -116,7 +124,7 @@ pub fn write_samples_csv<W: std::io::Write>(study: &Study, summaries: &[SampleSu
                 .map(String::from)
                 .to_vec();
         for scale in ["micro", "plateau", "hand"] {
-            if scale == "hand" {
+            if scale == "hand" && study.hand.is_none() {
                 header.push("hand_nu".into());
             }
             for m in ["E_S", "E_U", "sd_S", "sd_U"] {
@@ -137,7 +145,7 @@ pub fn write_samples_csv<W: std::io::Write>(study: &Study, summaries: &[SampleSu
             ];
             row.push(cell(s.mean_b_over_a));
             for (scale, m) in [("micro", &s.micro), ("plateau", &s.plateau), ("hand", &s.hand)] {
-                if scale == "hand" {
+                if scale == "hand" && study.hand.is_none() {
                     row.push(format!("{:e}", study.nu));
                 }
                 row.extend(m.as_array().map(cell));
@@ -166,7 +174,10 @@ pub fn samples_table(study: &Study, summaries: &[SampleSummary]) -> String {
         "c/a",
         "micro E(S,U)",
         "plateau E(S,U)",
-        format!("ν={:.2e} E(S,U) σ(S,U)", study.nu),
+        match study.hand {
+            Some(_) => "hand E(S,U) σ(S,U)".to_string(),
+            None => format!("ν={:.2e} E(S,U) σ(S,U)", study.nu),
+        },
         if study.dynamic { "  dynamic E(S) σ(S)" } else { "" }
     );
     for m in summaries {
@@ -214,17 +225,21 @@ pub fn plot_zingg(study: &Study, title: &str, path: &Path) -> crate::Result<()> 
     let mut classes: BTreeMap<(usize, usize), Vec<(f64, f64)>> = BTreeMap::new();
     for p in &study.pebbles {
         if let Ok(c) = &p.result {
-            let k = c.curve.at(study.nu);
+            let k = study.reported(c);
             classes.entry((k.stable, k.unstable)).or_default().push((c.report.shape.b_over_a, c.report.shape.c_over_b));
         }
     }
-    render!(path, (760, 720), |root| draw_zingg(&root, title, study.nu, &classes))
+    let scale = match study.hand {
+        Some(_) => "the hand experimenter's most likely {S,U}".to_string(),
+        None => format!("class {{S,U}} at ν = {:.2e}", study.nu),
+    };
+    render!(path, (760, 720), |root| draw_zingg(&root, title, &scale, &classes))
 }
 
 fn draw_zingg<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
-    nu: f64,
+    scale: &str,
     classes: &BTreeMap<(usize, usize), Vec<(f64, f64)>>,
 ) -> DrawResult
 where
@@ -232,7 +247,7 @@ where
 {
     root.fill(&WHITE).map_err(perr)?;
     let mut chart = ChartBuilder::on(root)
-        .caption(format!("{title} (class {{S,U}} at ν = {nu:.2e})"), (FONT_FAMILY, 18))
+        .caption(format!("{title} ({scale})"), (FONT_FAMILY, 18))
         .margin(14)
         .x_label_area_size(45)
         .y_label_area_size(55)

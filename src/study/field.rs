@@ -2,6 +2,7 @@
 //! its metadata, counted at a fixed ν (and by the dynamic experimenter), summarised per sample.
 
 use super::experimenter::{hand_experiment, DynamicCounts, Experimenter};
+use super::hand::{CountDistribution, HandExperimenter};
 use super::metadata::Metadata;
 use super::{CountCurve, Moments};
 use crate::analysis::{Analysis, Options, Report, PAPER_NU};
@@ -57,11 +58,15 @@ pub struct Pebble {
     pub result: std::result::Result<Counted, String>,
 }
 
-/// A study: pebbles, their metadata columns and the fixed ν of the hand columns.
+/// A study: pebbles, their metadata columns and the hand experimenter of the hand columns.
 #[derive(Clone, Debug)]
 pub struct Study {
-    /// ν of the fixed-ν (hand experiment) columns.
+    /// ν of the fixed-ν (hand experiment) columns: the paper's one-ν experimenter, used when
+    /// `hand` is None.
     pub nu: f64,
+    /// The two-tolerance hand experimenter of the hand columns (each pebble's distribution of
+    /// counts and its most likely pair); None: the counts of G(`nu`).
+    pub hand: Option<HandExperimenter>,
     /// Names of the pass-through metadata columns.
     pub meta_columns: Vec<String>,
     /// The pebbles, with their results.
@@ -71,6 +76,24 @@ pub struct Study {
 }
 
 impl Study {
+    /// The counts a person reports for a pebble: the most likely pair of the two-tolerance
+    /// experimenter (H = S + U − 2), or the counts of G(ν) without one.
+    pub fn reported(&self, c: &Counted) -> Counts {
+        match &self.hand {
+            Some(e) => {
+                let p = e.counts(&c.curve).most_likely();
+                Counts { stable: p.stable, unstable: p.unstable, saddle: p.saddle }
+            }
+            None => c.curve.at(self.nu),
+        }
+    }
+
+    /// The distribution of a pebble's reported counts: the two-tolerance experimenter's, or
+    /// certainty on the counts of G(ν) without one.
+    pub fn distribution(&self, c: &Counted) -> CountDistribution {
+        self.hand.unwrap_or_else(|| HandExperimenter::one_nu(self.nu)).counts(&c.curve)
+    }
+
     /// For a study whose scans are in units of `length_unit_m` metres, the warning
     /// ([`RealSize::implausibility`]) of each analysed pebble whose real size is not plausible.
     pub fn implausible_sizes(&self, length_unit_m: f64) -> Result<Vec<String>> {
@@ -213,6 +236,7 @@ pub fn run_files(
     let pebbles = crate::monitor::all(pebbles)?;
     let study = Study {
         nu: opts.nu,
+        hand: None,
         meta_columns: meta.map_or_else(Vec::new, |m| m.columns.clone()),
         pebbles,
         dynamic: opts.experimenter.is_some(),
@@ -239,7 +263,8 @@ pub struct SampleSummary {
     pub micro: Moments,
     /// Each pebble's macro scale (its automatic plateau, as in `rocking analyze`).
     pub plateau: Moments,
-    /// G(ν) at the study's fixed ν.
+    /// The hand experimenter's counts: E and σ of the mixture of the pebbles' distributions
+    /// ([`Moments::of_distributions`]); for the one-ν experimenter, of G(ν) at the study's ν.
     pub hand: Moments,
     /// Dynamic experimenter: E and σ of the stable flocks found (U is not observable).
     pub dyn_es: Option<f64>,
@@ -275,7 +300,10 @@ pub fn summarize(study: &Study) -> Vec<SampleSummary> {
                 mean_b_over_a: shape(|c| c.report.shape.b_over_a),
                 micro: counts(&|c| c.curve.micro()),
                 plateau: counts(&|c| c.report.macro_counts()),
-                hand: counts(&|c| c.curve.at(study.nu)),
+                hand: match study.hand {
+                    Some(_) => Moments::of_distributions(&ok.iter().map(|c| study.distribution(c)).collect::<Vec<_>>()),
+                    None => counts(&|c| c.curve.at(study.nu)),
+                },
                 dyn_es: some(mean(&dyn_s)),
                 dyn_sd_s: some(sample_sd(&dyn_s)),
                 dyn_rocking: some(mean(&dyn_r)),
@@ -305,7 +333,7 @@ mod tests {
             pebble("field/scans/b.ply", Err("unreadable".into())),
             pebble("elsewhere/field/c.ply", Err("unreadable".into())),
         ];
-        let mut study = Study { nu: PAPER_NU, meta_columns: vec![], pebbles, dynamic: false };
+        let mut study = Study { nu: PAPER_NU, hand: None, meta_columns: vec![], pebbles, dynamic: false };
         study.relative_to(Path::new("field"));
         let files: Vec<&str> = study.pebbles.iter().map(|p| p.file.as_str()).collect();
         assert_eq!(files, ["scans/a.ply", "scans/b.ply", "elsewhere/field/c.ply"]);

@@ -50,9 +50,14 @@ impl HandSample {
     pub fn standard_errors(&self) -> [f64; 4] {
         standard_errors(&self.hand, self.n)
     }
+
+    /// The standard errors of [`HandSample::standard_errors`] for statistics `m` of `n` pebbles.
+    pub fn standard_errors_of(m: &[f64; 4], n: usize) -> [f64; 4] {
+        standard_errors(m, n)
+    }
 }
 
-fn standard_errors(m: &[f64; 4], n: usize) -> [f64; 4] {
+pub(crate) fn standard_errors(m: &[f64; 4], n: usize) -> [f64; 4] {
     let n = n.max(2) as f64;
     [m[2] / n.sqrt(), m[3] / n.sqrt(), m[2] / (2.0 * (n - 1.0)).sqrt(), m[3] / (2.0 * (n - 1.0)).sqrt()]
 }
@@ -136,7 +141,7 @@ pub fn chi2(hand: &[HandSample], sim: &[Moments]) -> f64 {
     hand.iter().zip(sim).map(|(h, m)| chi2_terms(&h.hand, &h.standard_errors(), m).iter().sum::<f64>()).sum()
 }
 
-fn chi2_terms(hand: &[f64; 4], se_hand: &[f64; 4], m: &Moments) -> [f64; 4] {
+pub(crate) fn chi2_terms(hand: &[f64; 4], se_hand: &[f64; 4], m: &Moments) -> [f64; 4] {
     let s = m.as_array();
     let se = standard_errors(&s, m.n);
     let mut out = [0.0; 4];

@@ -48,14 +48,20 @@
 
 pub mod experimenter;
 pub mod field;
+pub mod fit_hand;
 pub mod fit_nu;
+pub mod hand;
+pub mod hand_table2;
 pub mod metadata;
 pub mod outcomes;
 pub mod synthetic;
 
 pub use experimenter::*;
 pub use field::*;
+pub use fit_hand::*;
 pub use fit_nu::*;
+pub use hand::*;
+pub use hand_table2::*;
 pub use metadata::*;
 pub use synthetic::*;
 

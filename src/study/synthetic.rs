@@ -177,5 +177,11 @@ pub fn synthetic_study(
     for t in targets {
         pebbles.extend(synthetic_sample(t, params, nu, exp)?);
     }
-    Ok(Study { nu, meta_columns: SYNTHETIC_COLUMNS.map(String::from).to_vec(), pebbles, dynamic: exp.is_some() })
+    Ok(Study {
+        nu,
+        hand: None,
+        meta_columns: SYNTHETIC_COLUMNS.map(String::from).to_vec(),
+        pebbles,
+        dynamic: exp.is_some(),
+    })
 }
