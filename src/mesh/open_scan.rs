@@ -6,7 +6,9 @@
 //! 1. The checks every mesh gets (finite, indices in range, welded, zero-area and duplicate
 //!    triangles), then *flaps* trimmed: a triangle with two or three of its edges on the
 //!    boundary hangs on the surface by one edge or not at all, and a patch over the opening would
-//!    fold onto it; such triangles are removed (repeatedly) and counted.
+//!    fold onto it; such triangles are removed (repeatedly) and counted. So are separate pieces
+//!    each under 1 % of the scan's area (a speck, or a pocket of the underside a cut separated
+//!    from the rest); the scan must then be one piece.
 //! 2. The boundary loops ([`boundary_loops`]: a 2-manifold with boundary, consistently
 //!    oriented, else refused), one connected piece. Its orientation is that of the surface closed
 //!    by a fan from each loop's centroid: if that encloses a negative volume, every triangle is
@@ -109,7 +111,8 @@ pub struct OpenScanSummary {
     pub rim_loops: Vec<Opening>,
     /// The gaps of the scan, each closed by a flat patch, longest first.
     pub gaps: Vec<Opening>,
-    /// Triangles hanging on the surface by one edge or none (flaps), removed.
+    /// Triangles hanging on the surface by one edge or none (flaps), or in a separate piece
+    /// under 1 % of its area, removed.
     pub trimmed_triangles: usize,
 }
 
@@ -140,7 +143,7 @@ impl OpenScan {
         choice: &RimChoice,
     ) -> Result<OpenScan> {
         let mut original = original.to_vec();
-        let trimmed = trim_flaps(&mut mesh, &mut original);
+        let trimmed = trim_flaps(&mut mesh, &mut original) + drop_fragments(&mut mesh, &mut original);
         if mesh.triangles.is_empty() {
             return Err(Error::invalid(
                 "the surface is open and encloses nothing: every triangle hangs on the others by one edge or none",
@@ -290,6 +293,50 @@ fn trim_flaps(mesh: &mut TriMesh, original: &mut Vec<usize>) -> usize {
         original.retain(|_| *it.next().unwrap_or(&true));
     }
 }
+
+/// Separate pieces of the scan each smaller than [`FRAGMENT`] of its area — a scanned speck, or a
+/// pocket of the underside that a cut separated from the rest — removed with their triangles
+/// (their number returned); the scan then is one piece. Pieces any larger are left for the reader
+/// to refuse: which of two sizeable surfaces is the rock is not the reader's to guess.
+fn drop_fragments(mesh: &mut TriMesh, original: &mut Vec<usize>) -> usize {
+    let n = mesh.vertices.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            p[x as usize] = p[p[x as usize] as usize];
+            x = p[x as usize];
+        }
+        x
+    }
+    for t in &mesh.triangles {
+        for k in 0..2 {
+            let (a, b) = (find(&mut parent, t[k]), find(&mut parent, t[k + 1]));
+            parent[a as usize] = b;
+        }
+    }
+    let piece: Vec<u32> = mesh.triangles.iter().map(|t| find(&mut parent, t[0])).collect();
+    let mut area: std::collections::BTreeMap<u32, f64> = std::collections::BTreeMap::new();
+    for (t, &p) in mesh.triangles.iter().zip(&piece) {
+        let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
+        *area.entry(p).or_default() += 0.5 * (b - a).cross(&(c - a)).norm();
+    }
+    let total: f64 = area.values().sum();
+    let Some((&main, _)) = area.iter().max_by(|a, b| a.1.total_cmp(b.1)) else { return 0 };
+    if area.len() < 2 || area.iter().any(|(&p, &a)| p != main && a > FRAGMENT * total) {
+        return 0;
+    }
+    let keep: Vec<bool> = piece.iter().map(|&p| p == main).collect();
+    let removed = keep.iter().filter(|k| !**k).count();
+    let mut it = keep.iter();
+    mesh.triangles.retain(|_| *it.next().unwrap_or(&true));
+    let mut it = keep.iter();
+    original.retain(|_| *it.next().unwrap_or(&true));
+    removed
+}
+
+/// The largest share of a scan's area a separate piece may have and still be dropped as a
+/// fragment ([`drop_fragments`]).
+const FRAGMENT: f64 = 0.01;
 
 /// Signed volume of the surface closed by a fan from each loop's vertex centroid over it (the fan
 /// runs each loop edge backwards, as any patch does).

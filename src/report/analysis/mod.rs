@@ -167,7 +167,7 @@ fn open_scan_lines(o: &crate::analysis::OpenScanReport, unit: &Unit) -> String {
     };
     let trimmed = if o.scan.trimmed_triangles > 0 {
         format!(
-            "; {} hanging at the openings trimmed",
+            "; {} hanging at the openings or in small separate pieces trimmed",
             plural(o.scan.trimmed_triangles as u64, "triangle", "triangles")
         )
     } else {
