@@ -179,6 +179,16 @@ impl Analysis {
         }
     }
 
+    /// The scan as read: the analysed mesh, less the base that closed a field scan's rim (the
+    /// scan's own triangles, its gaps' patches included; unreferenced points are dropped when it
+    /// is read again). A closed scan is its mesh.
+    pub fn scan_mesh(&self) -> TriMesh {
+        match &self.hidden_base {
+            Some(h) => TriMesh::new(self.mesh.vertices.clone(), self.mesh.triangles[..h.first_base_triangle].to_vec()),
+            None => self.mesh.clone(),
+        }
+    }
+
     /// For each hull facet, the stable micro-equilibrium its steepest descent reaches.
     pub fn basins(&self) -> Vec<Option<usize>> {
         MorseSmaleGraph::facet_basins(&self.hull, &self.equilibria, &self.mass.center_of_mass, &self.signs)

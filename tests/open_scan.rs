@@ -396,3 +396,82 @@ fn the_cli_reads_an_open_top_as_a_scan_when_given_a_point_near_its_rim() {
     assert!((json["solid"]["volume"].as_f64().unwrap() - 2.4).abs() < 1e-12, "{}", json["solid"]["volume"]);
     assert_eq!(json["micro"]["stable"], 6);
 }
+
+/// The cut box and a second, separate box scaled by `k` beside it.
+fn with_second_piece(k: f64) -> TriMesh {
+    let mut m = cut_box();
+    let other = generate::cuboid(k, k, k);
+    let n = m.vertices.len() as u32;
+    m.vertices.extend(other.vertices.iter().map(|p| p + Vec3::new(5.0, 0.0, 0.0)));
+    m.triangles.extend(other.triangles.iter().map(|t| t.map(|i| i + n)));
+    m
+}
+
+#[test]
+fn a_speck_beside_the_scan_is_dropped_and_counted_a_second_rock_is_refused() {
+    // A 0.05 cube: 0.015 of area beside the cut box's 8.6 (0.2 %), a speck.
+    let s = scan(&with_second_piece(0.05));
+    assert_eq!(s.summary().trimmed_triangles, 12, "the speck's 12 triangles");
+    assert!((s.summary().rim.area - 3.0).abs() < 1e-12 && s.summary().rim_loops.len() == 1);
+    // A 0.5 cube (1.5 of area, 15 %) is a second surface: refused, naming the pieces.
+    let e = OpenScan::new(with_second_piece(0.5), &RimChoice::Lowest).unwrap_err();
+    assert!(e.to_string().contains("2 separate pieces"), "{e}");
+}
+
+#[test]
+fn the_bundled_rocking_field_scan_topples_where_its_flat_cap_would_not() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("open.ply");
+    let from = root.join("data/default_pebble.ply");
+    let args = ["generate", "open-scan", "--from", from.to_str().unwrap(), "--stand-on", "3", "--cut", "5"];
+    let r = rocking(&[&args[..], &["-o", out.to_str().unwrap()]].concat());
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let bundled = root.join("data/open_scan_E34_rocking.ply");
+    assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&bundled).unwrap(), "data/README.md's command");
+    // The README's field scan: one 1 Hz sine cycle of 0.2 g.
+    let rec = dir.path().join("pulse.csv");
+    let rows: String = (0..2000)
+        .map(|i| {
+            let t = i as f64 / 200.0;
+            let a = if t < 1.0 { (2.0 * PI * t).sin() } else { 0.0 };
+            format!("{t:.3},{a:.5}\n")
+        })
+        .collect();
+    std::fs::write(&rec, format!("time_s,ax_g\n{rows}")).unwrap();
+    let p = |base: &str| {
+        let r = rocking(&[
+            "shake",
+            bundled.to_str().unwrap(),
+            "--length-unit",
+            "mm",
+            "--pose",
+            "as-scanned",
+            "--motion",
+            rec.to_str().unwrap(),
+            "--columns",
+            "time_s,ax_g",
+            "--scales",
+            "0.2",
+            "--ensemble",
+            "16",
+            "--base",
+            base,
+            "--json",
+        ]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        serde_json::from_slice::<serde_json::Value>(&r.stdout).unwrap()
+    };
+    let (drawn, flat) = (p("drawn"), p("scanned"));
+    // On its flat cap the scan stands on a wide support and no member overturns; the members
+    // standing on drawn bases do, some of them (the closed stone it was cut from overturns).
+    assert_eq!(flat["probability"]["overturned"], 0, "{}", flat["probability"]);
+    let k = drawn["probability"]["overturned"].as_u64().unwrap();
+    assert!((2..=14).contains(&k), "{} of 16 drawn members overturned", k);
+    let base = &drawn["base"];
+    assert_eq!(base["members"], 16);
+    let tan = base["tan_alpha"].as_array().unwrap();
+    let flat_tan = flat["tipping"][0]["minimum_g"].as_f64().unwrap();
+    assert!(tan[2].as_f64().unwrap() < flat_tan, "drawn tan α up to {} against the flat cap's {flat_tan}", tan[2]);
+    assert!(flat.get("base").is_none());
+}

@@ -429,8 +429,12 @@ def shake_rock(
     members [{draw, run}], with record, scale, pga_g, ..., seed, uncertainty. ``uncertainty``
     keys (all optional): contact_tolerance_mm T or (low, high) in mm; azimuth (low, high)
     degrees or "unknown"; random_sign bool; friction, restitution (low, high);
-    rolling_resistance_mm (low, high) in mm. Friction, restitution and rolling resistance not
-    given range over the surface pair's published ranges."""
+    rolling_resistance_mm (low, high) in mm; base "drawn" (the default: every member draws the
+    hidden base it stands on, ``--base drawn``; the dict then has base {members, tan_alpha,
+    depth_m} and each draw its base) or "scanned" (the scan's own base); base_depth_mm T or
+    (low, high), base_band_mm, base_region (low, high). Friction, restitution and rolling
+    resistance not given range over the surface pair's published ranges. The mesh may be an
+    open field scan (a path or a trimesh), standing as scanned."""
 
 def study(
     folder: Union[str, "os.PathLike[str]"],

@@ -399,8 +399,11 @@ pub(crate) fn shake_rock<'py>(
         let uncertainty = Uncertainty::stated(&given, surface, [false; 3]);
         let spec = EnsembleSpec { uncertainty, seed, members };
         spec.check().map_err(py_err)?;
+        // Every member's own rock when the base is drawn (`rocking shake`'s `--base drawn`).
+        let rocks = py.detach(|| sh::field_members(&s.analysis, &s.opts, &stone, &setup, &spec)).map_err(py_err)?;
+        let rock = sh::FieldRock { stone: &stone, members: &rocks };
         // Ctrl-C stops the members not yet started (`interruptible`).
-        let run = interruptible(py, None, None, |c| sh::run_ensemble(&stone, &setup, &record, scale, &spec, c))?;
+        let run = interruptible(py, None, None, |c| sh::run_ensemble(rock, &setup, &record, scale, &spec, c))?;
         return to_py(py, &run.map_err(py_err)?);
     }
     let run = py.detach(|| -> rocking_stones::Result<sh::RecordRun> {
@@ -411,14 +414,28 @@ pub(crate) fn shake_rock<'py>(
 }
 
 /// The keys of `shake_rock`'s `uncertainty=` dict.
-const UNCERTAINTY_KEYS: [&str; 6] =
-    ["contact_tolerance_mm", "azimuth", "random_sign", "friction", "restitution", "rolling_resistance_mm"];
+const UNCERTAINTY_KEYS: [&str; 10] = [
+    "contact_tolerance_mm",
+    "azimuth",
+    "random_sign",
+    "friction",
+    "restitution",
+    "rolling_resistance_mm",
+    "base",
+    "base_depth_mm",
+    "base_band_mm",
+    "base_region",
+];
 
 /// `uncertainty=` of `shake_rock` as the command line's `given` uncertainty (user units: the
 /// mesh's length unit, degrees, mm), each range checked and named by its key.
 fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::dynamics::shaking::Uncertainty> {
     use pyo3::types::PyBool;
-    let mut given = rocking_stones::dynamics::shaking::Uncertainty::default();
+    use rocking_stones::dynamics::shaking::BaseUncertainty;
+    let mut given = rocking_stones::dynamics::shaking::Uncertainty {
+        base: Some(BaseUncertainty::calibrated()),
+        ..Default::default()
+    };
     let Some(d) = d else { return Ok(given) };
     let repr = |v: &Bound<'_, PyAny>| v.repr().map_or_else(|_| "?".into(), |r| r.to_string());
     // A pair (low, high), or one number x: [0, x] when `from_zero`, else [x, x] (`parse_range`).
@@ -471,6 +488,26 @@ fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::
             "friction" => given.friction = Some(range(&key, &v, false)?),
             "restitution" => given.restitution = Some(range(&key, &v, false)?),
             "rolling_resistance_mm" => given.rolling_resistance_m = Some(range(&key, &v, false)?),
+            "base" => match v.extract::<String>().ok().as_deref() {
+                Some("drawn") => given.base = given.base.or(Some(BaseUncertainty::calibrated())),
+                Some("scanned") => given.base = None,
+                _ => {
+                    return Err(PyValueError::new_err(format!(
+                        "uncertainty[\"base\"] must be \"drawn\" or \"scanned\", got {}",
+                        repr(&v)
+                    )))
+                }
+            },
+            "base_depth_mm" | "base_band_mm" | "base_region" => {
+                let Some(b) = given.base.as_mut() else {
+                    return Err(PyValueError::new_err(format!("uncertainty[{key:?}] needs the base drawn, not scanned")));
+                };
+                match key.as_str() {
+                    "base_depth_mm" => b.depth_m = Some(range(&key, &v, true)?.map(|x| x * 1e-3)),
+                    "base_band_mm" => b.band_m = v.extract::<f64>()? * 1e-3,
+                    _ => b.region = range(&key, &v, false)?,
+                }
+            }
             _ => {
                 return Err(PyValueError::new_err(format!(
                     "uncertainty: unknown key {key:?} (keys: {})",
@@ -485,6 +522,8 @@ fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::
             let key = match name {
                 "rolling_resistance" => "rolling_resistance_mm",
                 "contact_tolerance" => "contact_tolerance_mm",
+                "base_depth" => "base_depth_mm",
+                "base_band" => "base_band_mm",
                 other => other,
             };
             format!("uncertainty[{key:?}]")

@@ -233,8 +233,12 @@ def test_shake_rock_ensemble_dict(box_file, tmp_path):
         assert 0.4 <= d["friction"] <= 0.6 and 0.1 <= d["restitution"] <= 0.3
         assert 0.05e-3 * (1 - 1e-12) <= d["rolling_resistance_m"] <= 0.1e-3 * (1 + 1e-12)
         assert m["run"]["azimuth_deg"] == pytest.approx(d["azimuth_deg"], abs=1e-9)
+        # Every member stands on its own drawn base (the default): its rocking points' tan α.
+        assert d["base"]["tan_alpha"] > 0 and len(d["base"]["support_m"]) == 3
     sens = {s["input"]: s for s in r["sensitivity"]}
-    assert set(sens) == {"contact_tolerance", "azimuth", "sign", "friction", "restitution", "rolling_resistance"}
+    assert set(sens) == {"contact_tolerance", "azimuth", "sign", "friction", "restitution", "rolling_resistance",
+                         "base_tan_alpha", "base_depth"}
+    assert r["base"]["members"] == 8
     assert all(set(s) == {"input", "measure", "correlation"} for s in r["sensitivity"])
     assert sens["azimuth"]["measure"] == "circular-linear"
     assert all(s["measure"] == "spearman" for k, s in sens.items() if k != "azimuth")
@@ -243,6 +247,10 @@ def test_shake_rock_ensemble_dict(box_file, tmp_path):
         assert c is None or (0 <= c <= 1 if k == "azimuth" else -1 <= c <= 1)
     # The quasi-static polar at tolerance 0 and at both ends of the range.
     assert [t["tolerance_m"] for t in r["tipping"]] == [0.0, *tol]
+    # The scan's own base in every member: no base drawn, none ranked.
+    scanned = rs.shake_rock(box_file, motion=rec, ensemble=2, uncertainty={"base": "scanned"}, **ROCK)
+    assert "base" not in scanned and all("base" not in m["draw"] for m in scanned["members"])
+    assert not {"base_tan_alpha", "base_depth"} & {s["input"] for s in scanned["sensitivity"]}
     # A known azimuth range is ranked like the rest.
     r = rs.shake_rock(box_file, motion=rec, ensemble=3, uncertainty={"azimuth": (0, 90)}, **ROCK)
     assert {s["input"]: s["measure"] for s in r["sensitivity"]}["azimuth"] == "spearman"

@@ -21,6 +21,9 @@ pub struct HiddenBase {
     pub base: String,
     /// For every vertex of the analysed mesh: whether it belongs to the base.
     pub on_base: Vec<bool>,
+    /// Index of the base's first triangle in the analysed mesh: the triangles before it are the
+    /// scan's (its gaps' patches included).
+    pub first_base_triangle: usize,
 }
 
 /// How the nominal closing of an open scan is named in reports.
@@ -29,7 +32,12 @@ pub const FLAT_CAP: &str = "flat cap";
 impl HiddenBase {
     /// The hidden base of `closed`, found as `scan` says, closed by `base`.
     pub fn of(closed: &ClosedScan, scan: OpenScanSummary, base: &str) -> HiddenBase {
-        HiddenBase { scan, base: base.to_string(), on_base: closed.on_base.clone() }
+        HiddenBase {
+            scan,
+            base: base.to_string(),
+            on_base: closed.on_base.clone(),
+            first_base_triangle: closed.first_base_triangle,
+        }
     }
 
     /// For every micro-equilibrium of `eq` (on `hull`, whose corners come from the analysed

@@ -109,7 +109,11 @@ pub fn load_analysis(path: Option<&Path>, opts: &Options) -> Result<(Analysis, S
         None => (bundled::analysis(opts)?, bundled::NAME.to_string()),
     };
     if let Some(h) = &analysis.hidden_base {
-        eprintln!("note: {name} is an open scan: its hidden base is closed by a {} (the nominal base)", h.base);
+        eprintln!(
+            "note: {name} is an open scan: its hidden base is closed by a {} (the nominal base; `shake --pose \
+             as-scanned --ensemble N` draws it anew for every member)",
+            h.base
+        );
     }
     Ok((analysis, name))
 }

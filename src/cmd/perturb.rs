@@ -88,13 +88,14 @@ impl SimArgs {
         Ok(p)
     }
 
+    /// The static analysis' options: ν and a known centre of mass as given.
+    pub fn options(&self) -> Options {
+        Options { nu: self.nu, center_of_mass: self.center_of_mass, ..Options::default() }
+    }
+
     /// Load and analyse the mesh (or the bundled stone) and prepare it.
     pub fn stone(&self, mesh: Option<&Path>) -> Result<(Analysis, Stone, String)> {
-        let opts = Options {
-            nu: self.nu.map(check_nu).transpose()?,
-            center_of_mass: self.center_of_mass,
-            ..Options::default()
-        };
+        let opts = Options { nu: self.nu.map(check_nu).transpose()?, ..self.options() };
         let (analysis, name) = load_analysis(mesh, &opts)?;
         let (nu, _) = analysis.macro_nu(&opts);
         let stone = Stone::new(&analysis, nu)?;

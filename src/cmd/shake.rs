@@ -112,6 +112,28 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     pub azimuth_range: Option<String>,
+    /// Ensemble: how the hidden base meets the ground — drawn (the default: every member draws the
+    /// region that carries the weight, the three points it stands on, and for a field scan the
+    /// depth below its rim; a closed scan's lowest millimetres are read as hidden, see
+    /// --base-band-mm) or scanned (every member stands on the scan's own base, a field scan's
+    /// flat cap).
+    #[arg(long, value_name = "drawn|scanned", default_value = "drawn", requires = "ensemble", value_parser = ["drawn", "scanned"])]
+    pub base: String,
+    /// Ensemble, field scan: depth range of the base's support below the rim's lowest point, in
+    /// mm, LOW,HIGH or one depth, as measured in the field. Default (calibrated): from 0 to 0.6 ×
+    /// the depth at which the scan's walls, continued down, would close — at least a tenth of
+    /// the rim's footprint radius, at most all of it.
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
+    pub base_depth_mm: Option<String>,
+    /// Ensemble, closed scan: height above its lowest point, in mm, up to which the scan's base is
+    /// read as hidden (default 2 mm, calibrated; at most 1 % of R_max).
+    #[arg(long, value_name = "MM", requires = "ensemble")]
+    pub base_band_mm: Option<f64>,
+    /// Ensemble: radius of the region that carries the weight, as a multiple of the base
+    /// footprint's radius √(area/π) (at most a quarter of G's height above the support),
+    /// LOW,HIGH (default 0.1–1, calibrated).
+    #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
+    pub base_region: Option<String>,
     /// Ensemble: the record's sign is unknown (each member flips it with probability ½).
     #[arg(long, requires = "ensemble")]
     pub random_sign: bool,
@@ -161,6 +183,18 @@ fn parse_pose(s: &str) -> Result<shaking::Pose, String> {
 pub fn run_shake(args: Args) -> Result<()> {
     if let Some(pose) = args.pose {
         return field(args, pose);
+    }
+    // clap does not enforce `requires = "pose"` here (pose conflicts with options that have
+    // defaults), so the field-rock options are checked by hand: never silently ignored.
+    for (given, flag) in
+        [(args.ensemble.is_some(), "--ensemble"), (args.records.is_some(), "--records"), (args.resume, "--resume")]
+    {
+        if given {
+            bail!(
+                "{flag} is for a field rock: give --pose (as-scanned for a rock standing as it was scanned) and a \
+                 record (--motion FILE or --records DIR)"
+            );
+        }
     }
     let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let size = args.sim.real_size(&stone, &name)?;
@@ -246,7 +280,7 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     if args.scales.is_empty() || args.scales.iter().any(|k| !(*k >= 0.0 && k.is_finite())) {
         bail!("--scales must be numbers ≥ 0, e.g. 0.5,1,2");
     }
-    let (_, stone, name) = args.sim.stone(args.mesh.as_deref())?;
+    let (analysis, stone, name) = args.sim.stone(args.mesh.as_deref())?;
     let pose = pose.resolved(&stone)?;
     let azimuth = args.azimuth.unwrap_or(0.0).to_radians();
     let size = args.sim.real_size(&stone, &name)?;
@@ -257,9 +291,14 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
         ..RockSetup::with_params(&stone, pose, size.length_unit_m, azimuth, params)
     };
     let ensemble = ensemble_spec(&args)?;
+    let rocks = match &ensemble {
+        Some(e) => shaking::field_members(&analysis, &args.sim.options(), &stone, &setup, e)?,
+        None => Vec::new(),
+    };
+    let rock = shaking::FieldRock { stone: &stone, members: &rocks };
     if let (Some(e), [record], [scale]) = (&ensemble, &records[..], &args.scales[..]) {
         let bar = super::progress_bar(e.members, "members");
-        let run = shaking::run_ensemble(&stone, &setup, record, *scale, e, &|| bar.inc(1))?;
+        let run = shaking::run_ensemble(rock, &setup, record, *scale, e, &|| bar.inc(1))?;
         bar.finish_and_clear();
         let page = super::Page::titled("shake --ensemble", &name);
         let summary = report::shake::ensemble_summary(&run, &name);
@@ -300,7 +339,7 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     let members = ensemble.as_ref().map_or(1, |e| e.members);
     let bar = super::progress_bar((records.len() * args.scales.len()) as u64 * members, "runs");
     let failed = std::sync::atomic::AtomicBool::new(false);
-    let batch = shaking::run_batch(&stone, &setup, &records, &args.scales, ensemble.as_ref(), &previous, &|r| {
+    let batch = shaking::run_batch(rock, &setup, &records, &args.scales, ensemble.as_ref(), &previous, &|r| {
         if let Some(w) = &sink {
             let mut w = w.lock().unwrap_or_else(|e| e.into_inner());
             let (j, c) = &mut *w;
@@ -362,11 +401,27 @@ fn ensemble_spec(args: &Args) -> Result<Option<shaking::EnsembleSpec>> {
         friction: range("friction-range", &args.friction_range)?,
         restitution: range("restitution-range", &args.restitution_range)?,
         rolling_resistance_m: range("rolling-resistance-range-mm", &args.rolling_resistance_range_mm)?,
+        base: match args.base.as_str() {
+            "scanned" => None,
+            _ => {
+                let calibrated = shaking::BaseUncertainty::calibrated();
+                let mm = |r: [f64; 2]| r.map(|x| x * 1e-3);
+                Some(shaking::BaseUncertainty {
+                    depth_m: range("base-depth-mm", &args.base_depth_mm)?.map(mm),
+                    band_m: args.base_band_mm.map_or(calibrated.band_m, |b| b * 1e-3),
+                    region: range("base-region", &args.base_region)?.unwrap_or(calibrated.region),
+                    ..calibrated
+                })
+            }
+        },
     };
     // Check the ranges as given (mm), named by their flags.
     let flag = |n: &str| match n {
         "contact_tolerance" => "--contact-tolerance-mm".to_string(),
         "rolling_resistance" => "--rolling-resistance-range-mm".to_string(),
+        "base_depth" => "--base-depth-mm".to_string(),
+        "base_band" => "--base-band-mm".to_string(),
+        "base_region" => "--base-region".to_string(),
         other => format!("--{}-range", other.replace('_', "-")),
     };
     given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;

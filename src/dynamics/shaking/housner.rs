@@ -473,6 +473,7 @@ mod tests {
             friction: 0.6,
             restitution: 0.3,
             rolling_resistance_m: 0.0,
+            base: None,
         };
         let draws = [draw(90.0, 1.0), draw(90.0, -1.0), draw(0.0, 1.0), draw(30.0, 1.0)];
         assert_eq!(block.overturns_drawn(&record, 1.0, &draws), [true, true, false, false]);

@@ -27,7 +27,10 @@ pub mod rock;
 pub mod sweep;
 
 pub use drive::{shake_placed, GroundDrive, Placed, Shaken};
-pub use ensemble::{run_ensemble, Ensemble, EnsembleSpec, Member, Uncertainty};
+pub use ensemble::{
+    field_members, member_rocks, run_ensemble, BaseUncertainty, Ensemble, EnsembleSpec, FieldRock, HiddenBase, Member,
+    MemberRock, Uncertainty,
+};
 pub use records::{run_batch, run_record, RecordRun, ShakeBatch};
 pub use rock::{default_poses, driven, place, rock_params, shake_record, stone_of, Pose, RockRun, RockSetup};
 pub use sweep::{

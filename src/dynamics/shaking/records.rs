@@ -4,7 +4,7 @@
 //! with an ensemble P(overturn) per record × scale and the surface's contours with their bands.
 
 use crate::dynamics::shaking::ensemble::{
-    run_member, sensitivities, Draw, EnsembleSpec, Member, Probability, Sensitivity,
+    run_member, sensitivities, Draw, EnsembleSpec, FieldRock, Member, Probability, Sensitivity,
 };
 use crate::dynamics::shaking::rock::{place, scaled_motion, shake_record, RockRun, RockSetup};
 use crate::dynamics::stone::Stone;
@@ -41,7 +41,7 @@ pub fn run_record(stone: &Stone, setup: &RockSetup, record: &Record, scale: f64)
 /// Member `member` of the ensemble `ensemble` on `record` × `scale` ([`run_member`]), as a run of
 /// a batch.
 pub fn run_record_member(
-    stone: &Stone,
+    rock: FieldRock,
     setup: &RockSetup,
     record: &Record,
     scale: f64,
@@ -49,7 +49,7 @@ pub fn run_record_member(
     member: u64,
 ) -> Result<RecordRun> {
     let (m, motion) = scaled_motion(record, scale, setup)?;
-    let Member { draw, run } = run_member(stone, setup, &motion, &ensemble.uncertainty, ensemble.seed, member)?;
+    let Member { draw, run } = run_member(rock, setup, &motion, &ensemble.uncertainty, ensemble.seed, member)?;
     Ok(RecordRun::of(record, scale, &m, Some(draw), run))
 }
 
@@ -92,6 +92,9 @@ pub struct ShakeBatch {
     /// The quasi-static tipping polar of the pose (at tolerance 0, and at the ends of an
     /// ensemble's base-contact range).
     pub tipping: Vec<crate::tipping::TippingSummary>,
+    /// With a drawn base: the members' tan α and support depth, smallest, median, largest.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base: Option<crate::dynamics::shaking::ensemble::BaseRange>,
 }
 
 /// The fragility surface of `runs`, fitted to the runs that came to rest (the others' outcome is
@@ -115,8 +118,8 @@ pub fn fit_surface(runs: &[RecordRun]) -> (Option<fragility::FragilitySurface>, 
 /// of the rock, the setup, the record, the scale and the member, so the batch is the same as one
 /// run in one go. With `ensemble`, every record × scale is run for each of its members
 /// ([`crate::dynamics::shaking::ensemble`]), and the surface is fitted to all of them.
-pub fn run_batch(
-    stone: &Stone,
+pub fn run_batch<'a>(
+    rock: impl Into<FieldRock<'a>>,
     setup: &RockSetup,
     records: &[Record],
     scales: &[f64],
@@ -131,6 +134,8 @@ pub fn run_batch(
     if let Some(e) = ensemble {
         e.check()?;
     }
+    let rock: FieldRock = rock.into();
+    let stone = rock.stone;
     let placed = place(stone, &setup.pose, &setup.params)?;
     let s = &stone.stable()[placed.start];
     let (settling_tilt_deg, start_equilibrium) = (placed.settling_tilt.to_degrees(), s.index);
@@ -157,7 +162,7 @@ pub fn run_batch(
                 return Ok(p.clone());
             }
             let run = match (ensemble, m) {
-                (Some(e), Some(m)) => run_record_member(stone, setup, &records[r], k, e, m)?,
+                (Some(e), Some(m)) => run_record_member(rock, setup, &records[r], k, e, m)?,
                 _ => run_record(stone, setup, &records[r], k)?,
             };
             done(&run);
@@ -185,6 +190,7 @@ pub fn run_batch(
             setup,
             &ensemble.map_or_else(Default::default, |e| e.uncertainty.clone()),
         )?,
+        base: crate::dynamics::shaking::ensemble::BaseRange::of_draws(rock.members.iter().map(|m| m.base).collect()),
     })
 }
 

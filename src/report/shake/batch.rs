@@ -44,6 +44,9 @@ pub fn batch_summary(b: &ShakeBatch, mesh: &str) -> String {
         (None, None) => {}
     }
     s += &batch_lines(b);
+    if let Some(base) = &b.base {
+        s += &super::ensemble::base_line(base);
+    }
     s += &crate::report::depth_line(b.runs.iter().map(|r| r.rock.deepest_penetration).fold(0.0, f64::max));
     if b.unsettled > 0 {
         s += &format!(

@@ -2,6 +2,7 @@
 //! banded fragility contours of [`crate::dynamics::shaking::ensemble`].
 
 use super::runs::write_runs_csv;
+use crate::dynamics::shaking::ensemble::BaseRange;
 use crate::dynamics::shaking::ensemble::Sensitivity;
 use crate::dynamics::shaking::records::{Contour, EnsembleSummary};
 use crate::dynamics::shaking::{Ensemble, RecordRun, ShakeBatch};
@@ -37,7 +38,25 @@ pub fn ensemble_summary(e: &Ensemble, mesh: &str) -> String {
     }
     s += &sensitivity_lines(&e.sensitivity);
     s += &tipping_lines(&e.tipping);
+    if let Some(b) = &e.base {
+        s += &base_line(b);
+    }
     s
+}
+
+/// The drawn bases of an ensemble in one line: the quasi-static tipping threshold tan α over the
+/// members (smallest, median, largest) and the support's depth below the rim.
+pub fn base_line(b: &BaseRange) -> String {
+    let [lo, mid, hi] = b.tan_alpha;
+    let depth = match b.depth_m {
+        [d0, _, d1] if d0 == d1 => format!("{:.1} mm", 1e3 * d0),
+        [d0, d, d1] => format!("{:.1}–{:.1} mm (median {:.1})", 1e3 * d0, 1e3 * d1, 1e3 * d),
+    };
+    format!(
+        "  drawn bases ({} members; the tipping lines above are the scan's own base): quasi-static tipping off the \
+         rocking points tan α from {lo:.3} to {hi:.3} (median {mid:.3}); support {depth} below the rim\n",
+        b.members
+    )
 }
 
 /// The members of an ensemble as runs of `runs.csv` (with their inputs).

@@ -41,9 +41,11 @@
 //! the scanned hull — the end of the base-contact range that tips most easily. How the ensemble's
 //! P scores against both, on simulated truths, is in `results/ensemble_fragility/`.
 
+pub mod base;
 pub mod sensitivity;
 pub mod uncertainty;
 
+pub use base::{BaseDraw, BaseSource, BaseUncertainty, HiddenBase};
 pub use sensitivity::{circular_linear, sensitivities, spearman, Probability, Sensitivity};
 pub use uncertainty::{draw, Draw, Uncertainty};
 
@@ -65,11 +67,81 @@ pub struct Member {
     pub run: RockRun,
 }
 
+/// The rock an ensemble or a batch runs: the scan's stone and, when its base is uncertain, every
+/// member's own rock with its drawn base ([`member_rocks`]; member m is `members[m]`). A stone
+/// alone (`&stone` into it) is a rock whose base is the scan's.
+#[derive(Clone, Copy)]
+pub struct FieldRock<'a> {
+    /// The rock as scanned (the nominal closing of an open scan).
+    pub stone: &'a Stone,
+    /// Each member's own rock; empty when the base is not uncertain.
+    pub members: &'a [MemberRock],
+}
+
+impl<'a> From<&'a Stone> for FieldRock<'a> {
+    fn from(stone: &'a Stone) -> Self {
+        FieldRock { stone, members: &[] }
+    }
+}
+
+/// A member's own rock: its closed solid's stone, standing as the hidden base's frame stands
+/// ([`Pose::AsScanned`]), and what its base drew.
+#[derive(Clone)]
+pub struct MemberRock {
+    /// The member's stone (flocks at the scan's ν).
+    pub stone: Stone,
+    /// Its base.
+    pub base: BaseDraw,
+}
+
+/// Every member's rock of an ensemble of `members` members (seed `seed`) drawing its base from
+/// `u` on `hidden` ([`HiddenBase::member`]), its solids analysed with `opts` and flocks read at
+/// `nu`, each put down with the runs' parameters `params` to check it stands, in parallel
+/// (independent of the thread count).
+pub fn member_rocks(
+    hidden: &HiddenBase,
+    u: &BaseUncertainty,
+    seed: u64,
+    members: u64,
+    opts: &crate::analysis::Options,
+    nu: f64,
+    params: &crate::dynamics::resting::RestingParams,
+) -> Result<Vec<MemberRock>> {
+    use rayon::prelude::*;
+    (0..members)
+        .into_par_iter()
+        .map(|m| hidden.member(u, seed, m, opts, nu, params).map(|(stone, base)| MemberRock { stone, base }))
+        .collect()
+}
+
+/// Every member's own rock of the ensemble `spec` of the rock of `setup` (its stone `stone`, the
+/// static analysis `analysis` of its scan with the options `opts`), as the command line and the
+/// Python binding draw them: none when the base is not uncertain, else the scan's hidden base
+/// ([`HiddenBase::of_scan`], a known centre of mass carried into its frame) closed anew by every
+/// member ([`member_rocks`]).
+pub fn field_members(
+    analysis: &crate::analysis::Analysis,
+    opts: &crate::analysis::Options,
+    stone: &Stone,
+    setup: &RockSetup,
+    spec: &EnsembleSpec,
+) -> Result<Vec<MemberRock>> {
+    let Some(b) = spec.uncertainty.base else { return Ok(Vec::new()) };
+    let band_m = b.band_for(setup.r_max_m);
+    let hidden = HiddenBase::of_scan(analysis.scan_mesh(), &setup.pose, stone, band_m, setup.length_unit_m, &opts.rim)?;
+    member_rocks(&hidden, &b, spec.seed, spec.members, &hidden.options(opts), stone.nu, &setup.params)
+}
+
 /// The facet the rock of `setup` stands on before any motion: the pose's facet, or the one the
 /// quasi-static descent from its down direction reaches (what [`place`] requires).
 pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
+    facet_under(stone, &setup.pose)
+}
+
+/// The facet `stone` stands on in `pose` ([`base_facet`]).
+fn facet_under(stone: &Stone, pose: &crate::dynamics::shaking::rock::Pose) -> Result<u32> {
     use crate::dynamics::shaking::rock::Pose;
-    match setup.pose.resolved(stone)? {
+    match pose.resolved(stone)? {
         Pose::Equilibrium { id } => {
             Ok(stone.stable()[stone.position(id).expect("a resolved pose names a stable micro-equilibrium")].facet)
         }
@@ -84,16 +156,36 @@ pub fn base_facet(stone: &Stone, setup: &RockSetup) -> Result<u32> {
 /// sampled for the run, [`crate::dynamics::shaking::rock::driven`]): the rock's base contact, contact and the
 /// record's azimuth and sign as drawn; where an input is not uncertain, exactly the setup's
 /// single run ([`crate::dynamics::shaking::records::run_record`]).
-pub fn run_member(
-    stone: &Stone,
+pub fn run_member<'a>(
+    rock: impl Into<FieldRock<'a>>,
     setup: &RockSetup,
     motion: &Record,
     u: &Uncertainty,
     seed: u64,
     member: u64,
 ) -> Result<Member> {
-    let d = draw(u, setup, seed, member);
+    let field: FieldRock = rock.into();
+    let own = field.members.get(member as usize);
+    if u.base.is_some() && own.is_none() {
+        return Err(Error::check(format!(
+            "ensemble member {member}: the base is uncertain but no rock was drawn for it"
+        )));
+    }
+    let d = Draw { base: own.map(|r| r.base), ..draw(u, setup, seed, member) };
+    // A member's own rock stands as the hidden base's frame stands, with its own real size.
+    let (stone, pose) = match own {
+        Some(r) => (&r.stone, crate::dynamics::shaking::rock::Pose::AsScanned),
+        None => (field.stone, setup.pose),
+    };
+    let r_max_m = match own {
+        Some(r) => r.stone.body.r_max * setup.length_unit_m,
+        None => setup.r_max_m,
+    };
     let mut p = setup.params.clone();
+    if r_max_m != setup.r_max_m {
+        p.sim.contact.rolling_resistance *= setup.r_max_m / r_max_m;
+        p.sim.contact.torsional_friction *= setup.r_max_m / r_max_m;
+    }
     if u.friction.is_some() {
         p.sim.contact.friction = d.friction;
     }
@@ -101,23 +193,21 @@ pub fn run_member(
         p.sim.contact.restitution = d.restitution;
     }
     if u.rolling_resistance_m.is_some() {
-        p.sim.contact.rolling_resistance = d.rolling_resistance_m / setup.r_max_m;
-        p.sim.contact.torsional_friction = d.rolling_resistance_m / setup.r_max_m;
+        p.sim.contact.rolling_resistance = d.rolling_resistance_m / r_max_m;
+        p.sim.contact.torsional_friction = d.rolling_resistance_m / r_max_m;
     }
     let rock: Cow<Stone> = match d.contact_tolerance_m > 0.0 {
-        true => Cow::Owned(stone.with_base_contact(base_facet(stone, setup)?, d.contact_tolerance_m / setup.r_max_m)?),
+        true => Cow::Owned(stone.with_base_contact(facet_under(stone, &pose)?, d.contact_tolerance_m / r_max_m)?),
         false => Cow::Borrowed(stone),
     };
     let motion: Cow<Record> = if d.sign < 0.0 { Cow::Owned(motion.scaled(-1.0)) } else { Cow::Borrowed(motion) };
     let azimuth = if u.azimuth_deg.is_some() { d.azimuth_deg.to_radians() } else { setup.azimuth };
-    let placed = place(&rock, &setup.pose, &p).map_err(|e| match e {
+    let placed = place(&rock, &pose, &p).map_err(|e| match e {
         Error::Pose { pose, what } => Error::Pose { pose, what: format!("ensemble member {member}: {what}") },
         e => e,
     })?;
-    let run = RockRun {
-        size_assumed: setup.size_assumed,
-        ..shake_record(&rock, placed, &p, &motion, azimuth, setup.r_max_m)
-    };
+    let run =
+        RockRun { size_assumed: setup.size_assumed, ..shake_record(&rock, placed, &p, &motion, azimuth, r_max_m) };
     Ok(Member { draw: d, run })
 }
 
@@ -142,6 +232,9 @@ pub struct Ensemble {
     /// The quasi-static tipping polar of the pose at base-contact tolerance 0 and at the ends of
     /// its range ([`quasi_static`]).
     pub tipping: Vec<TippingSummary>,
+    /// With a drawn base: the members' quasi-static tipping thresholds and depths.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base: Option<BaseRange>,
     /// Every member, in member order.
     pub members: Vec<Member>,
 }
@@ -150,8 +243,8 @@ pub struct Ensemble {
 /// parallel (rayon; each member is independent and deterministic, so the result does not depend
 /// on the thread count); `monitor` hears of each finished member and may stop the run
 /// ([`crate::monitor`]: the members not started are skipped, [`Error::Cancelled`]).
-pub fn run_ensemble(
-    stone: &Stone,
+pub fn run_ensemble<'a>(
+    rock: impl Into<FieldRock<'a>>,
     setup: &RockSetup,
     record: &Record,
     scale: f64,
@@ -160,11 +253,12 @@ pub fn run_ensemble(
 ) -> Result<Ensemble> {
     use rayon::prelude::*;
     e.check()?;
+    let field: FieldRock = rock.into();
     let (u, seed, n) = (&e.uncertainty, e.seed, e.members);
     let (m, motion) = crate::dynamics::shaking::rock::scaled_motion(record, scale, setup)?;
     let members: Vec<Option<Result<Member>>> = (0..n)
         .into_par_iter()
-        .map(|k| monitor::item(monitor, || run_member(stone, setup, &motion, u, seed, k)))
+        .map(|k| monitor::item(monitor, || run_member(field, setup, &motion, u, seed, k)))
         .collect();
     let members: Vec<Member> = monitor::all(members)?.into_iter().collect::<Result<_>>()?;
     Ok(Ensemble {
@@ -174,9 +268,45 @@ pub fn run_ensemble(
         uncertainty: u.clone(),
         probability: Probability::of(members.iter().map(|m| &m.run)),
         sensitivity: sensitivities(u, &members),
-        tipping: quasi_static(stone, setup, u)?,
+        tipping: quasi_static(field.stone, setup, u)?,
+        base: BaseRange::of(&members),
         members,
     })
+}
+
+/// The quasi-static tipping threshold over an ensemble's drawn bases: what field practice quotes
+/// from the rocking points, as a range over the members.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BaseRange {
+    /// Members with a drawn base.
+    pub members: usize,
+    /// tan α (g) of the members: smallest, median, largest.
+    pub tan_alpha: [f64; 3],
+    /// Depth (m) of the members' supports below the rim: smallest, median, largest.
+    pub depth_m: [f64; 3],
+}
+
+impl BaseRange {
+    /// The range over `members`' drawn bases; None when none was drawn.
+    pub fn of(members: &[Member]) -> Option<BaseRange> {
+        BaseRange::of_draws(members.iter().filter_map(|m| m.draw.base).collect())
+    }
+
+    /// The range over the drawn bases `bases`; None when there are none.
+    pub fn of_draws(bases: Vec<BaseDraw>) -> Option<BaseRange> {
+        if bases.is_empty() {
+            return None;
+        }
+        let three = |mut x: Vec<f64>| {
+            x.sort_by(f64::total_cmp);
+            [x[0], crate::stats::quantile(&x, 0.5), x[x.len() - 1]]
+        };
+        Some(BaseRange {
+            members: bases.len(),
+            tan_alpha: three(bases.iter().map(|b| b.tan_alpha).collect()),
+            depth_m: three(bases.iter().map(|b| b.depth_m).collect()),
+        })
+    }
 }
 
 /// The quasi-static side of the rock of `setup`: its support polygon and

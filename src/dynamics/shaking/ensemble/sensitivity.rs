@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Sensitivity {
     /// The input (`contact_tolerance`, `azimuth`, `sign`, `friction`, `restitution`,
-    /// `rolling_resistance`).
+    /// `rolling_resistance`, and with a drawn base `base_tan_alpha`, the member's static tipping
+    /// threshold, and `base_depth`).
     pub input: String,
     /// `spearman` (rank correlation with the 0/1 outcome, in [−1, 1]) or `circular-linear`
     /// (Mardia's R, in [0, 1], for an azimuth over the whole circle).
@@ -84,6 +85,13 @@ pub fn sensitivities(u: &Uncertainty, members: &[Member]) -> Vec<Sensitivity> {
     }
     if u.rolling_resistance_m.is_some() {
         out.push(rank("rolling_resistance", column(|d| d.rolling_resistance_m)));
+    }
+    if u.base.is_some() {
+        out.push(rank("base_tan_alpha", column(|d| d.base.map_or(f64::NAN, |b| b.tan_alpha))));
+        let depth = column(|d| d.base.map_or(f64::NAN, |b| b.depth_m));
+        if depth.iter().any(|&x| x != depth[0]) {
+            out.push(rank("base_depth", depth));
+        }
     }
     out
 }

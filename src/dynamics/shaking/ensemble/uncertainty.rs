@@ -1,6 +1,7 @@
 //! What is not known about a field rock ([`Uncertainty`]: base contact, azimuth, sign of the
 //! record, friction, restitution, rolling resistance), and one member's draw of it ([`draw`]).
 
+use crate::dynamics::shaking::ensemble::base::{BaseDraw, BaseUncertainty};
 use crate::dynamics::shaking::rock::RockSetup;
 use crate::dynamics::surface::Surface;
 use crate::rng::item_rng;
@@ -24,6 +25,11 @@ pub struct Uncertainty {
     pub restitution: Option<[f64; 2]>,
     /// Rolling-resistance (and torsional-friction) length δ (metres).
     pub rolling_resistance_m: Option<[f64; 2]>,
+    /// How the hidden base meets the ground ([`super::base`]): every member draws its own base
+    /// and stands on it as the scan stands. Absent: the scan's base (a field scan's nominal flat
+    /// cap), in every member.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base: Option<BaseUncertainty>,
 }
 
 impl Uncertainty {
@@ -61,12 +67,16 @@ impl Uncertainty {
                 pinned[2],
                 r.rolling_resistance_m,
             ),
+            base: given.base,
         }
     }
 
     /// Every range ordered, finite and physical (friction ≥ 0, restitution in [0, 1], lengths
     /// ≥ 0); else a parameter error naming it.
     pub fn check(&self) -> Result<()> {
+        if let Some(b) = &self.base {
+            b.check()?;
+        }
         let ranges = [
             ("contact_tolerance", self.contact_tolerance_m, 0.0, f64::INFINITY),
             ("azimuth", self.azimuth_deg, f64::NEG_INFINITY, f64::INFINITY),
@@ -124,6 +134,7 @@ impl Uncertainty {
             friction: central(self.friction, given.friction),
             restitution: central(self.restitution, given.restitution),
             rolling_resistance_m: central(self.rolling_resistance_m, given.rolling_resistance_m),
+            base: None,
         }
     }
 
@@ -151,6 +162,9 @@ pub struct Draw {
     pub restitution: f64,
     /// Rolling-resistance length δ (m).
     pub rolling_resistance_m: f64,
+    /// The member's drawn base ([`super::base`]), if the base is uncertain.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base: Option<BaseDraw>,
 }
 
 /// Member `member`'s inputs for `setup` under `u`, from the stream (`seed`, `member`).
@@ -168,5 +182,6 @@ pub fn draw(u: &Uncertainty, setup: &RockSetup, seed: u64, member: u64) -> Draw 
         friction: pick(u.friction, x[3], sim.contact.friction),
         restitution: pick(u.restitution, x[4], sim.contact.restitution),
         rolling_resistance_m: pick(u.rolling_resistance_m, x[5], sim.contact.rolling_resistance * setup.r_max_m),
+        base: None,
     }
 }
