@@ -135,3 +135,25 @@ fn the_walls_close_where_a_cone_has_its_apex_and_never_for_a_prism() {
     let known = BaseUncertainty { depth_m: Some([0.005, 0.01]), ..u };
     assert_eq!(block.depth_range(&known), [0.005, 0.01]);
 }
+
+#[test]
+fn measured_rocking_points_are_stood_on_by_every_member_and_checked() {
+    let hidden = field_block();
+    let points = [[-0.1, -0.08], [0.1, -0.08], [0.0, 0.1]];
+    let u = BaseUncertainty { rocking_points_m: Some(points), ..BaseUncertainty::calibrated() };
+    let rocks = members(&hidden, &u, 3, 4, 2);
+    for r in &rocks {
+        // The same support in every member, at the grid points nearest the given ones (the
+        // grid's spacing is √(A/400) = 17 mm here).
+        assert_eq!(r.base.support_m, rocks[0].base.support_m);
+        for (s, p) in r.base.support_m.iter().zip(&points) {
+            assert!((s[0] - p[0]).hypot(s[1] - p[1]) < 0.017, "{s:?} for {p:?}");
+        }
+    }
+    assert!(rocks.windows(2).any(|w| w[0].base.depth_m != w[1].base.depth_m), "the depth is still drawn");
+    // Points that do not surround G's foot (the block's centre): refused, naming them.
+    let aside = BaseUncertainty { rocking_points_m: Some([[0.1, 0.05], [0.15, 0.05], [0.12, 0.1]]), ..u };
+    let params = rock_params(Surface::RockOnConcrete, 0.35).unwrap();
+    let e = member_rocks(&hidden, &aside, 3, 1, &Options::default(), 1e-3, &params).err().unwrap();
+    assert!(e.to_string().contains("rocking_points") && e.to_string().contains("G's foot"), "{e}");
+}

@@ -474,4 +474,24 @@ fn the_bundled_rocking_field_scan_topples_where_its_flat_cap_would_not() {
     let flat_tan = flat["tipping"][0]["minimum_g"].as_f64().unwrap();
     assert!(tan[2].as_f64().unwrap() < flat_tan, "drawn tan α up to {} against the flat cap's {flat_tan}", tan[2]);
     assert!(flat.get("base").is_none());
+    // Rocking points that do not surround G's foot are refused by their flag, in the scan's
+    // frame (G's foot is at x = 731 mm).
+    let r = rocking(&[
+        "shake",
+        bundled.to_str().unwrap(),
+        "--length-unit",
+        "mm",
+        "--pose",
+        "as-scanned",
+        "--motion",
+        rec.to_str().unwrap(),
+        "--columns",
+        "time_s,ax_g",
+        "--ensemble",
+        "2",
+        "--rocking-points-mm",
+        "600,-195,650,-195,620,-160",
+    ]);
+    let e = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success() && e.contains("--rocking-points-mm must be three distinct points"), "{e}");
 }

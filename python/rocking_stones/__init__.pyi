@@ -432,7 +432,7 @@ def shake_rock(
     rolling_resistance_mm (low, high) in mm; base "drawn" (the default: every member draws the
     hidden base it stands on, ``--base drawn``; the dict then has base {members, tan_alpha,
     depth_m} and each draw its base) or "scanned" (the scan's own base); base_depth_mm T or
-    (low, high), base_band_mm, base_region (low, high). Friction, restitution and rolling
+    (low, high), base_band_mm, base_region (low, high), rocking_points_mm ((x, y), (x, y), (x, y)). Friction, restitution and rolling
     resistance not given range over the surface pair's published ranges. The mesh may be an
     open field scan (a path or a trimesh), standing as scanned."""
 

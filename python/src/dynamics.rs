@@ -414,7 +414,7 @@ pub(crate) fn shake_rock<'py>(
 }
 
 /// The keys of `shake_rock`'s `uncertainty=` dict.
-const UNCERTAINTY_KEYS: [&str; 10] = [
+const UNCERTAINTY_KEYS: [&str; 11] = [
     "contact_tolerance_mm",
     "azimuth",
     "random_sign",
@@ -425,6 +425,7 @@ const UNCERTAINTY_KEYS: [&str; 10] = [
     "base_depth_mm",
     "base_band_mm",
     "base_region",
+    "rocking_points_mm",
 ];
 
 /// `uncertainty=` of `shake_rock` as the command line's `given` uncertainty (user units: the
@@ -498,13 +499,19 @@ fn given_uncertainty(d: Option<&Bound<'_, PyDict>>) -> PyResult<rocking_stones::
                     )))
                 }
             },
-            "base_depth_mm" | "base_band_mm" | "base_region" => {
+            "base_depth_mm" | "base_band_mm" | "base_region" | "rocking_points_mm" => {
                 let Some(b) = given.base.as_mut() else {
                     return Err(PyValueError::new_err(format!("uncertainty[{key:?}] needs the base drawn, not scanned")));
                 };
                 match key.as_str() {
                     "base_depth_mm" => b.depth_m = Some(range(&key, &v, true)?.map(|x| x * 1e-3)),
                     "base_band_mm" => b.band_m = v.extract::<f64>()? * 1e-3,
+                    "rocking_points_mm" => {
+                        let p: [[f64; 2]; 3] = v.extract().map_err(|_| {
+                            PyValueError::new_err(format!("uncertainty[{key:?}]: three points (x, y) in mm"))
+                        })?;
+                        b.rocking_points_m = Some(p.map(|q| q.map(|x| x * 1e-3)));
+                    }
                     _ => b.region = range(&key, &v, false)?,
                 }
             }

@@ -125,6 +125,11 @@ pub struct Args {
     /// the rim's footprint radius, at most all of it.
     #[arg(long, value_name = "LOW,HIGH", requires = "ensemble", allow_hyphen_values = true)]
     pub base_depth_mm: Option<String>,
+    /// Ensemble, field scan standing as scanned: the rocking points measured in the field, the
+    /// three points it stands on, X1,Y1,X2,Y2,X3,Y3 in mm in the scan's frame (every member
+    /// stands on them and draws only the base's depth and slope).
+    #[arg(long, value_name = "X1,Y1,X2,Y2,X3,Y3", requires = "ensemble", allow_hyphen_values = true)]
+    pub rocking_points_mm: Option<String>,
     /// Ensemble, closed scan: height above its lowest point, in mm, up to which the scan's base is
     /// read as hidden (default 2 mm, calibrated; at most 1 % of R_max).
     #[arg(long, value_name = "MM", requires = "ensemble")]
@@ -292,7 +297,12 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     };
     let ensemble = ensemble_spec(&args)?;
     let rocks = match &ensemble {
-        Some(e) => shaking::field_members(&analysis, &args.sim.options(), &stone, &setup, e)?,
+        Some(e) => shaking::field_members(&analysis, &args.sim.options(), &stone, &setup, e).map_err(|e| {
+            anyhow::anyhow!(e.spelled(&|n: &str| match n {
+                "rocking_points" => "--rocking-points-mm".to_string(),
+                other => super::flag(other),
+            }))
+        })?,
         None => Vec::new(),
     };
     let rock = shaking::FieldRock { stone: &stone, members: &rocks };
@@ -364,6 +374,18 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     super::emit(&batch, args.json, &summary, args.output.as_deref(), Some(page), write)
 }
 
+/// `--rocking-points-mm`: six numbers X1,Y1,X2,Y2,X3,Y3 (mm) as three points (m).
+fn parse_points(s: &str) -> Result<[[f64; 2]; 3]> {
+    let v: Vec<f64> =
+        s.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| {
+            anyhow::anyhow!("--rocking-points-mm: expected six numbers X1,Y1,X2,Y2,X3,Y3 (mm), got {s:?}")
+        })?;
+    match v[..] {
+        [x1, y1, x2, y2, x3, y3] => Ok([[x1, y1], [x2, y2], [x3, y3]].map(|p| p.map(|x| x * 1e-3))),
+        _ => bail!("--rocking-points-mm: expected six numbers X1,Y1,X2,Y2,X3,Y3 (mm), got {} number(s)", v.len()),
+    }
+}
+
 /// A `LOW,HIGH` range (or one number T: [0, T] when `from_zero`, else [T, T]) of option `flag`.
 fn parse_range(flag: &str, s: &str, from_zero: bool) -> Result<[f64; 2]> {
     let v: Vec<f64> = s.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| {
@@ -407,6 +429,7 @@ fn ensemble_spec(args: &Args) -> Result<Option<shaking::EnsembleSpec>> {
                 let calibrated = shaking::BaseUncertainty::calibrated();
                 let mm = |r: [f64; 2]| r.map(|x| x * 1e-3);
                 Some(shaking::BaseUncertainty {
+                    rocking_points_m: args.rocking_points_mm.as_deref().map(parse_points).transpose()?,
                     depth_m: range("base-depth-mm", &args.base_depth_mm)?.map(mm),
                     band_m: args.base_band_mm.map_or(calibrated.band_m, |b| b * 1e-3),
                     region: range("base-region", &args.base_region)?.unwrap_or(calibrated.region),
@@ -422,6 +445,7 @@ fn ensemble_spec(args: &Args) -> Result<Option<shaking::EnsembleSpec>> {
         "base_depth" => "--base-depth-mm".to_string(),
         "base_band" => "--base-band-mm".to_string(),
         "base_region" => "--base-region".to_string(),
+        "rocking_points" => "--rocking-points-mm".to_string(),
         other => format!("--{}-range", other.replace('_', "-")),
     };
     given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;

@@ -27,7 +27,8 @@
 //!    rock under it is no wider.
 //! 2. **The support triangle**: three points of the base grid ([`crate::mesh::BaseClosing`])
 //!    inside the footprint and that disc, uniform among the triples whose triangle holds G's
-//!    foot (rejection sampling; its tries are bounded).
+//!    foot (rejection sampling; its tries are bounded) — or, when the rocking points were
+//!    measured in the field (`rocking_points_m`), the grid points nearest them in every member.
 //! 3. **The depth** d of the support below the rim's lowest point: uniform in `depth_m` when
 //!    the user knows it, else in [0, D] with D = max(`walls` × E, `floor` × ρ), at most ρ, and
 //!    for a closed scan (whose lowest point is seen) at most [`CLOSED_DEPTH`] bands. E is the depth at which the scan's walls,
@@ -73,6 +74,11 @@ use serde::{Deserialize, Serialize};
 /// What is not known of the hidden base, as ranges every member draws from (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BaseUncertainty {
+    /// The rocking points measured in the field: the three points (x, y in metres, the scan's
+    /// frame as scanned) the rock stands on. Given, every member stands on them (their nearest
+    /// base grid points) and draws only the depth and the slope; None: drawn.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rocking_points_m: Option<[[f64; 2]; 3]>,
     /// Open scans: depth (m) of the support below the rim's lowest point, [low, high], low ≥ 0,
     /// as the user knows it. None: from 0 to `walls` × the depth at which the scan's walls,
     /// continued down, close ([`HiddenBase::wall_depth`]).
@@ -120,6 +126,7 @@ impl BaseUncertainty {
     /// for open scans, a 2 mm band for closed ones, λ from 0.1 to 1.
     pub fn calibrated() -> BaseUncertainty {
         BaseUncertainty {
+            rocking_points_m: None,
             depth_m: None,
             walls: 0.6,
             floor: 0.1,
@@ -138,6 +145,11 @@ impl BaseUncertainty {
 
     /// Every range ordered, finite and physical; else a parameter error naming it.
     pub fn check(&self) -> Result<()> {
+        if let Some(p) = self.rocking_points_m {
+            if !p.iter().flatten().all(|x| x.is_finite()) {
+                return Err(Error::parameter("rocking_points", format!("{p:?}"), "three finite points x, y"));
+            }
+        }
         if let Some([d0, d1]) = self.depth_m {
             if !(d0.is_finite() && d1.is_finite() && 0.0 <= d0 && d0 <= d1) {
                 return Err(Error::parameter(
@@ -351,6 +363,7 @@ impl HiddenBase {
         params: &RestingParams,
     ) -> Result<(Stone, BaseDraw)> {
         u.check()?;
+        let given = u.rocking_points_m.map(|p| self.rocking_points(p)).transpose()?;
         let mut rng = item_rng(seed, member);
         // The six uniforms of the other inputs come first (`super::uncertainty::draw`).
         for _ in 0..6 {
@@ -368,12 +381,15 @@ impl HiddenBase {
             // triangle of grid points in it holds G's foot: a rim of separate islands (a rock
             // resting on a few bumps) has its weight carried across them.
             let mut r = region * self.radius.min(u.reach * height);
-            let triangle = loop {
-                match self.support(r, &mut rng) {
-                    Some(t) => break Some(t),
-                    None if r < self.extent => r = (1.5 * r).min(self.extent),
-                    None => break None,
-                }
+            let triangle = match given {
+                Some(t) => Some(t),
+                None => loop {
+                    match self.support(r, &mut rng) {
+                        Some(t) => break Some(t),
+                        None if r < self.extent => r = (1.5 * r).min(self.extent),
+                        None => break None,
+                    }
+                },
             };
             let Some(triangle) = triangle else {
                 no_triangle += 1;
@@ -433,6 +449,43 @@ impl HiddenBase {
             BaseSource::OpenScan => [0.0, d],
             BaseSource::ClosedScan { band_m } => [0.0, d.min(CLOSED_DEPTH * band_m)],
         }
+    }
+
+    /// The base grid points nearest the rocking points `p` (metres, mesh frame); refused when two
+    /// are the same point or their triangle does not hold G's foot (the rock could not stand
+    /// on them).
+    fn rocking_points(&self, p: [[f64; 2]; 3]) -> Result<[usize; 3]> {
+        if self.frame.0 != nalgebra::Rotation3::identity() {
+            return Err(Error::parameter(
+                "rocking_points",
+                format!("{p:?}"),
+                "points in the scan's frame as scanned: the rock standing as scanned",
+            ));
+        }
+        let nearest = |q: [f64; 2]| {
+            let (x, y) = (q[0] / self.unit, q[1] / self.unit);
+            let d = |k: usize| (self.grid[k][0] - x).hypot(self.grid[k][1] - y);
+            (0..self.grid.len()).min_by(|&a, &b| d(a).total_cmp(&d(b))).unwrap_or(0)
+        };
+        let t = p.map(nearest);
+        let (gx, gy) = (self.g.x, self.g.y);
+        let side = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (gy - a[1]) - (b[1] - a[1]) * (gx - a[0]);
+        let c = t.map(|k| self.grid[k]);
+        let s = [side(c[0], c[1]), side(c[1], c[2]), side(c[2], c[0])];
+        let holds = s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0);
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !holds {
+            return Err(Error::parameter(
+                "rocking_points",
+                format!("{p:?}"),
+                format!(
+                    "three distinct points inside the rim around G's foot at ({:.4}, {:.4}) m, or the rock could not \
+                     stand on them",
+                    gx * self.unit,
+                    gy * self.unit
+                ),
+            ));
+        }
+        Ok(t)
     }
 
     /// Three grid points inside a region of radius `r` (mesh units) around a centre drawn within
