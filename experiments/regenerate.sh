@@ -12,8 +12,9 @@
 # (.ci/report_html.sh), results/one_physics/ a hand-written comparison: neither is regenerated here.
 # drops_vs_mujoco and drops_solver_substeps need MuJoCo's Python bindings (`pip install mujoco`;
 # ROCKING_PYTHON names the interpreter, default python3): without them each says so and fails, and
-# the others still run. shake_table_pgv needs the folder of the SP1 shake-table tests, which is not in
-# the repository: ROCKING_SP1 names it; without it the experiment says so and writes nothing.
+# the others still run. shake_table_pgv and shake_table_sp1 need the folder of the SP1 shake-table
+# tests, which is not in the repository: ROCKING_SP1 names it; without it each says so and writes
+# nothing.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,6 +26,7 @@ ALL=(
   drops_settling drops_dt drops_certificate_speed certificate_margin drops_impacts drops_offfacet
   certificate_decisions drops_vs_mujoco drops_solver_substeps printed_shapes shake_table_pgv
   fig11_rocking_vs_regular fragility_shaking fragility_surface ensemble_fragility rocking_confusion_table
+  open_scan_truth shake_table_sp1
 )
 # Seconds, not minutes: the static experiments (the smoke test of --quick).
 QUICK=(table1_planar_flocks fig2_planar_r_phi fig4_ellipse_grid fig5_rocking_planar)
@@ -44,7 +46,7 @@ for e in "${run[@]}"; do
   start=$SECONDS
   echo "== $e"
   args=()
-  if [ "$e" = shake_table_pgv ] && [ -n "${ROCKING_SP1:-}" ]; then args=("$ROCKING_SP1"); fi
+  case "$e" in shake_table_pgv | shake_table_sp1) [ -n "${ROCKING_SP1:-}" ] && args=("$ROCKING_SP1") ;; esac
   if cargo run --release --quiet --package experiments --bin "$e" -- "${args[@]}"; then
     echo "$(date -u +%F) $e: $((SECONDS - start)) s" | tee -a "$log"
   else

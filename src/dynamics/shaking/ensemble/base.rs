@@ -45,9 +45,9 @@
 //! have at the rim until they reach the support plane (never steeper than the straight way from
 //! the triangle up to the rim), and beyond them the underside rises from the triangle at κ.
 //! Tilted about a rocking edge by κ, the rock lands on the base beyond it. A closed scan is
-//! treated exactly as a field scan cut at its band: on the shake-table rock this scored better
-//! than keeping its scanned band's shape with the support at the band's depth (Brier 0.087
-//! against 0.115 over its 490 tests).
+//! treated exactly as a field scan cut at its band (its depth at most [`CLOSED_DEPTH`] bands):
+//! in the calibration this scored better on the shake-table rock than keeping the band's
+//! scanned shape with the support at the band's depth.
 //!
 //! Each member is its own closed solid — its own mass, G, inertia, hull, equilibria and flocks
 //! (read at the scan's ν) — and must stand as scanned: the quasi-static descent from straight
