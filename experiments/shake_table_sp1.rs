@@ -2,9 +2,8 @@
 //! and cut open above its base as a field scan sees it. The calibration of the hidden base's
 //! defaults (in-sample: the only tests it is scored on are the ones it was tuned on).
 //!
-//! The tests are not in the repository (GPL-3.0): give their folder — `SP1.ply`, `tests.csv`
-//! and `motions/TestNNN.csv` — as the argument. Without it the experiment says so and writes
-//! nothing.
+//! The tests are not in the repository (GPL-3.0): give their folder (`SP1.ply`, `tests.csv`,
+//! `motions/TestNNN.csv`) as the argument; without it the experiment says so, writes nothing.
 //!
 //! Run: `cargo experiment shake_table_sp1 -- DIR` → `results/shake_table_sp1/`; the README's prose
 //! is `experiments/readme/shake_table_sp1.md`.
@@ -109,6 +108,7 @@ fn main() -> Result<()> {
         region: args.region.as_ref().map_or(calibrated.region, |r| [r[0], r[r.len() - 1]]),
         slope: args.slope.as_ref().map_or(calibrated.slope, |r| [r[0], r[r.len() - 1]]),
         reach: args.reach.unwrap_or(calibrated.reach),
+        ..calibrated
     };
     let out = Results::open("shake_table_sp1", &args.common)?;
     let observed: Vec<bool> = tests.iter().map(|t| t.overturned == 1).collect();
