@@ -3,7 +3,7 @@
 //! `results/hand_table2/`; the README's prose is `experiments/readme/hand_table2.md`.
 
 use rocking_stones::report::hand_calibration::{write_calibration, Calibration};
-use rocking_stones::study::{self, FitOptions, PopulationParams, TABLE2_EXPERIMENTER};
+use rocking_stones::study::{self, FitOptions, PopulationParams, TABLE2_EXPERIMENTER_ON_SCANS};
 
 use experiments::harness;
 use harness::{Result, Results};
@@ -27,9 +27,9 @@ fn main() -> Result<()> {
     let mut files = study::mesh_files(&harness::repo().join("data/meshes"))?;
     files.retain(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with("stone_")));
     files.insert(0, harness::repo().join("data/default_pebble.ply"));
-    let scans = study::scans_counted(&files, &TABLE2_EXPERIMENTER)?;
+    let scans = study::scans_counted(&files, &TABLE2_EXPERIMENTER_ON_SCANS)?;
     let (population, seconds) = ((&params, &ROUGHNESS[..]), [gen_s, fit_s, loso_s]);
-    let (loso, before) = (loso?, (&before, &before_rows[..]));
-    let c = Calibration { fit: &fit, before, one_nu: &one_nu, loso: &loso, scans: &scans, population, seconds };
+    let (loso, before, direct) = (loso?, (&before, &before_rows[..]), study::hand_minus_scans(&hand));
+    let c = Calibration { fit: &fit, before, one_nu: &one_nu, loso: &loso, scans: &scans, direct, population, seconds };
     out.readme(include_str!("readme/hand_table2.md"), write_calibration(&out.path(""), &c)?)
 }

@@ -456,7 +456,8 @@ def study(
     pebble (:attr:`Study.rows`), the columns of ``pebbles.csv``. The hand columns are the
     two-tolerance hand experimenter's most likely pair ``hand_S``, ``hand_U`` with its probability
     ``hand_p`` and the distribution ``hand_pairs`` (``tolerances=(nu_s, sd_s, nu_u, sd_u)``,
-    default the calibration on Table 2; :meth:`Study.hand` has every pebble's distribution), or
+    default the calibration on Table 2 in the real scans' frame, as ``rocking study FOLDER``;
+    :meth:`Study.hand` has every pebble's distribution), or
     with ``nu=`` the paper's one-ν counts ``hand_nu``, ``hand_S``, ``hand_U``, ``hand_H``.
     ``dynamic=True`` adds the simulated hand experimenter, who sets each pebble down at its real
     size: ``length_unit`` (the scans' unit) is then needed."""

@@ -120,7 +120,8 @@ impl PyStudy {
 /// A field study over a folder of scans, as `rocking study FOLDER --meta META`; returns a
 /// `Study` with one row per pebble (the columns of pebbles.csv). The hand columns are the
 /// two-tolerance hand experimenter's most likely pair (`tolerances=(nu_s, sd_s, nu_u, sd_u)`,
-/// default the calibration on Table 2), or with `nu=` the paper's one-ν counts. dynamic=True adds the
+/// default the calibration on Table 2 in the real scans' frame, as `rocking study FOLDER`), or with
+/// `nu=` the paper's one-ν counts. dynamic=True adds the
 /// simulated hand experimenter (`trials` set-downs from `height` R_max per pebble), each pebble
 /// set down at its real size, given by `length_unit=` (the scans' unit: "mm", "cm", "m", "km",
 /// "in" or metres per unit), which it needs.
@@ -147,7 +148,7 @@ pub(crate) fn study(
     let hand = match (nu, tolerances) {
         (Some(_), Some(_)) => return Err(PyValueError::new_err("give nu= (one ν) or tolerances= (two), not both")),
         (Some(_), None) => None,
-        (None, None) => Some(st::TABLE2_EXPERIMENTER),
+        (None, None) => Some(st::TABLE2_EXPERIMENTER_ON_SCANS),
         (None, Some((a, b, c, d))) => Some(HandExperimenter {
             stable: Tolerance::new("stable", a, b).map_err(py_err)?,
             unstable: Tolerance::new("unstable", c, d).map_err(py_err)?,

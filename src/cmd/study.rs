@@ -286,7 +286,7 @@ fn batch(args: BatchArgs) -> Result<()> {
         let e = rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()) };
         anyhow::bail!(e.spelled(&super::flag));
     }
-    let hand = args.hand.experimenter(args.nu)?;
+    let hand = args.hand.experimenter(args.nu, study::TABLE2_EXPERIMENTER_ON_SCANS)?;
     let table = args.table.as_deref().map(study::read_table2).transpose()?;
     let opts = StudyOptions {
         analysis: Options { nu: None, coplanar_tol: args.coplanar_tol, ..Options::default() },
@@ -321,7 +321,7 @@ fn batch(args: BatchArgs) -> Result<()> {
 fn synthetic(args: SyntheticArgs) -> Result<()> {
     let params = args.population.params(args.dynamic.seed, study::TABLE2_ROUGHNESS)?;
     let exp = args.dynamic.experimenter()?;
-    let hand_exp = args.hand.experimenter(args.nu)?;
+    let hand_exp = args.hand.experimenter(args.nu, study::TABLE2_EXPERIMENTER)?;
     let nu = args.nu.unwrap_or(PAPER_NU);
     let hand = args.table.as_deref().map(study::read_table2).transpose()?;
     let targets: Vec<SampleTarget> = match (&hand, args.c_over_b, args.c_over_a) {

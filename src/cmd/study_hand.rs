@@ -14,18 +14,20 @@ pub struct HandArgs {
     /// one): NU_S,SD_S,NU_U,SD_U, the median tolerance at which stable equilibria are told
     /// apart and its spread between pebbles (standard deviation of log10 ν, decades), then the
     /// same for unstable ones. Default: the calibration on the paper's Table 2 (see `study
-    /// fit-hand`).
+    /// fit-hand`): on a folder of real scans in the scans' frame (ν_S = 3.16e-3 ×/÷ 10^0.17,
+    /// ν_U = 3.41e-3), on synthetic pebbles as fitted on them (3.55e-3 ×/÷ 10^0.17, 1.52e-2).
     #[arg(long, value_name = "NU_S,SD_S,NU_U,SD_U", conflicts_with = "nu")]
     pub tolerances: Option<String>,
 }
 
 impl HandArgs {
-    /// The experimenter: None with a one-ν `nu`, else the given or the calibrated tolerances.
-    pub fn experimenter(&self, nu: Option<f64>) -> Result<Option<HandExperimenter>> {
+    /// The experimenter: None with a one-ν `nu`, else the given tolerances or `calibrated`
+    /// (the calibration in the frame of the pebbles counted: real scans or synthetic pebbles).
+    pub fn experimenter(&self, nu: Option<f64>, calibrated: HandExperimenter) -> Result<Option<HandExperimenter>> {
         if nu.is_some() {
             return Ok(None);
         }
-        let Some(text) = &self.tolerances else { return Ok(Some(study::TABLE2_EXPERIMENTER)) };
+        let Some(text) = &self.tolerances else { return Ok(Some(calibrated)) };
         let x: Vec<f64> = text
             .split(',')
             .map(|v| v.trim().parse::<f64>())
@@ -45,10 +47,18 @@ impl HandArgs {
 pub fn describe(study: &Study) -> String {
     match study.hand {
         Some(e) => format!(
-            "hand columns: the two-tolerance experimenter, stable at ν_S = {:.2e} ×/÷ 10^{:.2}, unstable at ν_U = \
+            "hand columns: the two-tolerance experimenter{}, stable at ν_S = {:.2e} ×/÷ 10^{:.2}, unstable at ν_U = \
              {:.2e} ×/÷ 10^{:.2} (median, spread between pebbles); hand_S, hand_U: the most likely pair, hand_p its \
              probability, hand_pairs the distribution (also hand.json)",
-            e.stable.median, e.stable.sd_log10, e.unstable.median, e.unstable.sd_log10
+            match e {
+                e if e == study::TABLE2_EXPERIMENTER_ON_SCANS => " calibrated on Table 2, in the real scans' frame",
+                e if e == study::TABLE2_EXPERIMENTER => " calibrated on Table 2, on synthetic pebbles",
+                _ => "",
+            },
+            e.stable.median,
+            e.stable.sd_log10,
+            e.unstable.median,
+            e.unstable.sd_log10
         ),
         None => format!("hand columns: the paper's one-ν experimenter, the counts of G(ν) at ν = {:.2e}", study.nu),
     }

@@ -8,7 +8,7 @@ use super::write_csv;
 use crate::plot::{colors, Axis, Chart, Mark};
 use crate::stats::min_max;
 use crate::study::{LeftOut, NuFit, PopulationParams, RoughnessFit, SampleFit, ScanCounts, Table2HandFit};
-use crate::study::{TABLE2_EXPERIMENTER, TABLE2_ROUGHNESS};
+use crate::study::{TABLE2_EXPERIMENTER, TABLE2_EXPERIMENTER_ON_SCANS, TABLE2_ROUGHNESS};
 use plotters::style::RGBColor;
 use serde_json::{json, Value};
 use std::path::Path;
@@ -23,8 +23,12 @@ pub struct Calibration<'a> {
     pub one_nu: &'a [SampleFit],
     /// Every sample predicted without it.
     pub loso: &'a [LeftOut],
-    /// Real scans: name, the counts at ν = 0.0035 and the calibrated experimenter's distribution.
+    /// Real scans: name, the counts at ν = 0.0035 and the distribution of the calibrated
+    /// experimenter in the scans' frame ([`TABLE2_EXPERIMENTER_ON_SCANS`]).
     pub scans: &'a [ScanCounts],
+    /// The direct route to the scans' frame: the person's counts against the real scans' at
+    /// ν = 0.0035 on the samples Table 2 has both for ([`crate::study::hand_minus_scans`]).
+    pub direct: Option<[(f64, f64); 2]>,
     /// The synthetic populations' parameters (roughness: see the profile) and roughness grid.
     pub population: (&'a PopulationParams, &'a [f64]),
     /// Seconds to generate the populations, fit the profile and leave each sample out.
@@ -188,7 +192,9 @@ pub fn write_calibration(dir: &Path, c: &Calibration) -> crate::Result<Value> {
             f(t.chi2, 0)
         ])
     };
-    let (pop, grid, cal) = (c.population.0, c.population.1, TABLE2_EXPERIMENTER);
+    let (pop, grid, cal, on_scans) =
+        (c.population.0, c.population.1, TABLE2_EXPERIMENTER, TABLE2_EXPERIMENTER_ON_SCANS);
+    let direct = c.direct.map(|d| d.map(|(x, se)| [f(x, 3), f(se, 3), f(x / se, 2)]));
     Ok(json!({
         "grid": grid.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", "), "count": pop.count,
         "points": pop.points, "spread": pop.spread, "seed": pop.seed, "seconds": c.seconds.map(|s| f(s, 0)),
@@ -210,5 +216,8 @@ pub fn write_calibration(dir: &Path, c: &Calibration) -> crate::Result<Value> {
         "real": real,
         "shift": fit.scan_shift.map(|d| f(d, 3)),
         "scan_frame": [e2(fit.in_scan_frame().stable.median), e2(fit.in_scan_frame().unstable.median)],
+        "on_scans": [e2(on_scans.stable.median), f(on_scans.stable.sd_log10, 2), e2(on_scans.unstable.median),
+            f(on_scans.unstable.sd_log10, 2)],
+        "direct": direct,
     }))
 }

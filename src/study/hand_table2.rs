@@ -155,6 +155,26 @@ pub fn scan_frame_shift(hand: &[HandSample], curves: &[Vec<CountCurve>]) -> [f64
     })
 }
 
+/// How a person's counts compare with the real scans' counts at ν = 0.0035, without synthetic
+/// pebbles: over the samples with both (Table 2's five scanned samples), the mean of
+/// E_hand − E_scans for S and for U, with its standard error √(Σ σ_h²/n_h + σ_c²/n_c) / k.
+/// Near zero: on real scans the person counts like the hierarchy at the paper's ν. None without
+/// such samples.
+pub fn hand_minus_scans(hand: &[HandSample]) -> Option<[(f64, f64); 2]> {
+    let both: Vec<(&HandSample, [f64; 4], usize)> =
+        hand.iter().filter_map(|h| Some((h, h.computer?, h.n_computer?))).collect();
+    if both.is_empty() {
+        return None;
+    }
+    let k = both.len() as f64;
+    Some(std::array::from_fn(|i| {
+        let diff = both.iter().map(|(h, c, _)| h.hand[i] - c[i]).sum::<f64>() / k;
+        let var: f64 =
+            both.iter().map(|(h, c, n)| h.hand[i + 2].powi(2) / h.n as f64 + c[i + 2].powi(2) / *n as f64).sum();
+        (diff, var.sqrt() / k)
+    }))
+}
+
 /// Fit the tolerances at every roughness of `pops` and choose the roughness (see the module
 /// documentation).
 pub fn fit_hand_table2(hand: &[HandSample], pops: &[Populations]) -> Result<Table2HandFit> {
@@ -295,5 +315,33 @@ mod tests {
         // Linear interpolation between grid points: lo between 0.1 and 0.2, hi between 0.3 and 0.4.
         assert!(lo > 0.1 && lo < 0.2 && hi > 0.3 && hi < 0.4, "{lo} {hi}");
         assert_eq!(vertex(&x, &y, 0), (0.1, true));
+    }
+
+    #[test]
+    fn hand_minus_scans_by_hand() {
+        let sample = |hand: [f64; 4], computer: Option<[f64; 4]>| HandSample {
+            id: "x".into(),
+            location: String::new(),
+            rock_type: String::new(),
+            n: 50,
+            hand,
+            c_over_b: 0.7,
+            c_over_a: 0.5,
+            computer,
+            n_computer: computer.map(|_| 20),
+        };
+        let h = [
+            sample([3.0, 4.0, 1.0, 2.0], Some([2.5, 4.5, 2.0, 1.0])),
+            sample([2.0, 3.0, 1.0, 1.0], Some([2.5, 3.0, 1.0, 1.0])),
+            sample([9.0, 9.0, 1.0, 1.0], None),
+        ];
+        // S: (0.5 − 0.5)/2 = 0, √(1/50 + 4/20 + 1/50 + 1/20)/2 = √0.29/2; U: (−0.5 + 0)/2.
+        let [s, u] = hand_minus_scans(&h).unwrap();
+        assert!(s.0.abs() < 1e-12 && (s.1 - 0.29f64.sqrt() / 2.0).abs() < 1e-12, "{s:?}");
+        assert!(
+            (u.0 + 0.25).abs() < 1e-12
+                && (u.1 - (4.0 / 50.0 + 1.0 / 20.0 + 1.0 / 50.0 + 1.0 / 20.0f64).sqrt() / 2.0).abs() < 1e-12
+        );
+        assert_eq!(hand_minus_scans(&h[2..]), None);
     }
 }
