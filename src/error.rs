@@ -129,10 +129,13 @@ pub enum Error {
     },
     /// A dynamic run on a mesh whose real size is neither given nor known: its result depends on
     /// the size, and no one guess is right for dice and field rocks ([`crate::dynamics::size`]).
-    #[error("{mesh}: {}", size_unknown(&|n: &str| n.to_string()))]
+    #[error("{mesh}: {}", size_unknown(*one_stone, &|n: &str| n.to_string()))]
     SizeUnknown {
         /// The mesh concerned, as reported.
         mesh: String,
+        /// One stone, whose size may also be given as its R_max (`size`); false for a folder of
+        /// scans of many sizes, which only their length unit can size.
+        one_stone: bool,
     },
     /// Results of long runs that do not belong together: a checkpoint written by a different
     /// run, or partial results that differ in their parameters or outcomes.
@@ -278,7 +281,7 @@ impl Error {
     pub fn spelled(&self, spell: &dyn Fn(&str) -> String) -> String {
         match self {
             Error::Parameter { name, value, expected } => format!("{} must be {expected}, got {value}", spell(name)),
-            Error::SizeUnknown { mesh } => format!("{mesh}: {}", size_unknown(spell)),
+            Error::SizeUnknown { mesh, one_stone } => format!("{mesh}: {}", size_unknown(*one_stone, spell)),
             e => e.to_string(),
         }
     }
@@ -304,14 +307,18 @@ impl Error {
     }
 }
 
-/// What [`Error::SizeUnknown`] says, its parameters spelled by `spell`.
-fn size_unknown(spell: &dyn Fn(&str) -> String) -> String {
+/// What [`Error::SizeUnknown`] says, its parameters spelled by `spell`: the length unit, and for
+/// one stone its size as an alternative.
+fn size_unknown(one_stone: bool, spell: &dyn Fn(&str) -> String) -> String {
+    let or_size = match one_stone {
+        true => format!(" or {} (R_max in metres)", spell("size")),
+        false => String::new(),
+    };
     format!(
         "its length unit is not known, and the result depends on the stone's real size (the rolling resistance \
          relative to R_max; under shaking, the real frequencies of the motion): give {} (mm, cm, m, km, in or \
-         metres per mesh unit) or {} (R_max in metres)",
+         metres per mesh unit){or_size}",
         spell("length_unit"),
-        spell("size")
     )
 }
 

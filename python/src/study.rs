@@ -168,7 +168,10 @@ pub(crate) fn study(
         let length_unit_m = match length_unit {
             Some(u) => Some(crate::dynamics::length_unit_m(u)?),
             None => {
-                let e = rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()) };
+                let e = rocking_stones::Error::SizeUnknown {
+                    mesh: format!("{} (the scans)", folder.display()),
+                    one_stone: false,
+                };
                 return Err(PyValueError::new_err(e.spelled(&|n: &str| format!("{n}="))));
             }
         };

@@ -105,3 +105,13 @@ def test_bad_drop_parameters():
         rs.perturb(box, size=0.01, contact_model="gravel")
     with pytest.raises(ValueError, match="certificate must be one of"):
         rs.drop(box, 1, size=0.01, certificate="maybe")
+
+
+def test_a_dynamic_study_asks_for_the_scans_unit_only(tmp_path):
+    # study() has no size=: a folder of scans of many sizes is sized by its unit alone.
+    import trimesh
+
+    v, f = rs.generate("pebble", n=300, seed=1)
+    trimesh.Trimesh(v, f, process=False).export(tmp_path / "p.ply")
+    with pytest.raises(ValueError, match=r"give length_unit= \(mm, cm, m, km, in or metres per mesh unit\)$"):
+        rs.study(tmp_path, dynamic=True)

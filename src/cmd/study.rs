@@ -283,7 +283,8 @@ fn batch(args: BatchArgs) -> Result<()> {
     let length_unit_m = args.length_unit.map(|u| u.metres);
     let experimenter = args.dynamic.experimenter()?.map(|e| Experimenter { length_unit_m, ..e });
     if experimenter.is_some() && length_unit_m.is_none() {
-        let e = rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()) };
+        let e =
+            rocking_stones::Error::SizeUnknown { mesh: format!("{} (the scans)", folder.display()), one_stone: false };
         anyhow::bail!(e.spelled(&super::flag));
     }
     let hand = args.hand.experimenter(args.nu, study::TABLE2_EXPERIMENTER_ON_SCANS)?;

@@ -87,7 +87,7 @@ impl RealSize {
         let (as_decided, source) = match given {
             Some(s) => (s, SizeSource::Given),
             None if bundled::is_bundled(name) => (Size::Unit(bundled::LENGTH_UNIT_M), SizeSource::Known),
-            None => return Err(Error::SizeUnknown { mesh: name.to_string() }),
+            None => return Err(Error::SizeUnknown { mesh: name.to_string(), one_stone: true }),
         };
         let length_unit_m = as_decided.length_unit_m(r_max)?;
         let r_max_m = match as_decided {
