@@ -47,6 +47,11 @@ for e in "${run[@]}"; do
   echo "== $e"
   args=()
   case "$e" in shake_table_pgv | shake_table_sp1) [ -n "${ROCKING_SP1:-}" ] && args=("$ROCKING_SP1") ;; esac
+  # shake_table_sp1 also measures how its drawn ensembles move with the draw of the bases alone:
+  # every 4th test, six seeds (results/shake_table_sp1/seed_spread/).
+  [ "$e" = shake_table_sp1 ] && [ -n "${ROCKING_SP1:-}" ] &&
+    ! cargo run --release --quiet --package experiments --bin "$e" -- "${args[@]}" --every 4 --bases drawn \
+      --spread-seeds 2,3,4,5,6 --out results/shake_table_sp1/seed_spread && failed+=("$e seed_spread")
   if cargo run --release --quiet --package experiments --bin "$e" -- "${args[@]}"; then
     echo "$(date -u +%F) $e: $((SECONDS - start)) s" | tee -a "$log"
   else

@@ -68,6 +68,10 @@ struct Args {
     /// Calibration: the record's sign unknown (each member flips it with probability ½).
     #[arg(long)]
     random_sign: bool,
+    /// Further seeds of the drawn ensembles: how much their scores move with the draw of the
+    /// members' bases alone (seed_spread.csv, beside the --seed of the main run).
+    #[arg(long, value_delimiter = ',')]
+    spread_seeds: Vec<u64>,
     #[command(flatten)]
     common: harness::Common,
 }
@@ -117,8 +121,7 @@ fn main() -> Result<()> {
     let mut sets = Vec::new();
     let runs: Vec<(f64, bool)> =
         args.bases.iter().flat_map(|b| args.cuts_mm.iter().map(move |&c| (c, b == "drawn"))).collect();
-    for (cut, drawn) in runs {
-        let t0 = std::time::Instant::now();
+    let run = |cut: f64, drawn: bool, seed: u64| -> Result<(Vec<f64>, f64, rocking_stones::stats::ForecastScores)> {
         let scan = if cut > 0.0 { rocking_stones::mesh::cut_base(&mesh, cut * 1e-3)? } else { mesh.clone() };
         let opts = Options::default();
         let analysis = Analysis::of_scan(scan.clone(), &opts)?;
@@ -130,7 +133,7 @@ fn main() -> Result<()> {
             azimuth_deg: args.azimuth_spread.map(|a| [-a, a]),
             ..Uncertainty::stated(&Uncertainty::default(), Surface::RockOnConcrete, [false; 3])
         };
-        let spec = EnsembleSpec { uncertainty, seed: args.common.seed_or(1), members: args.members };
+        let spec = EnsembleSpec { uncertainty, seed, members: args.members };
         let rocks = field_members(&analysis, &opts, &stone, &setup, &spec)?;
         let rock = FieldRock { stone: &stone, members: &rocks };
         let batch = run_batch(rock, &setup, &records, &[1.0], Some(&spec), &[], &|_| {})?;
@@ -143,15 +146,31 @@ fn main() -> Result<()> {
         let truths: Vec<[bool; 1]> = observed.iter().map(|&y| [y]).collect();
         let cases: Vec<Forecast> = p.iter().zip(&truths).map(|(&p, y)| (p, &y[..])).collect();
         let s = forecast_scores(&cases, 0.5 / args.members as f64);
+        Ok((p, rocks.iter().map(|r| r.base.depth_m).fold(0.0, f64::max), s))
+    };
+    let mean = |p: &[f64]| p.iter().sum::<f64>() / p.len() as f64;
+    let label = |cut: f64| if cut > 0.0 { format!("cut {cut} mm") } else { "closed".to_string() };
+    let mut spread = Vec::new();
+    for (cut, drawn) in runs {
+        let t0 = std::time::Instant::now();
+        let (p, deepest_m, s) = run(cut, drawn, args.common.seed_or(1))?;
+        let seconds = t0.elapsed().as_secs_f64();
+        if drawn && !args.spread_seeds.is_empty() {
+            spread.push(vec![label(cut), args.common.seed_or(1).to_string(), fixed(s.brier, 4), fixed(mean(&p), 3)]);
+            for &seed in &args.spread_seeds {
+                let (p, _, s) = run(cut, drawn, seed)?;
+                spread.push(vec![label(cut), seed.to_string(), fixed(s.brier, 4), fixed(mean(&p), 3)]);
+            }
+        }
         let zero: Vec<bool> = p.iter().zip(&observed).filter(|(p, _)| **p == 0.0).map(|(_, y)| *y).collect();
-        let label = if cut > 0.0 { format!("cut {cut} mm") } else { "closed".to_string() };
+        let label = label(cut);
         let row = json!({
             "scan": label, "cut_mm": cut, "base": if drawn { "drawn" } else { "scanned" }, "tests": p.len(), "brier": fixed(s.brier, 4), "log_loss": fixed(s.log_loss, 4),
-            "accuracy": fixed(s.accuracy, 3), "mean_p": fixed(p.iter().sum::<f64>() / p.len() as f64, 3),
+            "accuracy": fixed(s.accuracy, 3), "mean_p": fixed(mean(&p), 3),
             "observed": fixed(observed.iter().filter(|&&y| y).count() as f64 / p.len() as f64, 3),
             "p_zero": zero.len(), "p_zero_overturned": zero.iter().filter(|&&y| y).count(),
-            "deepest_support_mm": fixed(1e3 * rocks.iter().map(|r| r.base.depth_m).fold(0.0, f64::max), 1),
-            "seconds": fixed(t0.elapsed().as_secs_f64(), 0),
+            "deepest_support_mm": fixed(1e3 * deepest_m, 1),
+            "seconds": fixed(seconds, 0),
         });
         eprintln!("{row}");
         scores.push(row);
@@ -165,19 +184,8 @@ fn main() -> Result<()> {
         .collect();
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     out.csv("p_overturn.csv", &header, &per_test)?;
-    let keys = [
-        "scan",
-        "cut_mm",
-        "base",
-        "tests",
-        "brier",
-        "log_loss",
-        "accuracy",
-        "mean_p",
-        "observed",
-        "p_zero",
-        "p_zero_overturned",
-    ];
+    let keys =
+        harness::columns("scan,cut_mm,base,tests,brier,log_loss,accuracy,mean_p,observed,p_zero,p_zero_overturned");
     let rows: Vec<Vec<String>> =
         scores.iter().map(|s| keys.iter().map(|k| s[k].to_string().trim_matches('"').to_string()).collect()).collect();
     out.csv("scores.csv", &keys, &rows)?;
@@ -195,10 +203,14 @@ fn main() -> Result<()> {
         let chart: Chart = rocking_stones::plot::reliability_diagram(&title, &diagram);
         chart.save(&out.path(file), (900, 800))?;
     }
-    let context = json!({
+    let mut context = json!({
         "base": base, "scores": scores, "tests": tests.len(), "members": args.members, "every": args.every,
         "observed": fixed(observed.iter().filter(|&&y| y).count() as f64 / observed.len() as f64, 3),
     });
+    if !spread.is_empty() {
+        out.csv("seed_spread.csv", &["scan", "seed", "brier", "mean_p"], &spread)?;
+        context["spread"] = json!(spread);
+    }
     out.write("scores.json", serde_json::to_string_pretty(&context)?)?;
     out.readme(include_str!("readme/shake_table_sp1.md"), &context)
 }

@@ -60,7 +60,7 @@ fn experiments_are_short_programs_on_the_harness() {
     // What the experiments share: one concept a file, held to the library's 600 lines; and the
     // whole room may only shrink (11 811 lines of Rust before the harness, 5 948 after it; 127
     // more for shake_table_pgv, 467 for the two studies of the hidden base, shake_table_sp1 and
-    // open_scan_truth).
+    // open_scan_truth, 12 for shake_table_sp1's spread over the draw of the bases).
     let mut total = 0;
     for e in std::fs::read_dir(&dir).unwrap().chain(std::fs::read_dir(dir.join("shared")).unwrap()) {
         let p = e.unwrap().path();
@@ -74,7 +74,7 @@ fn experiments_are_short_programs_on_the_harness() {
     }
     assert!(count >= 30, "only {count} experiments found");
     assert!(found.is_empty(), "experiments off the harness:\n{}", found.join("\n"));
-    assert!(total <= 6_542, "experiments/ has grown to {total} lines of Rust (at most 6 542)");
+    assert!(total <= 6_554, "experiments/ has grown to {total} lines of Rust (at most 6 554)");
 }
 
 /// The library speaks in its own words: no string in it names a command-line flag
