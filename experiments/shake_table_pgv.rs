@@ -17,7 +17,7 @@ use serde::Deserialize;
 use serde_json::json;
 use std::path::PathBuf;
 
-use experiments::harness::{self, fixed, Context, Parser, Result, Results};
+use experiments::harness::{self, fixed, Parser, Result, Results};
 
 /// PGV of shake-table tests: processed and plainly integrated against the table's measurement.
 #[derive(Parser)]
@@ -46,17 +46,11 @@ fn spread(x: &[f64]) -> serde_json::Value {
 
 fn main() -> Result<()> {
     let args = Args::parse();
-    let Some(dir) = args.dir else {
-        eprintln!(
-            "shake_table_pgv: skipped — give the folder of the shake-table tests (tests.csv, motions/) as the \
-             argument; it is not part of the repository"
-        );
+    let Some((dir, tests)) = harness::shake_table_tests::<Test>("shake_table_pgv", &args.dir, "tests.csv, motions/")?
+    else {
         return Ok(());
     };
     let p = Processing::default();
-    let table = dir.join("tests.csv");
-    let mut reader = csv::Reader::from_path(&table).with_context(|| format!("cannot read {}", table.display()))?;
-    let tests: Vec<Test> = reader.deserialize().collect::<std::result::Result<_, _>>().context("tests.csv")?;
     let columns = "time_s,ax_g".parse()?;
     let (mut rows, mut points) = (Vec::new(), Vec::new());
     let (mut processed, mut old, mut quoted) = (Vec::new(), Vec::new(), Vec::new());

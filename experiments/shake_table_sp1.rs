@@ -21,7 +21,7 @@ use serde::Deserialize;
 use serde_json::json;
 use std::path::PathBuf;
 
-use experiments::harness::{self, fixed, Context, Parser, Result, Results};
+use experiments::harness::{self, fixed, Parser, Result, Results};
 
 /// Shake-table tests of one scanned rock: the ensemble's P(overturn) scored, closed and cut open.
 #[derive(Parser)]
@@ -86,16 +86,11 @@ struct Test {
 
 fn main() -> Result<()> {
     let args = Args::parse();
-    let Some(dir) = args.dir.clone() else {
-        eprintln!(
-            "shake_table_sp1: skipped — give the folder of the shake-table tests (SP1.ply, tests.csv, motions/) as \
-             the argument; it is not part of the repository"
-        );
+    let Some((dir, tests)) =
+        harness::shake_table_tests::<Test>("shake_table_sp1", &args.dir, "SP1.ply, tests.csv, motions/")?
+    else {
         return Ok(());
     };
-    let table = dir.join("tests.csv");
-    let mut reader = csv::Reader::from_path(&table).with_context(|| format!("cannot read {}", table.display()))?;
-    let tests: Vec<Test> = reader.deserialize().collect::<std::result::Result<_, _>>().context("tests.csv")?;
     let tests: Vec<Test> = tests.into_iter().step_by(args.every.max(1)).collect();
     let columns = "time_s,ax_g".parse()?;
     let records = tests

@@ -439,26 +439,14 @@ fn the_bundled_rocking_field_scan_topples_where_its_flat_cap_would_not() {
         })
         .collect();
     std::fs::write(&rec, format!("time_s,ax_g\n{rows}")).unwrap();
+    // The README's command; `more` adds to it.
+    let (scan, rec) = (bundled.to_str().unwrap(), rec.to_str().unwrap());
+    let shake = |more: &[&str]| {
+        let readme = ["shake", scan, "--length-unit", "mm", "--pose", "as-scanned", "--motion", rec];
+        rocking(&[&readme[..], &["--columns", "time_s,ax_g"], more].concat())
+    };
     let p = |base: &str| {
-        let r = rocking(&[
-            "shake",
-            bundled.to_str().unwrap(),
-            "--length-unit",
-            "mm",
-            "--pose",
-            "as-scanned",
-            "--motion",
-            rec.to_str().unwrap(),
-            "--columns",
-            "time_s,ax_g",
-            "--scales",
-            "0.2",
-            "--ensemble",
-            "16",
-            "--base",
-            base,
-            "--json",
-        ]);
+        let r = shake(&["--scales", "0.2", "--ensemble", "16", "--base", base, "--json"]);
         assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
         serde_json::from_slice::<serde_json::Value>(&r.stdout).unwrap()
     };
@@ -476,22 +464,7 @@ fn the_bundled_rocking_field_scan_topples_where_its_flat_cap_would_not() {
     assert!(flat.get("base").is_none());
     // Rocking points that do not surround G's foot are refused by their flag, in the scan's
     // frame (G's foot is at x = 731 mm).
-    let r = rocking(&[
-        "shake",
-        bundled.to_str().unwrap(),
-        "--length-unit",
-        "mm",
-        "--pose",
-        "as-scanned",
-        "--motion",
-        rec.to_str().unwrap(),
-        "--columns",
-        "time_s,ax_g",
-        "--ensemble",
-        "2",
-        "--rocking-points-mm",
-        "600,-195,650,-195,620,-160",
-    ]);
+    let r = shake(&["--ensemble", "2", "--rocking-points-mm", "600,-195,650,-195,620,-160"]);
     let e = String::from_utf8_lossy(&r.stderr);
     assert!(!r.status.success() && e.contains("--rocking-points-mm must be three distinct points"), "{e}");
 }

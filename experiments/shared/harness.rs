@@ -130,6 +130,26 @@ pub fn render(template: &str, context: impl Serialize) -> Result<String> {
     t.render(minijinja::value::Serde(context)).context("the README template does not render")
 }
 
+/// The folder of shake-table tests `dir` (not part of the repository: GPL-3.0) with the rows of
+/// its `tests.csv`; None, said on stderr, when it is not given (`holds`: what it must hold).
+pub fn shake_table_tests<T: serde::de::DeserializeOwned>(
+    name: &str,
+    dir: &Option<PathBuf>,
+    holds: &str,
+) -> Result<Option<(PathBuf, Vec<T>)>> {
+    let Some(dir) = dir else {
+        eprintln!(
+            "{name}: skipped — give the folder of the shake-table tests ({holds}) as the argument; it is not part of \
+             the repository"
+        );
+        return Ok(None);
+    };
+    let table = dir.join("tests.csv");
+    let mut reader = csv::Reader::from_path(&table).with_context(|| format!("cannot read {}", table.display()))?;
+    let tests = reader.deserialize().collect::<std::result::Result<_, _>>().context("tests.csv")?;
+    Ok(Some((dir.clone(), tests)))
+}
+
 /// A number with `digits` decimals, as the READMEs write it.
 pub fn fixed(x: f64, digits: usize) -> String {
     format!("{x:.digits$}")

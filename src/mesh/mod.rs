@@ -479,6 +479,12 @@ impl TriMesh {
     /// Number of connected pieces (triangles joined through shared vertices; every vertex is
     /// assumed used by a triangle).
     pub(crate) fn pieces(&self) -> usize {
+        self.piece_labels().iter().enumerate().filter(|&(i, &p)| p as usize == i).count()
+    }
+
+    /// For every vertex, the piece it belongs to (triangles joined through shared vertices), named
+    /// by one of its vertices (union–find).
+    pub(crate) fn piece_labels(&self) -> Vec<u32> {
         let mut parent: Vec<u32> = (0..self.vertices.len() as u32).collect();
         fn find(p: &mut [u32], mut x: u32) -> u32 {
             while p[x as usize] != x {
@@ -493,6 +499,6 @@ impl TriMesh {
                 parent[a as usize] = b;
             }
         }
-        (0..self.vertices.len() as u32).filter(|&i| find(&mut parent, i) == i).count()
+        (0..self.vertices.len() as u32).map(|i| find(&mut parent, i)).collect()
     }
 }

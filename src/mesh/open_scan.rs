@@ -299,22 +299,8 @@ fn trim_flaps(mesh: &mut TriMesh, original: &mut Vec<usize>) -> usize {
 /// (their number returned); the scan then is one piece. Pieces any larger are left for the reader
 /// to refuse: which of two sizeable surfaces is the rock is not the reader's to guess.
 fn drop_fragments(mesh: &mut TriMesh, original: &mut Vec<usize>) -> usize {
-    let n = mesh.vertices.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            p[x as usize] = p[p[x as usize] as usize];
-            x = p[x as usize];
-        }
-        x
-    }
-    for t in &mesh.triangles {
-        for k in 0..2 {
-            let (a, b) = (find(&mut parent, t[k]), find(&mut parent, t[k + 1]));
-            parent[a as usize] = b;
-        }
-    }
-    let piece: Vec<u32> = mesh.triangles.iter().map(|t| find(&mut parent, t[0])).collect();
+    let labels = mesh.piece_labels();
+    let piece: Vec<u32> = mesh.triangles.iter().map(|t| labels[t[0] as usize]).collect();
     let mut area: std::collections::BTreeMap<u32, f64> = std::collections::BTreeMap::new();
     for (t, &p) in mesh.triangles.iter().zip(&piece) {
         let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
