@@ -122,8 +122,9 @@ fn default_floor() -> f64 {
 }
 
 impl BaseUncertainty {
-    /// The defaults, calibrated on one real rock's shake-table tests (module docs): depth 0–20 mm
-    /// for open scans, a 2 mm band for closed ones, λ from 0.1 to 1.
+    /// The defaults, calibrated on one real rock's shake-table tests (module docs): an open
+    /// scan's depth from 0 to 0.6 × its walls' closing depth (at least 0.1 ρ), a 2 mm band for
+    /// closed scans, λ from 0.1 to 1, κ from 0.005 to 0.03.
     pub fn calibrated() -> BaseUncertainty {
         BaseUncertainty {
             rocking_points_m: None,
@@ -371,9 +372,9 @@ impl HiddenBase {
         }
         // Why the last draws failed, for the refusal.
         let (mut no_triangle, mut unreadable, mut elsewhere, mut unsteady) = (0, 0, 0, 0);
+        let ([d0, d1], summary) = (self.depth_range(u), self.closing.scan().summary());
         for tries in 1..=BASE_TRIES {
             let region = u.region[0] + (u.region[1] - u.region[0]) * rng.random_range(0.0..1.0);
-            let [d0, d1] = self.depth_range(u);
             let depth = d0 + (d1 - d0) * rng.random_range(0.0..1.0);
             let slope = u.slope[0] + (u.slope[1] - u.slope[0]) * rng.random_range(0.0..1.0);
             let height = self.g.z - (self.z_low - depth / self.unit);
@@ -397,10 +398,9 @@ impl HiddenBase {
             };
             // A drawn base whose solid cannot be analysed (a hull too degenerate to read) is
             // drawn again, like one the rock does not stand on.
-            let summary = self.closing.scan().summary().clone();
             let analysed = self
                 .closed(&triangle, depth / self.unit, slope)
-                .and_then(|closed| Analysis::of_closed_scan(closed, summary, "drawn base", opts))
+                .and_then(|closed| Analysis::of_closed_scan(closed, summary.clone(), "drawn base", opts))
                 .and_then(|a| Stone::new(&a, nu).map(|s| (a, s)));
             let Ok((a, stone)) = analysed else {
                 unreadable += 1;
@@ -469,11 +469,7 @@ impl HiddenBase {
         };
         let t = p.map(nearest);
         let (gx, gy) = (self.g.x, self.g.y);
-        let side = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (gy - a[1]) - (b[1] - a[1]) * (gx - a[0]);
-        let c = t.map(|k| self.grid[k]);
-        let s = [side(c[0], c[1]), side(c[1], c[2]), side(c[2], c[0])];
-        let holds = s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0);
-        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !holds {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !strictly_inside(&t.map(|k| self.grid[k]), [gx, gy]) {
             return Err(Error::parameter(
                 "rocking_points",
                 format!("{p:?}"),
@@ -503,12 +499,7 @@ impl HiddenBase {
         if inside.len() < 3 {
             return None;
         }
-        let holds = |k: [usize; 3]| {
-            let p = k.map(|i| self.grid[inside[i]]);
-            let side = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (gy - a[1]) - (b[1] - a[1]) * (gx - a[0]);
-            let s = [side(p[0], p[1]), side(p[1], p[2]), side(p[2], p[0])];
-            (s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)) && s.iter().all(|x| x.abs() > 0.0)
-        };
+        let holds = |k: [usize; 3]| strictly_inside(&k.map(|i| self.grid[inside[i]]), [gx, gy]);
         for _ in 0..TRIANGLE_TRIES {
             let k = [0, 1, 2].map(|_| rng.random_range(0..inside.len()));
             if k[0] != k[1] && k[1] != k[2] && k[0] != k[2] && holds(k) {
@@ -566,10 +557,25 @@ fn closing_depth(scan: &OpenScan, radius: f64) -> Option<f64> {
     (wider > radius * (1.0 + 1e-6)).then(|| radius * delta / (wider - radius))
 }
 
+/// (b − a) × (c − a): positive when c lies left of the line from a to b.
+fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// The side of each edge of `t` that `p` lies on ([`cross`]).
+fn sides(t: &[[f64; 2]; 3], p: [f64; 2]) -> [f64; 3] {
+    [cross(t[0], t[1], p), cross(t[1], t[2], p), cross(t[2], t[0], p)]
+}
+
+/// `p` strictly inside the triangle `t` (not on an edge): a support that holds G's foot.
+fn strictly_inside(t: &[[f64; 2]; 3], p: [f64; 2]) -> bool {
+    let s = sides(t, p);
+    s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
+}
+
 /// The distance from `p` to the triangle `t` in the plane: 0 inside.
 fn distance_to_triangle(p: [f64; 2], t: &[[f64; 2]; 3]) -> f64 {
-    let cross = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    let s = [cross(t[0], t[1], p), cross(t[1], t[2], p), cross(t[2], t[0], p)];
+    let s = sides(t, p);
     if s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0) {
         return 0.0;
     }
