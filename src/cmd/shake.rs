@@ -298,10 +298,7 @@ fn field(args: Args, pose: shaking::Pose) -> Result<()> {
     let ensemble = ensemble_spec(&args)?;
     let rocks = match &ensemble {
         Some(e) => shaking::field_members(&analysis, &args.sim.options(), &stone, &setup, e).map_err(|e| {
-            anyhow::anyhow!(e.spelled(&|n: &str| match n {
-                "rocking_points" => "--rocking-points-mm".to_string(),
-                other => super::flag(other),
-            }))
+            anyhow::anyhow!(e.spelled(&|n: &str| base_flag(n).map_or_else(|| super::flag(n), String::from)))
         })?,
         None => Vec::new(),
     };
@@ -442,11 +439,7 @@ fn ensemble_spec(args: &Args) -> Result<Option<shaking::EnsembleSpec>> {
     let flag = |n: &str| match n {
         "contact_tolerance" => "--contact-tolerance-mm".to_string(),
         "rolling_resistance" => "--rolling-resistance-range-mm".to_string(),
-        "base_depth" => "--base-depth-mm".to_string(),
-        "base_band" => "--base-band-mm".to_string(),
-        "base_region" => "--base-region".to_string(),
-        "rocking_points" => "--rocking-points-mm".to_string(),
-        other => format!("--{}-range", other.replace('_', "-")),
+        other => base_flag(other).map_or_else(|| format!("--{}-range", other.replace('_', "-")), String::from),
     };
     given.check().map_err(|e| anyhow::anyhow!(e.spelled(&flag)))?;
     let surface = args.sim.surface.unwrap_or(Surface::RockOnConcrete);
@@ -455,6 +448,17 @@ fn ensemble_spec(args: &Args) -> Result<Option<shaking::EnsembleSpec>> {
     let spec = shaking::EnsembleSpec { uncertainty, seed: args.seed, members };
     spec.check().map_err(|e| anyhow::anyhow!(e.spelled(&super::flag)))?;
     Ok(Some(spec))
+}
+
+/// The flag of a hidden-base parameter of the library, None for any other parameter.
+fn base_flag(name: &str) -> Option<&'static str> {
+    match name {
+        "base_depth" => Some("--base-depth-mm"),
+        "base_band" => Some("--base-band-mm"),
+        "base_region" => Some("--base-region"),
+        "rocking_points" => Some("--rocking-points-mm"),
+        _ => None,
+    }
 }
 
 /// Every record of a folder, by file name: `*.csv` and `*.AT2` (one record along x per file).

@@ -173,13 +173,11 @@ pub fn run_member<'a>(
     }
     let d = Draw { base: own.map(|r| r.base), ..draw(u, setup, seed, member) };
     // A member's own rock stands as the hidden base's frame stands, with its own real size.
-    let (stone, pose) = match own {
-        Some(r) => (&r.stone, crate::dynamics::shaking::rock::Pose::AsScanned),
-        None => (field.stone, setup.pose),
-    };
-    let r_max_m = match own {
-        Some(r) => r.stone.body.r_max * setup.length_unit_m,
-        None => setup.r_max_m,
+    let (stone, pose, r_max_m) = match own {
+        Some(r) => {
+            (&r.stone, crate::dynamics::shaking::rock::Pose::AsScanned, r.stone.body.r_max * setup.length_unit_m)
+        }
+        None => (field.stone, setup.pose, setup.r_max_m),
     };
     let mut p = setup.params.clone();
     if r_max_m != setup.r_max_m {
