@@ -60,6 +60,7 @@
 //! The defaults ([`BaseUncertainty::calibrated`]) are calibrated on one real rock's shake-table
 //! tests (`results/shake_table_sp1/`): in-sample, not a validation.
 
+use super::triangle::{distance_to_triangle, strictly_inside};
 use crate::analysis::{Analysis, Options};
 use crate::dynamics::resting::RestingParams;
 use crate::dynamics::shaking::rock::{place, Pose};
@@ -555,51 +556,4 @@ fn closing_depth(scan: &OpenScan, radius: f64) -> Option<f64> {
         .sum();
     let wider = (area.max(0.0) / std::f64::consts::PI).sqrt();
     (wider > radius * (1.0 + 1e-6)).then(|| radius * delta / (wider - radius))
-}
-
-/// (b − a) × (c − a): positive when c lies left of the line from a to b.
-fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-}
-
-/// The side of each edge of `t` that `p` lies on ([`cross`]).
-fn sides(t: &[[f64; 2]; 3], p: [f64; 2]) -> [f64; 3] {
-    [cross(t[0], t[1], p), cross(t[1], t[2], p), cross(t[2], t[0], p)]
-}
-
-/// `p` strictly inside the triangle `t` (not on an edge): a support that holds G's foot.
-fn strictly_inside(t: &[[f64; 2]; 3], p: [f64; 2]) -> bool {
-    let s = sides(t, p);
-    s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
-}
-
-/// The distance from `p` to the triangle `t` in the plane: 0 inside.
-fn distance_to_triangle(p: [f64; 2], t: &[[f64; 2]; 3]) -> f64 {
-    let s = sides(t, p);
-    if s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0) {
-        return 0.0;
-    }
-    (0..3)
-        .map(|i| {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let len2 = dx * dx + dy * dy;
-            let u = if len2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
-            ((p[0] - a[0] - u * dx).powi(2) + (p[1] - a[1] - u * dy).powi(2)).sqrt()
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_distance_to_a_triangle_is_zero_inside_and_euclidean_outside() {
-        let t = [[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]];
-        assert_eq!(distance_to_triangle([0.5, 0.5], &t), 0.0);
-        assert!((distance_to_triangle([1.0, -1.0], &t) - 1.0).abs() < 1e-15);
-        assert!((distance_to_triangle([-3.0, -4.0], &t) - 5.0).abs() < 1e-15);
-        assert!((distance_to_triangle([2.0, 2.0], &t) - 2f64.sqrt()).abs() < 1e-15);
-    }
 }

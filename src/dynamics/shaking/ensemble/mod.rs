@@ -43,6 +43,7 @@
 
 pub mod base;
 pub mod sensitivity;
+mod triangle;
 pub mod uncertainty;
 
 pub use base::{BaseDraw, BaseSource, BaseUncertainty, HiddenBase};
